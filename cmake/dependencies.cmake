@@ -1,0 +1,29 @@
+# Every dependency is a Debian package installed by scripts/install-deps.sh; nothing is downloaded.
+find_package(Eigen3 3.4 REQUIRED NO_MODULE)
+find_package(fmt REQUIRED)
+find_package(nlohmann_json 3.10 REQUIRED)
+find_package(CLI11 REQUIRED)
+find_package(tomlplusplus 3 REQUIRED)
+
+# SuiteSparse 5.x on Debian ships no CMake config: find CHOLMOD and its companions by hand.
+find_path(CHOLMOD_INCLUDE_DIR cholmod.h PATH_SUFFIXES suitesparse REQUIRED)
+find_library(CHOLMOD_LIBRARY cholmod REQUIRED)
+find_library(SUITESPARSE_CONFIG_LIBRARY suitesparseconfig REQUIRED)
+find_library(AMD_LIBRARY amd REQUIRED)
+find_library(COLAMD_LIBRARY colamd REQUIRED)
+find_library(CAMD_LIBRARY camd REQUIRED)
+find_library(CCOLAMD_LIBRARY ccolamd REQUIRED)
+find_library(OPENBLAS_LIBRARY openblas REQUIRED)
+add_library(fricon_cholmod INTERFACE)
+target_include_directories(fricon_cholmod SYSTEM INTERFACE ${CHOLMOD_INCLUDE_DIR})
+target_link_libraries(fricon_cholmod INTERFACE ${CHOLMOD_LIBRARY} ${AMD_LIBRARY} ${CAMD_LIBRARY}
+                      ${COLAMD_LIBRARY} ${CCOLAMD_LIBRARY} ${SUITESPARSE_CONFIG_LIBRARY}
+                      ${OPENBLAS_LIBRARY})
+
+find_package(Threads REQUIRED)
+if(FRICON_BUILD_TESTS)
+  find_package(GTest REQUIRED)
+endif()
+if(FRICON_BUILD_BENCH)
+  find_package(benchmark REQUIRED)
+endif()
