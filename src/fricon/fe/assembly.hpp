@@ -1,0 +1,48 @@
+#pragma once
+// fe: assembly of the stiffness matrix K and the load vector f over the free dofs (method.md §2.3).
+// All integrals are exact for the data they accept (constant or P1 tractions and volume forces).
+
+#include <vector>
+
+#include "fricon/core/types.hpp"
+#include "fricon/fe/dof_map.hpp"
+#include "fricon/fe/material.hpp"
+#include "fricon/mesh/tet_mesh.hpp"
+
+namespace fricon::fe {
+
+using NodalField = Eigen::Matrix<Real, 3, Eigen::Dynamic>;
+
+/// Stiffness matrix K [N/m] over the free dofs of `dofs`: symmetric, both triangles stored, with
+/// the sparsity of the node graph (every pair of nodes sharing a tetrahedron). Positive definite
+/// when the Dirichlet conditions remove the rigid motions.
+SparseMatrix assemble_stiffness(const mesh::TetMesh& mesh, const Material& material,
+                                const DofMap& dofs);
+
+/// Adds the load of a constant surface traction p [Pa] on the boundary triangles `faces` to f [N]:
+/// each vertex of triangle T receives |T|/3 p (exact for P1 test functions).
+void add_traction(const mesh::TetMesh& mesh, const DofMap& dofs, const std::vector<Index>& faces,
+                  const Vec3& p, VectorXd& f);
+
+/// Adds the load of a P1 surface traction with nodal values p (3 x n_nodes) [Pa] on `faces`,
+/// integrated exactly with the triangle mass matrix |T|/12 (1 + delta_ab).
+void add_traction_p1(const mesh::TetMesh& mesh, const DofMap& dofs, const std::vector<Index>& faces,
+                     const NodalField& p, VectorXd& f);
+
+/// Adds the load of a constant volume force b [N/m^3]: each vertex receives |T|/4 b.
+void add_volume_force(const mesh::TetMesh& mesh, const DofMap& dofs, const Vec3& b, VectorXd& f);
+
+/// Adds the load of a P1 volume force with nodal values b (3 x n_nodes) [N/m^3], integrated exactly
+/// with the tetrahedron mass matrix |T|/20 (1 + delta_ab).
+void add_volume_force_p1(const mesh::TetMesh& mesh, const DofMap& dofs, const NodalField& b,
+                         VectorXd& f);
+
+/// Nodal forces [N] of the stiffness on all 3 n_nodes components (fixed ones included): the
+/// internal force K_full u for a displacement field given at the nodes. Used for reactions.
+NodalField internal_forces(const mesh::TetMesh& mesh, const Material& material,
+                           const NodalField& u);
+
+/// Vertices of tetrahedron t as columns.
+Eigen::Matrix<Real, 3, 4> tet_vertices(const mesh::TetMesh& mesh, Index t);
+
+}  // namespace fricon::fe

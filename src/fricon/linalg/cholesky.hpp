@@ -1,0 +1,53 @@
+#pragma once
+// linalg: sparse Cholesky factorization K = L L^T through SuiteSparse CHOLMOD (supernodal, with
+// the BLAS it is linked to: OpenBLAS). Factorize once, then solve for as many right-hand sides as
+// needed: every product with K^-1 in fricon goes through one factor of this class.
+// Knows nothing of meshes.
+
+#include <memory>
+
+#include "fricon/core/types.hpp"
+
+namespace fricon::linalg {
+
+struct CholeskyInfo {
+  Index n = 0;             ///< order of K
+  Index nnz_K = 0;         ///< stored non-zeros of K (both triangles)
+  double nnz_L = 0.0;      ///< non-zeros of the factor L
+  double flops = 0.0;      ///< floating-point operations of the numerical factorization
+  bool supernodal = true;  ///< CHOLMOD chose the supernodal method
+  std::string ordering;    ///< fill-reducing ordering CHOLMOD selected (AMD, METIS, ...)
+};
+
+class CholeskyFactor {
+ public:
+  CholeskyFactor();
+  ~CholeskyFactor();
+  CholeskyFactor(const CholeskyFactor&) = delete;
+  CholeskyFactor& operator=(const CholeskyFactor&) = delete;
+  CholeskyFactor(CholeskyFactor&&) noexcept;
+  CholeskyFactor& operator=(CholeskyFactor&&) noexcept;
+
+  /// Symbolic analysis and numerical factorization of the symmetric matrix K (the lower triangle
+  /// is read). Throws NumericalError naming the phase, n, nnz and, if K is not positive definite,
+  /// the column where the factorization broke down (e.g. when nothing is clamped).
+  void factorize(const SparseMatrix& K);
+
+  /// x = K^-1 b. Each call is one forward and one backward substitution.
+  VectorXd solve(const VectorXd& b) const;
+  /// X = K^-1 B for a block of right-hand sides (one supernodal solve for all columns).
+  MatrixXd solve(const MatrixXd& B) const;
+
+  Index size() const { return info_.n; }
+  const CholeskyInfo& info() const { return info_; }
+  /// Number of solve() calls (a matrix solve with m columns counts m).
+  long n_solves() const { return n_solves_; }
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  CholeskyInfo info_;
+  mutable long n_solves_ = 0;
+};
+
+}  // namespace fricon::linalg

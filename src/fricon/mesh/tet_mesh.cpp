@@ -1,0 +1,152 @@
+#include "fricon/mesh/tet_mesh.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include <fmt/format.h>
+
+#include "fricon/core/error.hpp"
+
+namespace fricon::mesh {
+
+int TetMesh::find_tag(const std::string& name) const {
+  auto it = std::find(tag_names.begin(), tag_names.end(), name);
+  return it == tag_names.end() ? -1 : static_cast<int>(it - tag_names.begin());
+}
+
+std::vector<Index> TetMesh::faces_with_tag(const std::string& name) const {
+  std::vector<Index> result;
+  const int tag = find_tag(name);
+  if (tag < 0) return result;
+  for (Index f = 0; f < n_faces(); ++f)
+    if (face_tag[f] == tag) result.push_back(f);
+  return result;
+}
+
+std::vector<Index> TetMesh::nodes_with_tag(const std::string& name) const {
+  std::vector<Index> result;
+  for (Index f : faces_with_tag(name))
+    for (int v = 0; v < 3; ++v) result.push_back(faces(v, f));
+  std::sort(result.begin(), result.end());
+  result.erase(std::unique(result.begin(), result.end()), result.end());
+  return result;
+}
+
+std::string TetMesh::tag_list() const {
+  std::string s;
+  for (const auto& name : tag_names) s += (s.empty() ? "" : ", ") + name;
+  return s;
+}
+
+Real signed_volume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  Mat3 m;
+  m << b - a, c - a, d - a;
+  return m.determinant() / 6.0;
+}
+
+Real tet_volume(const TetMesh& mesh, Index t) {
+  return signed_volume(mesh.nodes.col(mesh.tets(0, t)), mesh.nodes.col(mesh.tets(1, t)),
+                       mesh.nodes.col(mesh.tets(2, t)), mesh.nodes.col(mesh.tets(3, t)));
+}
+
+namespace {
+Vec3 face_cross(const TetMesh& mesh, Index f) {
+  const Vec3 a = mesh.nodes.col(mesh.faces(0, f));
+  const Vec3 b = mesh.nodes.col(mesh.faces(1, f));
+  const Vec3 c = mesh.nodes.col(mesh.faces(2, f));
+  return (b - a).cross(c - a);
+}
+}  // namespace
+
+Real face_area(const TetMesh& mesh, Index f) { return 0.5 * face_cross(mesh, f).norm(); }
+
+Vec3 face_normal(const TetMesh& mesh, Index f) { return face_cross(mesh, f).normalized(); }
+
+void check_mesh(const TetMesh& mesh, const std::string& source, Real relative_tolerance) {
+  if (mesh.n_nodes() == 0 || mesh.n_tets() == 0)
+    throw InputError(fmt::format("{}: the mesh is empty ({} nodes, {} tetrahedra)", source,
+                                 mesh.n_nodes(), mesh.n_tets()));
+  for (Index i = 0; i < mesh.n_nodes(); ++i)
+    if (!mesh.nodes.col(i).allFinite())
+      throw InputError(fmt::format("{}: node {} has a non-finite coordinate", source, i));
+  const Index n = mesh.n_nodes();
+  for (Index t = 0; t < mesh.n_tets(); ++t) {
+    for (int v = 0; v < 4; ++v)
+      if (mesh.tets(v, t) < 0 || mesh.tets(v, t) >= n)
+        throw InputError(fmt::format("{}: tetrahedron {} refers to node {}, but the mesh has {} nodes",
+                                     source, t, mesh.tets(v, t), n));
+    Real longest = 0.0;
+    for (int a = 0; a < 4; ++a)
+      for (int b = a + 1; b < 4; ++b)
+        longest = std::max(longest,
+                           (mesh.nodes.col(mesh.tets(a, t)) - mesh.nodes.col(mesh.tets(b, t))).norm());
+    const Real volume = tet_volume(mesh, t);
+    if (volume <= relative_tolerance * longest * longest * longest)
+      throw InputError(fmt::format("{}: tetrahedron {} (nodes {} {} {} {}) is {} (volume {:.3e} m^3)",
+                                   source, t, mesh.tets(0, t), mesh.tets(1, t), mesh.tets(2, t),
+                                   mesh.tets(3, t), volume < 0 ? "inverted" : "degenerate",
+                                   volume));
+  }
+  if (mesh.face_tag.size() != static_cast<size_t>(mesh.n_faces()))
+    throw InputError(fmt::format("{}: {} boundary faces but {} face tags", source, mesh.n_faces(),
+                                 mesh.face_tag.size()));
+  for (Index f = 0; f < mesh.n_faces(); ++f) {
+    for (int v = 0; v < 3; ++v)
+      if (mesh.faces(v, f) < 0 || mesh.faces(v, f) >= n)
+        throw InputError(fmt::format("{}: boundary face {} refers to node {}, but the mesh has {} nodes",
+                                     source, f, mesh.faces(v, f), n));
+    if (mesh.face_tag[f] < 0 || mesh.face_tag[f] >= static_cast<int>(mesh.tag_names.size()))
+      throw InputError(fmt::format("{}: boundary face {} has tag {} of {}", source, f,
+                                   mesh.face_tag[f], mesh.tag_names.size()));
+    if (!(face_area(mesh, f) > 0.0))
+      throw InputError(fmt::format("{}: boundary face {} has zero area", source, f));
+  }
+}
+
+namespace {
+using FaceKey = std::array<Index, 3>;
+FaceKey sorted_face(Index a, Index b, Index c) {
+  FaceKey k{a, b, c};
+  std::sort(k.begin(), k.end());
+  return k;
+}
+// Local faces of a tetrahedron (v0,v1,v2,v3), each listed with the opposite vertex last.
+constexpr int kTetFace[4][4] = {{1, 2, 3, 0}, {0, 3, 2, 1}, {0, 1, 3, 2}, {0, 2, 1, 3}};
+}  // namespace
+
+FaceSharing face_sharing(const TetMesh& mesh) {
+  std::map<FaceKey, int> count;
+  for (Index t = 0; t < mesh.n_tets(); ++t)
+    for (const auto& lf : kTetFace)
+      ++count[sorted_face(mesh.tets(lf[0], t), mesh.tets(lf[1], t), mesh.tets(lf[2], t))];
+  FaceSharing s;
+  for (const auto& [key, c] : count) {
+    if (c == 1) ++s.n_boundary;
+    else if (c == 2) ++s.n_interior;
+    else ++s.n_overshared;
+  }
+  return s;
+}
+
+Eigen::Matrix<Index, 3, Eigen::Dynamic> boundary_faces_of(const TetMesh& mesh) {
+  // For a positively oriented tetrahedron, the local faces of kTetFace are listed so that their
+  // right-hand normal points away from the opposite vertex, i.e. outward.
+  std::map<FaceKey, std::pair<int, std::array<Index, 3>>> seen;
+  for (Index t = 0; t < mesh.n_tets(); ++t)
+    for (const auto& lf : kTetFace) {
+      std::array<Index, 3> oriented{mesh.tets(lf[0], t), mesh.tets(lf[1], t), mesh.tets(lf[2], t)};
+      auto& entry = seen[sorted_face(oriented[0], oriented[1], oriented[2])];
+      entry.first += 1;
+      entry.second = oriented;
+    }
+  std::vector<std::array<Index, 3>> boundary;
+  for (const auto& [key, entry] : seen)
+    if (entry.first == 1) boundary.push_back(entry.second);
+  Eigen::Matrix<Index, 3, Eigen::Dynamic> faces(3, static_cast<Index>(boundary.size()));
+  for (size_t f = 0; f < boundary.size(); ++f)
+    for (int v = 0; v < 3; ++v) faces(v, static_cast<Index>(f)) = boundary[f][v];
+  return faces;
+}
+
+}  // namespace fricon::mesh

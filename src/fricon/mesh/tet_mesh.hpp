@@ -1,0 +1,74 @@
+#pragma once
+// mesh: the tetrahedral mesh every later stage reads (first stage of the data flow).
+//
+// A TetMesh holds node coordinates, positively oriented tetrahedra, and the boundary triangles,
+// each carrying a named boundary tag ("x0", "z1", or a physical group name of a mesh file).
+// It knows nothing of finite elements or contact.
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "fricon/core/types.hpp"
+
+namespace fricon::mesh {
+
+struct TetMesh {
+  /// Node coordinates [m], one column per node.
+  Eigen::Matrix<Real, 3, Eigen::Dynamic> nodes;
+  /// Tetrahedra as four node indices per column, ordered so that the signed volume is positive.
+  Eigen::Matrix<Index, 4, Eigen::Dynamic> tets;
+  /// Boundary triangles as three node indices per column, ordered counter-clockwise seen from
+  /// outside (the right-hand normal points out of the body).
+  Eigen::Matrix<Index, 3, Eigen::Dynamic> faces;
+  /// Tag of each boundary triangle: an index into tag_names.
+  std::vector<int> face_tag;
+  /// Names of the boundary tags.
+  std::vector<std::string> tag_names;
+
+  Index n_nodes() const { return nodes.cols(); }
+  Index n_tets() const { return tets.cols(); }
+  Index n_faces() const { return faces.cols(); }
+
+  /// Index of the tag called `name` in tag_names, or -1 if the mesh has no such tag.
+  int find_tag(const std::string& name) const;
+  /// Boundary triangles carrying tag `name` (empty if the tag does not exist).
+  std::vector<Index> faces_with_tag(const std::string& name) const;
+  /// Sorted, unique node indices of the triangles carrying tag `name`.
+  std::vector<Index> nodes_with_tag(const std::string& name) const;
+  /// Comma-separated list of the tag names, for error messages.
+  std::string tag_list() const;
+};
+
+/// Signed volume [m^3] of the tetrahedron (a, b, c, d): det[b-a, c-a, d-a] / 6.
+Real signed_volume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
+
+/// Volume [m^3] of tetrahedron t of the mesh (signed: negative if inverted).
+Real tet_volume(const TetMesh& mesh, Index t);
+
+/// Area [m^2] of boundary triangle f of the mesh.
+Real face_area(const TetMesh& mesh, Index f);
+
+/// Unit outward normal of boundary triangle f (from its orientation).
+Vec3 face_normal(const TetMesh& mesh, Index f);
+
+/// Checks that the mesh is usable: non-empty, node indices in range, finite coordinates, every
+/// tetrahedron with volume > relative_tolerance * (its longest edge)^3, boundary faces with
+/// positive area and valid tags. Throws InputError naming the first offending entity and
+/// `source` (a file name or "brick generator").
+void check_mesh(const TetMesh& mesh, const std::string& source, Real relative_tolerance = 1e-12);
+
+/// Counts of how the triangular faces of the tetrahedra are shared.
+struct FaceSharing {
+  Index n_interior = 0;   ///< faces shared by exactly two tetrahedra
+  Index n_boundary = 0;   ///< faces of exactly one tetrahedron
+  Index n_overshared = 0; ///< faces of three or more tetrahedra (non-manifold: an error)
+};
+
+/// Counts faces by the number of tetrahedra that contain them (a conformity check).
+FaceSharing face_sharing(const TetMesh& mesh);
+
+/// Extracts the faces that belong to exactly one tetrahedron, oriented outward.
+Eigen::Matrix<Index, 3, Eigen::Dynamic> boundary_faces_of(const TetMesh& mesh);
+
+}  // namespace fricon::mesh
