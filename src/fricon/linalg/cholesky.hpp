@@ -5,6 +5,7 @@
 // Knows nothing of meshes.
 
 #include <memory>
+#include <string>
 
 #include "fricon/core/types.hpp"
 
@@ -17,6 +18,7 @@ struct CholeskyInfo {
   double flops = 0.0;      ///< floating-point operations of the numerical factorization
   bool supernodal = true;  ///< CHOLMOD chose the supernodal method
   std::string ordering;    ///< fill-reducing ordering CHOLMOD selected (AMD, METIS, ...)
+  double rcond = 0.0;      ///< CHOLMOD's reciprocal condition estimate (min/max diag of L)^2
 };
 
 class CholeskyFactor {

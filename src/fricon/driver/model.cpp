@@ -1,0 +1,107 @@
+#include "fricon/driver/model.hpp"
+
+#include <fmt/format.h>
+
+#include "fricon/core/error.hpp"
+#include "fricon/mesh/brick.hpp"
+
+namespace fricon::driver {
+
+namespace {
+
+std::vector<Index> tagged_faces(const mesh::TetMesh& mesh, const Problem& problem,
+                                const std::string& key, const std::string& tag) {
+  auto faces = mesh.faces_with_tag(tag);
+  if (faces.empty())
+    throw InputError(fmt::format("{}: {}: boundary '{}' does not exist on the mesh (tags: {})",
+                                 problem.source, key, tag, mesh.tag_list()));
+  return faces;
+}
+
+fe::Material make_material(const Problem& problem) {
+  const std::string where = problem.source + ": material";
+  if (problem.material.model == "anisotropic") {
+    FRICON_CHECK(problem.material.voigt.has_value(), "anisotropic material without voigt matrix");
+    fe::Voigt6 D;
+    for (int i = 0; i < 6; ++i)
+      for (int j = 0; j < 6; ++j) D(i, j) = (*problem.material.voigt)[i][j];
+    return fe::anisotropic(D, where);
+  }
+  return fe::isotropic(problem.material.young, problem.material.poisson, where);
+}
+
+// Loads on all 3 n_nodes components (fixed ones included), for totals and reactions.
+VectorXd full_load(const Problem& problem, const mesh::TetMesh& mesh, const fe::DofMap& dofs) {
+  VectorXd f = VectorXd::Zero(dofs.n_free());
+  for (size_t i = 0; i < problem.traction.size(); ++i) {
+    const auto& t = problem.traction[i];
+    fe::add_traction(mesh, dofs,
+                     tagged_faces(mesh, problem, fmt::format("traction[{}].boundary", i), t.boundary),
+                     t.value, f);
+  }
+  if (problem.volume_force.squaredNorm() > 0) fe::add_volume_force(mesh, dofs, problem.volume_force, f);
+  return f;
+}
+
+}  // namespace
+
+mesh::TetMesh make_mesh(const Problem& problem) {
+  if (problem.mesh.kind != "brick")
+    throw InputError(fmt::format("{}: mesh.kind: unknown kind '{}'", problem.source, problem.mesh.kind));
+  mesh::BrickSpec spec;
+  spec.size = Vec3(problem.mesh.size[0], problem.mesh.size[1], problem.mesh.size[2]);
+  spec.cells = problem.mesh.cells;
+  mesh::TetMesh m = mesh::make_brick(spec);
+  mesh::check_mesh(m, problem.source + ": mesh");
+  return m;
+}
+
+Model build_model(const Problem& problem, PhaseTimes& times) {
+  Model model;
+  {
+    ScopedPhase phase(times, "mesh");
+    model.mesh = make_mesh(problem);
+    model.material = make_material(problem);
+  }
+  {
+    ScopedPhase phase(times, "assembly");
+    std::vector<bool> fixed(static_cast<size_t>(3 * model.mesh.n_nodes()), false);
+    for (size_t i = 0; i < problem.dirichlet.size(); ++i) {
+      const auto& d = problem.dirichlet[i];
+      for (Index f : tagged_faces(model.mesh, problem, fmt::format("dirichlet[{}].boundary", i),
+                                  d.boundary))
+        for (int v = 0; v < 3; ++v)
+          for (int c = 0; c < 3; ++c)
+            if (d.components[c]) fixed[static_cast<size_t>(3 * model.mesh.faces(v, f) + c)] = true;
+    }
+    model.dofs = fe::DofMap(fixed);
+    if (model.dofs.n_free() == 0)
+      throw InputError(fmt::format("{}: every displacement component is fixed: nothing to solve",
+                                   problem.source));
+    model.K = fe::assemble_stiffness(model.mesh, model.material, model.dofs);
+    model.f = full_load(problem, model.mesh, model.dofs);
+  }
+  {
+    ScopedPhase phase(times, "factorize");
+    model.factor.factorize(model.K);
+  }
+  return model;
+}
+
+Vec3 applied_force_total(const Problem& problem, const mesh::TetMesh& mesh) {
+  const fe::DofMap all(mesh.n_nodes());
+  return all.to_nodal(full_load(problem, mesh, all)).rowwise().sum();
+}
+
+Vec3 reaction_total(const Model& model, const Problem& problem, const fe::NodalField& u) {
+  const fe::DofMap all(model.mesh.n_nodes());
+  const fe::NodalField load = all.to_nodal(full_load(problem, model.mesh, all));
+  const fe::NodalField internal = fe::internal_forces(model.mesh, model.material, u);
+  Vec3 r = Vec3::Zero();
+  for (Index a = 0; a < model.mesh.n_nodes(); ++a)
+    for (int c = 0; c < 3; ++c)
+      if (model.dofs.is_fixed(a, c)) r(c) += internal(c, a) - load(c, a);
+  return r;
+}
+
+}  // namespace fricon::driver
