@@ -1,0 +1,45 @@
+# fricon: the two commands of the README, and a few more for developers.
+#   make demo    install what is missing, build (Release), solve the paper's brick
+#   make test    install what is missing, build (Release), run the whole CTest suite, then the
+#                unit tests again under AddressSanitizer + UndefinedBehaviorSanitizer
+#   make bench   build and run the benchmarks (outside the tests)
+#   make format  clang-format every C++ file
+BUILD     ?= build
+SAN_BUILD ?= build-asan
+EXAMPLE   ?= examples/paper-brick.toml
+# Warnings are errors in CI (CI=true) and a choice elsewhere.
+WERROR    ?= $(if $(filter true,$(CI)),ON,OFF)
+CTEST_JOBS ?= 2
+
+.PHONY: deps build demo test test-release test-sanitize bench format clean
+
+deps:
+	@bash scripts/install-deps.sh
+
+build: deps
+	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DFRICON_WERROR=$(WERROR)
+	cmake --build $(BUILD)
+
+demo: build
+	$(BUILD)/apps/fricon/fricon solve $(EXAMPLE)
+
+test: test-release test-sanitize
+
+test-release: build
+	ctest --test-dir $(BUILD) --output-on-failure -j $(CTEST_JOBS)
+
+test-sanitize: deps
+	cmake -S . -B $(SAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-g -O1" \
+	  -DFRICON_SANITIZE=ON -DFRICON_BUILD_BENCH=OFF -DFRICON_WERROR=$(WERROR)
+	cmake --build $(SAN_BUILD)
+	ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+	  ctest --test-dir $(SAN_BUILD) -L unit --output-on-failure -j $(CTEST_JOBS)
+
+bench: build
+	@for b in $(BUILD)/bench/*_bench; do echo "== $$b"; $$b || exit 1; done
+
+format:
+	clang-format -i $$(git ls-files '*.cpp' '*.hpp')
+
+clean:
+	rm -rf $(BUILD) $(SAN_BUILD)

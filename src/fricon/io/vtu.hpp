@@ -1,0 +1,33 @@
+#pragma once
+// io: VTK XML unstructured grids (.vtu) that ParaView and meshio open, for the body (tetrahedra)
+// and for surfaces (triangles). Values are written in ASCII with round-trip precision.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "fricon/core/types.hpp"
+
+namespace fricon::io {
+
+/// A named field with `components` values per point or cell (column-major: one column per entity).
+struct VtuField {
+  std::string name;
+  MatrixXd values;  ///< components x n_entities
+};
+
+struct VtuGrid {
+  Eigen::Matrix<Real, 3, Eigen::Dynamic> points;
+  /// Cell connectivity, one column per cell: 4 rows for tetrahedra, 3 for triangles.
+  Eigen::Matrix<Index, Eigen::Dynamic, Eigen::Dynamic> cells;
+  std::vector<VtuField> point_data;
+  std::vector<VtuField> cell_data;
+};
+
+/// Writes `grid` to `path` atomically. Throws fricon::Error on I/O failure or inconsistent sizes.
+void write_vtu(const std::filesystem::path& path, const VtuGrid& grid);
+
+/// Writes a ParaView collection (.pvd) listing `files` (relative to the .pvd's folder).
+void write_pvd(const std::filesystem::path& path, const std::vector<std::string>& files);
+
+}  // namespace fricon::io

@@ -1,0 +1,66 @@
+"""The command line's contract: exit codes, messages naming file/line/key, no partial results.
+
+Usage: check_cli.py FRICON EXAMPLES_DIR OUTDIR
+"""
+import pathlib
+import subprocess
+import sys
+
+exe, examples, out = sys.argv[1], pathlib.Path(sys.argv[2]), pathlib.Path(sys.argv[3])
+out.mkdir(parents=True, exist_ok=True)
+failures = []
+
+
+def run(args):
+    return subprocess.run([exe] + args, capture_output=True, text=True)
+
+
+def expect(args, code, *fragments, results=None):
+    r = run(args)
+    if r.returncode != code:
+        failures.append(f"{args}: exit {r.returncode}, expected {code}\n{r.stdout}{r.stderr}")
+    for frag in fragments:
+        if frag not in r.stderr + r.stdout:
+            failures.append(f"{args}: output lacks {frag!r}\n{r.stderr}")
+    if results is not None and (results / "report.json").exists():
+        failures.append(f"{args}: a failed run left {results / 'report.json'}")
+
+
+elastic = str(examples / "elastic-brick.toml")
+expect(["--help"], 0, "solve", "check")
+expect(["solve", "--help"], 0, "--set", "--out")
+expect(["check", elastic], 0, "valid")
+expect(["solve", str(out / "missing.toml")], 1, "missing.toml")
+
+bad = out / "bad.toml"
+bad.write_text('[mesh]\nkind = "brick"\nsize = [3.0, 1.0, 1.0]\ncells = [6, 2, 2]\n\n'
+               '[material]\nyoung = -5.0\npoisson = 0.3\n\n[[dirichlet]]\nboundary = "x0"\n')
+expect(["solve", str(bad), "--out", str(out / "bad")], 1, "bad.toml", ":7", "young",
+       results=out / "bad")
+
+typo = out / "typo.toml"
+typo.write_text('[mesh]\ncells = [6, 2, 2]\n\n[material]\nyoung = 2e11\npoisson = 0.3\n'
+                'poison = 0.3\n\n[[dirichlet]]\nboundary = "x0"\n')
+expect(["solve", str(typo), "--out", str(out / "typo")], 1, "typo.toml", ":7", "poison",
+       results=out / "typo")
+
+notag = out / "notag.toml"
+notag.write_text('[mesh]\ncells = [6, 2, 2]\n\n[material]\nyoung = 2e11\npoisson = 0.3\n\n'
+                 '[[dirichlet]]\nboundary = "left"\n')
+expect(["solve", str(notag), "--out", str(out / "notag")], 1, "left", "does not exist",
+       results=out / "notag")
+
+free = out / "free.toml"
+free.write_text('[mesh]\ncells = [6, 2, 2]\n\n[material]\nyoung = 2e11\npoisson = 0.3\n\n'
+                '[[traction]]\nboundary = "x1"\nvalue = [1e6, 0, 0]\n')
+expect(["solve", str(free), "--out", str(out / "free")], 1, "not positive definite",
+       results=out / "free")
+
+expect(["solve", elastic, "--out", str(out / "set"), "--set", "material.poisson=0.7"], 1,
+       "poisson", results=out / "set")
+expect(["solve", elastic, "--out", str(out / "set2"), "--set", "material.nonsense=1"], 1,
+       "nonsense", results=out / "set2")
+
+if failures:
+    sys.exit("\n\n".join(failures))
+print("command line: exit codes and messages as documented")
