@@ -1,0 +1,163 @@
+#pragma once
+// qp: MPGP, the active-set solver for a strictly convex QP on a separable feasible set,
+//
+//   minimise q(x) = 1/2 x^T A x - x^T b   subject to x in Omega (see constraints.hpp),
+//
+// with A symmetric positive definite and given only as a product routine. In fricon A is the dual
+// Hessian B K^-1 B^T and b = B K^-1 f; the driver calls this once per Tresca step, warm-started.
+//
+// Each iteration is one of three steps (method.md 4.2), chosen from the split of the projected
+// gradient g^P into the free gradient phi (free blocks) and the chopped gradient beta (active
+// blocks):
+//   'c'  conjugate gradient step on the free blocks, if it stays feasible      (1 product)
+//   'e'  expansion: go to the boundary along the CG direction, then take a projected
+//        free-gradient step of fixed length alpha_bar                           (2 products)
+//   'p'  proportioning, when beta dominates the reduced free gradient: a projected gradient
+//        step of length alpha_bar (default), or the MPRGP step along beta        (1 product)
+// alpha_bar = step_factor / ||A|| with ||A|| given or estimated by power iteration. With
+// step_factor <= 2 no step increases q. Convergence is R-linear in the condition number of A.
+// No preconditioning.
+
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "fricon/core/types.hpp"
+#include "fricon/qp/constraints.hpp"
+#include "fricon/qp/operator.hpp"
+
+namespace fricon::qp {
+
+enum class Termination {
+  Converged,         ///< ||g^P|| reached the tolerance
+  MaxIterations,     ///< MpgpOptions::max_iterations steps taken without converging
+  NumericalFailure,  ///< non-finite values, or A found not positive definite along a direction
+  UserStopped,       ///< the monitor returned false
+};
+/// "converged", "max_iterations", "numerical_failure", "user_stopped".
+std::string to_string(Termination t);
+
+/// What to do when x is not proportional (method.md 4.2, line 14).
+enum class ProportioningStep {
+  /// 14(b): x := P(x - alpha_bar g), then recompute g. Valid for every block kind. Default.
+  ProjectedGradient,
+  /// 14(a): exact line search along -beta (MPRGP). Used only when beta vanishes on every Disc
+  /// block (a move along beta on an active circle would leave the disc); otherwise this
+  /// iteration falls back to ProjectedGradient.
+  ChoppedGradientCG,
+};
+/// "projected_gradient", "chopped_gradient_cg".
+std::string to_string(ProportioningStep s);
+/// Inverse of to_string; throws fricon::InputError naming the accepted spellings.
+ProportioningStep proportioning_step_from_string(std::string_view s);
+
+/// The proportionality test (method.md 4.2, line 4): x is proportional iff
+/// ||beta||^2 <= gamma^2 * (right-hand side below).
+enum class ProportioningTest {
+  ReducedFree,  ///< phitilde_{alpha_bar}^T phi (classical MPRGP). Default.
+  Free,         ///< phi^T phi (PERMON); fewer proportioning steps
+};
+/// "reduced_free", "free".
+std::string to_string(ProportioningTest t);
+/// Inverse of to_string; throws fricon::InputError naming the accepted spellings.
+ProportioningTest proportioning_test_from_string(std::string_view s);
+
+/// One completed iteration (or the starting point, step 's'), as passed to the monitor.
+struct MpgpIteration {
+  int iteration = 0;     ///< 0 for the starting point, then 1, 2, ...
+  char step = 's';       ///< 's' start, 'c' CG, 'e' expansion, 'p' proportioning
+  double norm_gp = 0;    ///< ||g^P(x)||_2 after the step
+  double norm_phi = 0;   ///< ||phi(x)||_2 after the step
+  double norm_beta = 0;  ///< ||beta(x)||_2 after the step
+  double alpha = 0;      ///< step length: a_cg ('c'), feasible step a_f ('e'), line-search step of
+                         ///< 14(a) or alpha_bar ('p'); 0 for 's'
+  double objective = 0;  ///< q(x) after the step
+};
+
+struct MpgpOptions {
+  /// Stop when ||g^P|| <= rel_tolerance * ||b||_2. Default 1e-6 ([HL09]); range >= 0.
+  double rel_tolerance = 1e-6;
+  /// ... or when ||g^P|| <= abs_tolerance (same unit as b). Default 0 (off); range >= 0.
+  double abs_tolerance = 0.0;
+  /// Cap on the number of steps. Default 100000; range >= 0.
+  int max_iterations = 100000;
+  /// Proportioning constant Gamma. Default 1; range > 0.
+  double gamma = 1.0;
+  /// alpha_bar = step_factor / ||A||. Default 1.95 (a safety margin below 2 because a power-method
+  /// estimate of ||A|| is a lower bound); range (0, 2].
+  double step_factor = 1.95;
+  /// ||A|| if known (> 0); 0 (default) means: estimate it by power iteration.
+  double norm_A = 0.0;
+  /// Power iteration cap. Default 100; range >= 1.
+  int power_iterations = 100;
+  /// Power iteration stops when the estimate changes by <= power_tolerance relative.
+  /// Default 1e-8; range > 0.
+  double power_tolerance = 1e-8;
+  ProportioningStep proportioning = ProportioningStep::ProjectedGradient;
+  ProportioningTest proportioning_test = ProportioningTest::ReducedFree;
+  /// Relative tolerance of the active-set tests: a Disc block is active iff
+  /// ||x_i|| >= (1 - active_tolerance) rho_i; a Bound block iff x_i <= active_tolerance * s, with
+  /// s a fixed scale of x (the largest of ||P(x_init)||_inf, the largest radius and
+  /// ||b||_2 / ||A||). Default 1e-12; range [0, 1e-3].
+  double active_tolerance = 1e-12;
+  /// Optional; called after every iteration and once for the starting point. Return false to
+  /// stop (Termination::UserStopped).
+  std::function<bool(const MpgpIteration&)> monitor;
+  /// Store every MpgpIteration (starting point included) in MpgpReport::history. Default false.
+  bool record_history = false;
+
+  /// Throws fricon::InputError naming the first field out of range, its value and the range.
+  void validate() const;
+};
+
+struct MpgpReport {
+  Termination termination = Termination::NumericalFailure;
+  std::string message;  ///< one sentence: why the solver stopped
+  int iterations = 0;   ///< steps taken = n_cg + n_expansion + n_proportioning
+  int n_cg = 0;
+  int n_expansion = 0;
+  int n_proportioning = 0;
+  /// Products with A made by the iteration, the initial gradient included:
+  /// 1 + n_cg + 2 n_expansion + n_proportioning. Power-method products are not included.
+  long n_products = 0;
+  long n_power_products = 0;  ///< products spent estimating ||A|| (0 if MpgpOptions::norm_A > 0)
+  bool norm_A_estimated = false;  ///< true if norm_A_used comes from the power method
+  double norm_A_used = 0.0;       ///< ||A|| behind alpha_bar (given or estimated)
+  double alpha_bar_used = 0.0;    ///< step_factor / norm_A_used
+  double norm_b = 0.0;            ///< ||b||_2
+  double norm_gp = 0.0;           ///< final ||g^P||_2
+  double rel_gp = 0.0;            ///< norm_gp / norm_b (norm_gp itself if b = 0)
+  double objective = 0.0;         ///< final q(x)
+  /// Steps that increased q by more than rounding (expected 0; > 0 hints at a too large
+  /// alpha_bar, e.g. an underestimated norm_A).
+  int n_objective_increases = 0;
+  double seconds = 0.0;                ///< wall time of solve_mpgp [s], power method included
+  std::vector<MpgpIteration> history;  ///< filled if MpgpOptions::record_history
+
+  /// One line: termination, iterations, products, relative ||g^P||.
+  std::string brief() const;
+  /// Aligned multi-line block with every counter and norm.
+  std::string full() const;
+};
+
+/// Solves min q(x) over Omega by MPGP. x: in, the initial guess (projected onto Omega first; it
+/// need not be feasible); out, the last iterate (the solution if Converged).
+/// Throws fricon::InputError on invalid options or constraints, size mismatches, or non-finite
+/// entries in b, x or the radii, and fricon::NumericalError if ||A|| comes out <= 0 or
+/// non-finite. Numerical trouble during the iteration is reported as NumericalFailure instead.
+/// If b = 0 the solution is x = 0 (0 lies in Omega); it is returned at once, after the initial
+/// gradient, without estimating ||A||.
+MpgpReport solve_mpgp(const Operator& A, const Eigen::VectorXd& b, const SeparableConstraints& c,
+                      const MpgpOptions& opt, Eigen::VectorXd& x);
+
+/// Estimate of ||A||_2 for SPD A by power iteration from a fixed (deterministic) start vector:
+/// returns ||A v_k|| for the last unit iterate v_k, a lower bound of ||A|| that increases to it.
+/// Stops after max_iterations products or when the estimate changes by <= tolerance relative.
+/// Adds the number of products to *n_products if given. Returns 0 for n = 0 or A v = 0.
+double estimate_norm(const Operator& A, Index n, int max_iterations, double tolerance,
+                     long* n_products = nullptr);
+
+}  // namespace fricon::qp

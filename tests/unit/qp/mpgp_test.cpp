@@ -1,0 +1,620 @@
+// Unit tests of the MPGP solver. Every solution is checked against truth obtained without the
+// solver: hand computations, diagonal problems, an active-set enumeration, a secular equation,
+// problems built around a chosen optimum, and an independent FISTA reference.
+
+#include "fricon/qp/mpgp.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "fricon/core/error.hpp"
+#include "fricon/qp/kkt.hpp"
+#include "qp_test_problems.hpp"
+
+namespace fricon::qp {
+namespace {
+
+using testing::dense_operator;
+using testing::objective;
+using testing::random_spd;
+using testing::random_vector;
+
+MpgpOptions tight() {
+  MpgpOptions o;
+  o.rel_tolerance = 1e-10;
+  return o;
+}
+
+SeparableConstraints all_bounds(Index n) {
+  SeparableConstraints c;
+  for (Index i = 0; i < n; ++i)
+    c.blocks.push_back({BlockKind::Bound, i});
+  c.radius = Eigen::VectorXd::Zero(n);
+  return c;
+}
+
+SeparableConstraints all_discs(const Eigen::VectorXd& rho) {
+  SeparableConstraints c;
+  for (Index i = 0; i < rho.size(); ++i)
+    c.blocks.push_back({BlockKind::Disc, 2 * i});
+  c.radius = rho;
+  return c;
+}
+
+// KKT residuals with g computed here from the matrix, default scales.
+KktResiduals kkt(const Eigen::MatrixXd& M, const Eigen::VectorXd& b, const Eigen::VectorXd& x,
+                 const SeparableConstraints& c) {
+  const Eigen::VectorXd g = M * x - b;
+  const auto s = default_kkt_scales(x, b, c);
+  return kkt_residuals(x, g, c, s.x, s.g);
+}
+
+struct Problem {
+  Eigen::MatrixXd M;
+  Eigen::VectorXd b;
+  SeparableConstraints c;
+};
+
+Problem random_contact_problem(Index n_patches, double cond, unsigned seed) {
+  std::mt19937 rng(seed);
+  Problem p;
+  p.M = random_spd(3 * n_patches, cond, rng, 3.0);
+  p.b = random_vector(3 * n_patches, rng);
+  p.c = testing::random_contact_constraints(p.M, p.b, rng);
+  return p;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Options, enums, report
+
+TEST(MpgpOptions, DefaultsAreValid) {
+  EXPECT_NO_THROW(MpgpOptions{}.validate());
+}
+
+TEST(MpgpOptions, ValidateRejectsOutOfRangeFields) {
+  auto bad = [](auto mutate) {
+    MpgpOptions o;
+    mutate(o);
+    return o;
+  };
+  const std::vector<MpgpOptions> cases = {
+      bad([](MpgpOptions& o) { o.rel_tolerance = -1e-6; }),
+      bad([](MpgpOptions& o) { o.rel_tolerance = NAN; }),
+      bad([](MpgpOptions& o) { o.abs_tolerance = -1.0; }),
+      bad([](MpgpOptions& o) { o.max_iterations = -1; }),
+      bad([](MpgpOptions& o) { o.gamma = 0.0; }),
+      bad([](MpgpOptions& o) { o.step_factor = 0.0; }),
+      bad([](MpgpOptions& o) { o.step_factor = 2.01; }),
+      bad([](MpgpOptions& o) { o.norm_A = -1.0; }),
+      bad([](MpgpOptions& o) { o.norm_A = INFINITY; }),
+      bad([](MpgpOptions& o) { o.power_iterations = 0; }),
+      bad([](MpgpOptions& o) { o.power_tolerance = 0.0; }),
+      bad([](MpgpOptions& o) { o.active_tolerance = -1e-12; }),
+      bad([](MpgpOptions& o) { o.active_tolerance = 0.5; }),
+      bad([](MpgpOptions& o) { o.proportioning = static_cast<ProportioningStep>(7); }),
+  };
+  for (const auto& o : cases)
+    EXPECT_THROW(o.validate(), InputError);
+  try {
+    bad([](MpgpOptions& o) { o.gamma = -2.0; }).validate();
+    FAIL();
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("gamma"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("-2"), std::string::npos) << msg;
+  }
+}
+
+TEST(MpgpEnums, StringConversionRoundTrips) {
+  EXPECT_EQ(to_string(Termination::Converged), "converged");
+  EXPECT_EQ(to_string(Termination::MaxIterations), "max_iterations");
+  EXPECT_EQ(to_string(Termination::NumericalFailure), "numerical_failure");
+  EXPECT_EQ(to_string(Termination::UserStopped), "user_stopped");
+  for (auto s : {ProportioningStep::ProjectedGradient, ProportioningStep::ChoppedGradientCG}) {
+    EXPECT_EQ(proportioning_step_from_string(to_string(s)), s);
+  }
+  for (auto t : {ProportioningTest::ReducedFree, ProportioningTest::Free}) {
+    EXPECT_EQ(proportioning_test_from_string(to_string(t)), t);
+  }
+  EXPECT_THROW(proportioning_step_from_string("projected"), InputError);
+  EXPECT_THROW(proportioning_test_from_string(""), InputError);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Problems with hand-checkable optima
+
+TEST(Mpgp, DiagonalBoundProblemGivesClippedUnconstrainedSolution) {
+  const Eigen::VectorXd d = (Eigen::VectorXd(5) << 1.0, 2.0, 4.0, 0.5, 3.0).finished();
+  const Eigen::VectorXd b = (Eigen::VectorXd(5) << 1.0, -2.0, 2.0, -0.1, 0.0).finished();
+  const Eigen::MatrixXd M = d.asDiagonal();
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(5);
+  const auto rep = solve_mpgp(dense_operator(M), b, all_bounds(5), tight(), x);
+  ASSERT_EQ(rep.termination, Termination::Converged) << rep.full();
+  const Eigen::VectorXd expected = (Eigen::VectorXd(5) << 1.0, 0.0, 0.5, 0.0, 0.0).finished();
+  EXPECT_LE((x - expected).norm(), 1e-12) << x.transpose();
+}
+
+TEST(Mpgp, BlockScalarDiscProblemGivesProjectedUnconstrainedSolution) {
+  // A = diag(c_k I_2): the problem splits per disc and the optimum is P_disc(b_k / c_k).
+  const Eigen::Vector3d ck(2.0, 0.5, 1.0), rho(1.0, 4.0, 0.0);
+  Eigen::VectorXd d(6), b(6);
+  d << ck(0), ck(0), ck(1), ck(1), ck(2), ck(2);
+  b << 6.0, 8.0, 0.3, -0.4, 1.0, 1.0;
+  const Eigen::MatrixXd M = d.asDiagonal();
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(6);
+  const auto rep = solve_mpgp(dense_operator(M), b, all_discs(rho), tight(), x);
+  ASSERT_EQ(rep.termination, Termination::Converged) << rep.full();
+  Eigen::VectorXd expected(6);
+  expected << 0.6, 0.8,  // (3, 4) scaled onto radius 1
+      0.6, -0.8,         // (0.6, -0.8) is inside radius 4
+      0.0, 0.0;          // pinned
+  EXPECT_LE((x - expected).norm(), 1e-10) << x.transpose();
+}
+
+TEST(Mpgp, CoupledTwoByTwoBoundProblemMatchesHandSolution) {
+  // A = [2 1; 1 2], b = (1, -2): the unconstrained optimum (4/3, -5/3) is infeasible; with x2 = 0,
+  // x1 = b1 / 2 = 1/2 and g2 = 1/2 + 2 = 5/2 >= 0, so x = (1/2, 0).
+  const Eigen::Matrix2d M{{2.0, 1.0}, {1.0, 2.0}};
+  const Eigen::MatrixXd Md = M;
+  Eigen::VectorXd x = Eigen::Vector2d(3.0, 3.0);
+  const auto rep =
+      solve_mpgp(dense_operator(Md), Eigen::Vector2d(1.0, -2.0), all_bounds(2), tight(), x);
+  ASSERT_EQ(rep.termination, Termination::Converged) << rep.full();
+  EXPECT_NEAR(x(0), 0.5, 1e-12);
+  EXPECT_NEAR(x(1), 0.0, 1e-12);
+  EXPECT_NEAR(rep.objective, 0.5 * 2 * 0.25 - 0.5, 1e-12);
+}
+
+TEST(Mpgp, CoupledTwoByTwoDiscProblemMatchesHandSolution) {
+  // A = [2 1; 1 2], b = (3, 3), rho = 1: A^-1 b = (1, 1) lies outside; at x = (1, 1)/sqrt 2 the
+  // gradient (3/sqrt 2 - 3)(1, 1) is a negative multiple of the outward normal: optimal.
+  const Eigen::MatrixXd M = Eigen::Matrix2d{{2.0, 1.0}, {1.0, 2.0}};
+  Eigen::VectorXd x = Eigen::Vector2d(0.0, 0.0);
+  const auto rep = solve_mpgp(dense_operator(M), Eigen::Vector2d(3.0, 3.0),
+                              all_discs(Eigen::VectorXd::Ones(1)), tight(), x);
+  ASSERT_EQ(rep.termination, Termination::Converged) << rep.full();
+  EXPECT_NEAR(x(0), std::sqrt(0.5), 1e-10);
+  EXPECT_NEAR(x(1), std::sqrt(0.5), 1e-10);
+}
+
+TEST(Mpgp, AnisotropicDiscMatchesSecularEquation) {
+  std::mt19937 rng(5);
+  for (int trial = 0; trial < 20; ++trial) {
+    const Eigen::MatrixXd M = random_spd(2, 1.0 + 50.0 * trial, rng);
+    const Eigen::Vector2d b = random_vector(2, rng);
+    const double rho = 0.05 + 0.1 * trial * M.llt().solve(b).norm() / 20.0;
+    const Eigen::Vector2d expected = testing::trust_region_2d(M, b, rho);
+    Eigen::VectorXd x = Eigen::Vector2d(0.0, 0.0);
+    const auto rep =
+        solve_mpgp(dense_operator(M), b, all_discs(Eigen::VectorXd::Constant(1, rho)), tight(), x);
+    ASSERT_EQ(rep.termination, Termination::Converged) << rep.full();
+    EXPECT_LE((x - expected).norm(), 1e-8 * std::max(rho, 1.0)) << "trial " << trial;
+  }
+}
+
+TEST(Mpgp, BoundProblemsMatchActiveSetEnumeration) {
+  std::mt19937 rng(17);
+  for (int trial = 0; trial < 24; ++trial) {
+    const Index n = 2 + trial % 7;
+    const double cond = std::pow(10.0, trial % 4);
+    const Eigen::MatrixXd M = random_spd(n, cond, rng);
+    const Eigen::VectorXd b = random_vector(n, rng);
+    const Eigen::VectorXd expected = testing::enumerate_bound_solution(M, b);
+    for (auto step : {ProportioningStep::ProjectedGradient, ProportioningStep::ChoppedGradientCG}) {
+      auto opt = tight();
+      opt.proportioning = step;
+      Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
+      const auto rep = solve_mpgp(dense_operator(M), b, all_bounds(n), opt, x);
+      ASSERT_EQ(rep.termination, Termination::Converged) << rep.full();
+      EXPECT_LE((x - expected).norm(), 1e-10 * cond * std::max(1.0, expected.norm()))
+          << "trial " << trial << " n " << n << " cond " << cond << " step " << to_string(step);
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Random contact-layout problems
+
+struct RandomCase {
+  Index n_patches;
+  double cond;
+  unsigned seed;
+};
+
+std::vector<RandomCase> random_cases() {
+  std::vector<RandomCase> cases;
+  unsigned seed = 100;
+  for (Index n_patches : {1, 2, 3, 5, 8, 13, 20}) {
+    for (double cond : {1.0, 10.0, 100.0, 1000.0})
+      cases.push_back({n_patches, cond, seed++});
+  }
+  return cases;
+}
+
+TEST(Mpgp, RandomContactProblemsSatisfyKktToTightTolerance) {
+  for (const auto& rc : random_cases()) {
+    const Problem p = random_contact_problem(rc.n_patches, rc.cond, rc.seed);
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(p.b.size());
+    const auto rep = solve_mpgp(dense_operator(p.M), p.b, p.c, tight(), x);
+    const std::string where = "n " + std::to_string(3 * rc.n_patches) + " cond " +
+                              std::to_string(rc.cond) + "\n" + rep.full();
+    ASSERT_EQ(rep.termination, Termination::Converged) << where;
+    EXPECT_LE(rep.rel_gp, 1e-10) << where;
+    const auto r = kkt(p.M, p.b, x, p.c);
+    EXPECT_LE(r.feasibility, 1e-14) << where;
+    EXPECT_LE(r.stationarity, 1e-9) << where;
+    EXPECT_LE(r.complementarity, 1e-9) << where;
+    EXPECT_EQ(rep.n_objective_increases, 0) << where;
+  }
+}
+
+TEST(Mpgp, RandomContactProblemsMatchReferenceSolver) {
+  for (const auto& rc : random_cases()) {
+    if (rc.cond > 100.0 || rc.n_patches > 8) continue;  // keeps the FISTA reference fast
+    const Problem p = random_contact_problem(rc.n_patches, rc.cond, rc.seed + 1000);
+    const Eigen::VectorXd ref = testing::reference_solve(p.M, p.b, p.c);
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(p.b.size());
+    const auto rep = solve_mpgp(dense_operator(p.M), p.b, p.c, tight(), x);
+    ASSERT_EQ(rep.termination, Termination::Converged) << rep.full();
+    const double q = objective(p.M, p.b, x), q_ref = objective(p.M, p.b, ref);
+    EXPECT_LE(q, q_ref + 1e-12 * std::abs(q_ref)) << "n " << p.b.size() << " cond " << rc.cond;
+    EXPECT_LE((x - ref).norm(), 1e-8 * std::max(1.0, ref.norm()))
+        << "n " << p.b.size() << " cond " << rc.cond;
+  }
+}
+
+TEST(Mpgp, VariantsAgreeOnRandomContactProblems) {
+  for (const auto& rc : random_cases()) {
+    if (rc.n_patches > 8) continue;
+    const Problem p = random_contact_problem(rc.n_patches, rc.cond, rc.seed + 2000);
+    for (auto step : {ProportioningStep::ProjectedGradient, ProportioningStep::ChoppedGradientCG}) {
+      for (auto test : {ProportioningTest::ReducedFree, ProportioningTest::Free}) {
+        auto opt = tight();
+        opt.proportioning = step;
+        opt.proportioning_test = test;
+        opt.gamma = 2.0;
+        Eigen::VectorXd x = Eigen::VectorXd::Zero(p.b.size());
+        const auto rep = solve_mpgp(dense_operator(p.M), p.b, p.c, opt, x);
+        ASSERT_EQ(rep.termination, Termination::Converged) << rep.full();
+        EXPECT_LE(kkt(p.M, p.b, x, p.c).max(), 1e-9)
+            << to_string(step) << " " << to_string(test) << " cond " << rc.cond;
+      }
+    }
+  }
+}
+
+// Builds b around a chosen optimum x*: per block pick a state, x*_i and g*_i satisfying the KKT
+// conditions, and set b = A x* - g*. Strict convexity makes x* the unique solution.
+TEST(Mpgp, ManufacturedOptimumIsRecovered) {
+  for (unsigned seed = 1; seed <= 12; ++seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> U(0.0, 1.0);
+    const Index n_patches = 4 + seed % 9;
+    const double cond = std::pow(10.0, seed % 4);
+    const Eigen::MatrixXd M = random_spd(3 * n_patches, cond, rng);
+    auto c = SeparableConstraints::contact_layout(n_patches);
+    Eigen::VectorXd rho(n_patches), xs(3 * n_patches), gs(3 * n_patches);
+    for (Index i = 0; i < n_patches; ++i) {
+      const double u = U(rng);  // normal: free / active / degenerate (x = g = 0)
+      xs(3 * i) = u < 0.4 ? 0.5 + U(rng) : 0.0;
+      gs(3 * i) = u < 0.4 ? 0.0 : (u < 0.8 ? 0.2 + U(rng) : 0.0);
+      const double v = U(rng);
+      const double phi = 2.0 * std::numbers::pi * U(rng);
+      const Eigen::Vector2d eta(std::cos(phi), std::sin(phi));
+      rho(i) = v < 0.1 ? 0.0 : 0.5 + U(rng);
+      Eigen::Vector2d xt = Eigen::Vector2d::Zero(), gt = Eigen::Vector2d::Zero();
+      if (rho(i) == 0.0) {
+        gt = Eigen::Vector2d(U(rng) - 0.5, U(rng) - 0.5);  // any reaction
+      } else if (v < 0.45) {
+        xt = 0.8 * U(rng) * rho(i) * eta;  // interior, g = 0
+      } else if (v < 0.9) {
+        xt = rho(i) * eta;  // on the circle with a positive multiplier
+        gt = -(0.2 + U(rng)) * eta;
+      } else {
+        xt = rho(i) * eta;  // on the circle, zero multiplier (degenerate)
+      }
+      xs.segment<2>(3 * i + 1) = xt;
+      gs.segment<2>(3 * i + 1) = gt;
+    }
+    c.set_disc_radii(rho);
+    const Eigen::VectorXd b = M * xs - gs;
+    auto opt = tight();
+    opt.rel_tolerance = 1e-12;
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(b.size());
+    const auto rep = solve_mpgp(dense_operator(M), b, c, opt, x);
+    ASSERT_EQ(rep.termination, Termination::Converged) << rep.full();
+    EXPECT_LE((x - xs).norm(), 1e-9 * cond * xs.norm()) << "seed " << seed << " cond " << cond;
+  }
+}
+
+TEST(Mpgp, AllInactiveProblemGivesUnconstrainedSolution) {
+  std::mt19937 rng(3);
+  const Index n_patches = 10;
+  const Eigen::MatrixXd M = random_spd(3 * n_patches, 10.0, rng);
+  // x* strictly inside Omega: positive normals, tangential parts well inside the discs.
+  Eigen::VectorXd xs = random_vector(3 * n_patches, rng);
+  for (Index i = 0; i < n_patches; ++i)
+    xs(3 * i) = 1.0 + std::abs(xs(3 * i));
+  auto c = SeparableConstraints::contact_layout(n_patches);
+  Eigen::VectorXd rho(n_patches);
+  for (Index i = 0; i < n_patches; ++i)
+    rho(i) = 2.0 * xs.segment<2>(3 * i + 1).norm() + 0.1;
+  c.set_disc_radii(rho);
+  const Eigen::VectorXd b = M * xs;
+  auto opt = tight();
+  opt.rel_tolerance = 1e-13;
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(b.size());
+  const auto rep = solve_mpgp(dense_operator(M), b, c, opt, x);
+  ASSERT_EQ(rep.termination, Termination::Converged) << rep.full();
+  EXPECT_LE((x - M.llt().solve(b)).norm(), 1e-10 * xs.norm());
+}
+
+TEST(Mpgp, AllActiveProblemGivesBoundaryValues) {
+  std::mt19937 rng(4);
+  const Index n_patches = 10;
+  const Eigen::MatrixXd M = random_spd(3 * n_patches, 100.0, rng);
+  auto c = SeparableConstraints::contact_layout(n_patches);
+  Eigen::VectorXd rho(n_patches), xs = Eigen::VectorXd::Zero(3 * n_patches);
+  Eigen::VectorXd gs = Eigen::VectorXd::Zero(3 * n_patches);
+  for (Index i = 0; i < n_patches; ++i) {
+    rho(i) = 0.5 + 0.1 * static_cast<double>(i);
+    const double phi = 0.7 * static_cast<double>(i);
+    const Eigen::Vector2d eta(std::cos(phi), std::sin(phi));
+    xs.segment<2>(3 * i + 1) = rho(i) * eta;
+    gs(3 * i) = 1.0 + 0.1 * static_cast<double>(i);  // normal pressed against its bound
+    gs.segment<2>(3 * i + 1) = -(1.0 + 0.2 * static_cast<double>(i)) * eta;
+  }
+  c.set_disc_radii(rho);
+  const Eigen::VectorXd b = M * xs - gs;
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(b.size());
+  const auto rep = solve_mpgp(dense_operator(M), b, c, tight(), x);
+  ASSERT_EQ(rep.termination, Termination::Converged) << rep.full();
+  EXPECT_LE((x - xs).norm(), 1e-9 * xs.norm());
+  for (Index i = 0; i < n_patches; ++i) {
+    EXPECT_EQ(x(3 * i), 0.0);
+    EXPECT_NEAR(x.segment<2>(3 * i + 1).norm(), rho(i), 1e-12);
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Counters, history, monitor, termination
+
+TEST(Mpgp, ProductCountMatchesOperatorCalls) {
+  const Problem p = random_contact_problem(12, 300.0, 7);
+  for (bool given_norm : {false, true}) {
+    long calls = 0;
+    auto opt = tight();
+    if (given_norm) {
+      opt.norm_A = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(p.M).eigenvalues().maxCoeff();
+    }
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(p.b.size());
+    const auto rep = solve_mpgp(dense_operator(p.M, &calls), p.b, p.c, opt, x);
+    ASSERT_EQ(rep.termination, Termination::Converged) << rep.full();
+    // All three step kinds occur, so the formula below tests each coefficient.
+    EXPECT_GT(rep.n_cg, 0);
+    EXPECT_GT(rep.n_expansion, 0);
+    EXPECT_GT(rep.n_proportioning, 0);
+    EXPECT_EQ(rep.iterations, rep.n_cg + rep.n_expansion + rep.n_proportioning);
+    EXPECT_EQ(rep.n_products, 1 + rep.n_cg + 2L * rep.n_expansion + rep.n_proportioning);
+    EXPECT_EQ(calls, rep.n_products + rep.n_power_products);
+    EXPECT_EQ(rep.norm_A_estimated, !given_norm);
+    if (given_norm) {
+      EXPECT_EQ(rep.n_power_products, 0);
+      EXPECT_EQ(rep.norm_A_used, opt.norm_A);
+    } else {
+      EXPECT_GT(rep.n_power_products, 1);
+    }
+    EXPECT_DOUBLE_EQ(rep.alpha_bar_used, opt.step_factor / rep.norm_A_used);
+  }
+}
+
+TEST(Mpgp, ObjectiveDecreasesMonotonicallyAlongHistory) {
+  const Problem p = random_contact_problem(15, 1000.0, 8);
+  auto opt = tight();
+  opt.record_history = true;
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(p.b.size());
+  const auto rep = solve_mpgp(dense_operator(p.M), p.b, p.c, opt, x);
+  ASSERT_EQ(rep.termination, Termination::Converged) << rep.full();
+  ASSERT_EQ(rep.history.size(), static_cast<std::size_t>(rep.iterations) + 1);
+  EXPECT_EQ(rep.history.front().step, 's');
+  EXPECT_EQ(rep.history.front().objective, 0.0);  // q(0)
+  int counts[3] = {0, 0, 0};
+  for (std::size_t k = 1; k < rep.history.size(); ++k) {
+    const auto& h = rep.history[k];
+    EXPECT_EQ(h.iteration, static_cast<int>(k));
+    EXPECT_LE(h.objective, rep.history[k - 1].objective + 1e-13 * std::abs(h.objective))
+        << "step " << k << " (" << h.step << ")";
+    EXPECT_GT(h.alpha, 0.0);
+    ASSERT_TRUE(h.step == 'c' || h.step == 'e' || h.step == 'p');
+    ++counts[h.step == 'c' ? 0 : h.step == 'e' ? 1 : 2];
+  }
+  EXPECT_EQ(counts[0], rep.n_cg);
+  EXPECT_EQ(counts[1], rep.n_expansion);
+  EXPECT_EQ(counts[2], rep.n_proportioning);
+  const double q = objective(p.M, p.b, x);
+  EXPECT_NEAR(rep.history.back().objective, q, 1e-12 * std::abs(q));
+  EXPECT_NEAR(rep.objective, q, 1e-12 * std::abs(q));
+  EXPECT_NEAR(rep.history.back().norm_gp, rep.norm_gp, 0.0);
+}
+
+TEST(Mpgp, MonitorReturningFalseStopsWithUserStopped) {
+  const Problem p = random_contact_problem(10, 100.0, 9);
+  int seen = 0;
+  auto opt = tight();
+  opt.monitor = [&seen](const MpgpIteration& it) {
+    EXPECT_EQ(it.iteration, seen);
+    ++seen;
+    return it.iteration < 3;
+  };
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(p.b.size());
+  const auto rep = solve_mpgp(dense_operator(p.M), p.b, p.c, opt, x);
+  EXPECT_EQ(rep.termination, Termination::UserStopped) << rep.full();
+  EXPECT_EQ(rep.iterations, 3);
+  EXPECT_EQ(seen, 4);  // start + 3 steps
+  EXPECT_FALSE(rep.message.empty());
+}
+
+TEST(Mpgp, MaxIterationsIsReportedWithMessage) {
+  const Problem p = random_contact_problem(10, 1000.0, 10);
+  auto opt = tight();
+  opt.max_iterations = 5;
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(p.b.size());
+  const auto rep = solve_mpgp(dense_operator(p.M), p.b, p.c, opt, x);
+  EXPECT_EQ(rep.termination, Termination::MaxIterations);
+  EXPECT_EQ(rep.iterations, 5);
+  EXPECT_NE(rep.message.find("max_iterations = 5"), std::string::npos) << rep.message;
+  EXPECT_GT(rep.rel_gp, 1e-10);
+  EXPECT_LE(kkt(p.M, p.b, x, p.c).feasibility, 0.0);  // the last iterate stays feasible
+  EXPECT_NE(rep.brief().find("max_iterations"), std::string::npos);
+  EXPECT_NE(rep.full().find("n_expansion"), std::string::npos);
+}
+
+TEST(Mpgp, WarmStartAtSolutionTakesNoStep) {
+  const Problem p = random_contact_problem(6, 10.0, 11);
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(p.b.size());
+  solve_mpgp(dense_operator(p.M), p.b, p.c, tight(), x);
+  auto opt = tight();
+  opt.rel_tolerance = 1e-6;
+  const auto rep = solve_mpgp(dense_operator(p.M), p.b, p.c, opt, x);
+  EXPECT_EQ(rep.termination, Termination::Converged);
+  EXPECT_EQ(rep.iterations, 0);
+  EXPECT_EQ(rep.n_products, 1);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Edge cases and failures
+
+TEST(Mpgp, ZeroRightHandSideGivesZeroSolution) {
+  const Problem p = random_contact_problem(4, 10.0, 12);
+  Eigen::VectorXd x = Eigen::VectorXd::Constant(p.b.size(), 0.3);
+  const auto rep =
+      solve_mpgp(dense_operator(p.M), Eigen::VectorXd::Zero(p.b.size()), p.c, MpgpOptions{}, x);
+  EXPECT_EQ(rep.termination, Termination::Converged) << rep.full();
+  EXPECT_EQ(x, Eigen::VectorXd::Zero(p.b.size()));
+  EXPECT_EQ(rep.rel_gp, 0.0);
+  EXPECT_EQ(rep.objective, 0.0);
+  EXPECT_TRUE(std::isfinite(rep.alpha_bar_used));
+}
+
+TEST(Mpgp, InfeasibleInitialGuessIsProjectedFirst) {
+  const Problem p = random_contact_problem(8, 100.0, 13);
+  std::mt19937 rng(1);
+  const Eigen::VectorXd x0 = 10.0 * random_vector(p.b.size(), rng);
+  Eigen::VectorXd x = x0;
+  auto opt = tight();
+  opt.record_history = true;
+  const auto rep = solve_mpgp(dense_operator(p.M), p.b, p.c, opt, x);
+  ASSERT_EQ(rep.termination, Termination::Converged) << rep.full();
+  EXPECT_LE(kkt(p.M, p.b, x, p.c).max(), 1e-9);
+  // The starting objective is that of the projected guess.
+  const Eigen::VectorXd px = testing::reference_project(p.c, x0);
+  EXPECT_NEAR(rep.history.front().objective, objective(p.M, p.b, px),
+              1e-12 * std::abs(objective(p.M, p.b, px)));
+}
+
+TEST(Mpgp, ZeroRadiusPinsTangentialUnknowns) {
+  Problem p = random_contact_problem(6, 10.0, 14);
+  p.c.set_disc_radii(Eigen::VectorXd::Zero(6));  // frictionless
+  Eigen::VectorXd x = Eigen::VectorXd::Ones(p.b.size());
+  const auto rep = solve_mpgp(dense_operator(p.M), p.b, p.c, tight(), x);
+  ASSERT_EQ(rep.termination, Termination::Converged) << rep.full();
+  for (Index i = 0; i < 6; ++i)
+    EXPECT_EQ(x.segment<2>(3 * i + 1), Eigen::Vector2d::Zero());
+  // Independent truth: the bound problem on the normal unknowns alone.
+  Eigen::MatrixXd Mn(6, 6);
+  Eigen::VectorXd bn(6), xn(6);
+  for (Index i = 0; i < 6; ++i) {
+    bn(i) = p.b(3 * i);
+    xn(i) = x(3 * i);
+    for (Index j = 0; j < 6; ++j)
+      Mn(i, j) = p.M(3 * i, 3 * j);
+  }
+  EXPECT_LE((xn - testing::enumerate_bound_solution(Mn, bn)).norm(), 1e-9);
+}
+
+TEST(Mpgp, NonFiniteOrMismatchedInputsThrow) {
+  const Problem p = random_contact_problem(3, 10.0, 15);
+  const auto A = dense_operator(p.M);
+  const Index n = p.b.size();
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
+  Eigen::VectorXd b_nan = p.b;
+  b_nan(2) = NAN;
+  EXPECT_THROW(solve_mpgp(A, b_nan, p.c, MpgpOptions{}, x), Error);
+  Eigen::VectorXd x_inf = Eigen::VectorXd::Zero(n);
+  x_inf(0) = INFINITY;
+  EXPECT_THROW(solve_mpgp(A, p.b, p.c, MpgpOptions{}, x_inf), Error);
+  auto c_nan = p.c;
+  c_nan.radius(1) = NAN;
+  EXPECT_THROW(solve_mpgp(A, p.b, c_nan, MpgpOptions{}, x), Error);
+  Eigen::VectorXd x_short = Eigen::VectorXd::Zero(n - 1);
+  EXPECT_THROW(solve_mpgp(A, p.b, p.c, MpgpOptions{}, x_short), InputError);
+  MpgpOptions bad;
+  bad.gamma = -1.0;
+  EXPECT_THROW(solve_mpgp(A, p.b, p.c, bad, x), InputError);
+  EXPECT_THROW(solve_mpgp(Operator{}, p.b, p.c, MpgpOptions{}, x), InputError);
+}
+
+TEST(Mpgp, IndefiniteOperatorReportsNumericalFailure) {
+  // A = -I: the power method finds ||A|| = 1, then p^T A p < 0 at the first CG step.
+  const Operator A = [](const Eigen::VectorXd& v, Eigen::VectorXd& y) { y = -v; };
+  auto c = SeparableConstraints::contact_layout(2);
+  c.set_disc_radii(Eigen::Vector2d(1.0, 1.0));
+  Eigen::VectorXd x = Eigen::VectorXd::Constant(6, 0.1);
+  const Eigen::VectorXd b = Eigen::VectorXd::Constant(6, 1.0);
+  const auto rep = solve_mpgp(A, b, c, MpgpOptions{}, x);
+  EXPECT_EQ(rep.termination, Termination::NumericalFailure) << rep.full();
+  EXPECT_FALSE(rep.message.empty());
+}
+
+TEST(Mpgp, OperatorProducingNanReportsNumericalFailure) {
+  const Operator A = [](const Eigen::VectorXd& v, Eigen::VectorXd& y) {
+    y = v;
+    if (v(0) != 0.0) y(0) = NAN;
+  };
+  Eigen::VectorXd x = Eigen::VectorXd::Constant(3, 0.5);
+  MpgpOptions opt;
+  opt.norm_A = 1.0;
+  const auto rep =
+      solve_mpgp(A, Eigen::Vector3d(1, 1, 1), SeparableConstraints::contact_layout(1), opt, x);
+  EXPECT_EQ(rep.termination, Termination::NumericalFailure) << rep.full();
+}
+
+TEST(Mpgp, ZeroNormOperatorThrowsNumericalError) {
+  const Operator A = [](const Eigen::VectorXd& v, Eigen::VectorXd& y) { y.setZero(v.size()); };
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(3);
+  EXPECT_THROW(solve_mpgp(A, Eigen::Vector3d(1, 1, 1), SeparableConstraints::contact_layout(1),
+                          MpgpOptions{}, x),
+               NumericalError);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Power method
+
+TEST(EstimateNorm, ApproachesLargestEigenvalueFromBelow) {
+  std::mt19937 rng(21);
+  for (Index n : {1, 5, 40}) {
+    const Eigen::MatrixXd M = random_spd(n, 50.0, rng, 2.0);
+    const double lmax = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(M).eigenvalues().maxCoeff();
+    long count = 0;
+    const double est = estimate_norm(dense_operator(M), n, 1000, 1e-12, &count);
+    EXPECT_LE(est, lmax * (1 + 1e-14));
+    EXPECT_GE(est, lmax * (1 - 1e-6)) << "n " << n;
+    EXPECT_GE(count, 1);
+  }
+  EXPECT_EQ(estimate_norm(dense_operator(Eigen::MatrixXd(0, 0)), 0, 10, 1e-8), 0.0);
+}
+
+TEST(EstimateNorm, CountsProductsExactly) {
+  const Eigen::MatrixXd M = Eigen::VectorXd::LinSpaced(30, 1.0, 30.0).asDiagonal();
+  long calls = 0, counted = 5;  // the counter is added to, not overwritten
+  estimate_norm(dense_operator(M, &calls), 30, 7, 1e-30, &counted);
+  EXPECT_EQ(calls, 7);
+  EXPECT_EQ(counted, 12);
+}
+
+}  // namespace
+}  // namespace fricon::qp
