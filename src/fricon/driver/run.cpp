@@ -40,13 +40,23 @@ RunResult run(const Problem& problem) {
   rep.n_primal = m.dofs.n_free();
   rep.factor = m.factor.info();
 
-  // @sect: the displacement. Without contact, one solve with the factor of K.
+  // @sect: the displacement. Without contact, one solve with the factor of K; with contact, the
+  // successive approximations of Tresca problems, each solved in its dual form.
   VectorXd u;
-  {
+  if (problem.contact) {
+    ContactOutcome c = solve_contact(problem, m, rep.times);
+    u = std::move(c.w);
+    rep.status = c.converged ? Status::Converged : Status::NotConverged;
+    rep.message = c.message;
+    rep.contact_force = c.contact_force;
+    rep.linear_residual = c.linear_residual;
+    rep.contact = std::move(c.report);
+    r.contact = std::move(c.fields);
+  } else {
     ScopedPhase phase(rep.times, "solve");
     u = m.factor.solve(m.f);
+    rep.linear_residual = (m.K * u - m.f).norm() / std::max(m.f.norm(), 1e-300);
   }
-  rep.linear_residual = (m.K * u - m.f).norm() / std::max(m.f.norm(), 1e-300);
 
   // @sect: fields and the self-check of the result.
   {

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "fricon/core/timer.hpp"
+#include "fricon/driver/contact_solver.hpp"
 #include "fricon/driver/model.hpp"
 #include "fricon/driver/problem.hpp"
 
@@ -32,6 +33,7 @@ struct RunReport {
   /// |applied + contact + reaction| / |applied|: global equilibrium, round-off if all is well.
   Real equilibrium_residual = 0.0;
   Real linear_residual = 0.0;  ///< ||K u - (f - B^T lambda)|| / ||f||
+  std::optional<ContactReport> contact;  ///< present when the problem has a [contact] section
 };
 
 struct RunResult {
@@ -41,6 +43,7 @@ struct RunResult {
   /// Per tetrahedron: stress (Voigt order 11,22,33,23,13,12) [Pa], 6 x n_tets.
   Eigen::Matrix<Real, 6, Eigen::Dynamic> stress;
   VectorXd von_mises;           ///< per tetrahedron [Pa]
+  std::optional<ContactFields> contact;  ///< fields on the contact surface
 };
 
 /// Solves the problem. Throws InputError/NumericalError for ill-posed input; a run whose

@@ -1,5 +1,7 @@
 #include "fricon/io/results.hpp"
 
+#include <cmath>
+
 #include <fmt/format.h>
 
 #include "fricon/io/atomic_file.hpp"
@@ -43,6 +45,44 @@ nlohmann::json report_json(const driver::Problem& problem, const driver::RunResu
   j["equilibrium_residual"] = r.equilibrium_residual;
   j["linear_residual"] = r.linear_residual;
   j["max_von_mises"] = result.von_mises.size() ? result.von_mises.maxCoeff() : 0.0;
+  if (r.contact) {
+    const driver::ContactReport& c = *r.contact;
+    j["n_dual"] = c.n_dual;
+    j["outer_iterations"] = c.outer_iterations;
+    j["n_mult"] = c.n_mult;
+    j["qp_iterations"] = c.qp_iterations;
+    j["n_kinv"] = c.n_kinv;
+    j["err_history"] = c.err_history;
+    j["wn_pos_l2"] = c.wn_pos_l2;
+    j["wn_pos_inf"] = c.wn_pos_inf;
+    j["max_neg_wn"] = c.max_neg_wn;
+    j["max_wt"] = c.max_wt;
+    j["max_lambda_n"] = c.max_lambda_n;
+    j["max_lambda_t"] = c.max_lambda_t;
+    j["total_normal_force"] = c.total_normal_force;
+    j["kkt"] = {{"feasibility", c.kkt.feasibility},
+                {"stationarity", c.kkt.stationarity},
+                {"complementarity", c.kkt.complementarity}};
+    nlohmann::json history = nlohmann::json::array();
+    for (const auto& it : c.history)
+      history.push_back({{"k", it.k},
+                         {"err", it.err},
+                         {"qp_iterations", it.qp_iterations},
+                         {"qp_products", it.qp_products},
+                         {"qp_rel_gp", it.qp_rel_gp},
+                         {"qp_termination", it.qp_termination},
+                         {"seconds", it.seconds}});
+    j["contact"] = {{"boundary", c.boundary},
+                    {"friction_law", c.friction_law},
+                    {"dual_operator", c.dual_operator},
+                    {"n_patches", c.n_patches},
+                    {"n_surface_nodes", c.n_surface_nodes},
+                    {"n_contact_nodes", c.n_contact_nodes},
+                    {"stability_ratio", c.stability_ratio},
+                    {"norm_Q", c.norm_Q},
+                    {"fixed_point_residual", c.fixed_point_residual},
+                    {"history", history}};
+  }
   j["problem"] = to_json(problem);
   return j;
 }
@@ -63,7 +103,64 @@ std::vector<std::filesystem::path> write_results(const std::filesystem::path& di
   write_vtu(dir / "solution.vtu", body);
   written.push_back(dir / "solution.vtu");
 
-  write_pvd(dir / "solution.pvd", {"solution.vtu"});
+  std::vector<std::string> parts{"solution.vtu"};
+  if (result.contact) {
+    const driver::ContactFields& c = *result.contact;
+    const auto& s = c.surface;
+    const Index np = c.patches.size();
+    // Per surface node: w_n, w_t1, w_t2, phi, F (and coordinates).
+    write_atomically(dir / "contact_nodes.csv", [&](std::ostream& out) {
+      out << "x,y,z,w_n,w_t1,w_t2,phi,F\n";
+      for (Index k = 0; k < s.n_nodes(); ++k) {
+        const auto x = mesh.nodes.col(s.nodes[static_cast<size_t>(k)]);
+        const Real phi = std::hypot(c.wt1(k), c.wt2(k));
+        out << fmt::format("{},{},{},{},{},{},{},{}\n", x(0), x(1), x(2), c.wn(k), c.wt1(k),
+                           c.wt2(k), phi, c.F(k));
+      }
+    });
+    written.push_back(dir / "contact_nodes.csv");
+    write_atomically(dir / "patches.csv", [&](std::ostream& out) {
+      out << "x,y,area,lambda_n,lambda_t1,lambda_t2,radius\n";
+      for (Index p = 0; p < np; ++p)
+        out << fmt::format("{},{},{},{},{},{},{}\n", c.patches.centroid(0, p),
+                           c.patches.centroid(1, p), c.patches.area(p), c.lambda(3 * p),
+                           c.lambda(3 * p + 1), c.lambda(3 * p + 2), c.radius(p));
+    });
+    written.push_back(dir / "patches.csv");
+
+    // The contact surface as triangles: nodal w and slip, per-triangle multipliers of its patch.
+    VtuGrid surface;
+    surface.points.resize(3, s.n_nodes());
+    for (Index k = 0; k < s.n_nodes(); ++k) surface.points.col(k) = mesh.nodes.col(s.nodes[static_cast<size_t>(k)]);
+    surface.cells = s.face_nodes;
+    MatrixXd w(3, s.n_nodes()), scalars(4, s.n_nodes());
+    for (Index k = 0; k < s.n_nodes(); ++k) {
+      w.col(k) = c.wn(k) * s.n + c.wt1(k) * s.t1 + c.wt2(k) * s.t2;
+      scalars.col(k) << c.wn(k), std::hypot(c.wt1(k), c.wt2(k)), c.phi(k), c.F(k);
+    }
+    surface.point_data = {{"displacement", w},
+                          {"w_n", scalars.row(0)},
+                          {"norm_w_t", scalars.row(1)},
+                          {"phi", scalars.row(2)},
+                          {"F", scalars.row(3)}};
+    const Index nf = s.face_nodes.cols();
+    MatrixXd lambda_t(3, nf), per_face(4, nf);
+    for (Index p = 0; p < np; ++p)
+      for (Index k : c.patches.faces[static_cast<size_t>(p)]) {
+        lambda_t.col(k) = c.lambda(3 * p + 1) * s.t1 + c.lambda(3 * p + 2) * s.t2;
+        per_face.col(k) << c.lambda(3 * p), c.lambda.segment<2>(3 * p + 1).norm(), c.radius(p),
+            static_cast<Real>(p);
+      }
+    surface.cell_data = {{"lambda_n", per_face.row(0)},
+                         {"lambda_t", lambda_t},
+                         {"norm_lambda_t", per_face.row(1)},
+                         {"radius", per_face.row(2)},
+                         {"patch", per_face.row(3)}};
+    write_vtu(dir / "contact.vtu", surface);
+    written.push_back(dir / "contact.vtu");
+    parts.push_back("contact.vtu");
+  }
+  write_pvd(dir / "solution.pvd", parts);
   written.push_back(dir / "solution.pvd");
 
   const nlohmann::json report = report_json(problem, result, context);

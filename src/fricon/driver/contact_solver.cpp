@@ -1,0 +1,221 @@
+#include "fricon/driver/contact_solver.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "fricon/core/error.hpp"
+
+namespace fricon::driver {
+
+std::unique_ptr<contact::FrictionLaw> make_friction_law(const FrictionOptions& o) {
+  if (o.law == "paper") return contact::paper_law(o.param);
+  if (o.law == "constant") return contact::constant_law(o.value);
+  if (o.law == "table") return contact::table_law(o.t, o.f);
+  throw InputError(fmt::format("contact.friction.law: unknown law '{}'", o.law));
+}
+
+namespace {
+
+// Above this many multipliers "auto" keeps Q implicit (a dense Q costs n_dual^2 doubles and
+// n_dual solves to form).
+constexpr Index kDenseDualLimit = 6000;
+// Columns per block solve when forming Q densely.
+constexpr Index kDenseBlock = 64;
+// Power iteration for ||Q||: the reference reproduction used 200 iterations (method.md §6.4).
+constexpr int kPowerIterations = 200;
+constexpr Real kPowerTolerance = 1e-10;
+
+// The dual data of method.md §2.6: Q = B K^-1 B^T (as a product), h = B K^-1 f, u0 = K^-1 f.
+struct Dual {
+  qp::Operator Q;
+  VectorXd h, u0;
+  std::shared_ptr<const MatrixXd> Q_dense;  // null in implicit mode; shared with Q's closure
+  std::string mode;
+};
+
+Dual make_dual(const Model& m, const SparseMatrix& B, const std::string& requested, long& n_kinv) {
+  Dual d;
+  d.u0 = m.factor.solve(m.f);
+  ++n_kinv;
+  d.h = B * d.u0;
+  d.mode = requested == "auto" ? (B.rows() <= kDenseDualLimit ? "dense" : "implicit") : requested;
+  if (d.mode == "dense") {
+    const Index nd = B.rows();
+    const SparseMatrix Bt = B.transpose();
+    auto Q = std::make_shared<MatrixXd>(nd, nd);
+    for (Index j = 0; j < nd; j += kDenseBlock) {
+      const Index nb = std::min(kDenseBlock, nd - j);
+      const MatrixXd X = m.factor.solve(MatrixXd(Bt.middleCols(j, nb)));
+      Q->middleCols(j, nb) = B * X;
+      n_kinv += nb;
+    }
+    *Q = 0.5 * (*Q + Q->transpose()).eval();
+    d.Q_dense = Q;
+    d.Q = [Q](const VectorXd& x, VectorXd& y) { y.noalias() = *Q * x; };
+  } else {
+    d.Q = [&m, &B, &n_kinv](const VectorXd& x, VectorXd& y) {
+      y = B * m.factor.solve(VectorXd(B.transpose() * x));
+      ++n_kinv;
+    };
+  }
+  return d;
+}
+
+// phi = ||w_t|| per surface node, and the components of w there.
+void surface_components(const Model& m, const contact::ContactSurface& s, const VectorXd& w,
+                        ContactFields& f) {
+  const Index n = s.n_nodes();
+  f.wn.resize(n);
+  f.wt1.resize(n);
+  f.wt2.resize(n);
+  for (Index k = 0; k < n; ++k) {
+    Vec3 u = Vec3::Zero();
+    for (int c = 0; c < 3; ++c) {
+      const Index dof = m.dofs.dof(s.nodes[static_cast<size_t>(k)], c);
+      if (dof >= 0) u(c) = w(dof);
+    }
+    f.wn(k) = u.dot(s.n);
+    f.wt1(k) = u.dot(s.t1);
+    f.wt2(k) = u.dot(s.t2);
+  }
+}
+
+VectorXd tangential_slip(const ContactFields& f) {
+  return (f.wt1.array().square() + f.wt2.array().square()).sqrt().matrix();
+}
+
+}  // namespace
+
+ContactOutcome solve_contact(const Problem& problem, const Model& m, PhaseTimes& times) {
+  const ContactOptions& opt = *problem.contact;
+  const SolverOptions& so = problem.solver;
+  ContactOutcome out;
+  ContactReport& rep = out.report;
+  ContactFields& fields = out.fields;
+  const auto law = make_friction_law(opt.friction);
+  rep.boundary = opt.boundary;
+  rep.friction_law = law->describe();
+
+  // @sect: contact discretization: surface, patches T_H, B and the stability check (5.1).
+  SparseMatrix B;
+  {
+    ScopedPhase phase(times, "contact");
+    fields.surface = contact::make_contact_surface(m.mesh, m.dofs, opt.boundary, problem.source);
+    if (opt.patches != "chessboard")
+      throw InputError(fmt::format("{}: contact.patches: unknown partition '{}'", problem.source, opt.patches));
+    fields.patches = contact::chessboard_patches(m.mesh, fields.surface, problem.source);
+    B = contact::assemble_b(m.mesh, m.dofs, fields.surface, fields.patches);
+    rep.stability_ratio = contact::check_stability(B, problem.source);
+    fields.slip_bound = VectorXd::Constant(fields.surface.n_nodes(), opt.slip_bound);
+  }
+  rep.n_patches = fields.patches.size();
+  rep.n_dual = B.rows();
+  rep.n_surface_nodes = fields.surface.n_nodes();
+  rep.n_contact_nodes = fields.surface.n_contact_nodes();
+
+  // @sect: the dual QP data, fixed for the whole outer loop.
+  Dual dual;
+  {
+    ScopedPhase phase(times, "dual");
+    dual = make_dual(m, B, so.dual_operator, rep.n_kinv);
+    rep.dual_operator = dual.mode;
+    rep.norm_Q = qp::estimate_norm(dual.Q, rep.n_dual, kPowerIterations, kPowerTolerance);
+  }
+
+  qp::SeparableConstraints constraints = qp::SeparableConstraints::contact_layout(rep.n_patches);
+  qp::MpgpOptions qopt;
+  qopt.rel_tolerance = so.qp_rtol;
+  qopt.max_iterations = so.qp_max;
+  qopt.norm_A = rep.norm_Q;
+
+  // @sect: successive approximations (method.md §3).
+  VectorXd phi = VectorXd::Zero(fields.surface.n_nodes());
+  VectorXd lambda = VectorXd::Zero(rep.n_dual);
+  VectorXd w;
+  qp::MpgpReport last_qp;
+  for (int k = 1; k <= so.outer_max; ++k) {
+    Stopwatch watch;
+    OuterIteration it;
+    it.k = k;
+    fields.radius = contact::patch_radii(m.mesh, fields.surface, fields.patches, *law, phi,
+                                         fields.slip_bound);
+    constraints.set_disc_radii(fields.radius);
+    if (!so.warm_start) lambda.setZero();
+    {
+      ScopedPhase phase(times, "qp");
+      last_qp = qp::solve_mpgp(dual.Q, dual.h, constraints, qopt, lambda);
+    }
+    rep.n_mult += last_qp.n_products;
+    rep.qp_iterations += last_qp.iterations;
+    it.qp_iterations = last_qp.iterations;
+    it.qp_products = last_qp.n_products;
+    it.qp_rel_gp = last_qp.rel_gp;
+    it.qp_termination = qp::to_string(last_qp.termination);
+    {
+      ScopedPhase phase(times, "recovery");
+      w = m.factor.solve(VectorXd(m.f - B.transpose() * lambda));
+      ++rep.n_kinv;
+    }
+    fields.phi = phi;
+    surface_components(m, fields.surface, w, fields);
+    const VectorXd phi_new = tangential_slip(fields);
+    const Real norm_new = phi_new.norm();
+    it.err = norm_new > 0 ? (phi_new - phi).norm() / norm_new : 0.0;
+    it.seconds = watch.seconds();
+    rep.history.push_back(it);
+    rep.err_history.push_back(it.err);
+    rep.outer_iterations = k;
+    if (last_qp.termination != qp::Termination::Converged) {
+      out.message = fmt::format("the dual QP of outer iteration {} did not converge: {}", k,
+                                last_qp.message);
+      break;
+    }
+    phi = phi_new;
+    if (it.err <= so.outer_tol) {
+      out.converged = true;
+      break;
+    }
+  }
+  if (!out.converged && out.message.empty()) {
+    std::string hist;
+    for (Real e : rep.err_history) hist += fmt::format(" {:.3e}", e);
+    out.message = fmt::format(
+        "the successive approximations did not reach err <= {:.1e} in {} iterations; err(k):{}",
+        so.outer_tol, so.outer_max, hist);
+  }
+  rep.fixed_point_residual = rep.err_history.empty() ? 0.0 : rep.err_history.back();
+
+  // @sect: certificate and measures of the last iterate.
+  {
+    ScopedPhase phase(times, "postprocess");
+    // The gradient through K^-1 itself, independent of a dense Q.
+    const VectorXd g = B * m.factor.solve(VectorXd(B.transpose() * lambda)) - dual.h;
+    rep.n_kinv += 1;
+    const qp::KktScales scales = qp::default_kkt_scales(lambda, dual.h, constraints);
+    rep.kkt = qp::kkt_residuals(lambda, g, constraints, scales.x, scales.g);
+
+    const VectorXd wn_pos = fields.wn.cwiseMax(0.0);
+    rep.wn_pos_l2 = contact::surface_l2_norm(m.mesh, fields.surface, wn_pos);
+    rep.wn_pos_inf = wn_pos.maxCoeff();
+    rep.max_neg_wn = (-fields.wn).maxCoeff();
+    const VectorXd slip = tangential_slip(fields);
+    rep.max_wt = slip.maxCoeff();
+    fields.F.resize(slip.size());
+    for (Index a = 0; a < slip.size(); ++a) fields.F(a) = (*law)(slip(a));
+    for (Index p = 0; p < rep.n_patches; ++p) {
+      rep.max_lambda_n = std::max(rep.max_lambda_n, lambda(3 * p));
+      rep.max_lambda_t = std::max(rep.max_lambda_t, lambda.segment<2>(3 * p + 1).norm());
+      rep.total_normal_force += lambda(3 * p) * fields.patches.area(p);
+    }
+    const fe::NodalField contact_nodal = m.dofs.to_nodal(VectorXd(-(B.transpose() * lambda)));
+    out.contact_force = contact_nodal.rowwise().sum();
+    out.linear_residual = (m.K * w - m.f + B.transpose() * lambda).norm() / std::max(m.f.norm(), 1e-300);
+  }
+  fields.lambda = lambda;
+  out.w = w;
+  return out;
+}
+
+}  // namespace fricon::driver

@@ -1,0 +1,174 @@
+// The contact discretization: sizes of the paper, B's exact integrals, the stability check,
+// friction laws and the exact integration of the radii.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "fricon/contact/contact_surface.hpp"
+#include "fricon/core/error.hpp"
+#include "fricon/fe/assembly.hpp"
+#include "fricon/mesh/brick.hpp"
+
+using namespace fricon;
+using namespace fricon::contact;
+
+namespace {
+
+struct Brick {
+  mesh::TetMesh mesh;
+  fe::DofMap dofs{0};
+  ContactSurface surface;
+  Patches patches;
+  SparseMatrix B;
+};
+
+Brick paper_brick(Index n) {
+  Brick b;
+  b.mesh = mesh::make_brick({Vec3(3, 1, 1), {3 * n, n, n}});
+  std::vector<bool> fixed(static_cast<size_t>(3 * b.mesh.n_nodes()), false);
+  for (Index a : b.mesh.nodes_with_tag("x0"))
+    for (int c = 0; c < 3; ++c) fixed[static_cast<size_t>(3 * a + c)] = true;
+  b.dofs = fe::DofMap(fixed);
+  b.surface = make_contact_surface(b.mesh, b.dofs, "z0", "test");
+  b.patches = chessboard_patches(b.mesh, b.surface, "test");
+  b.B = assemble_b(b.mesh, b.dofs, b.surface, b.patches);
+  return b;
+}
+
+}  // namespace
+
+TEST(ContactSurface, PaperSizesAndBasis) {
+  // Table 1: n_d = 36, 81, 144 for n = 4, 6, 8; 3n(n+1) contact nodes (method.md §2.4).
+  for (Index n : {4, 6, 8}) {
+    const Brick b = paper_brick(n);
+    EXPECT_EQ(b.B.rows(), 9 * n * n / 4);
+    EXPECT_EQ(b.surface.n_contact_nodes(), 3 * n * (n + 1));
+    EXPECT_NEAR((b.surface.n - Vec3(0, 0, -1)).norm(), 0.0, 1e-15);
+    EXPECT_NEAR((b.surface.t1 - Vec3(1, 0, 0)).norm(), 0.0, 1e-15);
+    EXPECT_NEAR((b.surface.t2 - Vec3(0, 1, 0)).norm(), 0.0, 1e-15);
+    for (Index p = 0; p < b.patches.size(); ++p) {
+      EXPECT_EQ(b.patches.faces[static_cast<size_t>(p)].size(), 8u);
+      EXPECT_NEAR(b.patches.area(p), 4.0 / static_cast<Real>(n * n), 1e-15);
+    }
+  }
+}
+
+TEST(ContactSurface, PatchesAreCentredOnOddNodes) {
+  const Brick b = paper_brick(4);
+  const Real h = 0.25;
+  for (Index p = 0; p < b.patches.size(); ++p) {
+    const Real i = b.patches.centroid(0, p) / h, j = b.patches.centroid(1, p) / h;
+    EXPECT_NEAR(std::fmod(i, 2.0), 1.0, 1e-12);
+    EXPECT_NEAR(std::fmod(j, 2.0), 1.0, 1e-12);
+  }
+}
+
+TEST(ContactSurface, BIntegratesTracesExactly) {
+  // (B v)_{n,p} = int_{R_p} v.n: for v = (0, 0, 1) (not on fixed nodes) the normal rows give
+  // -|R_p| on patches away from x = 0; for the linear field v = (x, 0, 0) the t1 rows give the
+  // first moment int_{R_p} x dS = |R_p| x_centroid.
+  const Brick b = paper_brick(4);
+  fe::NodalField up(3, b.mesh.n_nodes()), lin(3, b.mesh.n_nodes());
+  for (Index a = 0; a < b.mesh.n_nodes(); ++a) {
+    up.col(a) = Vec3(0, 0, 1);
+    lin.col(a) = Vec3(b.mesh.nodes(0, a), 0, 0);
+  }
+  const VectorXd Bu = b.B * b.dofs.from_nodal(up);
+  const VectorXd Bl = b.B * b.dofs.from_nodal(lin);
+  for (Index p = 0; p < b.patches.size(); ++p) {
+    EXPECT_NEAR(Bl(3 * p + 1), b.patches.area(p) * b.patches.centroid(0, p), 1e-15);
+    EXPECT_NEAR(Bl(3 * p), 0.0, 1e-15);
+    EXPECT_NEAR(Bl(3 * p + 2), 0.0, 1e-15);
+    if (b.patches.centroid(0, p) > 0.5) {
+      EXPECT_NEAR(Bu(3 * p), -b.patches.area(p), 1e-15);
+    }
+  }
+  // Node weights of an interior patch: centre 4h^2/3, the 8 others h^2/3 (method.md §2.5).
+  const Real h2 = 0.0625;
+  std::vector<Real> weights;
+  for (SparseMatrix::InnerIterator it(SparseMatrix(b.B.transpose()), 3 * 5); it; ++it)
+    weights.push_back(-it.value());
+  std::sort(weights.begin(), weights.end());
+  ASSERT_EQ(weights.size(), 9u);
+  for (int k = 0; k < 8; ++k) EXPECT_NEAR(weights[k], h2 / 3, 1e-15);
+  EXPECT_NEAR(weights[8], 4 * h2 / 3, 1e-15);
+}
+
+TEST(ContactSurface, StabilityHoldsForTheChessboardAndFailsForFinePatches) {
+  const Brick b = paper_brick(4);
+  EXPECT_GT(check_stability(b.B, "test"), 0.1);
+  // One patch per fine triangle: 2 x more patches than contact nodes can carry, so B^T loses
+  // full column rank and the check must refuse it.
+  Patches fine;
+  for (size_t k = 0; k < b.surface.faces.size(); ++k) {
+    fine.faces.push_back({static_cast<Index>(k)});
+  }
+  fine.area = VectorXd::Constant(static_cast<Index>(fine.faces.size()), 1.0);
+  const SparseMatrix Bfine = assemble_b(b.mesh, b.dofs, b.surface, fine);
+  EXPECT_THROW(check_stability(Bfine, "test"), NumericalError);
+}
+
+TEST(ContactSurface, RejectsMissingAndClampedSurfaces) {
+  Brick b = paper_brick(4);
+  EXPECT_THROW(make_contact_surface(b.mesh, b.dofs, "bottom", "test"), InputError);
+  EXPECT_THROW(make_contact_surface(b.mesh, b.dofs, "x0", "test"), InputError);  // all clamped
+}
+
+TEST(FrictionLaw, PaperLawValuesAndLipschitzConstant) {
+  const auto F = paper_law(6e4);
+  EXPECT_DOUBLE_EQ((*F)(0.0), 0.3);
+  EXPECT_DOUBLE_EQ((*F)(1e-5), 0.3);
+  EXPECT_NEAR((*F)(1e-5 + 1.0 / 6e4), 0.25, 1e-15);  // halfway down
+  EXPECT_NEAR((*F)(1e-5 + 2.0 / 6e4), 0.2, 1e-15);
+  EXPECT_DOUBLE_EQ((*F)(1.0), 0.2);
+  EXPECT_NEAR(F->lipschitz(), 0.05 * 6e4, 1e-9);
+  EXPECT_THROW(paper_law(-1.0), InputError);
+}
+
+TEST(FrictionLaw, TableLawIsConstantOutsideAndRejectsBadTables) {
+  const auto F = table_law({1e-4, 2e-4, 4e-4}, {0.5, 0.3, 0.4});
+  EXPECT_DOUBLE_EQ((*F)(0.0), 0.5);
+  EXPECT_NEAR((*F)(1.5e-4), 0.4, 1e-15);
+  EXPECT_NEAR((*F)(3e-4), 0.35, 1e-15);
+  EXPECT_DOUBLE_EQ((*F)(1.0), 0.4);
+  EXPECT_THROW(table_law({1e-4, 1e-4}, {0.3, 0.2}), InputError);
+  EXPECT_THROW(table_law({1e-4}, {-0.3}), InputError);
+  EXPECT_THROW(table_law({}, {}), InputError);
+}
+
+TEST(Radii, ConstantAndLinearSlipsAreIntegratedExactly) {
+  const Brick b = paper_brick(4);
+  const Index ns = b.surface.n_nodes();
+  const VectorXd g = VectorXd::Constant(ns, 2e7);
+  const auto F = paper_law(6e4);
+  // phi = 0 everywhere: rho = 0.3 g.
+  VectorXd rho = patch_radii(b.mesh, b.surface, b.patches, *F, VectorXd::Zero(ns), g);
+  EXPECT_NEAR((rho.array() - 0.3 * 2e7).abs().maxCoeff(), 0.0, 1e-6);
+  // phi linear in x across the kink region: phi = s x. The mean of F(s x) over a patch
+  // [x0, x0 + 2h] is (1/2h) int F(s x) dx, computed here in closed form.
+  const Real s = 3e-5;  // m per m: phi goes from 0 to 9e-5 across the brick
+  VectorXd phi(ns);
+  for (Index k = 0; k < ns; ++k) phi(k) = s * b.mesh.nodes(0, b.surface.nodes[static_cast<size_t>(k)]);
+  rho = patch_radii(b.mesh, b.surface, b.patches, *F, phi, g);
+  const Real t0 = 1e-5, t1 = 1e-5 + 2.0 / 6e4;
+  auto antiderivative = [&](Real x) {  // int_0^x F(s y) dy
+    const Real a = t0 / s, c = t1 / s;
+    if (x <= a) return 0.3 * x;
+    const Real slope = 0.05 * 6e4 * s;
+    if (x <= c) return 0.3 * x - 0.5 * slope * (x - a) * (x - a);
+    return 0.3 * c - 0.5 * slope * (c - a) * (c - a) + 0.2 * (x - c);
+  };
+  for (Index p = 0; p < b.patches.size(); ++p) {
+    const Real x0 = b.patches.centroid(0, p) - 0.25, x1 = b.patches.centroid(0, p) + 0.25;
+    const Real exact = 2e7 * (antiderivative(x1) - antiderivative(x0)) / (x1 - x0);
+    EXPECT_NEAR(rho(p), exact, 1e-8 * exact) << "patch " << p;
+  }
+}
+
+TEST(Radii, SurfaceL2NormOfLinearFunction) {
+  // int over (0,3)x(0,1) of x^2 = 9.
+  const Brick b = paper_brick(4);
+  VectorXd v(b.surface.n_nodes());
+  for (Index k = 0; k < v.size(); ++k) v(k) = b.mesh.nodes(0, b.surface.nodes[static_cast<size_t>(k)]);
+  EXPECT_NEAR(surface_l2_norm(b.mesh, b.surface, v), 3.0, 1e-13);
+}
