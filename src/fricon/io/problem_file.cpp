@@ -1,0 +1,765 @@
+#include "fricon/io/problem_file.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <climits>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <functional>
+#include <initializer_list>
+#include <optional>
+#include <sstream>
+#include <unordered_map>
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include "fricon/core/error.hpp"
+#include "fricon/fe/material.hpp"
+
+namespace fricon::io {
+
+namespace {
+
+using driver::Problem;
+using namespace std::string_view_literals;
+
+// ---------------------------------------------------------------------------------------------
+// Where a value came from, and how messages are built.
+
+/// The file name, and the nodes that --set put into the document (with the override's text).
+struct Context {
+  std::string file;
+  std::unordered_map<const toml::node*, std::string> origins;
+
+  /// "file:line:col" of a key (or of the node when the key has no position), "--set K=V" for a
+  /// node from an override, or just "file" when toml++ knows no position.
+  std::string where(const toml::node* node, const toml::key* key) const {
+    if (node != nullptr) {
+      const auto it = origins.find(node);
+      if (it != origins.end()) return "--set " + it->second;
+    }
+    const toml::source_region* src = nullptr;
+    if (key != nullptr && key->source().begin.line > 0) {
+      src = &key->source();
+    } else if (node != nullptr && node->source().begin.line > 0) {
+      src = &node->source();
+    }
+    if (src == nullptr) return file;
+    return fmt::format("{}:{}:{}", file, src->begin.line, src->begin.column);
+  }
+};
+
+/// One value of the document with its key path, e.g. "traction[1].value[2]".
+struct Field {
+  const toml::node* node = nullptr;
+  const toml::key* key = nullptr;  ///< null for array elements and the root
+  std::string path;
+};
+
+[[noreturn]] void fail(const Context& ctx, const Field& f, std::string_view what) {
+  throw InputError(fmt::format("{}: {}: {}", ctx.where(f.node, f.key), f.path, what));
+}
+
+std::string format_real(double v) {
+  if (std::isnan(v)) return "nan";
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  std::string s = fmt::format("{}", v);
+  if (s.find_first_of(".e") == std::string::npos) s += ".0";  // show that it is a float
+  return s;
+}
+
+/// The value of a node as the user would recognise it, for "got ..." in messages.
+std::string describe(const toml::node& n) {
+  switch (n.type()) {
+    case toml::node_type::string:
+      return fmt::format("\"{}\"", n.as_string()->get());
+    case toml::node_type::integer:
+      return fmt::format("{}", n.as_integer()->get());
+    case toml::node_type::floating_point:
+      return format_real(n.as_floating_point()->get());
+    case toml::node_type::boolean:
+      return n.as_boolean()->get() ? "true" : "false";
+    case toml::node_type::table:
+      return "a table";
+    case toml::node_type::array:
+      if (n.as_array()->empty()) return "an empty array";
+      return fmt::format("an array of {} element(s)", n.as_array()->size());
+    case toml::node_type::date:
+    case toml::node_type::time:
+    case toml::node_type::date_time:
+      return "a date/time";
+    case toml::node_type::none:
+      break;
+  }
+  return "nothing";
+}
+
+[[noreturn]] void fail_expected(const Context& ctx, const Field& f, std::string_view expected) {
+  fail(ctx, f, fmt::format("expected {}, got {}", expected, describe(*f.node)));
+}
+
+std::string join_key(const std::string& path, std::string_view key) {
+  return path.empty() ? std::string(key) : fmt::format("{}.{}", path, key);
+}
+
+Field element(const Field& f, const toml::array& a, std::size_t i) {
+  return Field{a.get(i), nullptr, fmt::format("{}[{}]", f.path, i)};
+}
+
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j)
+    row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diag = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+// ---------------------------------------------------------------------------------------------
+// Typed access. `expected` is the phrase of the message "expected <expected>, got <value>"; the
+// same phrase serves the type check and the range check.
+
+Real get_real(const Context& ctx, const Field& f, std::string_view expected,
+              const std::function<bool(Real)>& ok = {}) {
+  Real v = 0.0;
+  if (const auto* i = f.node->as_integer()) {
+    v = static_cast<Real>(i->get());
+  } else if (const auto* d = f.node->as_floating_point()) {
+    v = d->get();
+    if (!std::isfinite(v))
+      fail(
+          ctx, f,
+          fmt::format("expected {}, got {} (numbers must be finite)", expected, describe(*f.node)));
+  } else {
+    fail_expected(ctx, f, expected);
+  }
+  if (ok && !ok(v)) fail_expected(ctx, f, expected);
+  return v;
+}
+
+std::int64_t get_int(const Context& ctx, const Field& f, std::string_view expected,
+                     std::int64_t min, std::int64_t max) {
+  const auto* i = f.node->as_integer();
+  if (i == nullptr) {
+    if (f.node->is_floating_point())
+      fail(ctx, f,
+           fmt::format("expected {}, got {} (a float; write an integer without a decimal point)",
+                       expected, describe(*f.node)));
+    fail_expected(ctx, f, expected);
+  }
+  if (i->get() < min || i->get() > max) fail_expected(ctx, f, expected);
+  return i->get();
+}
+
+std::string get_string(const Context& ctx, const Field& f, std::string_view expected,
+                       bool allow_empty) {
+  const auto* s = f.node->as_string();
+  if (s == nullptr || (!allow_empty && s->get().empty())) fail_expected(ctx, f, expected);
+  return s->get();
+}
+
+std::string get_choice(const Context& ctx, const Field& f,
+                       std::initializer_list<std::string_view> choices) {
+  std::string expected = "one of";
+  for (const auto c : choices)
+    expected += fmt::format("{} \"{}\"", expected.size() > 6 ? "," : "", c);
+  const auto* s = f.node->as_string();
+  if (s == nullptr || std::find(choices.begin(), choices.end(), s->get()) == choices.end())
+    fail_expected(ctx, f, expected);
+  return s->get();
+}
+
+bool get_bool(const Context& ctx, const Field& f) {
+  const auto* b = f.node->as_boolean();
+  if (b == nullptr) fail_expected(ctx, f, "true or false");
+  return b->get();
+}
+
+const toml::array& get_array(const Context& ctx, const Field& f, std::string_view expected) {
+  const auto* a = f.node->as_array();
+  if (a == nullptr) fail_expected(ctx, f, expected);
+  return *a;
+}
+
+/// An array of exactly N numbers, each satisfying `ok`.
+template <std::size_t N>
+std::array<Real, N> get_reals(const Context& ctx, const Field& f, std::string_view expected_elem,
+                              const std::function<bool(Real)>& ok = {}) {
+  const auto& a = get_array(ctx, f, fmt::format("an array of {} numbers", N));
+  if (a.size() != N)
+    fail(ctx, f, fmt::format("expected an array of {} numbers, got {} element(s)", N, a.size()));
+  std::array<Real, N> out{};
+  for (std::size_t i = 0; i < N; ++i)
+    out[i] = get_real(ctx, element(f, a, i), expected_elem, ok);
+  return out;
+}
+
+Vec3 get_vec3(const Context& ctx, const Field& f, std::string_view expected_elem) {
+  const auto v = get_reals<3>(ctx, f, expected_elem);
+  return Vec3(v[0], v[1], v[2]);
+}
+
+/// An array of at least one number, each satisfying `ok`.
+std::vector<Real> get_real_list(const Context& ctx, const Field& f, std::string_view expected_elem,
+                                const std::function<bool(Real)>& ok = {}) {
+  const auto& a = get_array(ctx, f, "a non-empty array of numbers");
+  if (a.empty()) fail_expected(ctx, f, "a non-empty array of numbers");
+  std::vector<Real> out(a.size());
+  for (std::size_t i = 0; i < a.size(); ++i)
+    out[i] = get_real(ctx, element(f, a, i), expected_elem, ok);
+  return out;
+}
+
+/// A table of the document with the keys it allows; unknown keys are rejected on construction.
+class TableReader {
+ public:
+  TableReader(const Context& ctx, const Field& self, std::string_view expected,
+              std::initializer_list<std::string_view> allowed)
+      : ctx_(ctx), self_(self), allowed_(allowed) {
+    table_ = self.node->as_table();
+    if (table_ == nullptr) fail_expected(ctx, self, expected);
+    reject_unknown_keys();
+  }
+
+  const Field& self() const { return self_; }
+
+  std::optional<Field> find(std::string_view key) const {
+    const auto it = table_->find(key);
+    if (it == table_->end()) return std::nullopt;
+    return Field{&it->second, &it->first, join_key(self_.path, key)};
+  }
+
+  Field require(std::string_view key, std::string_view why = {}) const {
+    auto f = find(key);
+    if (!f) {
+      const std::string full = join_key(self_.path, key);
+      // The root's position (1:1) would point nowhere useful: name just the file there.
+      const std::string at = self_.path.empty() ? ctx_.file : ctx_.where(self_.node, self_.key);
+      throw InputError(fmt::format("{}: missing required key '{}'{}", at, full,
+                                   why.empty() ? "" : fmt::format(" ({})", why)));
+    }
+    return *f;
+  }
+
+ private:
+  void reject_unknown_keys() const {
+    // toml++ keeps keys sorted: report the unknown key that comes first in the file.
+    const toml::key* worst = nullptr;
+    const toml::node* worst_node = nullptr;
+    for (const auto& [k, v] : *table_) {
+      if (std::find(allowed_.begin(), allowed_.end(), k.str()) != allowed_.end()) continue;
+      const auto pos = [](const toml::key& key) {
+        return std::pair(key.source().begin.line, key.source().begin.column);
+      };
+      if (worst == nullptr || pos(k) < pos(*worst)) {
+        worst = &k;
+        worst_node = &v;
+      }
+    }
+    if (worst == nullptr) return;
+    const std::string name = join_key(self_.path, worst->str());
+    std::string hint;
+    std::size_t best = SIZE_MAX;
+    for (const auto a : allowed_) {
+      const std::size_t d = edit_distance(worst->str(), a);
+      if (d < best && (d <= 2 || d <= a.size() / 3) &&
+          d < std::min(a.size(), worst->str().size())) {
+        best = d;
+        hint = fmt::format(" (did you mean '{}'?)", join_key(self_.path, a));
+      }
+    }
+    if (hint.empty()) {
+      hint = fmt::format("; {} takes:", self_.path.empty() ? "the top level" : self_.path);
+      for (const auto a : allowed_)
+        hint += fmt::format(" {}", a);
+    }
+    throw InputError(
+        fmt::format("{}: unknown key '{}'{}", ctx_.where(worst_node, worst), name, hint));
+  }
+
+  const Context& ctx_;
+  Field self_;
+  std::vector<std::string_view> allowed_;
+  const toml::table* table_ = nullptr;
+};
+
+// ---------------------------------------------------------------------------------------------
+// The sections.
+
+const auto positive = [](Real v) { return v > 0.0; };
+const auto non_negative = [](Real v) { return v >= 0.0; };
+
+void read_mesh(const Context& ctx, const Field& f, driver::MeshOptions& m) {
+  const TableReader t(ctx, f, "a table [mesh]", {"kind", "size", "cells"});
+  if (auto k = t.find("kind")) m.kind = get_choice(ctx, *k, {"brick"});
+  if (auto k = t.find("size")) m.size = get_reals<3>(ctx, *k, "a positive number [m]", positive);
+  if (auto k = t.find("cells")) {
+    const auto& a = get_array(ctx, *k, "an array of 3 integers");
+    if (a.size() != 3)
+      fail(ctx, *k, fmt::format("expected an array of 3 integers, got {} element(s)", a.size()));
+    for (std::size_t i = 0; i < 3; ++i)
+      m.cells[i] = static_cast<Index>(
+          get_int(ctx, element(*k, a, i), "an integer >= 1", 1, std::int64_t{1} << 31));
+  }
+}
+
+void read_material(const Context& ctx, const Field& f, driver::MaterialOptions& m) {
+  const TableReader t(ctx, f, "a table [material]", {"model", "young", "poisson", "voigt"});
+  if (auto k = t.find("model")) m.model = get_choice(ctx, *k, {"isotropic", "anisotropic"});
+  if (m.model == "isotropic") {
+    if (auto k = t.find("voigt"))
+      fail(ctx, *k,
+           "not used by model \"isotropic\" (set material.model = \"anisotropic\" to give a "
+           "Hooke matrix)");
+    if (auto k = t.find("young")) m.young = get_real(ctx, *k, "a positive number [Pa]", positive);
+    if (auto k = t.find("poisson"))
+      m.poisson =
+          get_real(ctx, *k, "a number in (-1, 0.5)", [](Real v) { return v > -1.0 && v < 0.5; });
+    m.voigt.reset();
+    return;
+  }
+  // anisotropic: the 6x6 Voigt matrix replaces young and poisson.
+  for (const char* unused : {"young", "poisson"})
+    if (auto k = t.find(unused))
+      fail(ctx, *k, "not used by model \"anisotropic\" (the Hooke matrix is material.voigt)");
+  const Field k = t.require("voigt", "material.model = \"anisotropic\" needs a 6x6 Hooke matrix");
+  const auto& rows = get_array(ctx, k, "an array of 6 rows of 6 numbers [Pa]");
+  if (rows.size() != 6)
+    fail(ctx, k, fmt::format("expected 6 rows of 6 numbers [Pa], got {} row(s)", rows.size()));
+  std::array<std::array<Real, 6>, 6> D{};
+  fe::Voigt6 Dm;
+  for (std::size_t i = 0; i < 6; ++i) {
+    D[i] = get_reals<6>(ctx, element(k, rows, i), "a number [Pa]");
+    for (std::size_t j = 0; j < 6; ++j)
+      Dm(static_cast<Index>(i), static_cast<Index>(j)) = D[i][j];
+  }
+  // Symmetry and ellipticity (method.md §1), checked early so that the message points here.
+  (void)fe::anisotropic(Dm, fmt::format("{}: {}", ctx.where(k.node, k.key), k.path));
+  m.voigt = D;
+}
+
+driver::DirichletOptions read_dirichlet(const Context& ctx, const Field& f) {
+  const TableReader t(ctx, f, "a table", {"boundary", "components"});
+  driver::DirichletOptions d;
+  d.boundary = get_string(ctx, t.require("boundary"), "a non-empty boundary tag", false);
+  if (auto k = t.find("components")) {
+    const std::string s = get_string(ctx, *k, "a string of distinct letters from \"xyz\"", false);
+    d.components = {false, false, false};
+    for (const char c : s) {
+      const auto pos = std::string_view("xyz").find(c);
+      if (pos == std::string_view::npos || d.components[pos])
+        fail_expected(ctx, *k, "a string of distinct letters from \"xyz\"");
+      d.components[pos] = true;
+    }
+  }
+  return d;
+}
+
+driver::TractionOptions read_traction(const Context& ctx, const Field& f) {
+  const TableReader t(ctx, f, "a table", {"boundary", "value"});
+  driver::TractionOptions tr;
+  tr.boundary = get_string(ctx, t.require("boundary"), "a non-empty boundary tag", false);
+  tr.value = get_vec3(ctx, t.require("value"), "a number [Pa]");
+  return tr;
+}
+
+/// [[name]]: an array of tables, each read by `read_one`.
+template <typename T, typename ReadOne>
+std::vector<T> read_table_array(const Context& ctx, const Field& f, std::string_view name,
+                                ReadOne read_one) {
+  const std::string expected = fmt::format("an array of tables [[{}]]", name);
+  const auto& a = get_array(ctx, f, expected);
+  std::vector<T> out;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const Field e = element(f, a, i);
+    if (!e.node->is_table()) fail_expected(ctx, e, fmt::format("a table (write [[{}]])", name));
+    out.push_back(read_one(ctx, e));
+  }
+  return out;
+}
+
+void read_friction(const Context& ctx, const Field& f, driver::FrictionOptions& fr) {
+  const TableReader t(ctx, f, "a table [contact.friction]", {"law", "param", "value", "t", "f"});
+  if (auto k = t.find("law")) fr.law = get_choice(ctx, *k, {"paper", "constant", "table"});
+  const std::vector<std::string_view> used = fr.law == "paper"      ? std::vector{"param"sv}
+                                             : fr.law == "constant" ? std::vector{"value"sv}
+                                                                    : std::vector{"t"sv, "f"sv};
+  for (const auto key : {"param"sv, "value"sv, "t"sv, "f"sv}) {
+    if (std::find(used.begin(), used.end(), key) != used.end()) continue;
+    if (auto k = t.find(key)) {
+      std::string takes;
+      for (const auto u : used)
+        takes += fmt::format("{}{}", takes.empty() ? "" : ", ", u);
+      fail(ctx, *k, fmt::format("not used by law \"{}\" (it takes: {})", fr.law, takes));
+    }
+  }
+  if (fr.law == "paper") {
+    if (auto k = t.find("param")) fr.param = get_real(ctx, *k, "a positive number [1/m]", positive);
+  } else if (fr.law == "constant") {
+    if (auto k = t.find("value")) fr.value = get_real(ctx, *k, "a number >= 0", non_negative);
+  } else {
+    const Field kt = t.require("t", "law \"table\" needs slips t [m] and coefficients f");
+    const Field kf = t.require("f", "law \"table\" needs slips t [m] and coefficients f");
+    fr.t = get_real_list(ctx, kt, "a number >= 0 [m]", non_negative);
+    const auto& at = *kt.node->as_array();
+    for (std::size_t i = 1; i < fr.t.size(); ++i)
+      if (!(fr.t[i] > fr.t[i - 1]))
+        fail(ctx, element(kt, at, i),
+             fmt::format("expected slips in strictly increasing order, got {} after {}",
+                         describe(*at.get(i)), describe(*at.get(i - 1))));
+    fr.f = get_real_list(ctx, kf, "a number >= 0", non_negative);
+    if (fr.f.size() != fr.t.size())
+      fail(ctx, kf,
+           fmt::format("expected as many values as {} ({}), got {}", kt.path, fr.t.size(),
+                       fr.f.size()));
+  }
+}
+
+void read_contact(const Context& ctx, const Field& f, driver::ContactOptions& c,
+                  std::optional<Field>& boundary_field) {
+  const TableReader t(ctx, f, "a table [contact]",
+                      {"boundary", "slip_bound", "patches", "friction"});
+  boundary_field = t.find("boundary");
+  if (boundary_field)
+    c.boundary = get_string(ctx, *boundary_field, "a non-empty boundary tag", false);
+  if (auto k = t.find("slip_bound"))
+    c.slip_bound = get_real(ctx, *k, "a number >= 0 [Pa]", non_negative);
+  if (auto k = t.find("patches")) c.patches = get_choice(ctx, *k, {"chessboard"});
+  if (auto k = t.find("friction")) read_friction(ctx, *k, c.friction);
+}
+
+void read_solver(const Context& ctx, const Field& f, driver::SolverOptions& s) {
+  const TableReader t(
+      ctx, f, "a table [solver]",
+      {"outer_tol", "outer_max", "qp_rtol", "qp_max", "warm_start", "dual_operator"});
+  if (auto k = t.find("outer_tol")) s.outer_tol = get_real(ctx, *k, "a positive number", positive);
+  if (auto k = t.find("outer_max"))
+    s.outer_max = static_cast<int>(get_int(ctx, *k, "an integer >= 1", 1, INT_MAX));
+  if (auto k = t.find("qp_rtol"))
+    s.qp_rtol = get_real(ctx, *k, "a number in (0, 1)", [](Real v) { return v > 0.0 && v < 1.0; });
+  if (auto k = t.find("qp_max"))
+    s.qp_max = static_cast<int>(get_int(ctx, *k, "an integer >= 1", 1, INT_MAX));
+  if (auto k = t.find("warm_start")) s.warm_start = get_bool(ctx, *k);
+  if (auto k = t.find("dual_operator"))
+    s.dual_operator = get_choice(ctx, *k, {"auto", "implicit", "dense"});
+}
+
+void read_output(const Context& ctx, const Field& f, driver::OutputOptions& o) {
+  const TableReader t(ctx, f, "a table [output]", {"dir"});
+  if (auto k = t.find("dir")) o.dir = get_string(ctx, *k, "a non-empty folder name", false);
+}
+
+Problem convert(const Context& ctx, const toml::table& root) {
+  Problem p;
+  p.source = ctx.file;
+  const TableReader t(ctx, Field{&root, nullptr, ""}, "a table",
+                      {"title", "mesh", "material", "volume_force", "dirichlet", "traction",
+                       "contact", "solver", "output"});
+  if (auto k = t.find("title")) p.title = get_string(ctx, *k, "a string", true);
+  read_mesh(ctx, t.require("mesh", "the [mesh] table is required"), p.mesh);
+  read_material(ctx, t.require("material", "the [material] table is required"), p.material);
+  if (auto k = t.find("volume_force")) p.volume_force = get_vec3(ctx, *k, "a number [N/m^3]");
+  if (auto k = t.find("dirichlet"))
+    p.dirichlet = read_table_array<driver::DirichletOptions>(ctx, *k, "dirichlet", read_dirichlet);
+  if (auto k = t.find("traction"))
+    p.traction = read_table_array<driver::TractionOptions>(ctx, *k, "traction", read_traction);
+  std::optional<Field> contact_boundary;
+  std::optional<Field> contact_field = t.find("contact");
+  if (contact_field) read_contact(ctx, *contact_field, p.contact.emplace(), contact_boundary);
+  if (auto k = t.find("solver")) read_solver(ctx, *k, p.solver);
+  if (auto k = t.find("output")) read_output(ctx, *k, p.output);
+
+  // Consistency that needs no mesh: the contact face must keep some free dofs.
+  if (p.contact) {
+    std::array<bool, 3> fixed{false, false, false};
+    for (const auto& d : p.dirichlet)
+      if (d.boundary == p.contact->boundary)
+        for (int i = 0; i < 3; ++i)
+          fixed[i] = fixed[i] || d.components[i];
+    if (fixed[0] && fixed[1] && fixed[2]) {
+      const Field at = contact_boundary
+                           ? *contact_boundary
+                           : Field{contact_field->node, contact_field->key, "contact.boundary"};
+      fail(ctx, at,
+           fmt::format("contact and Dirichlet on the same face \"{}\": [[dirichlet]] fixes all "
+                       "of x, y, z there, so no contact node would be left",
+                       p.contact->boundary));
+    }
+  }
+  return p;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Overrides (--set KEY=VALUE).
+
+[[noreturn]] void fail_override(const std::string& text, std::string_view what) {
+  throw InputError(fmt::format("--set {}: {}", text, what));
+}
+
+bool is_index(std::string_view s) {
+  return !s.empty() && std::all_of(s.begin(), s.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+
+bool is_bare_key_char(char c) {
+  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
+         c == '-';
+}
+
+std::string_view trim(std::string_view s) {
+  const auto b = s.find_first_not_of(" \t");
+  if (b == std::string_view::npos) return {};
+  const auto e = s.find_last_not_of(" \t");
+  return s.substr(b, e - b + 1);
+}
+
+/// "traction[1].value" or "traction.1.value" -> {"traction", "1", "value"}.
+std::vector<std::string> split_key(const std::string& text, std::string_view key) {
+  std::string dotted;
+  for (std::size_t i = 0; i < key.size(); ++i) {
+    if (key[i] == '[') {
+      const auto close = key.find(']', i);
+      if (close == std::string_view::npos || !is_index(key.substr(i + 1, close - i - 1)))
+        fail_override(text, fmt::format("invalid key '{}': write an index as [N] or .N", key));
+      dotted += '.';
+      dotted += key.substr(i + 1, close - i - 1);
+      i = close;
+    } else {
+      dotted += key[i];
+    }
+  }
+  std::vector<std::string> parts;
+  std::string_view rest = dotted;
+  while (true) {
+    const auto dot = rest.find('.');
+    const std::string_view part = rest.substr(0, dot);
+    if (part.empty() || !std::all_of(part.begin(), part.end(), is_bare_key_char))
+      fail_override(text, fmt::format("invalid key '{}': expected dotted names such as "
+                                      "material.young or traction.1.value",
+                                      key));
+    parts.emplace_back(part);
+    if (dot == std::string_view::npos) break;
+    rest = rest.substr(dot + 1);
+  }
+  return parts;
+}
+
+/// A one-key table {v = VALUE}: VALUE in TOML syntax, or a bare word taken as a string.
+toml::table parse_override_value(const std::string& text, std::string_view value) {
+  if (value.empty()) fail_override(text, "missing value after '='");
+  try {
+    toml::table holder = toml::parse(fmt::format("v = {}", value), std::string_view("--set"));
+    if (holder.size() != 1 || holder.get("v") == nullptr)
+      fail_override(text, "expected a single TOML value after '='");
+    return holder;
+  } catch (const toml::parse_error& e) {
+    const bool bare = value.find_first_of("\"'[]{},=# \t\r\n") == std::string_view::npos;
+    if (!bare)
+      fail_override(text, fmt::format("invalid TOML value '{}': {}", value, e.description()));
+    toml::table holder;
+    holder.insert("v", std::string(value));
+    return holder;
+  }
+}
+
+/// Keys whose value selects which other keys of the same table are used.
+struct Selector {
+  std::string_view key;
+  std::vector<std::pair<std::string_view, std::vector<std::string_view>>> params;
+};
+const std::vector<Selector> kSelectors = {
+    {"contact.friction.law",
+     {{"paper", {"param"}}, {"constant", {"value"}}, {"table", {"t", "f"}}}},
+    {"material.model", {{"isotropic", {"young", "poisson"}}, {"anisotropic", {"voigt"}}}},
+};
+
+void for_each_node(const toml::node& n, const std::function<void(const toml::node&)>& fn) {
+  fn(n);
+  if (const auto* t = n.as_table())
+    for (const auto& [k, v] : *t)
+      for_each_node(v, fn);
+  if (const auto* a = n.as_array())
+    for (const auto& v : *a)
+      for_each_node(v, fn);
+}
+
+void apply_override(Context& ctx, toml::table& root, const std::string& text) {
+  const auto eq = text.find('=');
+  if (eq == std::string::npos) fail_override(text, "expected KEY=VALUE");
+  const auto path = split_key(text, trim(std::string_view(text).substr(0, eq)));
+  toml::table holder = parse_override_value(text, trim(std::string_view(text).substr(eq + 1)));
+  toml::node& value = *holder.get("v");
+
+  const auto prefix = [&](std::size_t n) {
+    std::string s;
+    for (std::size_t i = 0; i < n; ++i)
+      s = join_key(s, path[i]);
+    return s;
+  };
+  const auto index_of = [&](const toml::array& a, std::size_t i) {
+    if (!is_index(path[i]))
+      fail_override(text, fmt::format("'{}' is an array: address its entries as {}.0, {}.1, ...",
+                                      prefix(i), prefix(i), prefix(i)));
+    const std::size_t idx = std::stoul(path[i]);
+    if (idx > a.size())
+      fail_override(text, fmt::format("index {} out of range: '{}' has {} entries", idx, prefix(i),
+                                      a.size()));
+    return idx;  // == size appends a new entry
+  };
+  const auto unregister = [&](const toml::node& old) {
+    for_each_node(old, [&](const toml::node& n) { ctx.origins.erase(&n); });
+  };
+
+  std::vector<const toml::node*> created;
+  toml::node* cur = &root;
+  for (std::size_t i = 0; i + 1 < path.size(); ++i) {
+    if (auto* t = cur->as_table()) {
+      toml::node* child = t->get(path[i]);
+      if (child == nullptr) {
+        child = is_index(path[i + 1]) ? &t->insert_or_assign(path[i], toml::array{}).first->second
+                                      : &t->insert_or_assign(path[i], toml::table{}).first->second;
+        created.push_back(child);
+      }
+      cur = child;
+    } else if (auto* a = cur->as_array()) {
+      const std::size_t idx = index_of(*a, i);
+      if (idx == a->size()) {
+        a->push_back(toml::table{});
+        created.push_back(&a->back());
+      }
+      cur = a->get(idx);
+    } else {
+      fail_override(text, fmt::format("'{}' is {}, not a table", prefix(i), describe(*cur)));
+    }
+  }
+
+  const std::size_t last = path.size() - 1;
+  toml::node* placed = nullptr;
+  if (auto* t = cur->as_table()) {
+    if (const auto* old = t->get(path[last])) unregister(*old);
+    placed = &t->insert_or_assign(path[last], std::move(value)).first->second;
+  } else if (auto* a = cur->as_array()) {
+    const std::size_t idx = index_of(*a, last);
+    if (idx == a->size()) {
+      a->push_back(std::move(value));
+    } else {
+      unregister(*a->get(idx));
+      a->replace(a->cbegin() + static_cast<std::ptrdiff_t>(idx), std::move(value));
+    }
+    placed = a->get(idx);
+  } else {
+    fail_override(text, fmt::format("'{}' is {}, not a table", prefix(last), describe(*cur)));
+  }
+  for (const auto* n : created)
+    ctx.origins[n] = text;
+  for_each_node(*placed, [&](const toml::node& n) { ctx.origins[&n] = text; });
+
+  // A selector (friction law, material model) changed from the command line makes the file's
+  // parameters of the other choices meaningless: drop them, so that e.g.
+  // --set contact.friction.law=constant --set contact.friction.value=0.2 works on a file
+  // written for the paper's law. Parameters given by overrides are kept (and then rejected).
+  const auto* choice = placed->as_string();
+  auto* table = cur->as_table();
+  if (choice == nullptr || table == nullptr) return;
+  for (const auto& sel : kSelectors) {
+    if (prefix(path.size()) != sel.key) continue;
+    for (const auto& [name, used] : sel.params) {
+      if (name == choice->get()) continue;
+      for (const auto param : used) {
+        const toml::node* old = table->get(param);
+        if (old != nullptr && !ctx.origins.contains(old)) table->erase(param);
+      }
+    }
+  }
+}
+
+nlohmann::json vec_json(const Vec3& v) {
+  return nlohmann::json::array({v[0], v[1], v[2]});
+}
+
+}  // namespace
+
+driver::Problem parse_problem(std::string_view text, const std::string& source_name,
+                              const std::vector<std::string>& overrides) {
+  Context ctx;
+  ctx.file = source_name;
+  toml::table root;
+  try {
+    root = toml::parse(text, std::string_view(source_name));
+  } catch (const toml::parse_error& e) {
+    const auto& b = e.source().begin;
+    throw InputError(
+        fmt::format("{}:{}:{}: invalid TOML: {}", source_name, b.line, b.column, e.description()));
+  }
+  for (const auto& o : overrides)
+    apply_override(ctx, root, o);
+  return convert(ctx, root);
+}
+
+driver::Problem read_problem(const std::string& path, const std::vector<std::string>& overrides) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in)
+    throw InputError(
+        fmt::format("{}: cannot open the problem file: {}", path, std::strerror(errno)));
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw InputError(fmt::format("{}: cannot read the problem file", path));
+  return parse_problem(text.str(), path, overrides);
+}
+
+nlohmann::json to_json(const driver::Problem& p) {
+  using nlohmann::json;
+  json j;
+  j["title"] = p.title;
+  j["mesh"] = {{"kind", p.mesh.kind}, {"size", p.mesh.size}, {"cells", p.mesh.cells}};
+  json& mat = j["material"];
+  mat["model"] = p.material.model;
+  if (p.material.model == "anisotropic") {
+    if (p.material.voigt) mat["voigt"] = *p.material.voigt;
+  } else {
+    mat["young"] = p.material.young;
+    mat["poisson"] = p.material.poisson;
+  }
+  j["volume_force"] = vec_json(p.volume_force);
+  j["dirichlet"] = json::array();
+  for (const auto& d : p.dirichlet) {
+    std::string comps;
+    for (int i = 0; i < 3; ++i)
+      if (d.components[i]) comps += "xyz"[i];
+    j["dirichlet"].push_back({{"boundary", d.boundary}, {"components", comps}});
+  }
+  j["traction"] = json::array();
+  for (const auto& t : p.traction)
+    j["traction"].push_back({{"boundary", t.boundary}, {"value", vec_json(t.value)}});
+  if (p.contact) {
+    const auto& c = *p.contact;
+    json fr = {{"law", c.friction.law}};
+    if (c.friction.law == "paper") fr["param"] = c.friction.param;
+    if (c.friction.law == "constant") fr["value"] = c.friction.value;
+    if (c.friction.law == "table") {
+      fr["t"] = c.friction.t;
+      fr["f"] = c.friction.f;
+    }
+    j["contact"] = {{"boundary", c.boundary},
+                    {"slip_bound", c.slip_bound},
+                    {"patches", c.patches},
+                    {"friction", fr}};
+  }
+  const auto& s = p.solver;
+  j["solver"] = {{"outer_tol", s.outer_tol},   {"outer_max", s.outer_max},
+                 {"qp_rtol", s.qp_rtol},       {"qp_max", s.qp_max},
+                 {"warm_start", s.warm_start}, {"dual_operator", s.dual_operator}};
+  j["output"] = {{"dir", p.output.dir}};
+  return j;
+}
+
+}  // namespace fricon::io
