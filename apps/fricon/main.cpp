@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 
 #include "fricon/core/error.hpp"
+#include "fricon/driver/paper.hpp"
 #include "fricon/driver/run.hpp"
 #include "fricon/io/problem_file.hpp"
 #include "fricon/io/results.hpp"
@@ -70,6 +71,56 @@ int check(const std::string& file, const std::vector<std::string>& sets) {
   return kConverged;
 }
 
+struct PaperOptions {
+  fricon::Index max_n = 16;
+  std::string table = "both";
+  std::string dual_operator = "auto";
+  double qp_rtol = 1e-6;
+};
+
+// Prints one table of the paper with our values beside theirs ("ours / paper").
+bool print_paper_table(const std::string& title, const std::vector<fricon::driver::PaperRow>& rows,
+                       const PaperOptions& o) {
+  fmt::print("\n{}\n\n", title);
+  fmt::print("| n | param | n_p | n_d | it | n_mult | time [s] | ||w_hn^+||_0 | ||w_hn^+||_inf | max(-w_n) | max lambda_n | max ||w_t|| | max ||lambda_t|| | KKT max |\n");
+  fmt::print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  bool ok = true;
+  for (const auto& row : rows) {
+    if (row.n > o.max_n) continue;
+    fricon::driver::Problem problem = fricon::driver::paper_problem(row.n, row.param);
+    problem.solver.dual_operator = o.dual_operator;
+    problem.solver.qp_rtol = o.qp_rtol;
+    const fricon::driver::RunResult r = fricon::driver::run(problem);
+    const auto& c = *r.report.contact;
+    const bool sizes_equal = r.report.n_primal == row.n_p && c.n_dual == row.n_d;
+    const bool converged = r.report.status == fricon::driver::Status::Converged;
+    ok = ok && sizes_equal && converged;
+    fmt::print("| {} | {:g} | {} / {} | {} / {} | {}{} / {} | {} / {} | {:.3f} / {:g} | {:.1e} / {:.1e} | {:.2e} / {:.1e} | {:.2e} | {:.3e} | {:.3e} | {:.3e} | {:.1e} |\n",
+               row.n, row.param, r.report.n_primal, row.n_p, c.n_dual, row.n_d, c.outer_iterations,
+               converged ? "" : "(!)", row.it, c.n_mult, row.n_mult, r.report.time_s, row.time_s,
+               c.wn_pos_l2, row.wn_pos_l2, c.wn_pos_inf, row.wn_pos_inf, c.max_neg_wn,
+               c.max_lambda_n, c.max_wt, c.max_lambda_t, c.kkt.max());
+    std::fflush(stdout);
+  }
+  return ok;
+}
+
+int paper(const PaperOptions& o) {
+  fmt::print("fricon {}: the model example of Haslinger & Ligursky (2009), Tables 1 and 2.\n", FRICON_VERSION);
+  fmt::print("Each cell: ours / paper. Paper times are from 2007 hardware. Dual operator: {}, qp_rtol = {:g}.\n",
+             o.dual_operator, o.qp_rtol);
+  bool ok = true;
+  if (o.table == "1" || o.table == "both")
+    ok = print_paper_table("Table 1 (param = 6e4)", fricon::driver::paper_table1(), o) && ok;
+  if (o.table == "2" || o.table == "both")
+    ok = print_paper_table("Table 2 (n = 16)", fricon::driver::paper_table2(), o) && ok;
+  if (!ok) {
+    std::cerr << "fricon paper: a run did not converge or a size differs from the paper\n";
+    return kNotConverged;
+  }
+  return kConverged;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -93,6 +144,19 @@ int main(int argc, char** argv) {
   check_cmd->add_option("--set", sets, "Override a key of the file: KEY=VALUE, repeatable")
       ->allow_extra_args(false);
 
+  PaperOptions paper_opt;
+  auto* paper_cmd = app.add_subcommand(
+      "paper", "Reproduce Tables 1 and 2 of the paper: our numbers beside the published ones");
+  paper_cmd->add_option("--max-n", paper_opt.max_n, "Largest mesh parameter n to run (4..16)")
+      ->check(CLI::Range(4, 16));
+  paper_cmd->add_option("--table", paper_opt.table, "Which table: 1, 2 or both")
+      ->check(CLI::IsMember({"1", "2", "both"}));
+  paper_cmd->add_option("--dual-operator", paper_opt.dual_operator,
+                        "How Q = B K^-1 B^T is applied: implicit (the paper's way), dense, auto")
+      ->check(CLI::IsMember({"auto", "implicit", "dense"}));
+  paper_cmd->add_option("--qp-rtol", paper_opt.qp_rtol, "QP tolerance (paper: 1e-6)")
+      ->check(CLI::PositiveNumber);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -103,6 +167,7 @@ int main(int argc, char** argv) {
   try {
     if (*solve_cmd) return solve(file, out, sets, join_command_line(argc, argv));
     if (*check_cmd) return check(file, sets);
+    if (*paper_cmd) return paper(paper_opt);
   } catch (const fricon::InputError& e) {
     std::cerr << "fricon: error: " << e.what() << "\n";
     return kBadInput;
