@@ -1,0 +1,212 @@
+// Verification of the contact solver on the paper's brick (n = 4, 6) and on a closed-form case.
+// Every check compares with something the solver did not compute itself: the paper's table,
+// an independent dense solution of the dual QP by another algorithm (accelerated projected
+// gradient on Q formed with a dense Cholesky of K), the KKT conditions, global equilibrium,
+// the mirror symmetry of the problem, and the fixed point phi = Psi(phi).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "fricon/contact/contact_surface.hpp"
+#include "fricon/driver/paper.hpp"
+#include "fricon/driver/run.hpp"
+
+using namespace fricon;
+using namespace fricon::driver;
+
+namespace {
+
+// Independent dual data: Q = B K^-1 B^T and h = B K^-1 f with a dense Cholesky of K.
+struct DenseDual {
+  MatrixXd Q, KinvBt;
+  VectorXd h, u0;
+};
+
+DenseDual dense_dual(const RunResult& r) {
+  const auto& c = *r.contact;
+  const SparseMatrix B = contact::assemble_b(r.model.mesh, r.model.dofs, c.surface, c.patches);
+  const Eigen::LLT<MatrixXd> llt{MatrixXd(r.model.K)};
+  DenseDual d;
+  d.KinvBt = llt.solve(MatrixXd(B.transpose()));
+  d.Q = B * d.KinvBt;
+  d.u0 = llt.solve(r.model.f);
+  d.h = B * d.u0;
+  return d;
+}
+
+// Projection onto {lambda_n >= 0} x {||lambda_t|| <= rho} per patch.
+void project(VectorXd& x, const VectorXd& rho) {
+  for (Index p = 0; p < rho.size(); ++p) {
+    x(3 * p) = std::max(x(3 * p), 0.0);
+    const Real t = x.segment<2>(3 * p + 1).norm();
+    if (t > rho(p)) x.segment<2>(3 * p + 1) *= rho(p) / t;
+  }
+}
+
+// FISTA with restart: an algorithm unrelated to MPGP, run to a fixed point of the projected
+// gradient map.
+VectorXd fista(const MatrixXd& Q, const VectorXd& h, const VectorXd& rho) {
+  const Real L = Eigen::SelfAdjointEigenSolver<MatrixXd>(Q, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff();
+  VectorXd x = VectorXd::Zero(h.size()), y = x, x_old = x;
+  Real t = 1.0;
+  for (int it = 0; it < 200000; ++it) {
+    x_old = x;
+    x = y - (Q * y - h) / L;
+    project(x, rho);
+    const Real t_new = 0.5 * (1 + std::sqrt(1 + 4 * t * t));
+    y = x + ((t - 1) / t_new) * (x - x_old);
+    if ((Q * x - h).dot(x - x_old) > 0) {  // restart when the objective goes up
+      y = x;
+      t = 1.0;
+    } else {
+      t = t_new;
+    }
+    if ((x - x_old).norm() <= 1e-15 * x.norm()) break;
+  }
+  return x;
+}
+
+Problem tight(Problem p) {
+  p.solver.qp_rtol = 1e-10;
+  return p;
+}
+
+}  // namespace
+
+TEST(PaperBrick, SizesIterationsAndPenetrationMatchTable1) {
+  for (const PaperRow& row : paper_table1()) {
+    if (row.n > 6) continue;
+    const RunResult r = run(paper_problem(row.n, row.param));
+    ASSERT_EQ(r.report.status, Status::Converged) << r.report.message;
+    const ContactReport& c = *r.report.contact;
+    EXPECT_EQ(r.report.n_primal, row.n_p);
+    EXPECT_EQ(c.n_dual, row.n_d);
+    EXPECT_LE(std::abs(c.outer_iterations - row.it), 1);
+    EXPECT_NEAR(c.wn_pos_inf, row.wn_pos_inf, 0.1 * row.wn_pos_inf);
+    // Within a factor 1.5 of the paper's count of products with Q (method.md §6.4).
+    EXPECT_LT(static_cast<double>(c.n_mult), 1.5 * static_cast<double>(row.n_mult));
+    EXPECT_GT(static_cast<double>(c.n_mult), static_cast<double>(row.n_mult) / 1.5);
+    // Figure maxima of the paper (n = 16) are approached already: max ||lambda_t|| = 0.3 g.
+    EXPECT_NEAR(c.max_lambda_t, 0.3 * 2e7, 0.01 * 6e6);
+    EXPECT_DOUBLE_EQ(c.err_history.front(), 1.0);
+    EXPECT_LE(c.err_history.back(), 1e-4);
+  }
+}
+
+TEST(PaperBrick, TightQpAgreesWithAnIndependentDenseSolution) {
+  const RunResult r = run(tight(paper_problem(4, 6e4)));
+  ASSERT_EQ(r.report.status, Status::Converged) << r.report.message;
+  const ContactReport& c = *r.report.contact;
+  EXPECT_LT(c.kkt.max(), 1e-9);
+  const DenseDual d = dense_dual(r);
+  const VectorXd lambda = fista(d.Q, d.h, r.contact->radius);
+  const VectorXd& ours = r.contact->lambda;
+  // A strongly convex QP stopped at ||g^P|| <= eps ||h|| is within about eps ||h|| / lambda_min(Q)
+  // of its solution; allow a factor 10 over that bound.
+  const Real lambda_min =
+      Eigen::SelfAdjointEigenSolver<MatrixXd>(d.Q, Eigen::EigenvaluesOnly).eigenvalues().minCoeff();
+  const Real bound = 10 * 1e-10 * d.h.norm() / lambda_min / lambda.norm();
+  EXPECT_LT(bound, 1e-6);  // the comparison below must mean something
+  EXPECT_LT((ours - lambda).norm() / lambda.norm(), bound);
+  // The displacement recovered from the multipliers, w = K^-1 (f - B^T lambda), also agrees.
+  const VectorXd w = d.u0 - d.KinvBt * lambda;
+  const VectorXd w_ours = r.model.dofs.from_nodal(r.displacement);
+  EXPECT_LT((w_ours - w).norm() / w.norm(), 1e-8);
+}
+
+TEST(PaperBrick, GlobalEquilibriumHoldsToRoundOff) {
+  const RunResult r = run(paper_problem(4, 6e4));
+  const RunReport& rep = r.report;
+  EXPECT_LT(rep.equilibrium_residual, 1e-12);
+  EXPECT_LT(rep.linear_residual, 1e-12);
+  // The body is pushed down (z1: -9e7 N, x1: +2e7 N): the foundation carries most of it.
+  EXPECT_GT(rep.contact_force(2), 0.0);
+  EXPECT_NEAR(rep.applied_force(2), -7e7, 1e-3);
+}
+
+TEST(PaperBrick, SolutionIsSymmetricInY) {
+  // The brick, its mesh (n even), the chessboard and the loads are symmetric under y -> 1 - y:
+  // lambda_n and lambda_t1 are even, lambda_t2 odd; likewise w_n, w_t1 even and w_t2 odd.
+  const RunResult r = run(tight(paper_problem(4, 6e4)));
+  const auto& c = *r.contact;
+  const Real scale_n = c.lambda.maxCoeff();
+  for (Index p = 0; p < c.patches.size(); ++p)
+    for (Index q = 0; q < c.patches.size(); ++q) {
+      const bool mirror = std::abs(c.patches.centroid(0, p) - c.patches.centroid(0, q)) < 1e-12 &&
+                          std::abs(c.patches.centroid(1, p) + c.patches.centroid(1, q) - 1.0) < 1e-12;
+      if (!mirror) continue;
+      EXPECT_NEAR(c.lambda(3 * p), c.lambda(3 * q), 1e-8 * scale_n);
+      EXPECT_NEAR(c.lambda(3 * p + 1), c.lambda(3 * q + 1), 1e-8 * scale_n);
+      EXPECT_NEAR(c.lambda(3 * p + 2), -c.lambda(3 * q + 2), 1e-8 * scale_n);
+    }
+  const Real scale_w = r.report.max_displacement;
+  const auto& nodes = r.model.mesh.nodes;
+  for (Index a = 0; a < c.surface.n_nodes(); ++a)
+    for (Index b = 0; b < c.surface.n_nodes(); ++b) {
+      const Vec3 xa = nodes.col(c.surface.nodes[static_cast<size_t>(a)]);
+      const Vec3 xb = nodes.col(c.surface.nodes[static_cast<size_t>(b)]);
+      if (std::abs(xa(0) - xb(0)) > 1e-12 || std::abs(xa(1) + xb(1) - 1.0) > 1e-12) continue;
+      EXPECT_NEAR(c.wn(a), c.wn(b), 1e-8 * scale_w);
+      EXPECT_NEAR(c.wt1(a), c.wt1(b), 1e-8 * scale_w);
+      EXPECT_NEAR(c.wt2(a), -c.wt2(b), 1e-8 * scale_w);
+    }
+}
+
+TEST(PaperBrick, ReturnedSlipIsAFixedPointOfPsi) {
+  // Converge the outer loop tightly, then apply Psi once more independently: radii from the
+  // returned slip, the dual QP by FISTA on the dense Q, w recovered, phi = ||w_t||.
+  Problem p = tight(paper_problem(4, 6e4));
+  p.solver.outer_tol = 1e-9;
+  const RunResult r = run(p);
+  ASSERT_EQ(r.report.status, Status::Converged) << r.report.message;
+  const auto& c = *r.contact;
+  const VectorXd phi = (c.wt1.array().square() + c.wt2.array().square()).sqrt().matrix();
+  const auto law = make_friction_law(p.contact->friction);
+  const VectorXd rho = contact::patch_radii(r.model.mesh, c.surface, c.patches, *law, phi,
+                                            VectorXd::Constant(phi.size(), p.contact->slip_bound));
+  const DenseDual d = dense_dual(r);
+  const VectorXd w = d.u0 - d.KinvBt * fista(d.Q, d.h, rho);
+  VectorXd psi(phi.size());
+  for (Index a = 0; a < phi.size(); ++a) {
+    Vec3 u = Vec3::Zero();
+    for (int k = 0; k < 3; ++k) {
+      const Index dof = r.model.dofs.dof(c.surface.nodes[static_cast<size_t>(a)], k);
+      if (dof >= 0) u(k) = w(dof);
+    }
+    psi(a) = std::hypot(u.dot(c.surface.t1), u.dot(c.surface.t2));
+  }
+  EXPECT_LT((psi - phi).norm() / phi.norm(), 1e-7);
+}
+
+TEST(ContactColumn, FrictionlessColumnUnderGravityCarriesHalfItsWeight) {
+  // A column (0,1)x(0,1)x(0,2) clamped on top, on rollers at its four sides, under its own weight
+  // b = (0, 0, -b0), resting on the foundation at z = 0. The solution depends on z only, u_z is
+  // quadratic and vanishes at both ends, so each end carries half the weight: a uniform contact
+  // pressure lambda_n = b0 H / 2, and no tangential displacement.
+  Problem p;
+  p.mesh.size = {1.0, 1.0, 2.0};
+  p.mesh.cells = {4, 4, 8};
+  p.material.young = 1e9;
+  p.material.poisson = 0.3;
+  p.dirichlet = {{"z1", {true, true, true}}, {"x0", {true, false, false}},
+                 {"x1", {true, false, false}}, {"y0", {false, true, false}},
+                 {"y1", {false, true, false}}};
+  const Real b0 = 7.8e4, H = 2.0;
+  p.volume_force = Vec3(0, 0, -b0);
+  ContactOptions c;
+  c.boundary = "z0";
+  c.slip_bound = 1e5;
+  c.friction.law = "constant";
+  c.friction.value = 0.0;
+  p.contact = c;
+  p.solver.qp_rtol = 1e-12;
+  const RunResult r = run(p);
+  ASSERT_EQ(r.report.status, Status::Converged) << r.report.message;
+  const auto& f = *r.contact;
+  for (Index q = 0; q < f.patches.size(); ++q) {
+    EXPECT_NEAR(f.lambda(3 * q), b0 * H / 2, 1e-6 * b0 * H) << "patch " << q;
+    EXPECT_NEAR(f.lambda.segment<2>(3 * q + 1).norm(), 0.0, 1e-9 * b0 * H);
+  }
+  EXPECT_NEAR(r.report.contact->total_normal_force, b0 * H / 2 * 1.0, 1e-6 * b0 * H);
+  EXPECT_LT(r.report.contact->max_wt, 1e-12);
+}
