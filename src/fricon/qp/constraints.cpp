@@ -87,7 +87,7 @@ void SeparableConstraints::project(Eigen::VectorXd& x) const {
       x(o) = std::max(x(o), 0.0);
     } else {
       const double rho = radius(static_cast<Index>(k));
-      const double nrm = std::hypot(x(o), x(o + 1));
+      const double nrm = detail::norm2(x(o), x(o + 1));
       if (nrm > rho) {
         const double s = rho / nrm;
         x(o) *= s;

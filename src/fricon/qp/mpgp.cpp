@@ -229,7 +229,7 @@ class Kernels {
       const double rho = c_.radius(static_cast<Index>(k));
       const double x1 = x(o), x2 = x(o + 1);
       const double g1 = g(o), g2 = g(o + 1);
-      const double nx = std::hypot(x1, x2);
+      const double nx = detail::norm2(x1, x2);
       if (rho == 0.0) {  // pinned block
         phi(o) = phi(o + 1) = beta(o) = beta(o + 1) = 0.0;
       } else if (nx >= (1.0 - tol_disc_) * rho) {  // active: nx > 0 here
@@ -252,7 +252,7 @@ class Kernels {
         s.phi2 += gg;
         // (x - P_disc(x - abar g)) / abar
         const double y1 = x1 - abar * g1, y2 = x2 - abar * g2;
-        const double ny = std::hypot(y1, y2);
+        const double ny = detail::norm2(y1, y2);
         if (ny <= rho) {
           s.phit_phi += gg;
         } else {
@@ -280,7 +280,7 @@ class Kernels {
       if (pp == 0.0) continue;
       const double rho = c_.radius(static_cast<Index>(k));
       const double x1 = x(o), x2 = x(o + 1);
-      const double nx = std::hypot(x1, x2);
+      const double nx = detail::norm2(x1, x2);
       const double xp = x1 * p1 + x2 * p2;
       // Root t >= 0 of ||x - t p||^2 = rho^2: pp t^2 - 2 xp t - slack = 0, with slack =
       // rho^2 - ||x||^2 clipped at 0 (x may sit outside by rounding). The two algebraically equal

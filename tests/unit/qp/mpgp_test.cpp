@@ -216,6 +216,34 @@ TEST(Mpgp, BoundProblemsMatchActiveSetEnumeration) {
   }
 }
 
+// A = I, b = (1, 0), x0 = (0, 1): g = (-1, 1), the bound x_1 = 0 is active with beta = (-1, 0),
+// phi = (0, 1) and phitilde^T phi = min(1, 1 / alpha_bar) < ||beta||^2 = 1, so the first step is a
+// proportioning step. 14(a) minimises along -beta exactly (step 1, x = (1, 1)); 14(b) moves to
+// P(x0 - alpha_bar g) = (1.95, 0) with alpha_bar = 1.95.
+TEST(Mpgp, ProportioningStepsMatchHandComputation) {
+  const Eigen::MatrixXd M = Eigen::Matrix2d::Identity();
+  for (auto step : {ProportioningStep::ChoppedGradientCG, ProportioningStep::ProjectedGradient}) {
+    auto opt = tight();
+    opt.norm_A = 1.0;
+    opt.proportioning = step;
+    opt.max_iterations = 1;
+    opt.record_history = true;
+    Eigen::VectorXd x = Eigen::Vector2d(0.0, 1.0);
+    const auto rep =
+        solve_mpgp(dense_operator(M), Eigen::Vector2d(1.0, 0.0), all_bounds(2), opt, x);
+    ASSERT_EQ(rep.history.size(), 2u);
+    EXPECT_EQ(rep.history[1].step, 'p');
+    if (step == ProportioningStep::ChoppedGradientCG) {
+      EXPECT_DOUBLE_EQ(rep.history[1].alpha, 1.0);
+      EXPECT_LE((x - Eigen::Vector2d(1.0, 1.0)).norm(), 1e-15);
+      EXPECT_NEAR(rep.history[1].objective, 0.0, 1e-15);  // q(1, 1) = 1 - 1
+    } else {
+      EXPECT_DOUBLE_EQ(rep.history[1].alpha, 1.95);
+      EXPECT_LE((x - Eigen::Vector2d(1.95, 0.0)).norm(), 1e-15);
+    }
+  }
+}
+
 // ---------------------------------------------------------------------------------------------
 // Random contact-layout problems
 
