@@ -1,0 +1,77 @@
+"""Solve the paper's brick (n = 4) with the fricon program and check every result file.
+
+Checks facts that hold independently of the solver's internals:
+  - report.json has the documented keys, the paper's sizes (n_p = 900, n_d = 36), a converged
+    outer loop whose last err(k) is below outer_tol, and KKT residuals at the QP tolerance;
+  - patches.csv: lambda_n >= 0 and ||lambda_t|| <= radius on every patch (feasibility), and
+    sum(lambda_n * area) equals the report's total_normal_force;
+  - contact_nodes.csv: w_n = -w_3 on the bottom (n = -e3), phi = ||w_t||, F in [0.2, 0.3] (the
+    paper's law), the maxima equal the report's;
+  - contact.vtu and solution.vtu open in meshio, and the displacement of the contact surface
+    equals that of the body at the same points.
+Usage: check_contact_results.py FRICON PROBLEM.toml OUTDIR
+"""
+import csv
+import json
+import pathlib
+import subprocess
+import sys
+
+import meshio
+import numpy as np
+
+exe, problem, out = sys.argv[1], sys.argv[2], pathlib.Path(sys.argv[3])
+run = subprocess.run([exe, "solve", problem, "--out", str(out)], capture_output=True, text=True)
+if run.returncode != 0:
+    sys.exit(f"fricon exited with {run.returncode}\n{run.stdout}\n{run.stderr}")
+
+report = json.loads((out / "report.json").read_text())
+for key in ["n_primal", "n_dual", "outer_iterations", "n_mult", "err_history", "time_s", "timings",
+            "wn_pos_l2", "wn_pos_inf", "max_neg_wn", "max_wt", "max_lambda_n", "max_lambda_t",
+            "total_normal_force", "kkt"]:
+    assert key in report, f"report.json lacks {key}"
+assert report["status"] == "converged"
+assert report["n_primal"] == 900 and report["n_dual"] == 36
+assert report["err_history"][-1] <= report["problem"]["solver"]["outer_tol"]
+assert len(report["err_history"]) == report["outer_iterations"]
+for k in ["feasibility", "stationarity", "complementarity"]:
+    assert report["kkt"][k] < 1e-5, (k, report["kkt"][k])
+
+def read_csv(path, header):
+    with open(path) as f:
+        rows = list(csv.reader(f))
+    assert rows[0] == header, rows[0]
+    return np.array(rows[1:], dtype=float)
+
+P = read_csv(out / "patches.csv", ["x", "y", "area", "lambda_n", "lambda_t1", "lambda_t2", "radius"])
+assert P.shape == (12, 7)
+assert np.all(P[:, 3] >= 0)
+lt = np.hypot(P[:, 4], P[:, 5])
+assert np.all(lt <= P[:, 6] * (1 + 1e-12)), "a friction multiplier exceeds its slip bound"
+assert np.all((P[:, 6] >= 0.2 * 2e7 - 1) & (P[:, 6] <= 0.3 * 2e7 + 1))
+assert abs((P[:, 2] * P[:, 3]).sum() - report["total_normal_force"]) <= 1e-9 * report["total_normal_force"]
+assert abs(P[:, 3].max() - report["max_lambda_n"]) <= 1e-9 * report["max_lambda_n"]
+assert abs(lt.max() - report["max_lambda_t"]) <= 1e-9 * report["max_lambda_t"]
+
+N = read_csv(out / "contact_nodes.csv", ["x", "y", "z", "w_n", "w_t1", "w_t2", "phi", "F"])
+assert N.shape == (13 * 5, 8)
+assert np.all(N[:, 2] == 0.0)
+assert np.allclose(N[:, 6], np.hypot(N[:, 4], N[:, 5]), rtol=1e-12, atol=0)
+assert np.all((N[:, 7] >= 0.2 - 1e-15) & (N[:, 7] <= 0.3 + 1e-15))
+assert abs(N[:, 6].max() - report["max_wt"]) <= 1e-12 * report["max_wt"]
+assert abs((-N[:, 3]).max() - report["max_neg_wn"]) <= 1e-12 * report["max_neg_wn"]
+assert abs(np.maximum(N[:, 3], 0).max() - report["wn_pos_inf"]) <= 1e-12 * report["wn_pos_inf"]
+
+body = meshio.read(out / "solution.vtu")
+surface = meshio.read(out / "contact.vtu")
+assert "triangle" in surface.cells_dict and surface.cells_dict["triangle"].shape == (96, 3)
+index = {tuple(np.round(p, 12)): i for i, p in enumerate(body.points)}
+ub = body.point_data["displacement"]
+us = surface.point_data["displacement"]
+for i, p in enumerate(surface.points):
+    j = index[tuple(np.round(p, 12))]
+    assert np.allclose(us[i], ub[j], rtol=0, atol=1e-15 + 1e-12 * abs(ub[j]).max())
+    assert abs(surface.point_data["w_n"][i] + ub[j][2]) <= 1e-15 + 1e-12 * abs(ub[j][2])
+for name in ["lambda_n", "lambda_t", "radius", "norm_lambda_t"]:
+    assert name in surface.cell_data, name
+print("paper brick: report.json, patches.csv, contact_nodes.csv, contact.vtu checked")
