@@ -1,0 +1,87 @@
+// Benchmark of the elastic core on the paper's brick: time and peak memory of assembly,
+// factorization and one solve, for n = 8, 16, 24 (or the n given on the command line).
+// Each n runs in its own child process, so that the peak resident memory is that of one size.
+//   build/bench/elasticity_bench [n ...]
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "fricon/core/timer.hpp"
+#include "fricon/driver/model.hpp"
+#include "fricon/driver/paper.hpp"
+
+namespace {
+
+struct Row {
+  long n = 0, n_primal = 0;
+  double nnz_L = 0, mesh = 0, assembly = 0, factorize = 0, solve = 0, peak_mib = 0;
+};
+
+double peak_mib() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB on Linux
+}
+
+Row measure(fricon::Index n) {
+  using namespace fricon;
+  const driver::Problem p = driver::paper_problem(n, 6e4);
+  PhaseTimes times;
+  const driver::Model m = driver::build_model(p, times);
+  Stopwatch watch;
+  const VectorXd u = m.factor.solve(m.f);
+  Row r;
+  r.solve = watch.seconds();
+  r.n = n;
+  r.n_primal = m.dofs.n_free();
+  r.nnz_L = m.factor.info().nnz_L;
+  r.mesh = times.seconds("mesh");
+  r.assembly = times.seconds("assembly");
+  r.factorize = times.seconds("factorize");
+  r.peak_mib = peak_mib();
+  if (!u.allFinite()) std::exit(3);
+  return r;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<long> sizes;
+  for (int i = 1; i < argc; ++i) sizes.push_back(std::atol(argv[i]));
+  if (sizes.empty()) sizes = {8, 16, 24};
+  fmt::print("Elastic brick (paper's mesh, 3n x n x n cubes): one linear solve, phases in seconds\n\n");
+  fmt::print("| n | n_primal | nnz(L) | mesh [s] | assembly [s] | factorize [s] | solve [s] | peak RSS [MiB] |\n");
+  fmt::print("|---|---|---|---|---|---|---|---|\n");
+  for (long n : sizes) {
+    int fd[2];
+    if (pipe(fd) != 0) return 3;
+    const pid_t pid = fork();
+    if (pid == 0) {
+      close(fd[0]);
+      const Row r = measure(n);
+      if (write(fd[1], &r, sizeof r) != static_cast<ssize_t>(sizeof r)) _exit(3);
+      _exit(0);
+    }
+    close(fd[1]);
+    Row r;
+    const bool ok = read(fd[0], &r, sizeof r) == static_cast<ssize_t>(sizeof r);
+    close(fd[0]);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    if (!ok || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+      fmt::print("| {} | failed |\n", n);
+      return 3;
+    }
+    fmt::print("| {} | {} | {:.3e} | {:.3f} | {:.3f} | {:.3f} | {:.4f} | {:.0f} |\n", r.n, r.n_primal,
+               r.nnz_L, r.mesh, r.assembly, r.factorize, r.solve, r.peak_mib);
+    std::fflush(stdout);
+  }
+  return 0;
+}
