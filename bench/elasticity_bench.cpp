@@ -54,10 +54,14 @@ Row measure(fricon::Index n) {
 
 int main(int argc, char** argv) {
   std::vector<long> sizes;
-  for (int i = 1; i < argc; ++i) sizes.push_back(std::atol(argv[i]));
+  for (int i = 1; i < argc; ++i)
+    sizes.push_back(std::atol(argv[i]));
   if (sizes.empty()) sizes = {8, 16, 24};
-  fmt::print("Elastic brick (paper's mesh, 3n x n x n cubes): one linear solve, phases in seconds\n\n");
-  fmt::print("| n | n_primal | nnz(L) | mesh [s] | assembly [s] | factorize [s] | solve [s] | peak RSS [MiB] |\n");
+  fmt::print(
+      "Elastic brick (paper's mesh, 3n x n x n cubes): one linear solve, phases in seconds\n\n");
+  fmt::print(
+      "| n | n_primal | nnz(L) | mesh [s] | assembly [s] | factorize [s] | solve [s] | peak RSS "
+      "[MiB] |\n");
   fmt::print("|---|---|---|---|---|---|---|---|\n");
   for (long n : sizes) {
     int fd[2];
@@ -79,8 +83,8 @@ int main(int argc, char** argv) {
       fmt::print("| {} | failed |\n", n);
       return 3;
     }
-    fmt::print("| {} | {} | {:.3e} | {:.3f} | {:.3f} | {:.3f} | {:.4f} | {:.0f} |\n", r.n, r.n_primal,
-               r.nnz_L, r.mesh, r.assembly, r.factorize, r.solve, r.peak_mib);
+    fmt::print("| {} | {} | {:.3e} | {:.3f} | {:.3f} | {:.3f} | {:.4f} | {:.0f} |\n", r.n,
+               r.n_primal, r.nnz_L, r.mesh, r.assembly, r.factorize, r.solve, r.peak_mib);
     std::fflush(stdout);
   }
   return 0;

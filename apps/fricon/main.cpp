@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <CLI/CLI.hpp>
 
 #include "fricon/core/error.hpp"
 #include "fricon/driver/paper.hpp"
@@ -23,7 +23,8 @@ enum ExitCode { kConverged = 0, kBadInput = 1, kNotConverged = 2, kInternalError
 
 std::string join_command_line(int argc, char** argv) {
   std::string s;
-  for (int i = 0; i < argc; ++i) s += (i ? " " : "") + std::string(argv[i]);
+  for (int i = 0; i < argc; ++i)
+    s += (i ? " " : "") + std::string(argv[i]);
   return s;
 }
 
@@ -82,7 +83,9 @@ struct PaperOptions {
 bool print_paper_table(const std::string& title, const std::vector<fricon::driver::PaperRow>& rows,
                        const PaperOptions& o) {
   fmt::print("\n{}\n\n", title);
-  fmt::print("| n | param | n_p | n_d | it | n_mult | time [s] | ||w_hn^+||_0 | ||w_hn^+||_inf | max(-w_n) | max lambda_n | max ||w_t|| | max ||lambda_t|| | KKT max |\n");
+  fmt::print(
+      "| n | param | n_p | n_d | it | n_mult | time [s] | ||w_hn^+||_0 | ||w_hn^+||_inf | "
+      "max(-w_n) | max lambda_n | max ||w_t|| | max ||lambda_t|| | KKT max |\n");
   fmt::print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   bool ok = true;
   for (const auto& row : rows) {
@@ -95,20 +98,25 @@ bool print_paper_table(const std::string& title, const std::vector<fricon::drive
     const bool sizes_equal = r.report.n_primal == row.n_p && c.n_dual == row.n_d;
     const bool converged = r.report.status == fricon::driver::Status::Converged;
     ok = ok && sizes_equal && converged;
-    fmt::print("| {} | {:g} | {} / {} | {} / {} | {}{} / {} | {} / {} | {:.3f} / {:g} | {:.1e} / {:.1e} | {:.2e} / {:.1e} | {:.2e} | {:.3e} | {:.3e} | {:.3e} | {:.1e} |\n",
-               row.n, row.param, r.report.n_primal, row.n_p, c.n_dual, row.n_d, c.outer_iterations,
-               converged ? "" : "(!)", row.it, c.n_mult, row.n_mult, r.report.time_s, row.time_s,
-               c.wn_pos_l2, row.wn_pos_l2, c.wn_pos_inf, row.wn_pos_inf, c.max_neg_wn,
-               c.max_lambda_n, c.max_wt, c.max_lambda_t, c.kkt.max());
+    fmt::print(
+        "| {} | {:g} | {} / {} | {} / {} | {}{} / {} | {} / {} | {:.3f} / {:g} | {:.1e} / {:.1e} | "
+        "{:.2e} / {:.1e} | {:.2e} | {:.3e} | {:.3e} | {:.3e} | {:.1e} |\n",
+        row.n, row.param, r.report.n_primal, row.n_p, c.n_dual, row.n_d, c.outer_iterations,
+        converged ? "" : "(!)", row.it, c.n_mult, row.n_mult, r.report.time_s, row.time_s,
+        c.wn_pos_l2, row.wn_pos_l2, c.wn_pos_inf, row.wn_pos_inf, c.max_neg_wn, c.max_lambda_n,
+        c.max_wt, c.max_lambda_t, c.kkt.max());
     std::fflush(stdout);
   }
   return ok;
 }
 
 int paper(const PaperOptions& o) {
-  fmt::print("fricon {}: the model example of Haslinger & Ligursky (2009), Tables 1 and 2.\n", FRICON_VERSION);
-  fmt::print("Each cell: ours / paper. Paper times are from 2007 hardware. Dual operator: {}, qp_rtol = {:g}.\n",
-             o.dual_operator, o.qp_rtol);
+  fmt::print("fricon {}: the model example of Haslinger & Ligursky (2009), Tables 1 and 2.\n",
+             FRICON_VERSION);
+  fmt::print(
+      "Each cell: ours / paper. Paper times are from 2007 hardware. Dual operator: {}, qp_rtol = "
+      "{:g}.\n",
+      o.dual_operator, o.qp_rtol);
   bool ok = true;
   if (o.table == "1" || o.table == "both")
     ok = print_paper_table("Table 1 (param = 6e4)", fricon::driver::paper_table1(), o) && ok;
@@ -133,13 +141,17 @@ int main(int argc, char** argv) {
 
   std::string file, out;
   std::vector<std::string> sets;
-  auto* solve_cmd = app.add_subcommand("solve", "Solve the problem of a TOML file and write results");
-  solve_cmd->add_option("problem", file, "Problem file (TOML), see docs/problem-file.md")->required();
+  auto* solve_cmd =
+      app.add_subcommand("solve", "Solve the problem of a TOML file and write results");
+  solve_cmd->add_option("problem", file, "Problem file (TOML), see docs/problem-file.md")
+      ->required();
   solve_cmd->add_option("--out,-o", out, "Results folder (default: the file's output.dir)");
-  solve_cmd->add_option("--set", sets, "Override a key of the file: KEY=VALUE (TOML value), repeatable")
+  solve_cmd
+      ->add_option("--set", sets, "Override a key of the file: KEY=VALUE (TOML value), repeatable")
       ->allow_extra_args(false);
 
-  auto* check_cmd = app.add_subcommand("check", "Validate a problem file without solving; print its sizes");
+  auto* check_cmd =
+      app.add_subcommand("check", "Validate a problem file without solving; print its sizes");
   check_cmd->add_option("problem", file, "Problem file (TOML)")->required();
   check_cmd->add_option("--set", sets, "Override a key of the file: KEY=VALUE, repeatable")
       ->allow_extra_args(false);
@@ -151,8 +163,9 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(4, 16));
   paper_cmd->add_option("--table", paper_opt.table, "Which table: 1, 2 or both")
       ->check(CLI::IsMember({"1", "2", "both"}));
-  paper_cmd->add_option("--dual-operator", paper_opt.dual_operator,
-                        "How Q = B K^-1 B^T is applied: implicit (the paper's way), dense, auto")
+  paper_cmd
+      ->add_option("--dual-operator", paper_opt.dual_operator,
+                   "How Q = B K^-1 B^T is applied: implicit (the paper's way), dense, auto")
       ->check(CLI::IsMember({"auto", "implicit", "dense"}));
   paper_cmd->add_option("--qp-rtol", paper_opt.qp_rtol, "QP tolerance (paper: 1e-6)")
       ->check(CLI::PositiveNumber);

@@ -46,7 +46,8 @@ void project(VectorXd& x, const VectorXd& rho) {
 // FISTA with restart: an algorithm unrelated to MPGP, run to a fixed point of the projected
 // gradient map.
 VectorXd fista(const MatrixXd& Q, const VectorXd& h, const VectorXd& rho) {
-  const Real L = Eigen::SelfAdjointEigenSolver<MatrixXd>(Q, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff();
+  const Real L =
+      Eigen::SelfAdjointEigenSolver<MatrixXd>(Q, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff();
   VectorXd x = VectorXd::Zero(h.size()), y = x, x_old = x;
   Real t = 1.0;
   for (int it = 0; it < 200000; ++it) {
@@ -132,8 +133,9 @@ TEST(PaperBrick, SolutionIsSymmetricInY) {
   const Real scale_n = c.lambda.maxCoeff();
   for (Index p = 0; p < c.patches.size(); ++p)
     for (Index q = 0; q < c.patches.size(); ++q) {
-      const bool mirror = std::abs(c.patches.centroid(0, p) - c.patches.centroid(0, q)) < 1e-12 &&
-                          std::abs(c.patches.centroid(1, p) + c.patches.centroid(1, q) - 1.0) < 1e-12;
+      const bool mirror =
+          std::abs(c.patches.centroid(0, p) - c.patches.centroid(0, q)) < 1e-12 &&
+          std::abs(c.patches.centroid(1, p) + c.patches.centroid(1, q) - 1.0) < 1e-12;
       if (!mirror) continue;
       EXPECT_NEAR(c.lambda(3 * p), c.lambda(3 * q), 1e-8 * scale_n);
       EXPECT_NEAR(c.lambda(3 * p + 1), c.lambda(3 * q + 1), 1e-8 * scale_n);
@@ -188,8 +190,10 @@ TEST(ContactColumn, FrictionlessColumnUnderGravityCarriesHalfItsWeight) {
   p.mesh.cells = {4, 4, 8};
   p.material.young = 1e9;
   p.material.poisson = 0.3;
-  p.dirichlet = {{"z1", {true, true, true}}, {"x0", {true, false, false}},
-                 {"x1", {true, false, false}}, {"y0", {false, true, false}},
+  p.dirichlet = {{"z1", {true, true, true}},
+                 {"x0", {true, false, false}},
+                 {"x1", {true, false, false}},
+                 {"y0", {false, true, false}},
                  {"y1", {false, true, false}}};
   const Real b0 = 7.8e4, H = 2.0;
   p.volume_force = Vec3(0, 0, -b0);

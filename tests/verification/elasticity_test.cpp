@@ -74,7 +74,8 @@ Errors solve_and_measure(const Manufactured& ms, Index n) {
   std::vector<bool> fixed(static_cast<size_t>(3 * m.n_nodes()), false);
   for (Index f = 0; f < m.n_faces(); ++f)
     for (int v = 0; v < 3; ++v)
-      for (int c = 0; c < 3; ++c) fixed[static_cast<size_t>(3 * m.faces(v, f) + c)] = true;
+      for (int c = 0; c < 3; ++c)
+        fixed[static_cast<size_t>(3 * m.faces(v, f) + c)] = true;
   const DofMap dofs(fixed);
   const Material mat = isotropic(2e11, 0.3);
 
@@ -104,7 +105,8 @@ Errors solve_and_measure(const Manufactured& ms, Index n) {
     const auto x = tet_vertices(m, t);
     const P1Gradients g = p1_gradients(x);
     Eigen::Matrix<Real, 3, 4> ue;
-    for (int a = 0; a < 4; ++a) ue.col(a) = uh.col(m.tets(a, t));
+    for (int a = 0; a < 4; ++a)
+      ue.col(a) = uh.col(m.tets(a, t));
     const Mat3 grad_uh = ue * g.grad.transpose();
     for (Index q = 0; q < rule.weights.size(); ++q) {
       const Vec3 xq = x * rule.points.col(q);
@@ -127,14 +129,17 @@ TEST(Verification, ManufacturedSolutionConvergesWithOrdersTwoAndOne) {
   ms.mu = mu;
   const std::vector<Index> meshes{4, 8, 16};
   std::vector<Errors> errors;
-  for (Index n : meshes) errors.push_back(solve_and_measure(ms, n));
+  for (Index n : meshes)
+    errors.push_back(solve_and_measure(ms, n));
   for (size_t i = 1; i < meshes.size(); ++i) {
     const Real order_l2 = std::log2(errors[i - 1].l2 / errors[i].l2);
     const Real order_h1 = std::log2(errors[i - 1].h1 / errors[i].h1);
     RecordProperty("order_l2_" + std::to_string(meshes[i]), std::to_string(order_l2));
-    std::printf("n = %2ld -> %2ld: L2 error %.3e -> %.3e (order %.3f), H1 error %.3e -> %.3e (order %.3f)\n",
-                static_cast<long>(meshes[i - 1]), static_cast<long>(meshes[i]), errors[i - 1].l2,
-                errors[i].l2, order_l2, errors[i - 1].h1, errors[i].h1, order_h1);
+    std::printf(
+        "n = %2ld -> %2ld: L2 error %.3e -> %.3e (order %.3f), H1 error %.3e -> %.3e (order "
+        "%.3f)\n",
+        static_cast<long>(meshes[i - 1]), static_cast<long>(meshes[i]), errors[i - 1].l2,
+        errors[i].l2, order_l2, errors[i - 1].h1, errors[i].h1, order_h1);
     // Asymptotic orders 2 and 1; the first pair of meshes is slightly pre-asymptotic.
     EXPECT_NEAR(order_l2, 2.0, i == 1 ? 0.1 : 0.05);
     EXPECT_NEAR(order_h1, 1.0, i == 1 ? 0.1 : 0.05);
@@ -152,7 +157,8 @@ TEST(Verification, CantileverTipDeflectionApproachesBeamTheory) {
     const mesh::TetMesh m = mesh::make_brick({Vec3(L, b, h), {6 * n, n, n}});
     std::vector<bool> fixed(static_cast<size_t>(3 * m.n_nodes()), false);
     for (Index a : m.nodes_with_tag("x0"))
-      for (int c = 0; c < 3; ++c) fixed[static_cast<size_t>(3 * a + c)] = true;
+      for (int c = 0; c < 3; ++c)
+        fixed[static_cast<size_t>(3 * a + c)] = true;
     const DofMap dofs(fixed);
     VectorXd f = VectorXd::Zero(dofs.n_free());
     add_traction(m, dofs, m.faces_with_tag("x1"), Vec3(0, 0, -P / A), f);
@@ -162,7 +168,8 @@ TEST(Verification, CantileverTipDeflectionApproachesBeamTheory) {
     // Mean vertical deflection of the loaded end face (nodes are uniformly spaced).
     Real sum = 0;
     const auto tip = m.nodes_with_tag("x1");
-    for (Index a : tip) sum += -u(2, a);
+    for (Index a : tip)
+      sum += -u(2, a);
     rel_error.push_back(std::abs(sum / static_cast<Real>(tip.size()) - delta) / delta);
     std::printf("cantilever %ld cells through the depth: tip deflection error %.2f %%\n",
                 static_cast<long>(n), 100 * rel_error.back());

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <map>
 
-#include <Eigen/Eigenvalues>
 #include <fmt/format.h>
+#include <Eigen/Eigenvalues>
 
 #include "fricon/core/error.hpp"
 
@@ -21,15 +21,18 @@ ContactSurface make_contact_surface(const mesh::TetMesh& mesh, const fe::DofMap&
   s.tag = tag;
   s.faces = mesh.faces_with_tag(tag);
   if (s.faces.empty())
-    throw InputError(fmt::format("{}: contact.boundary: boundary '{}' does not exist on the mesh (tags: {})",
-                                 where, tag, mesh.tag_list()));
+    throw InputError(
+        fmt::format("{}: contact.boundary: boundary '{}' does not exist on the mesh (tags: {})",
+                    where, tag, mesh.tag_list()));
   s.nodes = mesh.nodes_with_tag(tag);
   std::map<Index, Index> position;
-  for (size_t k = 0; k < s.nodes.size(); ++k) position[s.nodes[k]] = static_cast<Index>(k);
+  for (size_t k = 0; k < s.nodes.size(); ++k)
+    position[s.nodes[k]] = static_cast<Index>(k);
   s.face_nodes.resize(3, static_cast<Index>(s.faces.size()));
   Vec3 normal_sum = Vec3::Zero();
   for (size_t k = 0; k < s.faces.size(); ++k) {
-    for (int v = 0; v < 3; ++v) s.face_nodes(v, static_cast<Index>(k)) = position[mesh.faces(v, s.faces[k])];
+    for (int v = 0; v < 3; ++v)
+      s.face_nodes(v, static_cast<Index>(k)) = position[mesh.faces(v, s.faces[k])];
     const Real a = mesh::face_area(mesh, s.faces[k]);
     s.area += a;
     normal_sum += a * mesh::face_normal(mesh, s.faces[k]);
@@ -38,7 +41,8 @@ ContactSurface make_contact_surface(const mesh::TetMesh& mesh, const fe::DofMap&
   for (Index f : s.faces)
     if ((mesh::face_normal(mesh, f) - s.n).norm() > 1e-9)
       throw InputError(fmt::format(
-          "{}: contact.boundary: the surface '{}' is not planar (face {} has normal ({:.3g}, {:.3g}, "
+          "{}: contact.boundary: the surface '{}' is not planar (face {} has normal ({:.3g}, "
+          "{:.3g}, "
           "{:.3g}), the mean normal is ({:.3g}, {:.3g}, {:.3g})); contact with a rigid half-space "
           "needs a flat surface",
           where, tag, f, mesh::face_normal(mesh, f)(0), mesh::face_normal(mesh, f)(1),
@@ -51,9 +55,10 @@ ContactSurface make_contact_surface(const mesh::TetMesh& mesh, const fe::DofMap&
     s.fixed[k] = dofs.is_fixed(s.nodes[k], 0) || dofs.is_fixed(s.nodes[k], 1) ||
                  dofs.is_fixed(s.nodes[k], 2);
   if (s.n_contact_nodes() == 0)
-    throw InputError(fmt::format(
-        "{}: contact.boundary: every node of '{}' is clamped: contact and Dirichlet on the same face",
-        where, tag));
+    throw InputError(
+        fmt::format("{}: contact.boundary: every node of '{}' is clamped: contact and Dirichlet on "
+                    "the same face",
+                    where, tag));
   return s;
 }
 
@@ -74,7 +79,8 @@ Patches chessboard_patches(const mesh::TetMesh& mesh, const ContactSurface& surf
     return lines;
   };
   const auto lines1 = grid_lines(c1), lines2 = grid_lines(c2);
-  const Index m1 = static_cast<Index>(lines1.size()) - 1, m2 = static_cast<Index>(lines2.size()) - 1;
+  const Index m1 = static_cast<Index>(lines1.size()) - 1,
+              m2 = static_cast<Index>(lines2.size()) - 1;
   if (m1 < 2 || m2 < 2 || m1 % 2 != 0 || m2 % 2 != 0 ||
       surface.faces.size() != static_cast<size_t>(2 * m1 * m2))
     throw InputError(fmt::format(
@@ -93,18 +99,22 @@ Patches chessboard_patches(const mesh::TetMesh& mesh, const ContactSurface& surf
   for (size_t k = 0; k < surface.faces.size(); ++k) {
     const Index f = surface.faces[k];
     Vec3 centroid = Vec3::Zero();
-    for (int v = 0; v < 3; ++v) centroid += mesh.nodes.col(mesh.faces(v, f)) / 3.0;
+    for (int v = 0; v < 3; ++v)
+      centroid += mesh.nodes.col(mesh.faces(v, f)) / 3.0;
     const Index a = std::clamp<Index>(
-        static_cast<Index>(std::floor((surface.t1.dot(centroid) - lines1.front()) / (2 * h1))), 0, n1 - 1);
+        static_cast<Index>(std::floor((surface.t1.dot(centroid) - lines1.front()) / (2 * h1))), 0,
+        n1 - 1);
     const Index b = std::clamp<Index>(
-        static_cast<Index>(std::floor((surface.t2.dot(centroid) - lines2.front()) / (2 * h2))), 0, n2 - 1);
+        static_cast<Index>(std::floor((surface.t2.dot(centroid) - lines2.front()) / (2 * h2))), 0,
+        n2 - 1);
     const Index patch = a + n1 * b;
     const Real area = mesh::face_area(mesh, f);
     p.faces[static_cast<size_t>(patch)].push_back(static_cast<Index>(k));
     p.area(patch) += area;
     p.centroid.col(patch) += area * centroid;
   }
-  for (Index q = 0; q < p.size(); ++q) p.centroid.col(q) /= p.area(q);
+  for (Index q = 0; q < p.size(); ++q)
+    p.centroid.col(q) /= p.area(q);
   return p;
 }
 

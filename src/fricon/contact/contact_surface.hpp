@@ -4,9 +4,10 @@
 //   ContactSurface  the tagged planar boundary that rests on the rigid half-space, its nodes and a
 //                   local orthonormal basis (n, t1, t2) with n the outward normal of the body
 //   Patches         the coarse partition T_H of the surface: a list of patches, each a set of
-//                   surface triangles, carrying one multiplier triple (lambda_n, lambda_t1, lambda_t2)
-//   B               n_dual x n_primal: (B v)_{n,p} = int_{R_p} v.n, (B v)_{t1,p} = int_{R_p} v.t1, ...
-//   radii           rho_p = (1/|R_p|) int_{R_p} F(phi_h) g dS, integrated exactly for
+//                   surface triangles, carrying one multiplier triple (lambda_n, lambda_t1,
+//                   lambda_t2)
+//   B               n_dual x n_primal: (B v)_{n,p} = int_{R_p} v.n, (B v)_{t1,p} = int_{R_p} v.t1,
+//   ... radii           rho_p = (1/|R_p|) int_{R_p} F(phi_h) g dS, integrated exactly for
 //                   piecewise-linear F (split at its kinks)
 
 #include <string>
@@ -44,7 +45,7 @@ ContactSurface make_contact_surface(const mesh::TetMesh& mesh, const fe::DofMap&
 /// The coarse partition T_H: patch p is the list of surface-face positions (into surface.faces).
 struct Patches {
   std::vector<std::vector<Index>> faces;
-  VectorXd area;            ///< |R_p| [m^2]
+  VectorXd area;                                    ///< |R_p| [m^2]
   Eigen::Matrix<Real, 3, Eigen::Dynamic> centroid;  ///< [m]
   Index size() const { return static_cast<Index>(faces.size()); }
 };

@@ -60,11 +60,13 @@ std::unique_ptr<FrictionLaw> constant_law(Real value) {
 
 std::unique_ptr<FrictionLaw> table_law(std::vector<Real> t, std::vector<Real> f) {
   if (t.empty() || t.size() != f.size())
-    throw InputError(fmt::format("friction law 'table': t and f need the same size >= 1 (got {} and {})",
-                                 t.size(), f.size()));
+    throw InputError(
+        fmt::format("friction law 'table': t and f need the same size >= 1 (got {} and {})",
+                    t.size(), f.size()));
   for (size_t k = 0; k < t.size(); ++k) {
     if (!(t[k] >= 0.0) || !std::isfinite(t[k]) || (k > 0 && !(t[k] > t[k - 1])))
-      throw InputError(fmt::format("friction law 'table': t[{}] = {} (t must be >= 0 and strictly increasing)", k, t[k]));
+      throw InputError(fmt::format(
+          "friction law 'table': t[{}] = {} (t must be >= 0 and strictly increasing)", k, t[k]));
     if (!(f[k] >= 0.0) || !std::isfinite(f[k]))
       throw InputError(fmt::format("friction law 'table': f[{}] = {} must be >= 0", k, f[k]));
   }

@@ -38,14 +38,13 @@ namespace detail {
 
 /// Always-on invariant check at module boundaries: throws fricon::Error naming the condition,
 /// the source location and the streamed message, e.g. FRICON_CHECK(n > 0, "n = " << n).
-#define FRICON_CHECK(cond, msg)                                                          \
-  do {                                                                                   \
-    if (!(cond)) {                                                                       \
-      std::ostringstream fricon_check_os_;                                               \
-      fricon_check_os_ << msg;                                                           \
-      ::fricon::detail::throw_check_failure(#cond, __FILE__, __LINE__,                   \
-                                            fricon_check_os_.str());                     \
-    }                                                                                    \
+#define FRICON_CHECK(cond, msg)                                                                 \
+  do {                                                                                          \
+    if (!(cond)) {                                                                              \
+      std::ostringstream fricon_check_os_;                                                      \
+      fricon_check_os_ << msg;                                                                  \
+      ::fricon::detail::throw_check_failure(#cond, __FILE__, __LINE__, fricon_check_os_.str()); \
+    }                                                                                           \
   } while (false)
 
 /// Debug-only invariant check, free in release builds; may sit in hot loops.

@@ -104,7 +104,8 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m, PhaseTimes&
     ScopedPhase phase(times, "contact");
     fields.surface = contact::make_contact_surface(m.mesh, m.dofs, opt.boundary, problem.source);
     if (opt.patches != "chessboard")
-      throw InputError(fmt::format("{}: contact.patches: unknown partition '{}'", problem.source, opt.patches));
+      throw InputError(
+          fmt::format("{}: contact.patches: unknown partition '{}'", problem.source, opt.patches));
     fields.patches = contact::chessboard_patches(m.mesh, fields.surface, problem.source);
     B = contact::assemble_b(m.mesh, m.dofs, fields.surface, fields.patches);
     rep.stability_ratio = contact::check_stability(B, problem.source);
@@ -139,8 +140,8 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m, PhaseTimes&
     Stopwatch watch;
     OuterIteration it;
     it.k = k;
-    fields.radius = contact::patch_radii(m.mesh, fields.surface, fields.patches, *law, phi,
-                                         fields.slip_bound);
+    fields.radius =
+        contact::patch_radii(m.mesh, fields.surface, fields.patches, *law, phi, fields.slip_bound);
     constraints.set_disc_radii(fields.radius);
     if (!so.warm_start) lambda.setZero();
     {
@@ -168,8 +169,8 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m, PhaseTimes&
     rep.err_history.push_back(it.err);
     rep.outer_iterations = k;
     if (last_qp.termination != qp::Termination::Converged) {
-      out.message = fmt::format("the dual QP of outer iteration {} did not converge: {}", k,
-                                last_qp.message);
+      out.message =
+          fmt::format("the dual QP of outer iteration {} did not converge: {}", k, last_qp.message);
       break;
     }
     phi = phi_new;
@@ -180,7 +181,8 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m, PhaseTimes&
   }
   if (!out.converged && out.message.empty()) {
     std::string hist;
-    for (Real e : rep.err_history) hist += fmt::format(" {:.3e}", e);
+    for (Real e : rep.err_history)
+      hist += fmt::format(" {:.3e}", e);
     out.message = fmt::format(
         "the successive approximations did not reach err <= {:.1e} in {} iterations; err(k):{}",
         so.outer_tol, so.outer_max, hist);
@@ -203,7 +205,8 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m, PhaseTimes&
     const VectorXd slip = tangential_slip(fields);
     rep.max_wt = slip.maxCoeff();
     fields.F.resize(slip.size());
-    for (Index a = 0; a < slip.size(); ++a) fields.F(a) = (*law)(slip(a));
+    for (Index a = 0; a < slip.size(); ++a)
+      fields.F(a) = (*law)(slip(a));
     for (Index p = 0; p < rep.n_patches; ++p) {
       rep.max_lambda_n = std::max(rep.max_lambda_n, lambda(3 * p));
       rep.max_lambda_t = std::max(rep.max_lambda_t, lambda.segment<2>(3 * p + 1).norm());
@@ -211,7 +214,8 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m, PhaseTimes&
     }
     const fe::NodalField contact_nodal = m.dofs.to_nodal(VectorXd(-(B.transpose() * lambda)));
     out.contact_force = contact_nodal.rowwise().sum();
-    out.linear_residual = (m.K * w - m.f + B.transpose() * lambda).norm() / std::max(m.f.norm(), 1e-300);
+    out.linear_residual =
+        (m.K * w - m.f + B.transpose() * lambda).norm() / std::max(m.f.norm(), 1e-300);
   }
   fields.lambda = lambda;
   out.w = w;

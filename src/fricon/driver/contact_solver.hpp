@@ -24,39 +24,39 @@ namespace fricon::driver {
 /// One outer iteration (a Tresca problem with a frozen coefficient).
 struct OuterIteration {
   int k = 0;
-  Real err = 0.0;          ///< err(k) = ||phi^k - phi^(k-1)|| / ||phi^k||
-  int qp_iterations = 0;   ///< MPGP steps
-  long qp_products = 0;    ///< products with Q in this QP (n_mult contribution)
-  Real qp_rel_gp = 0.0;    ///< final ||g^P|| / ||h||
+  Real err = 0.0;         ///< err(k) = ||phi^k - phi^(k-1)|| / ||phi^k||
+  int qp_iterations = 0;  ///< MPGP steps
+  long qp_products = 0;   ///< products with Q in this QP (n_mult contribution)
+  Real qp_rel_gp = 0.0;   ///< final ||g^P|| / ||h||
   std::string qp_termination;
-  double seconds = 0.0;    ///< wall time of this outer iteration [s]
+  double seconds = 0.0;  ///< wall time of this outer iteration [s]
 };
 
 struct ContactReport {
   std::string boundary;
   std::string friction_law;
-  std::string dual_operator;     ///< "implicit" or "dense" (what was used)
+  std::string dual_operator;  ///< "implicit" or "dense" (what was used)
   Index n_patches = 0;
-  Index n_dual = 0;              ///< 3 n_patches (the paper's n_d)
+  Index n_dual = 0;  ///< 3 n_patches (the paper's n_d)
   Index n_surface_nodes = 0;
-  Index n_contact_nodes = 0;     ///< surface nodes that are not Dirichlet nodes
-  Real stability_ratio = 0.0;    ///< sigma_min / sigma_max of B (condition (5.1))
-  Real norm_Q = 0.0;             ///< power-method estimate of ||Q|| [m/Pa]
+  Index n_contact_nodes = 0;   ///< surface nodes that are not Dirichlet nodes
+  Real stability_ratio = 0.0;  ///< sigma_min / sigma_max of B (condition (5.1))
+  Real norm_Q = 0.0;           ///< power-method estimate of ||Q|| [m/Pa]
   int outer_iterations = 0;
-  long n_mult = 0;               ///< products with Q over all QPs (the paper's n_mult)
-  long qp_iterations = 0;        ///< MPGP steps over all QPs
-  long n_kinv = 0;               ///< solves with the factor of K, all of them
+  long n_mult = 0;         ///< products with Q over all QPs (the paper's n_mult)
+  long qp_iterations = 0;  ///< MPGP steps over all QPs
+  long n_kinv = 0;         ///< solves with the factor of K, all of them
   std::vector<Real> err_history;
   std::vector<OuterIteration> history;
   // The paper's measures of the last iterate (method.md §5), with w_n = w.n on the surface:
-  Real wn_pos_l2 = 0.0;          ///< ||max(0, w_n)|| in L2(surface), P1 interpolant [m^2]
-  Real wn_pos_inf = 0.0;         ///< max over surface nodes of max(0, w_n) [m]
-  Real max_neg_wn = 0.0;         ///< max of -w_n (lift-off) [m]
-  Real max_wt = 0.0;             ///< max ||w_t|| [m]
-  Real max_lambda_n = 0.0;       ///< [Pa]
-  Real max_lambda_t = 0.0;       ///< max ||lambda_t|| [Pa]
-  Real total_normal_force = 0.0; ///< sum lambda_n |R_p| [N]
-  qp::KktResiduals kkt;          ///< of the last QP, with g = Q lambda - h applied through K^-1
+  Real wn_pos_l2 = 0.0;           ///< ||max(0, w_n)|| in L2(surface), P1 interpolant [m^2]
+  Real wn_pos_inf = 0.0;          ///< max over surface nodes of max(0, w_n) [m]
+  Real max_neg_wn = 0.0;          ///< max of -w_n (lift-off) [m]
+  Real max_wt = 0.0;              ///< max ||w_t|| [m]
+  Real max_lambda_n = 0.0;        ///< [Pa]
+  Real max_lambda_t = 0.0;        ///< max ||lambda_t|| [Pa]
+  Real total_normal_force = 0.0;  ///< sum lambda_n |R_p| [N]
+  qp::KktResiduals kkt;           ///< of the last QP, with g = Q lambda - h applied through K^-1
   /// ||Psi(phi) - phi|| / ||phi|| at the returned phi (the last err, which compares
   /// phi^k = Psi(phi^(k-1)) with phi^(k-1)).
   Real fixed_point_residual = 0.0;
@@ -66,12 +66,12 @@ struct ContactReport {
 struct ContactFields {
   contact::ContactSurface surface;
   contact::Patches patches;
-  VectorXd lambda;          ///< multipliers (lambda_n, lambda_t1, lambda_t2) per patch [Pa]
-  VectorXd radius;          ///< slip bounds rho_p used by the last QP [Pa]
-  VectorXd phi;             ///< phi per surface node used for the last radii [m]
-  VectorXd wn, wt1, wt2;    ///< components of the displacement w per surface node [m]
-  VectorXd F;               ///< F(||w_t||) per surface node
-  VectorXd slip_bound;      ///< g per surface node [Pa]
+  VectorXd lambda;        ///< multipliers (lambda_n, lambda_t1, lambda_t2) per patch [Pa]
+  VectorXd radius;        ///< slip bounds rho_p used by the last QP [Pa]
+  VectorXd phi;           ///< phi per surface node used for the last radii [m]
+  VectorXd wn, wt1, wt2;  ///< components of the displacement w per surface node [m]
+  VectorXd F;             ///< F(||w_t||) per surface node
+  VectorXd slip_bound;    ///< g per surface node [Pa]
 };
 
 struct ContactOutcome {
@@ -79,7 +79,7 @@ struct ContactOutcome {
   std::string message;
   ContactReport report;
   ContactFields fields;
-  VectorXd w;                     ///< displacement over the free dofs of the last inner solve [m]
+  VectorXd w;  ///< displacement over the free dofs of the last inner solve [m]
   Vec3 contact_force = Vec3::Zero();  ///< -sum of B^T lambda over free dofs, per direction [N]
   Real linear_residual = 0.0;         ///< ||K w - f + B^T lambda|| / ||f||
 };

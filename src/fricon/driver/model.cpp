@@ -24,7 +24,8 @@ fe::Material make_material(const Problem& problem) {
     FRICON_CHECK(problem.material.voigt.has_value(), "anisotropic material without voigt matrix");
     fe::Voigt6 D;
     for (int i = 0; i < 6; ++i)
-      for (int j = 0; j < 6; ++j) D(i, j) = (*problem.material.voigt)[i][j];
+      for (int j = 0; j < 6; ++j)
+        D(i, j) = (*problem.material.voigt)[i][j];
     return fe::anisotropic(D, where);
   }
   return fe::isotropic(problem.material.young, problem.material.poisson, where);
@@ -35,11 +36,13 @@ VectorXd full_load(const Problem& problem, const mesh::TetMesh& mesh, const fe::
   VectorXd f = VectorXd::Zero(dofs.n_free());
   for (size_t i = 0; i < problem.traction.size(); ++i) {
     const auto& t = problem.traction[i];
-    fe::add_traction(mesh, dofs,
-                     tagged_faces(mesh, problem, fmt::format("traction[{}].boundary", i), t.boundary),
-                     t.value, f);
+    fe::add_traction(
+        mesh, dofs,
+        tagged_faces(mesh, problem, fmt::format("traction[{}].boundary", i), t.boundary), t.value,
+        f);
   }
-  if (problem.volume_force.squaredNorm() > 0) fe::add_volume_force(mesh, dofs, problem.volume_force, f);
+  if (problem.volume_force.squaredNorm() > 0)
+    fe::add_volume_force(mesh, dofs, problem.volume_force, f);
   return f;
 }
 
@@ -47,7 +50,8 @@ VectorXd full_load(const Problem& problem, const mesh::TetMesh& mesh, const fe::
 
 mesh::TetMesh make_mesh(const Problem& problem) {
   if (problem.mesh.kind != "brick")
-    throw InputError(fmt::format("{}: mesh.kind: unknown kind '{}'", problem.source, problem.mesh.kind));
+    throw InputError(
+        fmt::format("{}: mesh.kind: unknown kind '{}'", problem.source, problem.mesh.kind));
   mesh::BrickSpec spec;
   spec.size = Vec3(problem.mesh.size[0], problem.mesh.size[1], problem.mesh.size[2]);
   spec.cells = problem.mesh.cells;
@@ -68,8 +72,8 @@ Model build_model(const Problem& problem, PhaseTimes& times) {
     std::vector<bool> fixed(static_cast<size_t>(3 * model.mesh.n_nodes()), false);
     for (size_t i = 0; i < problem.dirichlet.size(); ++i) {
       const auto& d = problem.dirichlet[i];
-      for (Index f : tagged_faces(model.mesh, problem, fmt::format("dirichlet[{}].boundary", i),
-                                  d.boundary))
+      for (Index f :
+           tagged_faces(model.mesh, problem, fmt::format("dirichlet[{}].boundary", i), d.boundary))
         for (int v = 0; v < 3; ++v)
           for (int c = 0; c < 3; ++c)
             if (d.components[c]) fixed[static_cast<size_t>(3 * model.mesh.faces(v, f) + c)] = true;

@@ -14,9 +14,9 @@ namespace fricon::driver {
 
 /// [mesh]
 struct MeshOptions {
-  std::string kind = "brick";                    ///< [mesh.kind] "brick" (only kind so far)
-  std::array<Real, 3> size{3.0, 1.0, 1.0};       ///< [mesh.size] box edge lengths [m], > 0
-  std::array<Index, 3> cells{12, 4, 4};          ///< [mesh.cells] cubes per direction, >= 1
+  std::string kind = "brick";               ///< [mesh.kind] "brick" (only kind so far)
+  std::array<Real, 3> size{3.0, 1.0, 1.0};  ///< [mesh.size] box edge lengths [m], > 0
+  std::array<Index, 3> cells{12, 4, 4};     ///< [mesh.cells] cubes per direction, >= 1
 };
 
 /// [material]
@@ -31,23 +31,23 @@ struct MaterialOptions {
 
 /// [[dirichlet]]: zero displacement on a tagged boundary.
 struct DirichletOptions {
-  std::string boundary;                           ///< [dirichlet.boundary] boundary tag
+  std::string boundary;                              ///< [dirichlet.boundary] boundary tag
   std::array<bool, 3> components{true, true, true};  ///< [dirichlet.components] subset of "xyz"
 };
 
 /// [[traction]]: constant surface traction on a tagged boundary.
 struct TractionOptions {
-  std::string boundary;               ///< [traction.boundary] boundary tag
-  Vec3 value = Vec3::Zero();          ///< [traction.value] traction vector [Pa]
+  std::string boundary;       ///< [traction.boundary] boundary tag
+  Vec3 value = Vec3::Zero();  ///< [traction.value] traction vector [Pa]
 };
 
 /// [contact.friction]: the coefficient of friction F(t), t = ||u_t|| [m].
 struct FrictionOptions {
-  std::string law = "paper";   ///< "paper", "constant" or "table"
-  Real param = 6.0e4;          ///< [param] paper's law (method.md §2.1): slope parameter [1/m], > 0
-  Real value = 0.3;            ///< [value] constant law: F, >= 0
-  std::vector<Real> t;         ///< [t] table law: slips [m], strictly increasing, >= 0
-  std::vector<Real> f;         ///< [f] table law: F at those slips, >= 0
+  std::string law = "paper";  ///< "paper", "constant" or "table"
+  Real param = 6.0e4;         ///< [param] paper's law (method.md §2.1): slope parameter [1/m], > 0
+  Real value = 0.3;           ///< [value] constant law: F, >= 0
+  std::vector<Real> t;        ///< [t] table law: slips [m], strictly increasing, >= 0
+  std::vector<Real> f;        ///< [f] table law: F at those slips, >= 0
 };
 
 /// [contact]: frictional contact of a tagged boundary with a rigid half-space (no initial gap).
@@ -62,11 +62,12 @@ struct ContactOptions {
 
 /// [solver]
 struct SolverOptions {
-  Real outer_tol = 1.0e-4;   ///< [solver.outer_tol] err(k) threshold of the successive approximations
-  int outer_max = 50;        ///< [solver.outer_max] maximum outer iterations, >= 1
-  Real qp_rtol = 1.0e-6;     ///< [solver.qp_rtol] QP stops when ||g^P|| <= qp_rtol ||h||
-  int qp_max = 100000;       ///< [solver.qp_max] maximum QP iterations per outer step
-  bool warm_start = true;    ///< [solver.warm_start] start each QP from the previous multipliers
+  Real outer_tol =
+      1.0e-4;              ///< [solver.outer_tol] err(k) threshold of the successive approximations
+  int outer_max = 50;      ///< [solver.outer_max] maximum outer iterations, >= 1
+  Real qp_rtol = 1.0e-6;   ///< [solver.qp_rtol] QP stops when ||g^P|| <= qp_rtol ||h||
+  int qp_max = 100000;     ///< [solver.qp_max] maximum QP iterations per outer step
+  bool warm_start = true;  ///< [solver.warm_start] start each QP from the previous multipliers
   /// [solver.dual_operator] "implicit" (each Q product = one solve with K, the paper's n_mult),
   /// "dense" (Q formed once by a block solve with n_dual right-hand sides), or "auto".
   std::string dual_operator = "auto";

@@ -6,7 +6,9 @@
 
 namespace fricon::driver {
 
-std::string to_string(Status s) { return s == Status::Converged ? "converged" : "not_converged"; }
+std::string to_string(Status s) {
+  return s == Status::Converged ? "converged" : "not_converged";
+}
 
 namespace {
 
@@ -17,12 +19,14 @@ void compute_stresses(RunResult& r) {
   for (Index t = 0; t < mesh.n_tets(); ++t) {
     const fe::P1Gradients g = fe::p1_gradients(fe::tet_vertices(mesh, t));
     Eigen::Matrix<Real, 12, 1> ue;
-    for (int a = 0; a < 4; ++a) ue.segment<3>(3 * a) = r.displacement.col(mesh.tets(a, t));
+    for (int a = 0; a < 4; ++a)
+      ue.segment<3>(3 * a) = r.displacement.col(mesh.tets(a, t));
     const Eigen::Matrix<Real, 6, 1> s = r.model.material.D * (fe::strain_matrix(g.grad) * ue);
     r.stress.col(t) = s;
-    r.von_mises(t) = std::sqrt(0.5 * ((s(0) - s(1)) * (s(0) - s(1)) + (s(1) - s(2)) * (s(1) - s(2)) +
-                                      (s(2) - s(0)) * (s(2) - s(0))) +
-                               3.0 * (s(3) * s(3) + s(4) * s(4) + s(5) * s(5)));
+    r.von_mises(t) =
+        std::sqrt(0.5 * ((s(0) - s(1)) * (s(0) - s(1)) + (s(1) - s(2)) * (s(1) - s(2)) +
+                         (s(2) - s(0)) * (s(2) - s(0))) +
+                  3.0 * (s(3) * s(3) + s(4) * s(4) + s(5) * s(5)));
   }
 }
 

@@ -22,17 +22,18 @@ struct RunReport {
   Status status = Status::Converged;
   std::string message;
   Index n_nodes = 0, n_tets = 0;
-  Index n_primal = 0;          ///< free displacement dofs (the paper's n_p)
-  linalg::CholeskyInfo factor; ///< size, fill and ordering of the Cholesky factor of K
-  PhaseTimes times;            ///< wall time per phase [s]
-  double time_s = 0.0;         ///< total wall time of the run [s]
-  Real max_displacement = 0.0; ///< max over nodes of |u| [m]
+  Index n_primal = 0;                  ///< free displacement dofs (the paper's n_p)
+  linalg::CholeskyInfo factor;         ///< size, fill and ordering of the Cholesky factor of K
+  PhaseTimes times;                    ///< wall time per phase [s]
+  double time_s = 0.0;                 ///< total wall time of the run [s]
+  Real max_displacement = 0.0;         ///< max over nodes of |u| [m]
   Vec3 applied_force = Vec3::Zero();   ///< sum of applied loads [N]
   Vec3 reaction_force = Vec3::Zero();  ///< sum of reactions at fixed dofs [N]
-  Vec3 contact_force = Vec3::Zero();   ///< sum of contact forces on the body [N] (zero without contact)
+  Vec3 contact_force =
+      Vec3::Zero();  ///< sum of contact forces on the body [N] (zero without contact)
   /// |applied + contact + reaction| / |applied|: global equilibrium, round-off if all is well.
   Real equilibrium_residual = 0.0;
-  Real linear_residual = 0.0;  ///< ||K u - (f - B^T lambda)|| / ||f||
+  Real linear_residual = 0.0;            ///< ||K u - (f - B^T lambda)|| / ||f||
   std::optional<ContactReport> contact;  ///< present when the problem has a [contact] section
 };
 
@@ -42,7 +43,7 @@ struct RunResult {
   fe::NodalField displacement;  ///< 3 x n_nodes [m], zero at fixed components
   /// Per tetrahedron: stress (Voigt order 11,22,33,23,13,12) [Pa], 6 x n_tets.
   Eigen::Matrix<Real, 6, Eigen::Dynamic> stress;
-  VectorXd von_mises;           ///< per tetrahedron [Pa]
+  VectorXd von_mises;                    ///< per tetrahedron [Pa]
   std::optional<ContactFields> contact;  ///< fields on the contact surface
 };
 

@@ -9,7 +9,8 @@ namespace fricon::fe {
 
 Eigen::Matrix<Real, 3, 4> tet_vertices(const mesh::TetMesh& mesh, Index t) {
   Eigen::Matrix<Real, 3, 4> x;
-  for (int a = 0; a < 4; ++a) x.col(a) = mesh.nodes.col(mesh.tets(a, t));
+  for (int a = 0; a < 4; ++a)
+    x.col(a) = mesh.nodes.col(mesh.tets(a, t));
   return x;
 }
 
@@ -26,7 +27,8 @@ NodeGraph node_graph(const mesh::TetMesh& mesh) {
   std::vector<std::vector<Index>> lists(static_cast<size_t>(n));
   for (Index t = 0; t < mesh.n_tets(); ++t)
     for (int a = 0; a < 4; ++a)
-      for (int b = 0; b < 4; ++b) lists[mesh.tets(a, t)].push_back(mesh.tets(b, t));
+      for (int b = 0; b < 4; ++b)
+        lists[mesh.tets(a, t)].push_back(mesh.tets(b, t));
   NodeGraph g;
   g.start.assign(static_cast<size_t>(n + 1), 0);
   for (Index i = 0; i < n; ++i) {
@@ -60,10 +62,12 @@ SparseMatrix assemble_stiffness(const mesh::TetMesh& mesh, const Material& mater
       if (col < 0) continue;
       SparseIndex count = 0;
       for (Index k = graph.start[b]; k < graph.start[b + 1]; ++k)
-        for (int c = 0; c < 3; ++c) count += dofs.dof(graph.adj[k], c) >= 0;
+        for (int c = 0; c < 3; ++c)
+          count += dofs.dof(graph.adj[k], c) >= 0;
       col_start[col + 1] = count;
     }
-  for (Index j = 0; j < n; ++j) col_start[j + 1] += col_start[j];
+  for (Index j = 0; j < n; ++j)
+    col_start[j + 1] += col_start[j];
   K.resizeNonZeros(col_start[n]);
   std::copy(col_start.begin(), col_start.end(), K.outerIndexPtr());
   for (Index b = 0; b < mesh.n_nodes(); ++b)
@@ -86,7 +90,8 @@ SparseMatrix assemble_stiffness(const mesh::TetMesh& mesh, const Material& mater
     const ElementMatrix Ke = element_stiffness(tet_vertices(mesh, t), material);
     Index local_dof[12];
     for (int a = 0; a < 4; ++a)
-      for (int c = 0; c < 3; ++c) local_dof[3 * a + c] = dofs.dof(mesh.tets(a, t), c);
+      for (int c = 0; c < 3; ++c)
+        local_dof[3 * a + c] = dofs.dof(mesh.tets(a, t), c);
     for (int j = 0; j < 12; ++j) {
       const Index col = local_dof[j];
       if (col < 0) continue;
@@ -96,7 +101,8 @@ SparseMatrix assemble_stiffness(const mesh::TetMesh& mesh, const Material& mater
         const Index row = local_dof[i];
         if (row < 0) continue;
         const SparseIndex* it = std::lower_bound(begin, end, static_cast<SparseIndex>(row));
-        FRICON_ASSERT(it != end && *it == row, "stiffness pattern misses (" << row << "," << col << ")");
+        FRICON_ASSERT(it != end && *it == row,
+                      "stiffness pattern misses (" << row << "," << col << ")");
         values[it - rows] += Ke(i, j);
       }
     }
@@ -112,8 +118,8 @@ void add_nodal(const DofMap& dofs, Index node, const Vec3& value, VectorXd& f) {
   }
 }
 void check_load_vector(const DofMap& dofs, const VectorXd& f) {
-  FRICON_CHECK(f.size() == dofs.n_free(), "load vector of size " << f.size() << ", expected "
-                                                                 << dofs.n_free());
+  FRICON_CHECK(f.size() == dofs.n_free(),
+               "load vector of size " << f.size() << ", expected " << dofs.n_free());
 }
 }  // namespace
 
@@ -122,7 +128,8 @@ void add_traction(const mesh::TetMesh& mesh, const DofMap& dofs, const std::vect
   check_load_vector(dofs, f);
   for (Index face : faces) {
     const Vec3 share = mesh::face_area(mesh, face) / 3.0 * p;
-    for (int v = 0; v < 3; ++v) add_nodal(dofs, mesh.faces(v, face), share, f);
+    for (int v = 0; v < 3; ++v)
+      add_nodal(dofs, mesh.faces(v, face), share, f);
   }
 }
 
@@ -132,7 +139,8 @@ void add_traction_p1(const mesh::TetMesh& mesh, const DofMap& dofs, const std::v
   for (Index face : faces) {
     const Real area = mesh::face_area(mesh, face);
     Vec3 sum = Vec3::Zero();
-    for (int v = 0; v < 3; ++v) sum += p.col(mesh.faces(v, face));
+    for (int v = 0; v < 3; ++v)
+      sum += p.col(mesh.faces(v, face));
     // Row a of the mass matrix |T|/12 (1 + delta_ab) applied to p: |T|/12 (p_a + sum).
     for (int v = 0; v < 3; ++v)
       add_nodal(dofs, mesh.faces(v, face), area / 12.0 * (p.col(mesh.faces(v, face)) + sum), f);
@@ -143,7 +151,8 @@ void add_volume_force(const mesh::TetMesh& mesh, const DofMap& dofs, const Vec3&
   check_load_vector(dofs, f);
   for (Index t = 0; t < mesh.n_tets(); ++t) {
     const Vec3 share = std::abs(mesh::tet_volume(mesh, t)) / 4.0 * b;
-    for (int a = 0; a < 4; ++a) add_nodal(dofs, mesh.tets(a, t), share, f);
+    for (int a = 0; a < 4; ++a)
+      add_nodal(dofs, mesh.tets(a, t), share, f);
   }
 }
 
@@ -153,7 +162,8 @@ void add_volume_force_p1(const mesh::TetMesh& mesh, const DofMap& dofs, const No
   for (Index t = 0; t < mesh.n_tets(); ++t) {
     const Real volume = std::abs(mesh::tet_volume(mesh, t));
     Vec3 sum = Vec3::Zero();
-    for (int a = 0; a < 4; ++a) sum += b.col(mesh.tets(a, t));
+    for (int a = 0; a < 4; ++a)
+      sum += b.col(mesh.tets(a, t));
     for (int a = 0; a < 4; ++a)
       add_nodal(dofs, mesh.tets(a, t), volume / 20.0 * (b.col(mesh.tets(a, t)) + sum), f);
   }
@@ -164,9 +174,11 @@ NodalField internal_forces(const mesh::TetMesh& mesh, const Material& material,
   NodalField r = NodalField::Zero(3, mesh.n_nodes());
   for (Index t = 0; t < mesh.n_tets(); ++t) {
     Eigen::Matrix<Real, 12, 1> ue;
-    for (int a = 0; a < 4; ++a) ue.segment<3>(3 * a) = u.col(mesh.tets(a, t));
+    for (int a = 0; a < 4; ++a)
+      ue.segment<3>(3 * a) = u.col(mesh.tets(a, t));
     const Eigen::Matrix<Real, 12, 1> re = element_stiffness(tet_vertices(mesh, t), material) * ue;
-    for (int a = 0; a < 4; ++a) r.col(mesh.tets(a, t)) += re.segment<3>(3 * a);
+    for (int a = 0; a < 4; ++a)
+      r.col(mesh.tets(a, t)) += re.segment<3>(3 * a);
   }
   return r;
 }

@@ -1,8 +1,8 @@
 #include "fricon/fe/material.hpp"
 
-#include <cmath>
-#include <Eigen/Eigenvalues>
 #include <fmt/format.h>
+#include <Eigen/Eigenvalues>
+#include <cmath>
 
 #include "fricon/core/error.hpp"
 
@@ -35,9 +35,9 @@ Material isotropic(Real young, Real poisson, const std::string& where) {
   if (!(young > 0.0) || !std::isfinite(young))
     throw InputError(fmt::format("{}: young = {} Pa must be positive and finite", where, young));
   if (!(poisson > -1.0 && poisson < 0.5))
-    throw InputError(fmt::format(
-        "{}: poisson = {} must lie in (-1, 0.5) for a positive definite Hooke tensor", where,
-        poisson));
+    throw InputError(
+        fmt::format("{}: poisson = {} must lie in (-1, 0.5) for a positive definite Hooke tensor",
+                    where, poisson));
   const auto [lambda, mu] = lame(young, poisson);
   Voigt6 D = Voigt6::Zero();
   D.topLeftCorner<3, 3>().setConstant(lambda);
@@ -47,15 +47,17 @@ Material isotropic(Real young, Real poisson, const std::string& where) {
 }
 
 Material anisotropic(const Voigt6& D, const std::string& where) {
-  if (!D.allFinite()) throw InputError(fmt::format("{}: Hooke matrix has a non-finite entry", where));
+  if (!D.allFinite())
+    throw InputError(fmt::format("{}: Hooke matrix has a non-finite entry", where));
   const Real scale = D.cwiseAbs().maxCoeff();
   if (!(scale > 0.0)) throw InputError(fmt::format("{}: Hooke matrix is zero", where));
   for (int I = 0; I < 6; ++I)
     for (int J = I + 1; J < 6; ++J)
       if (std::abs(D(I, J) - D(J, I)) > 1e-12 * scale)
-        throw InputError(fmt::format(
-            "{}: Hooke matrix is not symmetric: D[{}][{}] = {} but D[{}][{}] = {} (C_ijkl = C_klij)",
-            where, I, J, D(I, J), J, I, D(J, I)));
+        throw InputError(
+            fmt::format("{}: Hooke matrix is not symmetric: D[{}][{}] = {} but D[{}][{}] = {} "
+                        "(C_ijkl = C_klij)",
+                        where, I, J, D(I, J), J, I, D(J, I)));
   Material m;
   m.D = 0.5 * (D + D.transpose());
   m.ellipticity = ellipticity_constant(m.D);
@@ -72,7 +74,8 @@ Material from_tensor(const HookeTensor& C, const std::string& where) {
   for (const auto& a : C)
     for (const auto& b : a)
       for (const auto& c : b)
-        for (Real v : c) scale = std::max(scale, std::abs(v));
+        for (Real v : c)
+          scale = std::max(scale, std::abs(v));
   const Real tol = 1e-12 * scale;
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)
@@ -90,7 +93,8 @@ Material from_tensor(const HookeTensor& C, const std::string& where) {
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)
       for (int k = 0; k < 3; ++k)
-        for (int l = 0; l < 3; ++l) D(kVoigt[i][j], kVoigt[k][l]) = C[i][j][k][l];
+        for (int l = 0; l < 3; ++l)
+          D(kVoigt[i][j], kVoigt[k][l]) = C[i][j][k][l];
   return anisotropic(D, where);
 }
 
@@ -99,7 +103,8 @@ HookeTensor to_tensor(const Material& m) {
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)
       for (int k = 0; k < 3; ++k)
-        for (int l = 0; l < 3; ++l) C[i][j][k][l] = m.D(kVoigt[i][j], kVoigt[k][l]);
+        for (int l = 0; l < 3; ++l)
+          C[i][j][k][l] = m.D(kVoigt[i][j], kVoigt[k][l]);
   return C;
 }
 

@@ -1,7 +1,7 @@
 #include "fricon/fe/p1_element.hpp"
 
-#include <cmath>
 #include <fmt/format.h>
+#include <cmath>
 
 #include "fricon/core/error.hpp"
 

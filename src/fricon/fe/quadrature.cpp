@@ -55,8 +55,8 @@ QuadratureRule tet_rule(int n) {
         rule.points(1, q) = x1;
         rule.points(2, q) = x2;
         rule.points(3, q) = x3;
-        rule.weights(q) = 6.0 * (1.0 - u) * (1.0 - u) * (1.0 - v) * g.weights(i) * g.weights(j) *
-                          g.weights(k);
+        rule.weights(q) =
+            6.0 * (1.0 - u) * (1.0 - u) * (1.0 - v) * g.weights(i) * g.weights(j) * g.weights(k);
         ++q;
       }
   return rule;

@@ -16,7 +16,8 @@ void write_atomically(const std::filesystem::path& path,
   if (path.has_parent_path()) {
     fs::create_directories(path.parent_path(), ec);
     if (ec)
-      throw Error(fmt::format("cannot create folder {}: {}", path.parent_path().string(), ec.message()));
+      throw Error(
+          fmt::format("cannot create folder {}: {}", path.parent_path().string(), ec.message()));
   }
   fs::path tmp = path;
   tmp += ".tmp";
@@ -33,7 +34,8 @@ void write_atomically(const std::filesystem::path& path,
   fs::rename(tmp, path, ec);
   if (ec) {
     fs::remove(tmp, ec);
-    throw Error(fmt::format("cannot rename {} to {}: {}", tmp.string(), path.string(), ec.message()));
+    throw Error(
+        fmt::format("cannot rename {} to {}: {}", tmp.string(), path.string(), ec.message()));
   }
 }
 

@@ -11,7 +11,9 @@
 namespace fricon::io {
 
 namespace {
-nlohmann::json vec3(const Vec3& v) { return nlohmann::json::array({v(0), v(1), v(2)}); }
+nlohmann::json vec3(const Vec3& v) {
+  return nlohmann::json::array({v(0), v(1), v(2)});
+}
 }  // namespace
 
 nlohmann::json report_json(const driver::Problem& problem, const driver::RunResult& result,
@@ -35,7 +37,8 @@ nlohmann::json report_json(const driver::Problem& problem, const driver::RunResu
                  {"supernodal", r.factor.supernodal},
                  {"rcond_estimate", r.factor.rcond}};
   nlohmann::json timings = nlohmann::json::object();
-  for (const auto& [name, e] : r.times.phases) timings[name] = e.seconds;
+  for (const auto& [name, e] : r.times.phases)
+    timings[name] = e.seconds;
   j["timings"] = timings;
   j["time_s"] = r.time_s;
   j["max_displacement"] = r.max_displacement;
@@ -131,7 +134,8 @@ std::vector<std::filesystem::path> write_results(const std::filesystem::path& di
     // The contact surface as triangles: nodal w and slip, per-triangle multipliers of its patch.
     VtuGrid surface;
     surface.points.resize(3, s.n_nodes());
-    for (Index k = 0; k < s.n_nodes(); ++k) surface.points.col(k) = mesh.nodes.col(s.nodes[static_cast<size_t>(k)]);
+    for (Index k = 0; k < s.n_nodes(); ++k)
+      surface.points.col(k) = mesh.nodes.col(s.nodes[static_cast<size_t>(k)]);
     surface.cells = s.face_nodes;
     MatrixXd w(3, s.n_nodes()), scalars(4, s.n_nodes());
     for (Index k = 0; k < s.n_nodes(); ++k) {

@@ -11,14 +11,17 @@ namespace fricon::io {
 namespace {
 
 void write_data_array(std::ostream& out, const VtuField& field, Index n_entities) {
-  FRICON_CHECK(field.values.cols() == n_entities,
-               "field " << field.name << " has " << field.values.cols() << " entries, expected "
-                        << n_entities);
-  fmt::print(out, "        <DataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"{}\" format=\"ascii\">\n",
+  FRICON_CHECK(field.values.cols() == n_entities, "field " << field.name << " has "
+                                                           << field.values.cols()
+                                                           << " entries, expected " << n_entities);
+  fmt::print(out,
+             "        <DataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"{}\" "
+             "format=\"ascii\">\n",
              field.name, field.values.rows());
   for (Index j = 0; j < field.values.cols(); ++j) {
     out << "         ";
-    for (Index i = 0; i < field.values.rows(); ++i) fmt::print(out, " {}", field.values(i, j));
+    for (Index i = 0; i < field.values.rows(); ++i)
+      fmt::print(out, " {}", field.values(i, j));
     out << '\n';
   }
   out << "        </DataArray>\n";
@@ -43,24 +46,32 @@ void write_vtu(const std::filesystem::path& path, const VtuGrid& grid) {
            "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
     for (Index c = 0; c < n_cells; ++c) {
       out << "         ";
-      for (Index v = 0; v < nv; ++v) fmt::print(out, " {}", grid.cells(v, c));
+      for (Index v = 0; v < nv; ++v)
+        fmt::print(out, " {}", grid.cells(v, c));
       out << '\n';
     }
-    out << "        </DataArray>\n        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
-    for (Index c = 0; c < n_cells; ++c) fmt::print(out, "{}\n", nv * (c + 1));
-    out << "        </DataArray>\n        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
-    for (Index c = 0; c < n_cells; ++c) fmt::print(out, "{}\n", vtk_type);
+    out << "        </DataArray>\n        <DataArray type=\"Int64\" Name=\"offsets\" "
+           "format=\"ascii\">\n";
+    for (Index c = 0; c < n_cells; ++c)
+      fmt::print(out, "{}\n", nv * (c + 1));
+    out << "        </DataArray>\n        <DataArray type=\"UInt8\" Name=\"types\" "
+           "format=\"ascii\">\n";
+    for (Index c = 0; c < n_cells; ++c)
+      fmt::print(out, "{}\n", vtk_type);
     out << "        </DataArray>\n      </Cells>\n      <PointData>\n";
-    for (const auto& f : grid.point_data) write_data_array(out, f, n_points);
+    for (const auto& f : grid.point_data)
+      write_data_array(out, f, n_points);
     out << "      </PointData>\n      <CellData>\n";
-    for (const auto& f : grid.cell_data) write_data_array(out, f, n_cells);
+    for (const auto& f : grid.cell_data)
+      write_data_array(out, f, n_cells);
     out << "      </CellData>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
   });
 }
 
 void write_pvd(const std::filesystem::path& path, const std::vector<std::string>& files) {
   write_atomically(path, [&](std::ostream& out) {
-    out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\">\n  <Collection>\n";
+    out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\">\n  "
+           "<Collection>\n";
     for (size_t i = 0; i < files.size(); ++i)
       fmt::print(out, "    <DataSet timestep=\"0\" part=\"{}\" file=\"{}\"/>\n", i, files[i]);
     out << "  </Collection>\n</VTKFile>\n";

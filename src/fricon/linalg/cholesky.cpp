@@ -37,14 +37,22 @@ constexpr double kSingularRcond = 1e-13;
 
 const char* ordering_name(int ordering) {
   switch (ordering) {
-    case CHOLMOD_NATURAL: return "natural";
-    case CHOLMOD_GIVEN: return "given";
-    case CHOLMOD_AMD: return "AMD";
-    case CHOLMOD_METIS: return "METIS";
-    case CHOLMOD_NESDIS: return "NESDIS";
-    case CHOLMOD_COLAMD: return "COLAMD";
-    case CHOLMOD_POSTORDERED: return "postordered";
-    default: return "unknown";
+    case CHOLMOD_NATURAL:
+      return "natural";
+    case CHOLMOD_GIVEN:
+      return "given";
+    case CHOLMOD_AMD:
+      return "AMD";
+    case CHOLMOD_METIS:
+      return "METIS";
+    case CHOLMOD_NESDIS:
+      return "NESDIS";
+    case CHOLMOD_COLAMD:
+      return "COLAMD";
+    case CHOLMOD_POSTORDERED:
+      return "postordered";
+    default:
+      return "unknown";
   }
 }
 }  // namespace
@@ -73,9 +81,9 @@ void CholeskyFactor::factorize(const SparseMatrix& K) {
 
   impl_->L = cholmod_l_analyze(&A, c);
   if (!impl_->L || c->status < CHOLMOD_OK)
-    throw NumericalError(fmt::format(
-        "Cholesky analysis of K failed (CHOLMOD status {}, n = {}, nnz = {})", c->status,
-        info_.n, info_.nnz_K));
+    throw NumericalError(
+        fmt::format("Cholesky analysis of K failed (CHOLMOD status {}, n = {}, nnz = {})",
+                    c->status, info_.n, info_.nnz_K));
   cholmod_l_factorize(&A, impl_->L, c);
   if (c->status == CHOLMOD_NOT_POSDEF)
     throw NumericalError(fmt::format(
@@ -104,7 +112,8 @@ void CholeskyFactor::factorize(const SparseMatrix& K) {
 
 MatrixXd CholeskyFactor::solve(const MatrixXd& B) const {
   FRICON_CHECK(impl_->L, "solve() before factorize()");
-  FRICON_CHECK(B.rows() == info_.n, "right-hand side has " << B.rows() << " rows, K has " << info_.n);
+  FRICON_CHECK(B.rows() == info_.n,
+               "right-hand side has " << B.rows() << " rows, K has " << info_.n);
   cholmod_common* c = &impl_->common;
   cholmod_dense b{};
   b.nrow = static_cast<size_t>(B.rows());
@@ -117,8 +126,8 @@ MatrixXd CholeskyFactor::solve(const MatrixXd& B) const {
   cholmod_dense* x = cholmod_l_solve(CHOLMOD_A, impl_->L, &b, c);
   if (!x || c->status < CHOLMOD_OK) {
     if (x) cholmod_l_free_dense(&x, c);
-    throw NumericalError(fmt::format("Cholesky solve failed (CHOLMOD status {}, n = {})",
-                                     c->status, info_.n));
+    throw NumericalError(
+        fmt::format("Cholesky solve failed (CHOLMOD status {}, n = {})", c->status, info_.n));
   }
   MatrixXd X = Eigen::Map<const MatrixXd>(static_cast<const Real*>(x->x), B.rows(), B.cols());
   cholmod_l_free_dense(&x, c);

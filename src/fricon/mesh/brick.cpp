@@ -1,7 +1,7 @@
 #include "fricon/mesh/brick.hpp"
 
-#include <cmath>
 #include <fmt/format.h>
+#include <cmath>
 
 #include "fricon/core/error.hpp"
 
@@ -10,7 +10,8 @@ namespace fricon::mesh {
 TetMesh make_brick(const BrickSpec& spec) {
   for (int d = 0; d < 3; ++d) {
     if (!(spec.size[d] > 0.0) || !std::isfinite(spec.size[d]))
-      throw InputError(fmt::format("brick: size[{}] = {} must be a positive length", d, spec.size[d]));
+      throw InputError(
+          fmt::format("brick: size[{}] = {} must be a positive length", d, spec.size[d]));
     if (spec.cells[d] < 1)
       throw InputError(fmt::format("brick: cells[{}] = {} must be at least 1", d, spec.cells[d]));
   }
@@ -31,7 +32,8 @@ TetMesh make_brick(const BrickSpec& spec) {
     const Real volume = signed_volume(mesh.nodes.col(v[0]), mesh.nodes.col(v[1]),
                                       mesh.nodes.col(v[2]), mesh.nodes.col(v[3]));
     if (volume < 0) std::swap(v[2], v[3]);
-    for (int a = 0; a < 4; ++a) mesh.tets(a, t) = v[a];
+    for (int a = 0; a < 4; ++a)
+      mesh.tets(a, t) = v[a];
     ++t;
   };
   for (Index k = 0; k < nz; ++k)

@@ -10,7 +10,7 @@
 namespace fricon::mesh {
 
 struct BrickSpec {
-  Vec3 size{3.0, 1.0, 1.0};         ///< edge lengths [m] of the box [0,size_x]x[0,size_y]x[0,size_z]
+  Vec3 size{3.0, 1.0, 1.0};  ///< edge lengths [m] of the box [0,size_x]x[0,size_y]x[0,size_z]
   std::array<Index, 3> cells{12, 4, 4};  ///< cubes (cells) per direction, each >= 1
 };
 

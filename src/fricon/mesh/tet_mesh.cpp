@@ -27,7 +27,8 @@ std::vector<Index> TetMesh::faces_with_tag(const std::string& name) const {
 std::vector<Index> TetMesh::nodes_with_tag(const std::string& name) const {
   std::vector<Index> result;
   for (Index f : faces_with_tag(name))
-    for (int v = 0; v < 3; ++v) result.push_back(faces(v, f));
+    for (int v = 0; v < 3; ++v)
+      result.push_back(faces(v, f));
   std::sort(result.begin(), result.end());
   result.erase(std::unique(result.begin(), result.end()), result.end());
   return result;
@@ -35,7 +36,8 @@ std::vector<Index> TetMesh::nodes_with_tag(const std::string& name) const {
 
 std::string TetMesh::tag_list() const {
   std::string s;
-  for (const auto& name : tag_names) s += (s.empty() ? "" : ", ") + name;
+  for (const auto& name : tag_names)
+    s += (s.empty() ? "" : ", ") + name;
   return s;
 }
 
@@ -59,9 +61,13 @@ Vec3 face_cross(const TetMesh& mesh, Index f) {
 }
 }  // namespace
 
-Real face_area(const TetMesh& mesh, Index f) { return 0.5 * face_cross(mesh, f).norm(); }
+Real face_area(const TetMesh& mesh, Index f) {
+  return 0.5 * face_cross(mesh, f).norm();
+}
 
-Vec3 face_normal(const TetMesh& mesh, Index f) { return face_cross(mesh, f).normalized(); }
+Vec3 face_normal(const TetMesh& mesh, Index f) {
+  return face_cross(mesh, f).normalized();
+}
 
 void check_mesh(const TetMesh& mesh, const std::string& source, Real relative_tolerance) {
   if (mesh.n_nodes() == 0 || mesh.n_tets() == 0)
@@ -74,19 +80,20 @@ void check_mesh(const TetMesh& mesh, const std::string& source, Real relative_to
   for (Index t = 0; t < mesh.n_tets(); ++t) {
     for (int v = 0; v < 4; ++v)
       if (mesh.tets(v, t) < 0 || mesh.tets(v, t) >= n)
-        throw InputError(fmt::format("{}: tetrahedron {} refers to node {}, but the mesh has {} nodes",
-                                     source, t, mesh.tets(v, t), n));
+        throw InputError(
+            fmt::format("{}: tetrahedron {} refers to node {}, but the mesh has {} nodes", source,
+                        t, mesh.tets(v, t), n));
     Real longest = 0.0;
     for (int a = 0; a < 4; ++a)
       for (int b = a + 1; b < 4; ++b)
-        longest = std::max(longest,
-                           (mesh.nodes.col(mesh.tets(a, t)) - mesh.nodes.col(mesh.tets(b, t))).norm());
+        longest = std::max(
+            longest, (mesh.nodes.col(mesh.tets(a, t)) - mesh.nodes.col(mesh.tets(b, t))).norm());
     const Real volume = tet_volume(mesh, t);
     if (volume <= relative_tolerance * longest * longest * longest)
-      throw InputError(fmt::format("{}: tetrahedron {} (nodes {} {} {} {}) is {} (volume {:.3e} m^3)",
-                                   source, t, mesh.tets(0, t), mesh.tets(1, t), mesh.tets(2, t),
-                                   mesh.tets(3, t), volume < 0 ? "inverted" : "degenerate",
-                                   volume));
+      throw InputError(
+          fmt::format("{}: tetrahedron {} (nodes {} {} {} {}) is {} (volume {:.3e} m^3)", source, t,
+                      mesh.tets(0, t), mesh.tets(1, t), mesh.tets(2, t), mesh.tets(3, t),
+                      volume < 0 ? "inverted" : "degenerate", volume));
   }
   if (mesh.face_tag.size() != static_cast<size_t>(mesh.n_faces()))
     throw InputError(fmt::format("{}: {} boundary faces but {} face tags", source, mesh.n_faces(),
@@ -94,8 +101,9 @@ void check_mesh(const TetMesh& mesh, const std::string& source, Real relative_to
   for (Index f = 0; f < mesh.n_faces(); ++f) {
     for (int v = 0; v < 3; ++v)
       if (mesh.faces(v, f) < 0 || mesh.faces(v, f) >= n)
-        throw InputError(fmt::format("{}: boundary face {} refers to node {}, but the mesh has {} nodes",
-                                     source, f, mesh.faces(v, f), n));
+        throw InputError(
+            fmt::format("{}: boundary face {} refers to node {}, but the mesh has {} nodes", source,
+                        f, mesh.faces(v, f), n));
     if (mesh.face_tag[f] < 0 || mesh.face_tag[f] >= static_cast<int>(mesh.tag_names.size()))
       throw InputError(fmt::format("{}: boundary face {} has tag {} of {}", source, f,
                                    mesh.face_tag[f], mesh.tag_names.size()));
@@ -122,9 +130,12 @@ FaceSharing face_sharing(const TetMesh& mesh) {
       ++count[sorted_face(mesh.tets(lf[0], t), mesh.tets(lf[1], t), mesh.tets(lf[2], t))];
   FaceSharing s;
   for (const auto& [key, c] : count) {
-    if (c == 1) ++s.n_boundary;
-    else if (c == 2) ++s.n_interior;
-    else ++s.n_overshared;
+    if (c == 1)
+      ++s.n_boundary;
+    else if (c == 2)
+      ++s.n_interior;
+    else
+      ++s.n_overshared;
   }
   return s;
 }
@@ -145,7 +156,8 @@ Eigen::Matrix<Index, 3, Eigen::Dynamic> boundary_faces_of(const TetMesh& mesh) {
     if (entry.first == 1) boundary.push_back(entry.second);
   Eigen::Matrix<Index, 3, Eigen::Dynamic> faces(3, static_cast<Index>(boundary.size()));
   for (size_t f = 0; f < boundary.size(); ++f)
-    for (int v = 0; v < 3; ++v) faces(v, static_cast<Index>(f)) = boundary[f][v];
+    for (int v = 0; v < 3; ++v)
+      faces(v, static_cast<Index>(f)) = boundary[f][v];
   return faces;
 }
 

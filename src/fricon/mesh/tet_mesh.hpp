@@ -60,9 +60,9 @@ void check_mesh(const TetMesh& mesh, const std::string& source, Real relative_to
 
 /// Counts of how the triangular faces of the tetrahedra are shared.
 struct FaceSharing {
-  Index n_interior = 0;   ///< faces shared by exactly two tetrahedra
-  Index n_boundary = 0;   ///< faces of exactly one tetrahedron
-  Index n_overshared = 0; ///< faces of three or more tetrahedra (non-manifold: an error)
+  Index n_interior = 0;    ///< faces shared by exactly two tetrahedra
+  Index n_boundary = 0;    ///< faces of exactly one tetrahedron
+  Index n_overshared = 0;  ///< faces of three or more tetrahedra (non-manifold: an error)
 };
 
 /// Counts faces by the number of tetrahedra that contain them (a conformity check).

@@ -27,7 +27,8 @@ Brick paper_brick(Index n) {
   b.mesh = mesh::make_brick({Vec3(3, 1, 1), {3 * n, n, n}});
   std::vector<bool> fixed(static_cast<size_t>(3 * b.mesh.n_nodes()), false);
   for (Index a : b.mesh.nodes_with_tag("x0"))
-    for (int c = 0; c < 3; ++c) fixed[static_cast<size_t>(3 * a + c)] = true;
+    for (int c = 0; c < 3; ++c)
+      fixed[static_cast<size_t>(3 * a + c)] = true;
   b.dofs = fe::DofMap(fixed);
   b.surface = make_contact_surface(b.mesh, b.dofs, "z0", "test");
   b.patches = chessboard_patches(b.mesh, b.surface, "test");
@@ -90,7 +91,8 @@ TEST(ContactSurface, BIntegratesTracesExactly) {
     weights.push_back(-it.value());
   std::sort(weights.begin(), weights.end());
   ASSERT_EQ(weights.size(), 9u);
-  for (int k = 0; k < 8; ++k) EXPECT_NEAR(weights[k], h2 / 3, 1e-15);
+  for (int k = 0; k < 8; ++k)
+    EXPECT_NEAR(weights[k], h2 / 3, 1e-15);
   EXPECT_NEAR(weights[8], 4 * h2 / 3, 1e-15);
 }
 
@@ -148,7 +150,8 @@ TEST(Radii, ConstantAndLinearSlipsAreIntegratedExactly) {
   // [x0, x0 + 2h] is (1/2h) int F(s x) dx, computed here in closed form.
   const Real s = 3e-5;  // m per m: phi goes from 0 to 9e-5 across the brick
   VectorXd phi(ns);
-  for (Index k = 0; k < ns; ++k) phi(k) = s * b.mesh.nodes(0, b.surface.nodes[static_cast<size_t>(k)]);
+  for (Index k = 0; k < ns; ++k)
+    phi(k) = s * b.mesh.nodes(0, b.surface.nodes[static_cast<size_t>(k)]);
   rho = patch_radii(b.mesh, b.surface, b.patches, *F, phi, g);
   const Real t0 = 1e-5, t1 = 1e-5 + 2.0 / 6e4;
   auto antiderivative = [&](Real x) {  // int_0^x F(s y) dy
@@ -169,6 +172,7 @@ TEST(Radii, SurfaceL2NormOfLinearFunction) {
   // int over (0,3)x(0,1) of x^2 = 9.
   const Brick b = paper_brick(4);
   VectorXd v(b.surface.n_nodes());
-  for (Index k = 0; k < v.size(); ++k) v(k) = b.mesh.nodes(0, b.surface.nodes[static_cast<size_t>(k)]);
+  for (Index k = 0; k < v.size(); ++k)
+    v(k) = b.mesh.nodes(0, b.surface.nodes[static_cast<size_t>(k)]);
   EXPECT_NEAR(surface_l2_norm(b.mesh, b.surface, v), 3.0, 1e-13);
 }

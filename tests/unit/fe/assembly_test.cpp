@@ -14,7 +14,8 @@ namespace {
 std::vector<bool> clamp(const mesh::TetMesh& m, const std::string& tag) {
   std::vector<bool> fixed(static_cast<size_t>(3 * m.n_nodes()), false);
   for (Index a : m.nodes_with_tag(tag))
-    for (int c = 0; c < 3; ++c) fixed[static_cast<size_t>(3 * a + c)] = true;
+    for (int c = 0; c < 3; ++c)
+      fixed[static_cast<size_t>(3 * a + c)] = true;
   return fixed;
 }
 }  // namespace
@@ -60,12 +61,14 @@ TEST(Assembly, PatchTestReproducesAnAffineField) {
   A << 1e-3, 2e-4, -3e-4, 5e-4, -2e-3, 1e-4, 0, 7e-4, 1.5e-3;
   const Vec3 c(1e-4, -2e-4, 3e-4);
   NodalField u_exact(3, m.n_nodes());
-  for (Index a = 0; a < m.n_nodes(); ++a) u_exact.col(a) = A * m.nodes.col(a) + c;
+  for (Index a = 0; a < m.n_nodes(); ++a)
+    u_exact.col(a) = A * m.nodes.col(a) + c;
 
   std::vector<bool> on_boundary(static_cast<size_t>(3 * m.n_nodes()), false);
   for (Index f = 0; f < m.n_faces(); ++f)
     for (int v = 0; v < 3; ++v)
-      for (int k = 0; k < 3; ++k) on_boundary[static_cast<size_t>(3 * m.faces(v, f) + k)] = true;
+      for (int k = 0; k < 3; ++k)
+        on_boundary[static_cast<size_t>(3 * m.faces(v, f) + k)] = true;
   const DofMap all(m.n_nodes()), interior(on_boundary);
   ASSERT_GT(interior.n_free(), 0);
   const SparseMatrix K = assemble_stiffness(m, mat, all);
@@ -78,8 +81,7 @@ TEST(Assembly, PatchTestReproducesAnAffineField) {
   linalg::CholeskyFactor chol;
   chol.factorize(assemble_stiffness(m, mat, interior));
   const VectorXd u_interior = chol.solve(VectorXd(-interior.from_nodal(r)));
-  EXPECT_NEAR((u_interior - interior.from_nodal(u_exact)).lpNorm<Eigen::Infinity>(), 0.0,
-              1e-14);
+  EXPECT_NEAR((u_interior - interior.from_nodal(u_exact)).lpNorm<Eigen::Infinity>(), 0.0, 1e-14);
 }
 
 TEST(Assembly, TractionPatchTestBalancesConstantStress) {
@@ -90,7 +92,8 @@ TEST(Assembly, TractionPatchTestBalancesConstantStress) {
   Mat3 A;
   A << 1e-3, 2e-4, 0, -1e-4, 5e-4, 3e-4, 2e-4, 0, -7e-4;
   NodalField u(3, m.n_nodes());
-  for (Index a = 0; a < m.n_nodes(); ++a) u.col(a) = A * m.nodes.col(a);
+  for (Index a = 0; a < m.n_nodes(); ++a)
+    u.col(a) = A * m.nodes.col(a);
   const Mat3 eps = 0.5 * (A + A.transpose());
   Eigen::Matrix<Real, 6, 1> ev;
   ev << eps(0, 0), eps(1, 1), eps(2, 2), 2 * eps(1, 2), 2 * eps(0, 2), 2 * eps(0, 1);

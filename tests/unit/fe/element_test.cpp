@@ -22,7 +22,8 @@ TetVertices skewed_tet() {
 Eigen::Matrix<Real, 12, 6> rigid_modes(const TetVertices& x) {
   Eigen::Matrix<Real, 12, 6> R = Eigen::Matrix<Real, 12, 6>::Zero();
   for (int a = 0; a < 4; ++a) {
-    for (int c = 0; c < 3; ++c) R(3 * a + c, c) = 1.0;
+    for (int c = 0; c < 3; ++c)
+      R(3 * a + c, c) = 1.0;
     for (int r = 0; r < 3; ++r) {
       Vec3 axis = Vec3::Zero();
       axis(r) = 1.0;
@@ -38,7 +39,8 @@ TEST(P1Element, GradientsReproduceLinearFunctions) {
   const P1Gradients g = p1_gradients(x);
   const Vec3 slope(0.3, -1.2, 2.5);
   Eigen::Matrix<Real, 4, 1> values;
-  for (int a = 0; a < 4; ++a) values(a) = slope.dot(x.col(a)) + 7.0;
+  for (int a = 0; a < 4; ++a)
+    values(a) = slope.dot(x.col(a)) + 7.0;
   EXPECT_NEAR((g.grad * values - slope).norm(), 0.0, 1e-13);
   EXPECT_GT(g.volume, 0.0);
 }
@@ -50,8 +52,10 @@ TEST(P1Element, StiffnessIsSymmetricWithRigidKernelOfRankSix) {
   EXPECT_NEAR((K * rigid_modes(x)).norm() / K.norm(), 0.0, 1e-14);
   Eigen::SelfAdjointEigenSolver<ElementMatrix> eig(K);
   // Exactly six zero eigenvalues, six positive ones.
-  for (int i = 0; i < 6; ++i) EXPECT_LT(std::abs(eig.eigenvalues()(i)), 1e-6 * K.norm());
-  for (int i = 6; i < 12; ++i) EXPECT_GT(eig.eigenvalues()(i), 1e-6 * K.norm());
+  for (int i = 0; i < 6; ++i)
+    EXPECT_LT(std::abs(eig.eigenvalues()(i)), 1e-6 * K.norm());
+  for (int i = 6; i < 12; ++i)
+    EXPECT_GT(eig.eigenvalues()(i), 1e-6 * K.norm());
 }
 
 TEST(P1Element, EnergyOfUniformStrainMatchesHandValue) {
@@ -60,7 +64,8 @@ TEST(P1Element, EnergyOfUniformStrainMatchesHandValue) {
   const Real E = 1e9, nu = 0.25, e = 1e-3;
   const ElementMatrix K = element_stiffness(x, isotropic(E, nu));
   Eigen::Matrix<Real, 12, 1> u = Eigen::Matrix<Real, 12, 1>::Zero();
-  for (int a = 0; a < 4; ++a) u(3 * a) = e * x(0, a);
+  for (int a = 0; a < 4; ++a)
+    u(3 * a) = e * x(0, a);
   const auto [lambda, mu] = lame(E, nu);
   EXPECT_NEAR(0.5 * u.dot(K * u), 0.5 * p1_gradients(x).volume * (lambda + 2 * mu) * e * e,
               1e-12 * E * e * e);
@@ -71,7 +76,8 @@ TEST(Quadrature, GaussLegendreIsExact) {
     const QuadratureRule r = gauss_legendre(n);
     for (int p = 0; p <= 2 * n - 1; ++p) {
       Real sum = 0;
-      for (int q = 0; q < n; ++q) sum += r.weights(q) * std::pow(r.points(1, q), p);
+      for (int q = 0; q < n; ++q)
+        sum += r.weights(q) * std::pow(r.points(1, q), p);
       EXPECT_NEAR(sum, 1.0 / (p + 1), 1e-14) << "n = " << n << ", degree " << p;
     }
   }

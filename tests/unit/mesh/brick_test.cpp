@@ -10,7 +10,9 @@ using namespace fricon;
 using namespace fricon::mesh;
 
 namespace {
-BrickSpec paper_brick(Index n) { return BrickSpec{Vec3(3.0, 1.0, 1.0), {3 * n, n, n}}; }
+BrickSpec paper_brick(Index n) {
+  return BrickSpec{Vec3(3.0, 1.0, 1.0), {3 * n, n, n}};
+}
 }  // namespace
 
 TEST(Brick, CountsMatchThePaper) {
@@ -25,7 +27,8 @@ TEST(Brick, CountsMatchThePaper) {
 
 TEST(Brick, EveryTetrahedronIsPositivelyOriented) {
   const TetMesh m = make_brick(BrickSpec{Vec3(2.0, 1.5, 0.5), {5, 3, 4}});
-  for (Index t = 0; t < m.n_tets(); ++t) EXPECT_GT(tet_volume(m, t), 0.0) << "tet " << t;
+  for (Index t = 0; t < m.n_tets(); ++t)
+    EXPECT_GT(tet_volume(m, t), 0.0) << "tet " << t;
   EXPECT_NO_THROW(check_mesh(m, "brick"));
 }
 
@@ -33,7 +36,8 @@ TEST(Brick, VolumeIsExact) {
   const BrickSpec spec{Vec3(2.0, 1.5, 0.5), {5, 3, 4}};
   const TetMesh m = make_brick(spec);
   Real volume = 0;
-  for (Index t = 0; t < m.n_tets(); ++t) volume += tet_volume(m, t);
+  for (Index t = 0; t < m.n_tets(); ++t)
+    volume += tet_volume(m, t);
   EXPECT_NEAR(volume, 2.0 * 1.5 * 0.5, 1e-13);
 }
 
@@ -56,7 +60,8 @@ TEST(Brick, BoundaryAreaPerTag) {
                                              {"y1", 6.0}, {"z0", 3.0}, {"z1", 3.0}};
   for (const auto& [tag, area] : expected) {
     Real sum = 0;
-    for (Index f : m.faces_with_tag(tag)) sum += face_area(m, f);
+    for (Index f : m.faces_with_tag(tag))
+      sum += face_area(m, f);
     EXPECT_NEAR(sum, area, 1e-13) << tag;
   }
 }
@@ -67,7 +72,8 @@ TEST(Brick, BoundaryNormalsPointOutward) {
                                             {"y0", -Vec3::UnitY()}, {"y1", Vec3::UnitY()},
                                             {"z0", -Vec3::UnitZ()}, {"z1", Vec3::UnitZ()}};
   for (const auto& [tag, n] : outward)
-    for (Index f : m.faces_with_tag(tag)) EXPECT_NEAR((face_normal(m, f) - n).norm(), 0.0, 1e-14);
+    for (Index f : m.faces_with_tag(tag))
+      EXPECT_NEAR((face_normal(m, f) - n).norm(), 0.0, 1e-14);
 }
 
 TEST(Brick, ContactFaceDiagonalsFollowParity) {
@@ -77,7 +83,8 @@ TEST(Brick, ContactFaceDiagonalsFollowParity) {
   const TetMesh m = make_brick(spec);
   std::map<Index, int> triangles_at;
   for (Index f : m.faces_with_tag("z0"))
-    for (int v = 0; v < 3; ++v) ++triangles_at[m.faces(v, f)];
+    for (int v = 0; v < 3; ++v)
+      ++triangles_at[m.faces(v, f)];
   for (Index j = 1; j < spec.cells[1]; ++j)
     for (Index i = 1; i < spec.cells[0]; ++i)
       EXPECT_EQ(triangles_at[brick_node(spec, i, j, 0)], (i + j) % 2 == 0 ? 8 : 4)
