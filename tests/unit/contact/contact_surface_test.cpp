@@ -87,7 +87,8 @@ TEST(ContactSurface, BIntegratesTracesExactly) {
   // Node weights of an interior patch: centre 4h^2/3, the 8 others h^2/3 (method.md §2.5).
   const Real h2 = 0.0625;
   std::vector<Real> weights;
-  for (SparseMatrix::InnerIterator it(SparseMatrix(b.B.transpose()), 3 * 5); it; ++it)
+  const SparseMatrix Bt = b.B.transpose();
+  for (SparseMatrix::InnerIterator it(Bt, 3 * 5); it; ++it)
     weights.push_back(-it.value());
   std::sort(weights.begin(), weights.end());
   ASSERT_EQ(weights.size(), 9u);
