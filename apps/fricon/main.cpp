@@ -34,6 +34,26 @@ void print_summary(const fricon::driver::RunResult& result, const std::filesyste
   fmt::print("  mesh          {} nodes, {} tetrahedra\n", r.n_nodes, r.n_tets);
   fmt::print("  unknowns      n_primal = {}\n", r.n_primal);
   fmt::print("  factor        nnz(L) = {:.0f}, ordering {}\n", r.factor.nnz_L, r.factor.ordering);
+  if (r.contact) {
+    const auto& c = *r.contact;
+    fmt::print("  contact       '{}': {} patches, n_dual = {}, {} contact nodes, friction {}\n",
+               c.boundary, c.n_patches, c.n_dual, c.n_contact_nodes, c.friction_law);
+    fmt::print("  outer loop    {} iterations, err(k):", c.outer_iterations);
+    for (double e : c.err_history)
+      fmt::print(" {:.2e}", e);
+    fmt::print(
+        "\n  dual QP       {} MPGP steps, n_mult = {} products with Q ({}), {} solves with K\n",
+        c.qp_iterations, c.n_mult, c.dual_operator, c.n_kinv);
+    fmt::print("  KKT           feasibility {:.1e}, stationarity {:.1e}, complementarity {:.1e}\n",
+               c.kkt.feasibility, c.kkt.stationarity, c.kkt.complementarity);
+    fmt::print(
+        "  ||w_hn^+||    L2 {:.3e} m^2, max {:.3e} m; max(-w_n) {:.3e} m, max ||w_t|| {:.3e} m\n",
+        c.wn_pos_l2, c.wn_pos_inf, c.max_neg_wn, c.max_wt);
+    fmt::print(
+        "  multipliers   max lambda_n {:.4e} Pa, max ||lambda_t|| {:.4e} Pa, normal force {:.4e} "
+        "N\n",
+        c.max_lambda_n, c.max_lambda_t, c.total_normal_force);
+  }
   fmt::print("  max |u|       {:.6e} m\n", r.max_displacement);
   fmt::print("  equilibrium   |applied + contact + reactions| / |applied| = {:.2e}\n",
              r.equilibrium_residual);
