@@ -32,23 +32,24 @@ struct Manufactured {
     return std::sin(k()(0) * x(0)) * std::sin(k()(1) * x(1)) * std::sin(k()(2) * x(2));
   }
   Vec3 u(const Vec3& x) const { return S(x) * a; }
+  // sin(k_d x_d) and cos(k_d x_d) per direction.
+  void sin_cos(const Vec3& x, Vec3& s, Vec3& c) const {
+    for (int d = 0; d < 3; ++d) {
+      s(d) = std::sin(k()(d) * x(d));
+      c(d) = std::cos(k()(d) * x(d));
+    }
+  }
   Vec3 grad_S(const Vec3& x) const {
     const Vec3 kk = k();
     Vec3 s, c;
-    for (int d = 0; d < 3; ++d) {
-      s(d) = std::sin(kk(d) * x(d));
-      c(d) = std::cos(kk(d) * x(d));
-    }
+    sin_cos(x, s, c);
     return Vec3(kk(0) * c(0) * s(1) * s(2), kk(1) * s(0) * c(1) * s(2), kk(2) * s(0) * s(1) * c(2));
   }
   Mat3 grad_u(const Vec3& x) const { return a * grad_S(x).transpose(); }  // (du_i/dx_j)
   Mat3 hessian_S(const Vec3& x) const {
     const Vec3 kk = k();
     Vec3 s, c;
-    for (int d = 0; d < 3; ++d) {
-      s(d) = std::sin(kk(d) * x(d));
-      c(d) = std::cos(kk(d) * x(d));
-    }
+    sin_cos(x, s, c);
     Mat3 H;
     H(0, 0) = -kk(0) * kk(0) * s(0) * s(1) * s(2);
     H(1, 1) = -kk(1) * kk(1) * s(0) * s(1) * s(2);
