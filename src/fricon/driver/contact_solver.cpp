@@ -88,7 +88,8 @@ VectorXd tangential_slip(const ContactFields& f) {
 
 }  // namespace
 
-ContactOutcome solve_contact(const Problem& problem, const Model& m, PhaseTimes& times) {
+ContactOutcome solve_contact(const Problem& problem, const Model& m, PhaseTimes& times,
+                             const RunOptions& options) {
   const ContactOptions& opt = *problem.contact;
   const SolverOptions& so = problem.solver;
   ContactOutcome out;
@@ -118,6 +119,7 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m, PhaseTimes&
 
   // @sect: the dual QP data, fixed for the whole outer loop.
   Dual dual;
+  if (options.on_phase_start) options.on_phase_start("dual");
   {
     ScopedPhase phase(times, "dual");
     dual = make_dual(m, B, so.dual_operator, rep.n_kinv);
@@ -130,6 +132,7 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m, PhaseTimes&
   qopt.rel_tolerance = so.qp_rtol;
   qopt.max_iterations = so.qp_max;
   qopt.norm_A = rep.norm_Q;
+  if (options.on_qp_iteration) qopt.monitor = options.on_qp_iteration;
 
   // @sect: successive approximations (method.md §3).
   VectorXd phi = VectorXd::Zero(fields.surface.n_nodes());
@@ -143,6 +146,26 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m, PhaseTimes&
     fields.radius =
         contact::patch_radii(m.mesh, fields.surface, fields.patches, *law, phi, fields.slip_bound);
     constraints.set_disc_radii(fields.radius);
+    if (k == 1 && options.keep_first_dual) {
+      DualSnapshot snap;
+      if (dual.Q_dense) {
+        snap.Q = *dual.Q_dense;
+      } else {
+        snap.Q.resize(rep.n_dual, rep.n_dual);
+        VectorXd e = VectorXd::Zero(rep.n_dual), y;
+        for (Index j = 0; j < rep.n_dual; ++j) {
+          e(j) = 1.0;
+          dual.Q(e, y);
+          snap.Q.col(j) = y;
+          e(j) = 0.0;
+        }
+      }
+      snap.h = dual.h;
+      snap.radius = fields.radius;
+      snap.patch_area = fields.patches.area;
+      snap.source = problem.source;
+      out.first_dual = std::move(snap);
+    }
     if (!so.warm_start) lambda.setZero();
     {
       ScopedPhase phase(times, "qp");
@@ -168,6 +191,7 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m, PhaseTimes&
     rep.history.push_back(it);
     rep.err_history.push_back(it.err);
     rep.outer_iterations = k;
+    if (options.on_outer_iteration) options.on_outer_iteration(it);
     if (last_qp.termination != qp::Termination::Converged) {
       out.message =
           fmt::format("the dual QP of outer iteration {} did not converge: {}", k, last_qp.message);

@@ -7,7 +7,9 @@
 //      MPGP (warm-started), w = K^-1 (f - B^T lambda), phi^k = ||w_t|| at the surface nodes,
 //      err(k) = ||phi^k - phi^(k-1)|| / ||phi^k||, stop when err(k) <= outer_tol.
 
+#include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -74,20 +76,44 @@ struct ContactFields {
   VectorXd slip_bound;    ///< g per surface node [Pa]
 };
 
+/// The dual problem of the first outer iteration (for --dump-dual): minimise 1/2 l^T Q l - l^T h
+/// over l_n >= 0, ||l_t|| <= radius per patch, unknowns ordered (n, t1, t2) per patch.
+struct DualSnapshot {
+  MatrixXd Q;           ///< 3m x 3m, symmetric positive definite [m/Pa]
+  VectorXd h;           ///< 3m [m^3]
+  VectorXd radius;      ///< m slip bounds [Pa]
+  VectorXd patch_area;  ///< m patch areas [m^2]
+  std::string source;   ///< problem it came from
+};
+
+/// How a run reports progress and what it keeps besides the solution.
+struct RunOptions {
+  /// Keep the dual problem of the first outer iteration (ContactOutcome::first_dual).
+  bool keep_first_dual = false;
+  /// Called after every outer iteration (the monitor line of `fricon solve`).
+  std::function<void(const OuterIteration&)> on_outer_iteration;
+  /// Called after every MPGP step of every QP (verbose progress); return false to stop.
+  std::function<bool(const qp::MpgpIteration&)> on_qp_iteration;
+  /// Called when a phase starts ("assembly", "factorize", ...) so that long phases are visible.
+  std::function<void(const std::string& phase)> on_phase_start;
+};
+
 struct ContactOutcome {
   bool converged = false;
   std::string message;
   ContactReport report;
   ContactFields fields;
   VectorXd w;  ///< displacement over the free dofs of the last inner solve [m]
-  Vec3 contact_force = Vec3::Zero();  ///< -sum of B^T lambda over free dofs, per direction [N]
-  Real linear_residual = 0.0;         ///< ||K w - f + B^T lambda|| / ||f||
+  Vec3 contact_force = Vec3::Zero();       ///< -sum of B^T lambda over free dofs, per direction [N]
+  Real linear_residual = 0.0;              ///< ||K w - f + B^T lambda|| / ||f||
+  std::optional<DualSnapshot> first_dual;  ///< if RunOptions::keep_first_dual
 };
 
 /// Runs the contact solve for `problem.contact` on the built model; phases are timed into
 /// `times` ("contact", "dual", "qp", "recovery"). Throws InputError/NumericalError for ill-posed
 /// input (missing surface, unstable partition). Non-convergence is returned, not thrown.
-ContactOutcome solve_contact(const Problem& problem, const Model& model, PhaseTimes& times);
+ContactOutcome solve_contact(const Problem& problem, const Model& model, PhaseTimes& times,
+                             const RunOptions& options = {});
 
 /// The friction law described by the options.
 std::unique_ptr<contact::FrictionLaw> make_friction_law(const FrictionOptions& options);

@@ -60,13 +60,19 @@ mesh::TetMesh make_mesh(const Problem& problem) {
   return m;
 }
 
-Model build_model(const Problem& problem, PhaseTimes& times) {
+Model build_model(const Problem& problem, PhaseTimes& times,
+                  const std::function<void(const std::string&)>& on_phase_start) {
+  auto starting = [&](const char* phase) {
+    if (on_phase_start) on_phase_start(phase);
+  };
   Model model;
+  starting("mesh");
   {
     ScopedPhase phase(times, "mesh");
     model.mesh = make_mesh(problem);
     model.material = make_material(problem);
   }
+  starting("assembly");
   {
     ScopedPhase phase(times, "assembly");
     std::vector<bool> fixed(static_cast<size_t>(3 * model.mesh.n_nodes()), false);
@@ -85,6 +91,7 @@ Model build_model(const Problem& problem, PhaseTimes& times) {
     model.K = fe::assemble_stiffness(model.mesh, model.material, model.dofs);
     model.f = full_load(problem, model.mesh, model.dofs);
   }
+  starting("factorize");
   {
     ScopedPhase phase(times, "factorize");
     model.factor.factorize(model.K);

@@ -3,6 +3,7 @@
 // mesh -> dofs (Dirichlet elimination) -> K and f (assembly) -> Cholesky factor of K.
 // Everything later (contact, the dual QP, the outer loop) reads this model and never changes it.
 
+#include <functional>
 #include <string>
 
 #include "fricon/core/timer.hpp"
@@ -30,7 +31,9 @@ mesh::TetMesh make_mesh(const Problem& problem);
 /// Builds the whole model: mesh, material, dofs, K, f and the factor of K. Times the phases
 /// "mesh", "assembly" and "factorize" into `times`. Throws InputError when a boundary tag named
 /// by the problem does not exist on the mesh, and NumericalError when K is singular.
-Model build_model(const Problem& problem, PhaseTimes& times);
+/// `on_phase_start`, if set, is called with each phase's name as it starts.
+Model build_model(const Problem& problem, PhaseTimes& times,
+                  const std::function<void(const std::string&)>& on_phase_start = {});
 
 /// Sum of all applied forces [N] (tractions and volume force), including the parts acting on
 /// fixed dofs, in each direction.

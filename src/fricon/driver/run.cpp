@@ -32,12 +32,12 @@ void compute_stresses(RunResult& r) {
 
 }  // namespace
 
-RunResult run(const Problem& problem) {
+RunResult run(const Problem& problem, const RunOptions& options) {
   Stopwatch total;
   RunResult r;
   RunReport& rep = r.report;
   // @sect: the elastic model (mesh, assembly, factorization), shared by every later stage.
-  r.model = build_model(problem, rep.times);
+  r.model = build_model(problem, rep.times, options.on_phase_start);
   const Model& m = r.model;
   rep.n_nodes = m.mesh.n_nodes();
   rep.n_tets = m.mesh.n_tets();
@@ -48,7 +48,8 @@ RunResult run(const Problem& problem) {
   // successive approximations of Tresca problems, each solved in its dual form.
   VectorXd u;
   if (problem.contact) {
-    ContactOutcome c = solve_contact(problem, m, rep.times);
+    ContactOutcome c = solve_contact(problem, m, rep.times, options);
+    r.first_dual = std::move(c.first_dual);
     u = std::move(c.w);
     rep.status = c.converged ? Status::Converged : Status::NotConverged;
     rep.message = c.message;

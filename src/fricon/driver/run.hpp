@@ -43,12 +43,13 @@ struct RunResult {
   fe::NodalField displacement;  ///< 3 x n_nodes [m], zero at fixed components
   /// Per tetrahedron: stress (Voigt order 11,22,33,23,13,12) [Pa], 6 x n_tets.
   Eigen::Matrix<Real, 6, Eigen::Dynamic> stress;
-  VectorXd von_mises;                    ///< per tetrahedron [Pa]
-  std::optional<ContactFields> contact;  ///< fields on the contact surface
+  VectorXd von_mises;                      ///< per tetrahedron [Pa]
+  std::optional<ContactFields> contact;    ///< fields on the contact surface
+  std::optional<DualSnapshot> first_dual;  ///< if RunOptions::keep_first_dual and contact
 };
 
 /// Solves the problem. Throws InputError/NumericalError for ill-posed input; a run whose
 /// iterations did not converge returns with report.status == NotConverged.
-RunResult run(const Problem& problem);
+RunResult run(const Problem& problem, const RunOptions& options = {});
 
 }  // namespace fricon::driver
