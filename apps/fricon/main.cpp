@@ -5,15 +5,18 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
 
+#include "fricon/contact/contact_surface.hpp"
 #include "fricon/core/error.hpp"
 #include "fricon/driver/paper.hpp"
 #include "fricon/driver/run.hpp"
+#include "fricon/io/dual_dump.hpp"
 #include "fricon/io/problem_file.hpp"
 #include "fricon/io/results.hpp"
 
@@ -58,22 +61,68 @@ void print_summary(const fricon::driver::RunResult& result, const std::filesyste
   fmt::print("  equilibrium   |applied + contact + reactions| / |applied| = {:.2e}\n",
              r.equilibrium_residual);
   fmt::print("  residual      ||K u - f|| / ||f|| = {:.2e}\n", r.linear_residual);
-  fmt::print("  time          {:.3f} s (", r.time_s);
-  bool first = true;
-  for (const auto& [name, e] : r.times.phases) {
-    fmt::print("{}{} {:.3f}", first ? "" : ", ", name, e.seconds);
-    first = false;
-  }
-  fmt::print(")\n  results       {}\n", dir.string());
+  fmt::print("  results       {}\n", dir.string());
+  // Time per phase, like a miniature PETSc -log_view.
+  fmt::print("  time          {:.3f} s in all\n", r.time_s);
+  fmt::print("    {:<12} {:>10} {:>7} {:>6}\n", "phase", "seconds", "share", "calls");
+  for (const auto& [name, e] : r.times.phases)
+    fmt::print("    {:<12} {:>10.4f} {:>6.1f}% {:>6}\n", name, e.seconds,
+               r.time_s > 0 ? 100.0 * e.seconds / r.time_s : 0.0, e.calls);
 }
 
-int solve(const std::string& file, const std::string& out, const std::vector<std::string>& sets,
-          const std::string& command_line) {
-  const fricon::driver::Problem problem = fricon::io::read_problem(file, sets);
-  const std::filesystem::path dir = std::filesystem::path(out.empty() ? problem.output.dir : out);
-  const fricon::driver::RunResult result = fricon::driver::run(problem);
-  fricon::io::write_results(dir, problem, result, {sets, command_line});
-  print_summary(result, dir);
+enum class Verbosity { Quiet, Normal, Verbose };
+
+struct SolveOptions {
+  std::string out;
+  std::vector<std::string> sets;
+  std::string dump_dual;
+  Verbosity verbosity = Verbosity::Normal;
+};
+
+// Progress on stderr: phases as they start, one monitor line per outer iteration and, verbose,
+// one line per MPGP step (step letters as in PERMON: c = CG, e = expansion, p = proportioning).
+fricon::driver::RunOptions progress_options(Verbosity v, const fricon::Stopwatch& clock) {
+  fricon::driver::RunOptions o;
+  if (v == Verbosity::Quiet) return o;
+  o.on_phase_start = [&clock](const std::string& phase) {
+    fmt::print(stderr, "[{:8.3f} s] {} ...\n", clock.seconds(), phase);
+  };
+  auto header = std::make_shared<bool>(false);
+  o.on_outer_iteration = [&clock, header](const fricon::driver::OuterIteration& it) {
+    if (!*header) {
+      fmt::print(stderr, "{:>4} {:>11} {:>8} {:>8} {:>11} {:>10}\n", "k", "err(k)", "QP its",
+                 "Q mults", "||gP||/||h||", "elapsed");
+      *header = true;
+    }
+    fmt::print(stderr, "{:>4} {:>11.3e} {:>8} {:>8} {:>11.2e} {:>8.3f} s\n", it.k, it.err,
+               it.qp_iterations, it.qp_products, it.qp_rel_gp, clock.seconds());
+  };
+  if (v == Verbosity::Verbose)
+    o.on_qp_iteration = [](const fricon::qp::MpgpIteration& q) {
+      fmt::print(stderr,
+                 "      qp {:>6} [{}] ||gP|| {:.3e} ||phi|| {:.3e} ||beta|| {:.3e} alpha {:.3e} q "
+                 "{:.6e}\n",
+                 q.iteration, q.step, q.norm_gp, q.norm_phi, q.norm_beta, q.alpha, q.objective);
+      return true;
+    };
+  return o;
+}
+
+int solve(const std::string& file, const SolveOptions& so, const std::string& command_line) {
+  const fricon::Stopwatch clock;
+  const fricon::driver::Problem problem = fricon::io::read_problem(file, so.sets);
+  const std::filesystem::path dir =
+      std::filesystem::path(so.out.empty() ? problem.output.dir : so.out);
+  fricon::driver::RunOptions options = progress_options(so.verbosity, clock);
+  options.keep_first_dual = !so.dump_dual.empty();
+  const fricon::driver::RunResult result = fricon::driver::run(problem, options);
+  if (!so.dump_dual.empty()) {
+    if (!result.first_dual)
+      throw fricon::InputError(fmt::format("{}: --dump-dual needs a [contact] section", file));
+    fricon::io::write_dual(so.dump_dual, *result.first_dual);
+  }
+  fricon::io::write_results(dir, problem, result, {so.sets, command_line});
+  if (so.verbosity != Verbosity::Quiet) print_summary(result, dir);
   if (result.report.status != fricon::driver::Status::Converged) {
     std::cerr << "fricon: NOT CONVERGED: " << result.report.message << "\n";
     return kNotConverged;
@@ -83,12 +132,23 @@ int solve(const std::string& file, const std::string& out, const std::vector<std
 
 int check(const std::string& file, const std::vector<std::string>& sets) {
   const fricon::driver::Problem problem = fricon::io::read_problem(file, sets);
-  fricon::PhaseTimes times;
   const fricon::mesh::TetMesh mesh = fricon::driver::make_mesh(problem);
+  const fricon::fe::DofMap dofs = fricon::driver::make_dofs(problem, mesh);
   fmt::print("{}: valid\n", file);
-  fmt::print("  mesh   {} nodes, {} tetrahedra, {} boundary triangles (tags: {})\n", mesh.n_nodes(),
-             mesh.n_tets(), mesh.n_faces(), mesh.tag_list());
-  fmt::print("{}\n", fricon::io::to_json(problem).dump(2));
+  fmt::print("  mesh       {} nodes, {} tetrahedra, {} boundary triangles (tags: {})\n",
+             mesh.n_nodes(), mesh.n_tets(), mesh.n_faces(), mesh.tag_list());
+  fmt::print("  unknowns   n_primal = {}\n", dofs.n_free());
+  if (problem.contact) {
+    const auto surface = fricon::contact::make_contact_surface(
+        mesh, dofs, problem.contact->boundary, problem.source);
+    const auto patches = fricon::contact::chessboard_patches(mesh, surface, problem.source);
+    fmt::print("  contact    '{}': {} surface nodes ({} not clamped), {} patches, n_dual = {}\n",
+               surface.tag, surface.n_nodes(), surface.n_contact_nodes(), patches.size(),
+               3 * patches.size());
+    fmt::print("  friction   {}\n",
+               fricon::driver::make_friction_law(problem.contact->friction)->describe());
+  }
+  fmt::print("effective problem:\n{}\n", fricon::io::to_json(problem).dump(2));
   return kConverged;
 }
 
@@ -159,21 +219,36 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("fricon ") + FRICON_VERSION);
 
-  std::string file, out;
-  std::vector<std::string> sets;
-  auto* solve_cmd =
-      app.add_subcommand("solve", "Solve the problem of a TOML file and write results");
+  std::string file;
+  SolveOptions solve_opt;
+  bool quiet = false, verbose = false;
+  auto* solve_cmd = app.add_subcommand(
+      "solve",
+      "Solve the problem of a TOML file and write its results.\n"
+      "Progress goes to stderr (phases, one line per outer iteration), the summary to stdout.\n"
+      "Results: report.json, solution.vtu, contact.vtu, solution.pvd, contact_nodes.csv,\n"
+      "patches.csv in the results folder (see README).");
   solve_cmd->add_option("problem", file, "Problem file (TOML), see docs/problem-file.md")
       ->required();
-  solve_cmd->add_option("--out,-o", out, "Results folder (default: the file's output.dir)");
+  solve_cmd->add_option("--out,-o", solve_opt.out,
+                        "Results folder (default: the file's output.dir)");
   solve_cmd
-      ->add_option("--set", sets, "Override a key of the file: KEY=VALUE (TOML value), repeatable")
+      ->add_option("--set", solve_opt.sets,
+                   "Override a key of the file: KEY=VALUE with a TOML value, e.g.\n"
+                   "--set mesh.cells=[24,8,8] --set contact.friction.param=2e4; repeatable;\n"
+                   "recorded in report.json")
       ->allow_extra_args(false);
+  solve_cmd->add_option("--dump-dual", solve_opt.dump_dual,
+                        "Also write the dual QP of the first outer iteration to this file\n"
+                        "(format: docs/dual-format.md)");
+  solve_cmd->add_flag("--quiet,-q", quiet, "Print nothing but errors");
+  solve_cmd->add_flag("--verbose,-v", verbose, "Also print every step of the inner QP solver");
 
   auto* check_cmd =
       app.add_subcommand("check", "Validate a problem file without solving; print its sizes");
   check_cmd->add_option("problem", file, "Problem file (TOML)")->required();
-  check_cmd->add_option("--set", sets, "Override a key of the file: KEY=VALUE, repeatable")
+  check_cmd
+      ->add_option("--set", solve_opt.sets, "Override a key of the file: KEY=VALUE, repeatable")
       ->allow_extra_args(false);
 
   PaperOptions paper_opt;
@@ -198,8 +273,11 @@ int main(int argc, char** argv) {
   }
 
   try {
-    if (*solve_cmd) return solve(file, out, sets, join_command_line(argc, argv));
-    if (*check_cmd) return check(file, sets);
+    solve_opt.verbosity = quiet     ? Verbosity::Quiet
+                          : verbose ? Verbosity::Verbose
+                                    : Verbosity::Normal;
+    if (*solve_cmd) return solve(file, solve_opt, join_command_line(argc, argv));
+    if (*check_cmd) return check(file, solve_opt.sets);
     if (*paper_cmd) return paper(paper_opt);
   } catch (const fricon::InputError& e) {
     std::cerr << "fricon: error: " << e.what() << "\n";

@@ -48,6 +48,23 @@ VectorXd full_load(const Problem& problem, const mesh::TetMesh& mesh, const fe::
 
 }  // namespace
 
+fe::DofMap make_dofs(const Problem& problem, const mesh::TetMesh& mesh) {
+  std::vector<bool> fixed(static_cast<size_t>(3 * mesh.n_nodes()), false);
+  for (size_t i = 0; i < problem.dirichlet.size(); ++i) {
+    const auto& d = problem.dirichlet[i];
+    for (Index f :
+         tagged_faces(mesh, problem, fmt::format("dirichlet[{}].boundary", i), d.boundary))
+      for (int v = 0; v < 3; ++v)
+        for (int c = 0; c < 3; ++c)
+          if (d.components[c]) fixed[static_cast<size_t>(3 * mesh.faces(v, f) + c)] = true;
+  }
+  fe::DofMap dofs(fixed);
+  if (dofs.n_free() == 0)
+    throw InputError(
+        fmt::format("{}: every displacement component is fixed: nothing to solve", problem.source));
+  return dofs;
+}
+
 mesh::TetMesh make_mesh(const Problem& problem) {
   if (problem.mesh.kind != "brick")
     throw InputError(
@@ -75,19 +92,7 @@ Model build_model(const Problem& problem, PhaseTimes& times,
   starting("assembly");
   {
     ScopedPhase phase(times, "assembly");
-    std::vector<bool> fixed(static_cast<size_t>(3 * model.mesh.n_nodes()), false);
-    for (size_t i = 0; i < problem.dirichlet.size(); ++i) {
-      const auto& d = problem.dirichlet[i];
-      for (Index f :
-           tagged_faces(model.mesh, problem, fmt::format("dirichlet[{}].boundary", i), d.boundary))
-        for (int v = 0; v < 3; ++v)
-          for (int c = 0; c < 3; ++c)
-            if (d.components[c]) fixed[static_cast<size_t>(3 * model.mesh.faces(v, f) + c)] = true;
-    }
-    model.dofs = fe::DofMap(fixed);
-    if (model.dofs.n_free() == 0)
-      throw InputError(fmt::format("{}: every displacement component is fixed: nothing to solve",
-                                   problem.source));
+    model.dofs = make_dofs(problem, model.mesh);
     model.K = fe::assemble_stiffness(model.mesh, model.material, model.dofs);
     model.f = full_load(problem, model.mesh, model.dofs);
   }

@@ -28,6 +28,10 @@ struct Model {
 /// Builds the mesh the problem describes and checks it. Throws InputError on bad input.
 mesh::TetMesh make_mesh(const Problem& problem);
 
+/// The dofs left free by the problem's Dirichlet conditions. Throws InputError when a boundary
+/// tag does not exist on the mesh or nothing is left free.
+fe::DofMap make_dofs(const Problem& problem, const mesh::TetMesh& mesh);
+
 /// Builds the whole model: mesh, material, dofs, K, f and the factor of K. Times the phases
 /// "mesh", "assembly" and "factorize" into `times`. Throws InputError when a boundary tag named
 /// by the problem does not exist on the mesh, and NumericalError when K is singular.

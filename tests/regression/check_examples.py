@@ -1,0 +1,65 @@
+"""Every example solves, quickly, and shows what its header promises.
+
+  - each examples/*.toml exits 0 with a complete results folder;
+  - frictionless-block: no friction multiplier anywhere (lambda_t = 0 on every patch);
+  - tresca-constant: the coefficient does not depend on the slip, so the second outer iteration
+    repeats the first (err(2) = 0 up to rounding) and every slip bound is 0.3 g;
+  - friction-table: every slip bound lies between the table's extremes 0.25 g and 0.4 g;
+  - paper-brick with the three params: the paper's sizes (n_p = 900, n_d = 36);
+  - parameter-study.sh runs and writes one CSV line per run.
+Usage: check_examples.py FRICON EXAMPLES_DIR OUTDIR
+"""
+import csv
+import json
+import pathlib
+import subprocess
+import sys
+
+exe, examples, out = sys.argv[1], pathlib.Path(sys.argv[2]), pathlib.Path(sys.argv[3])
+
+
+def solve(name):
+    folder = out / name
+    r = subprocess.run([exe, "solve", str(examples / f"{name}.toml"), "--quiet", "--out", str(folder)],
+                       capture_output=True, text=True, timeout=120)
+    if r.returncode != 0:
+        sys.exit(f"example {name}: exit {r.returncode}\n{r.stdout}\n{r.stderr}")
+    report = json.loads((folder / "report.json").read_text())
+    assert report["status"] == "converged", name
+    return folder, report
+
+
+def patches(folder):
+    with open(folder / "patches.csv") as f:
+        return [{k: float(v) for k, v in row.items()} for row in csv.DictReader(f)]
+
+
+names = sorted(p.stem for p in examples.glob("*.toml"))
+assert len(names) >= 6, names
+reports = {name: solve(name) for name in names}
+
+folder, _ = reports["frictionless-block"]
+for p in patches(folder):
+    assert p["lambda_t1"] == 0.0 and p["lambda_t2"] == 0.0 and p["radius"] == 0.0, p
+
+folder, report = reports["tresca-constant"]
+assert report["outer_iterations"] == 2 and report["err_history"][1] < 1e-12, report["err_history"]
+for p in patches(folder):
+    assert abs(p["radius"] - 0.3 * 2e7) <= 1e-6, p
+
+folder, _ = reports["friction-table"]
+for p in patches(folder):
+    assert 0.25 * 2e7 - 1e-6 <= p["radius"] <= 0.4 * 2e7 + 1e-6, p
+
+for name in ["paper-brick", "paper-brick-param2e4", "paper-brick-param3e5"]:
+    _, report = reports[name]
+    assert report["n_primal"] == 900 and report["n_dual"] == 36, name
+
+study = out / "study"
+r = subprocess.run(["bash", str(examples / "parameter-study.sh"), exe, str(study)],
+                   capture_output=True, text=True, timeout=300)
+if r.returncode != 0:
+    sys.exit(f"parameter-study.sh: exit {r.returncode}\n{r.stdout}\n{r.stderr}")
+lines = (study / "summary.csv").read_text().splitlines()
+assert len(lines) == 1 + 6, lines
+print(f"{len(names)} examples and the parameter study checked")
