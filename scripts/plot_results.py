@@ -1,0 +1,587 @@
+"""Render the paper's figures from a fricon results folder.
+
+Usage:
+    /usr/bin/python3 scripts/plot_results.py RESULTS_DIR [--out DIR] [--format png]
+
+Reads what `fricon solve` writes (report.json, contact.vtu, solution.vtu) and writes one figure
+per file into RESULTS_DIR/plots (or --out):
+
+    convergence            log10 err(k) of the successive approximations        (paper Fig. 6)
+    friction_law           the coefficient of friction F(t) of the run           (paper Fig. 3)
+    contact_maps           -w_n, ||w_t|| (nodal), lambda_n, ||lambda_t|| (patch) (paper Figs. 8-9)
+    friction_coefficient   F(||w_t||) on the contact surface                     (paper Fig. 10)
+    friction_circles       lambda_t against the slip bound of each patch         (paper Fig. 11)
+    deformed               the deformed body, displacement magnified             (paper Fig. 7)
+
+A run without contact has no contact results: then only the deformed body is drawn. Every file is
+written atomically (temporary name in the same folder, then os.replace) and the list of files
+written is printed on stdout, one per line; notes go to stderr. Exit status 0 on success, 1 when
+the folder is not a complete results folder or the arguments are wrong.
+
+Needs only matplotlib (Agg backend, no display), numpy and meshio: Debian's python3-matplotlib,
+python3-numpy and python3-meshio under /usr/bin/python3.
+"""
+import argparse
+import json
+import os
+import pathlib
+import sys
+import tempfile
+import textwrap
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402  (the backend must be chosen first)
+import matplotlib.tri as mtri  # noqa: E402
+import meshio  # noqa: E402
+import numpy as np  # noqa: E402
+from matplotlib.collections import LineCollection, PatchCollection  # noqa: E402
+from matplotlib.patches import Circle  # noqa: E402
+from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection  # noqa: E402
+
+DPI = 150
+AXIS_NAMES = "xyz"
+# The paper's law (method.md): F = 0.3 up to t = 1e-5 m, then linear down to 0.2 at 1e-5 + 2/param.
+PAPER_PARAMS = (2.0e4, 6.0e4, 3.0e5)
+PAPER_T0 = 1.0e-5
+STUCK_RTOL = 1.0e-3  # a patch slips when ||lambda_t|| >= (1 - STUCK_RTOL) * radius
+
+
+# ----------------------------------------------------------------------------------------------
+# Reading the results folder
+# ----------------------------------------------------------------------------------------------
+
+def read_report(results):
+    """The parsed report.json; a folder without it is incomplete (report.json is written last)."""
+    path = results / "report.json"
+    if not path.is_file():
+        raise SystemExit(f"plot_results: {path}: no report.json (not a complete fricon results "
+                         "folder; report.json is written last)")
+    try:
+        return json.loads(path.read_text())
+    except json.JSONDecodeError as e:
+        raise SystemExit(f"plot_results: {path}: not valid JSON: {e}")
+
+
+def cell_field(mesh, name):
+    """Cell data `name` of the first cell block, as a 1D array (scalars) or 2D (vectors)."""
+    a = np.asarray(mesh.cell_data[name][0])
+    return a[:, 0] if a.ndim == 2 and a.shape[1] == 1 else a
+
+
+def point_field(mesh, name):
+    """Point data `name`, as a 1D array (scalars) or 2D (vectors)."""
+    a = np.asarray(mesh.point_data[name])
+    return a[:, 0] if a.ndim == 2 and a.shape[1] == 1 else a
+
+
+def load_contact(results):
+    """The contact surface of contact.vtu flattened to its plane, or None without contact results.
+
+    Returns a dict with the 2D triangulation `tri`, the names of its two axes, the nodal fields
+    and the per-triangle (patch) fields, and the patch table (centroid, radius, lambda_t in the
+    plane) computed from the triangles.
+    """
+    path = results / "contact.vtu"
+    if not path.is_file():
+        return None
+    mesh = meshio.read(path)
+    triangles = np.asarray(mesh.cells[0].data)
+    pts = np.asarray(mesh.points)
+    # The contact surface is planar: its normal axis is the one along which it does not extend.
+    extent = pts.max(axis=0) - pts.min(axis=0)
+    normal_axis = int(np.argmin(extent))
+    axes = [a for a in range(3) if a != normal_axis]
+    tri = mtri.Triangulation(pts[:, axes[0]], pts[:, axes[1]], triangles)
+    patch = cell_field(mesh, "patch").astype(int)
+    surface = {
+        "tri": tri,
+        "axes": [AXIS_NAMES[a] for a in axes],
+        "w_n": point_field(mesh, "w_n"),
+        "norm_w_t": point_field(mesh, "norm_w_t"),
+        "F": point_field(mesh, "F"),
+        "lambda_n": cell_field(mesh, "lambda_n"),
+        "norm_lambda_t": cell_field(mesh, "norm_lambda_t"),
+        "patch": patch,
+    }
+    surface["patches"] = patch_table(tri, patch, cell_field(mesh, "radius"),
+                                     cell_field(mesh, "lambda_t")[:, axes])
+    surface["patch_edges"] = patch_boundary_segments(tri, patch)
+    return surface
+
+
+def patch_table(tri, patch, radius, lambda_t_plane):
+    """Per patch (id >= 0): area-weighted centroid, area, slip bound and lambda_t in the plane."""
+    xy = np.column_stack([tri.x, tri.y])
+    corners = xy[tri.triangles]
+    e1, e2 = corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0]
+    area = 0.5 * np.abs(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0])
+    centre = corners.mean(axis=1)
+    ids = np.unique(patch[patch >= 0])
+    table = {"centre": [], "area": [], "radius": [], "lambda_t": []}
+    for p in ids:
+        sel = patch == p
+        table["centre"].append((area[sel, None] * centre[sel]).sum(axis=0) / area[sel].sum())
+        table["area"].append(area[sel].sum())
+        table["radius"].append(radius[sel][0])
+        table["lambda_t"].append(lambda_t_plane[sel][0])
+    return {k: np.array(v) for k, v in table.items()}
+
+
+def patch_boundary_segments(tri, patch):
+    """Segments (n, 2, 2) between triangles of different patches and on the surface's border."""
+    owners = {}
+    for t, (a, b, c) in enumerate(tri.triangles):
+        for e in ((a, b), (b, c), (c, a)):
+            owners.setdefault(tuple(sorted(e)), []).append(t)
+    edges = [e for e, ts in owners.items() if len(ts) == 1 or patch[ts[0]] != patch[ts[1]]]
+    xy = np.column_stack([tri.x, tri.y])
+    return xy[np.array(edges, dtype=int).reshape(-1, 2)]
+
+
+# ----------------------------------------------------------------------------------------------
+# Small helpers
+# ----------------------------------------------------------------------------------------------
+
+def save_figure(fig, out_dir, name, fmt, written):
+    """Save `fig` as out_dir/name.fmt atomically (temporary file in the same folder, os.replace)."""
+    final = out_dir / f"{name}.{fmt}"
+    fd, tmp = tempfile.mkstemp(dir=out_dir, prefix=f".{name}.", suffix=f".{fmt}.tmp")
+    os.close(fd)
+    try:
+        fig.savefig(tmp, format=fmt, dpi=DPI)
+        os.replace(tmp, final)
+    finally:
+        plt.close(fig)
+        if os.path.exists(tmp):
+            os.remove(tmp)
+    written.append(final)
+
+
+def run_label(report):
+    """A short description of the run for figure titles: title, --set overrides, mesh cells."""
+    problem = report.get("problem", {})
+    label = problem.get("title") or pathlib.Path(report.get("source", "run")).stem
+    cells = problem.get("mesh", {}).get("cells")
+    if cells:
+        label += f"  (mesh {cells[0]}x{cells[1]}x{cells[2]} cubes)"
+    if report.get("status") not in (None, "converged"):
+        label += f"  [status: {report['status']}]"
+    if report.get("overrides"):
+        label += "\n" + textwrap.fill("with --set " + " ".join(report["overrides"]), width=90)
+    return label
+
+
+def sci(x):
+    """A number in short notation: 60000 -> '6e4', 0.000219 -> '2.19e-4', 0.3 -> '0.3'."""
+    x = float(x)
+    if x == 0 or 1e-2 <= abs(x) < 1e4:
+        return f"{x:.3g}"
+    mantissa, exponent = f"{x:.2e}".split("e")
+    mantissa = mantissa.rstrip("0").rstrip(".")
+    return f"{mantissa}e{int(exponent)}"
+
+
+def nice_round_down(x):
+    """The largest number 1, 2 or 5 times a power of ten that is <= x (x > 0)."""
+    p = 10.0 ** np.floor(np.log10(x))
+    for m in (5.0, 2.0, 1.0):
+        if m * p <= x * (1 + 1e-12):
+            return m * p
+    return p
+
+
+def setup_plane_axes(ax, surface, title):
+    """Equal-aspect axes for a map of the contact surface, labelled with the plane's coordinates."""
+    ax.set_aspect("equal")
+    ax.set_xlabel(f"{surface['axes'][0]} [m]")
+    ax.set_ylabel(f"{surface['axes'][1]} [m]")
+    ax.set_title(title, fontsize=10)
+    tri = surface["tri"]
+    ax.set_xlim(tri.x.min(), tri.x.max())
+    ax.set_ylim(tri.y.min(), tri.y.max())
+
+
+def add_colorbar(fig, mappable, ax, label):
+    """A colour bar beside `ax` with scientific notation for very small or large values."""
+    cb = fig.colorbar(mappable, ax=ax, shrink=0.9, pad=0.02)
+    cb.set_label(label)
+    cb.formatter.set_powerlimits((-2, 3))
+    cb.update_ticks()
+    return cb
+
+
+def draw_patch_edges(ax, surface, color="k", lw=0.6, alpha=0.6):
+    """The outlines of the multiplier patches."""
+    ax.add_collection(LineCollection(surface["patch_edges"], colors=color, linewidths=lw,
+                                     alpha=alpha))
+
+
+# ----------------------------------------------------------------------------------------------
+# Friction laws
+# ----------------------------------------------------------------------------------------------
+
+def paper_law(t, param):
+    """The paper's coefficient: 0.3, linear to 0.2 on (1e-5, 1e-5 + 2/param), then 0.2."""
+    return np.clip(0.3 - 0.05 * param * (np.asarray(t) - PAPER_T0), 0.2, 0.3)
+
+
+def friction_curves(friction):
+    """(label, callable F(t), characteristic slip in m) for the run's law and, for the paper's
+    law, the paper's other parameters. The first entry is the run's law."""
+    law = friction.get("law", "paper")
+    if law == "paper":
+        param = float(friction.get("param", 6.0e4))
+        curves = [(f"param = {sci(param)} 1/m (this run)", lambda t, p=param: paper_law(t, p),
+                   PAPER_T0 + 2.0 / param)]
+        for p in PAPER_PARAMS:
+            if not np.isclose(p, param, rtol=1e-9):
+                curves.append((f"param = {sci(p)} 1/m (paper)", lambda t, q=p: paper_law(t, q),
+                               PAPER_T0 + 2.0 / p))
+        return curves
+    if law == "constant":
+        value = float(friction.get("value", 0.3))
+        return [(f"constant F = {value:g} (this run)",
+                 lambda t, v=value: np.full_like(np.asarray(t, dtype=float), v), 0.0)]
+    if law == "table":
+        ts, fs = np.asarray(friction["t"], float), np.asarray(friction["f"], float)
+        return [(f"table, {len(ts)} points (this run)",
+                 lambda t, a=ts, b=fs: np.interp(t, a, b), float(ts[-1]))]
+    raise ValueError(f"unknown friction law {law!r}")
+
+
+def law_range(friction):
+    """(min F, max F) of the run's law, for colour scales that do not depend on the data."""
+    law = friction.get("law", "paper")
+    if law == "paper":
+        return 0.2, 0.3
+    if law == "constant":
+        v = float(friction.get("value", 0.3))
+        return v, v
+    fs = np.asarray(friction["f"], float)
+    return float(fs.min()), float(fs.max())
+
+
+# ----------------------------------------------------------------------------------------------
+# The figures
+# ----------------------------------------------------------------------------------------------
+
+def plot_convergence(report):
+    """Fig. 6: log10 err(k) against the outer iteration k, with the stopping tolerance."""
+    err = np.asarray(report["err_history"], dtype=float)
+    tol = float(report["problem"].get("solver", {}).get("outer_tol", 1e-4))
+    k = np.arange(1, len(err) + 1)
+    fig, ax = plt.subplots(figsize=(6.4, 4.6), layout="constrained")
+    with np.errstate(divide="ignore"):
+        log_err = np.log10(np.maximum(err, np.finfo(float).tiny))
+    ax.plot(k, log_err, "o-", color="C0", label="err(k)")
+    ax.axhline(np.log10(tol), ls="--", color="C3", label=f"outer_tol = {tol:.0e}")
+    ax.set_xlabel("outer iteration k")
+    ax.set_ylabel(r"$\log_{10}\,\mathrm{err}(k)$")
+    ax.set_xticks(k if len(k) <= 20 else np.unique(np.linspace(1, len(k), 11).astype(int)))
+    ax.grid(True, alpha=0.3)
+    ax.legend()
+    fig.suptitle("Convergence of the successive approximations\n"
+                 r"err(k) = $\Vert \varphi^k-\varphi^{k-1}\Vert / \Vert \varphi^k\Vert$",
+                 fontsize=11)
+    ax.set_title(run_label(report), fontsize=9)
+    return fig
+
+
+def plot_friction_law(report, surface):
+    """Fig. 3: F(t) of the run (and the paper's other parameters), with the slips reached."""
+    friction = report["problem"]["contact"].get("friction", {})
+    curves = friction_curves(friction)
+    phi = surface["norm_w_t"] if surface is not None else np.zeros(0)
+    phi_max = float(phi.max()) if phi.size else float(report.get("max_wt", 0.0))
+    t_end = max([1.5 * c[2] for c in curves] + [1.15 * phi_max, 1e-5])
+    t = np.linspace(0.0, t_end, 2000)
+    fig, ax = plt.subplots(figsize=(7.0, 4.6), layout="constrained")
+    styles = ["-", "--", "-.", ":"]
+    for i, (label, f, _) in enumerate(curves):
+        ax.plot(t, f(t), styles[i % 4], lw=2.2 if i == 0 else 1.4,
+                color="C0" if i == 0 else "0.45", label=label, zorder=3 if i == 0 else 2)
+    if phi.size:
+        ax.plot(phi, surface["F"], "o", ms=3, color="C1", alpha=0.6, zorder=4,
+                label=r"contact nodes: ($\Vert w_t\Vert$, F)")
+        ax.axvline(phi_max, ls=":", color="C1")
+        ax.annotate(f"max $\\Vert w_t\\Vert$ = {phi_max:.2e} m", xy=(phi_max, 0.22),
+                    xycoords=("data", "axes fraction"), xytext=(-4, 0),
+                    textcoords="offset points", rotation=90, ha="right", va="bottom",
+                    fontsize=8, color="C1")
+    lo, hi = law_range(friction)
+    pad = max(0.25 * (hi - lo), 0.05 * hi, 0.02)
+    ax.set_ylim(max(0.0, lo - pad), hi + pad)
+    ax.set_xlim(0.0, t_end)
+    ax.ticklabel_format(axis="x", style="sci", scilimits=(-2, 3))
+    ax.set_xlabel(r"slip $t = \Vert u_t\Vert$ [m]")
+    ax.set_ylabel("coefficient of friction F [-]")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8, loc="upper right")
+    ax.set_title(f"Coefficient of friction F(t), law \"{friction.get('law', 'paper')}\"\n"
+                 f"{run_label(report)}", fontsize=10)
+    return fig
+
+
+def plot_contact_maps(report, surface):
+    """Figs. 8-9: -w_n and ||w_t|| (nodal, P1) and lambda_n, ||lambda_t|| (per patch)."""
+    tri = surface["tri"]
+    fig, axs = plt.subplots(2, 2, figsize=(13.0, 6.0), layout="constrained")
+    panels = [
+        (axs[0, 0], -surface["w_n"], "nodal", "a) lift-off $-w_n$ (> 0: gap, < 0: penetration)",
+         (r"$-w_n$", "m"), "viridis"),
+        (axs[0, 1], surface["lambda_n"], "patch", r"b) contact pressure $\lambda_n$ per patch",
+         (r"$\lambda_n$", "Pa"), "magma"),
+        (axs[1, 0], surface["norm_w_t"], "nodal", r"c) tangential displacement $\Vert w_t\Vert$",
+         (r"$\Vert w_t\Vert$", "m"), "viridis"),
+        (axs[1, 1], surface["norm_lambda_t"], "patch",
+         r"d) friction multiplier $\Vert \lambda_t\Vert$ per patch",
+         (r"$\Vert \lambda_t\Vert$", "Pa"), "magma"),
+    ]
+    for ax, values, kind, title, (symbol, unit), cmap in panels:
+        if kind == "nodal":
+            m = ax.tripcolor(tri, values, shading="gouraud", cmap=cmap)
+        else:
+            m = ax.tripcolor(tri, facecolors=values, cmap=cmap, edgecolors="none")
+        draw_patch_edges(ax, surface, color="w" if kind == "patch" else "k", lw=0.5,
+                         alpha=0.5 if kind == "patch" else 0.25)
+        setup_plane_axes(ax, surface, f"{title}\nmin {sci(values.min())} {unit}, "
+                                      f"max {sci(values.max())} {unit}")
+        add_colorbar(fig, m, ax, f"{symbol} [{unit}]")
+    fig.suptitle(f"Contact surface: displacements (nodal) and multipliers (piecewise constant on "
+                 f"patches)\n{run_label(report)}", fontsize=11)
+    return fig
+
+
+def plot_friction_coefficient(report, surface):
+    """Fig. 10: the coefficient F(||w_t||) on the contact surface."""
+    tri = surface["tri"]
+    friction = report["problem"]["contact"].get("friction", {})
+    lo, hi = law_range(friction)
+    if hi - lo < 1e-12:
+        lo, hi = lo - 0.05, hi + 0.05
+    fig, ax = plt.subplots(figsize=(9.5, 4.0), layout="constrained")
+    m = ax.tripcolor(tri, surface["F"], shading="gouraud", cmap="coolwarm", vmin=lo, vmax=hi)
+    draw_patch_edges(ax, surface, color="k", lw=0.5, alpha=0.25)
+    F = surface["F"]
+    setup_plane_axes(ax, surface, r"Coefficient of friction F($\Vert w_t\Vert$) on the contact "
+                     "surface "
+                     f"(nodal values; min {F.min():.3f}, max {F.max():.3f})\n{run_label(report)}")
+    cb = fig.colorbar(m, ax=ax, shrink=0.9, pad=0.02)
+    cb.set_label("F [-]")
+    return fig
+
+
+def plot_friction_circles(report, surface):
+    """Fig. 11: per patch, a circle of radius = slip bound and the arrow lambda_t, same scale."""
+    P = surface["patches"]
+    radius, lt, centre = P["radius"], P["lambda_t"], P["centre"]
+    norm_lt = np.hypot(lt[:, 0], lt[:, 1])
+    slipping = norm_lt >= (1.0 - STUCK_RTOL) * radius
+    side = np.sqrt(P["area"].min())
+    scale = 0.45 * side / radius.max() if radius.max() > 0 else 0.0  # m on the plot per Pa
+    tri = surface["tri"]
+    fig, ax = plt.subplots(figsize=(12.0, 5.0), layout="constrained")
+    draw_patch_edges(ax, surface, color="0.6", lw=0.6, alpha=1.0)
+    colors = np.where(slipping, "C3", "C0")
+    ax.add_collection(PatchCollection([Circle(c, r * scale) for c, r in zip(centre, radius)],
+                                      facecolors="none", edgecolors=colors, linewidths=1.2))
+    q = ax.quiver(centre[:, 0], centre[:, 1], lt[:, 0] * scale, lt[:, 1] * scale, color=colors,
+                  angles="xy", scale_units="xy", scale=1.0, units="xy",
+                  width=min(0.045 * side, 0.0035 * tri.x.ptp()),
+                  headwidth=3.5, headlength=4, headaxislength=3.6, zorder=3)
+    ax.plot(centre[:, 0], centre[:, 1], ".", color="k", ms=1.5)
+    setup_plane_axes(ax, surface, "")
+    pad = 0.02 * max(tri.x.ptp(), tri.y.ptp())
+    ax.set_xlim(tri.x.min() - pad, tri.x.max() + pad)
+    ax.set_ylim(tri.y.min() - pad, tri.y.max() + pad)
+    ax.plot([], [], "-", color="C3", label=f"slipping: $\\Vert \\lambda_t\\Vert$ = radius "
+            f"(within {STUCK_RTOL:g} rel.), {slipping.sum()} patches")
+    ax.plot([], [], "-", color="C0", label=f"sticking: $\\Vert \\lambda_t\\Vert$ < radius, "
+            f"{(~slipping).sum()} patches")
+    ax.legend(loc="upper left", bbox_to_anchor=(0.0, -0.14), ncol=2, fontsize=9, frameon=False)
+    if radius.max() > 0:
+        ref = nice_round_down(radius.max())
+        ax.quiverkey(q, X=0.86, Y=-0.2, U=ref * scale, label=f"scale: {sci(ref)} Pa",
+                     labelpos="E", coordinates="axes", color="k")
+        scale_note = (f"same scale for circles and arrows: {sci(ref)} Pa is drawn as "
+                      f"{ref * scale:.3g} m")
+    else:
+        scale_note = "the slip bound is 0 on every patch (no friction): nothing to draw"
+        ax.text(0.5, 0.5, "slip bound 0 on every patch:\nno friction, $\\lambda_t$ = 0",
+                transform=ax.transAxes, ha="center", va="center", fontsize=12, color="0.3")
+    ax.set_title(r"Friction multiplier $\lambda_t$ (arrows) against the slip bound "
+                 r"$\frac{1}{|R|}\int_R F(\Vert w_t\Vert)\,g\,dS$ (circle radius) per patch R"
+                 f"\n{scale_note}; max radius {sci(radius.max())} Pa, "
+                 f"max $\\Vert \\lambda_t\\Vert$ {sci(norm_lt.max())} Pa"
+                 f"\n{run_label(report)}", fontsize=9)
+    return fig
+
+
+def boundary_faces(tets):
+    """The triangles that belong to exactly one tetrahedron, with that tetrahedron's index."""
+    local = np.array([[0, 1, 2], [0, 1, 3], [0, 2, 3], [1, 2, 3]])
+    faces = tets[:, local].reshape(-1, 3)
+    owner = np.repeat(np.arange(len(tets)), 4)
+    _, first, count = np.unique(np.sort(faces, axis=1), axis=0, return_index=True,
+                                return_counts=True)
+    keep = first[count == 1]
+    return faces[keep], owner[keep]
+
+
+def box_edges(lo, hi):
+    """The 12 edges (12, 2, 3) of the axis-aligned box [lo, hi]."""
+    corners = np.array([[x, y, z] for x in (lo[0], hi[0]) for y in (lo[1], hi[1])
+                        for z in (lo[2], hi[2])])
+    pairs = [(i, j) for i in range(8) for j in range(i + 1, 8)
+             if np.count_nonzero(corners[i] != corners[j]) == 1]
+    return corners[np.array(pairs)]
+
+
+def shade(rgba, normals, light=(-0.4, -0.6, 0.7)):
+    """Lambert shading of face colours by their unit normals (matplotlib 3.6 has no built-in)."""
+    light = np.asarray(light) / np.linalg.norm(light)
+    k = 0.55 + 0.45 * np.abs(normals @ light)
+    out = rgba.copy()
+    out[:, :3] *= k[:, None]
+    return out
+
+
+def plot_deformed(report, results):
+    """Fig. 7: the boundary of the deformed body, coloured by von Mises, magnified displacement.
+
+    Top: a 3D view of the boundary triangles; bottom: the side view (x-z) of the face y = min,
+    with the undeformed outline dashed in both.
+    """
+    mesh = meshio.read(results / "solution.vtu")
+    pts = np.asarray(mesh.points)
+    u = point_field(mesh, "displacement")
+    tets = next(c.data for c in mesh.cells if c.type == "tetra")
+    faces, owner = boundary_faces(np.asarray(tets))
+    lo, hi = pts.min(axis=0), pts.max(axis=0)
+    size = float((hi - lo).max())
+    umax = float(np.linalg.norm(u, axis=1).max())
+    factor = nice_round_down(0.1 * size / umax) if umax > 0 else 1.0
+    X = pts + factor * u
+    if "von_mises" in mesh.cell_data:
+        values, label = cell_field(mesh, "von_mises")[owner], "von Mises stress [Pa]"
+    else:
+        values, label = np.linalg.norm(u, axis=1)[faces].mean(axis=1), "|u| [m]"
+    # A stress singularity (e.g. at a clamped edge) would wash out the colours: clip it.
+    vmax, extend = float(values.max()), "neither"
+    p99 = float(np.percentile(values, 99))
+    if vmax > 1.25 * p99 > 0:
+        vmax, extend = p99, "max"
+        label += f"\n(scale clipped at the 99th percentile; max {sci(values.max())})"
+    norm = matplotlib.colors.Normalize(values.min(), vmax)
+    cmap = matplotlib.colormaps["turbo"]
+    blo, bhi = np.minimum(lo, X.min(axis=0)), np.maximum(hi, X.max(axis=0))
+
+    fig = plt.figure(figsize=(10.0, 8.0))
+    ax3 = fig.add_axes([0.0, 0.35, 0.84, 0.58], projection="3d")
+    verts = X[faces]
+    normals = np.cross(verts[:, 1] - verts[:, 0], verts[:, 2] - verts[:, 0])
+    normals /= np.maximum(np.linalg.norm(normals, axis=1, keepdims=True), 1e-300)
+    ax3.add_collection3d(Poly3DCollection(verts, facecolors=shade(cmap(norm(values)), normals),
+                                          edgecolors=(0, 0, 0, 0.08), linewidths=0.2))
+    ax3.add_collection3d(Line3DCollection(box_edges(lo, hi), colors="0.3", linewidths=0.8,
+                                          linestyles="--"))
+    ax3.set_xlim(blo[0], bhi[0])
+    ax3.set_ylim(blo[1], bhi[1])
+    ax3.set_zlim(blo[2], bhi[2])
+    ax3.set_box_aspect(bhi - blo, zoom=1.15)
+    ax3.view_init(elev=22, azim=-62)
+    for name, axis in zip("xyz", (ax3.xaxis, ax3.yaxis, ax3.zaxis)):
+        axis.set_label_text(f"{name} [m]")
+
+    # Side view: the boundary faces lying on y = min, drawn at their deformed x and z.
+    ax2 = fig.add_axes([0.08, 0.06, 0.66, 0.28])
+    front = np.all(np.isclose(pts[faces][:, :, 1], lo[1]), axis=1)
+    side = mtri.Triangulation(X[:, 0], X[:, 2], faces[front])
+    ax2.tripcolor(side, facecolors=values[front], cmap=cmap, norm=norm, edgecolors="none")
+    ax2.triplot(side, color="k", alpha=0.15, lw=0.3)
+    ax2.plot([lo[0], hi[0], hi[0], lo[0], lo[0]], [lo[2], lo[2], hi[2], hi[2], lo[2]], "--",
+             color="0.3", lw=0.9, label="undeformed")
+    if report.get("problem", {}).get("contact", {}).get("boundary") == "z0":
+        ax2.axhline(lo[2], color="k", lw=1.6, label="rigid foundation")
+    ax2.set_aspect("equal")
+    ax2.set_xlim(blo[0] - 0.02 * size, bhi[0] + 0.02 * size)
+    ax2.set_ylim(blo[2] - 0.05 * size, bhi[2] + 0.03 * size)
+    ax2.set_xlabel("x [m]")
+    ax2.set_ylabel("z [m]")
+    ax2.set_title(f"side view of the face y = {lo[1]:g} m (deformed, {factor:g}x)", fontsize=9)
+    ax2.legend(loc="upper left", bbox_to_anchor=(1.0, 1.0), fontsize=8, frameon=False)
+
+    cax = fig.add_axes([0.86, 0.4, 0.018, 0.45])
+    cb = fig.colorbar(matplotlib.cm.ScalarMappable(norm=norm, cmap=cmap), cax=cax,
+                      extend=extend)
+    cb.set_label(label)
+    cb.formatter.set_powerlimits((-2, 3))
+    cb.update_ticks()
+    fig.suptitle(f"Deformed body, displacement magnified {factor:g}x "
+                 f"(max |u| = {sci(umax)} m); dashed: undeformed\n{run_label(report)}",
+                 fontsize=11)
+    return fig
+
+
+# ----------------------------------------------------------------------------------------------
+# Driver
+# ----------------------------------------------------------------------------------------------
+
+def parse_args(argv):
+    """The command line."""
+    ap = argparse.ArgumentParser(
+        description="Render the paper's figures (PNG) from a fricon results folder.")
+    ap.add_argument("results", type=pathlib.Path, help="results folder written by `fricon solve`")
+    ap.add_argument("--out", type=pathlib.Path, default=None,
+                    help="where to write the figures (default: RESULTS/plots)")
+    ap.add_argument("--format", default="png", choices=["png", "pdf", "svg"],
+                    help="image format (default: png)")
+    return ap.parse_args(argv)
+
+
+def make_plots(results, out_dir, fmt):
+    """Draw every figure the folder has data for; return the list of files written."""
+    report = read_report(results)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    written = []
+    has_contact = "contact" in report.get("problem", {})
+    surface = load_contact(results) if has_contact else None
+    if not has_contact:
+        print(f"plot_results: {results}: a run without contact; only the deformed body is "
+              "plotted", file=sys.stderr)
+    else:
+        if report.get("err_history"):
+            save_figure(plot_convergence(report), out_dir, "convergence", fmt, written)
+        save_figure(plot_friction_law(report, surface), out_dir, "friction_law", fmt, written)
+        if surface is None:
+            print(f"plot_results: {results}: no contact.vtu; the contact-surface figures are "
+                  "skipped", file=sys.stderr)
+        else:
+            save_figure(plot_contact_maps(report, surface), out_dir, "contact_maps", fmt, written)
+            save_figure(plot_friction_coefficient(report, surface), out_dir,
+                        "friction_coefficient", fmt, written)
+            save_figure(plot_friction_circles(report, surface), out_dir, "friction_circles",
+                        fmt, written)
+    if (results / "solution.vtu").is_file():
+        save_figure(plot_deformed(report, results), out_dir, "deformed", fmt, written)
+    else:
+        print(f"plot_results: {results}: no solution.vtu; the deformed body is skipped",
+              file=sys.stderr)
+    return written
+
+
+def main(argv=None):
+    """Entry point: parse, plot, print the files written."""
+    args = parse_args(argv)
+    if not args.results.is_dir():
+        raise SystemExit(f"plot_results: {args.results}: no such folder")
+    out_dir = args.out if args.out is not None else args.results / "plots"
+    for path in make_plots(args.results, out_dir, args.format):
+        print(path)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
