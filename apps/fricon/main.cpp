@@ -260,8 +260,8 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"1", "2", "both"}));
   paper_cmd
       ->add_option("--dual-operator", paper_opt.dual_operator,
-                   "How Q = B K^-1 B^T is applied: implicit (the paper's way), dense, auto")
-      ->check(CLI::IsMember({"auto", "implicit", "dense"}));
+                   "How Q = B K^-1 B^T is applied: implicit (the paper's way), dense, schur, auto")
+      ->check(CLI::IsMember({"auto", "implicit", "dense", "schur"}));
   paper_cmd->add_option("--qp-rtol", paper_opt.qp_rtol, "QP tolerance (paper: 1e-6)")
       ->check(CLI::PositiveNumber);
 

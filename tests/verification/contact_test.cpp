@@ -214,3 +214,27 @@ TEST(ContactColumn, FrictionlessColumnUnderGravityCarriesHalfItsWeight) {
   EXPECT_NEAR(r.report.contact->total_normal_force, b0 * H / 2 * 1.0, 1e-6 * b0 * H);
   EXPECT_LT(r.report.contact->max_wt, 1e-12);
 }
+
+TEST(PaperBrick, EveryDualOperatorGivesTheSameSolution) {
+  // implicit (solves with K), dense (block solves), schur (constrained factor): the same QP, so
+  // the same multipliers to the QP tolerance and, the iterates being the same up to rounding,
+  // the same counts.
+  std::vector<RunResult> runs;
+  for (const char* mode : {"implicit", "dense", "schur"}) {
+    Problem p = tight(paper_problem(4, 6e4));
+    p.solver.dual_operator = mode;
+    runs.push_back(run(p));
+    ASSERT_EQ(runs.back().report.status, Status::Converged) << mode;
+    EXPECT_EQ(runs.back().report.contact->dual_operator, mode);
+  }
+  const VectorXd& ref = runs[0].contact->lambda;
+  for (const RunResult& r : runs) {
+    EXPECT_LT((r.contact->lambda - ref).norm() / ref.norm(), 1e-8);
+    EXPECT_LT((r.displacement - runs[0].displacement).norm() / runs[0].displacement.norm(), 1e-8);
+    EXPECT_EQ(r.report.contact->outer_iterations, runs[0].report.contact->outer_iterations);
+  }
+  // Implicit: every product with Q is a solve with K; schur: only u0, the final recovery and the
+  // KKT check.
+  EXPECT_GT(runs[0].report.contact->n_kinv, runs[0].report.contact->n_mult);
+  EXPECT_EQ(runs[2].report.contact->n_kinv, 3);
+}

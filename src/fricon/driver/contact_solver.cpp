@@ -9,6 +9,42 @@
 
 namespace fricon::driver {
 
+namespace {
+// "auto" uses the Schur complement while its dense factor (m^2 doubles, m = contact dofs) stays
+// small; beyond it a dense Q is formed by block solves up to this many multipliers, and beyond
+// that Q stays implicit.
+constexpr Index kSchurDofLimit = 12000;
+constexpr Index kDenseDualLimit = 6000;
+}  // namespace
+
+std::string dual_operator_for(const Problem& problem, const linalg::CholeskyFactor& factor,
+                              Index n_dual) {
+  const std::string& requested = problem.solver.dual_operator;
+  if (requested != "auto") {
+    if (requested == "schur" && factor.trailing_order().empty())
+      throw Error("dual_operator = schur needs K factored with the contact dofs last");
+    return requested;
+  }
+  if (!factor.trailing_order().empty()) return "schur";
+  return n_dual <= kDenseDualLimit ? "dense" : "implicit";
+}
+
+std::vector<Index> contact_dofs(const Problem& problem, const Model& m) {
+  const auto surface =
+      contact::make_contact_surface(m.mesh, m.dofs, problem.contact->boundary, problem.source);
+  std::vector<Index> dofs;
+  for (Index a : surface.nodes)
+    for (int c = 0; c < 3; ++c)
+      if (m.dofs.dof(a, c) >= 0) dofs.push_back(m.dofs.dof(a, c));
+  return dofs;
+}
+
+bool wants_schur(const Problem& problem, Index n_contact_dofs) {
+  const std::string& requested = problem.solver.dual_operator;
+  return problem.contact &&
+         (requested == "schur" || (requested == "auto" && n_contact_dofs <= kSchurDofLimit));
+}
+
 std::unique_ptr<contact::FrictionLaw> make_friction_law(const FrictionOptions& o) {
   if (o.law == "paper") return contact::paper_law(o.param);
   if (o.law == "constant") return contact::constant_law(o.value);
@@ -18,31 +54,61 @@ std::unique_ptr<contact::FrictionLaw> make_friction_law(const FrictionOptions& o
 
 namespace {
 
-// Above this many multipliers "auto" keeps Q implicit (a dense Q costs n_dual^2 doubles and
-// n_dual solves to form).
-constexpr Index kDenseDualLimit = 6000;
-// Columns per block solve when forming Q densely.
+// Columns per block solve when forming Q densely by solves with K.
 constexpr Index kDenseBlock = 64;
 // Power iteration for ||Q||: the reference reproduction used 200 iterations (method.md §6.4).
 constexpr int kPowerIterations = 200;
 constexpr Real kPowerTolerance = 1e-10;
 
 // The dual data of method.md §2.6: Q = B K^-1 B^T (as a product), h = B K^-1 f, u0 = K^-1 f.
+// Modes:
+//   implicit  each product with Q is one solve with the factor of K (the paper's way);
+//   dense     Q formed once by block solves with n_dual right-hand sides;
+//   schur     K factored with the contact dofs last, so its trailing block L22 factors the Schur
+//             complement S onto them: Q = Y^T Y with Y = L22^-1 Bc^T, and the displacement of the
+//             contact dofs is w_c = u0_c - L22^-T Y lambda. The outer loop then never touches
+//             the volume; w is recovered once at the end.
 struct Dual {
   qp::Operator Q;
   VectorXd h, u0;
   std::shared_ptr<const MatrixXd> Q_dense;  // null in implicit mode; shared with Q's closure
   std::string mode;
+  // schur mode:
+  MatrixXd L22, Y;
+  std::vector<Index> order;  // dofs of L22's rows, in pivot order
+  VectorXd u0_c;
 };
 
-Dual make_dual(const Model& m, const SparseMatrix& B, const std::string& requested, long& n_kinv) {
+Dual make_dual(const Model& m, const SparseMatrix& B, const std::string& mode, long& n_kinv) {
   Dual d;
   d.u0 = m.factor.solve(m.f);
   ++n_kinv;
   d.h = B * d.u0;
-  d.mode = requested == "auto" ? (B.rows() <= kDenseDualLimit ? "dense" : "implicit") : requested;
-  if (d.mode == "dense") {
-    const Index nd = B.rows();
+  d.mode = mode;
+  const Index nd = B.rows();
+  if (mode == "schur") {
+    d.order = m.factor.trailing_order();
+    d.L22 = m.factor.trailing_factor();
+    const Index nc = static_cast<Index>(d.order.size());
+    std::vector<Index> position(static_cast<size_t>(B.cols()), -1);
+    for (Index k = 0; k < nc; ++k)
+      position[static_cast<size_t>(d.order[static_cast<size_t>(k)])] = k;
+    MatrixXd BcT = MatrixXd::Zero(nc, nd);  // Bc^T with rows in pivot order
+    for (Index col = 0; col < B.outerSize(); ++col)
+      for (SparseMatrix::InnerIterator it(B, col); it; ++it) {
+        FRICON_CHECK(position[static_cast<size_t>(col)] >= 0,
+                     "B touches dof " << col << " outside the contact dofs");
+        BcT(position[static_cast<size_t>(col)], it.row()) = it.value();
+      }
+    d.Y = d.L22.triangularView<Eigen::Lower>().solve(BcT);
+    auto Q = std::make_shared<MatrixXd>(MatrixXd::Zero(nd, nd));
+    Q->selfadjointView<Eigen::Lower>().rankUpdate(d.Y.transpose());
+    *Q = Q->selfadjointView<Eigen::Lower>();
+    d.Q_dense = Q;
+    d.u0_c.resize(nc);
+    for (Index k = 0; k < nc; ++k)
+      d.u0_c(k) = d.u0(d.order[static_cast<size_t>(k)]);
+  } else if (mode == "dense") {
     const SparseMatrix Bt = B.transpose();
     auto Q = std::make_shared<MatrixXd>(nd, nd);
     for (Index j = 0; j < nd; j += kDenseBlock) {
@@ -53,14 +119,33 @@ Dual make_dual(const Model& m, const SparseMatrix& B, const std::string& request
     }
     *Q = 0.5 * (*Q + Q->transpose()).eval();
     d.Q_dense = Q;
-    d.Q = [Q](const VectorXd& x, VectorXd& y) { y.noalias() = *Q * x; };
   } else {
     d.Q = [&m, &B, &n_kinv](const VectorXd& x, VectorXd& y) {
       y = B * m.factor.solve(VectorXd(B.transpose() * x));
       ++n_kinv;
     };
   }
+  if (d.Q_dense) {
+    std::shared_ptr<const MatrixXd> Q = d.Q_dense;
+    d.Q = [Q](const VectorXd& x, VectorXd& y) { y.noalias() = *Q * x; };
+  }
   return d;
+}
+
+// w = K^-1 (f - B^T lambda): in schur mode only on the contact dofs (the rest of w is left
+// as it is), otherwise everywhere by one solve.
+void recover(const Model& m, const SparseMatrix& B, const Dual& d, const VectorXd& lambda,
+             VectorXd& w, long& n_kinv) {
+  if (d.mode == "schur") {
+    const VectorXd wc =
+        d.u0_c - d.L22.transpose().triangularView<Eigen::Upper>().solve(d.Y * lambda);
+    if (w.size() != m.dofs.n_free()) w = VectorXd::Zero(m.dofs.n_free());
+    for (size_t k = 0; k < d.order.size(); ++k)
+      w(d.order[k]) = wc(static_cast<Index>(k));
+  } else {
+    w = m.factor.solve(VectorXd(m.f - B.transpose() * lambda));
+    ++n_kinv;
+  }
 }
 
 // phi = ||w_t|| per surface node, and the components of w there.
@@ -122,7 +207,7 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m, PhaseTimes&
   if (options.on_phase_start) options.on_phase_start("dual");
   {
     ScopedPhase phase(times, "dual");
-    dual = make_dual(m, B, so.dual_operator, rep.n_kinv);
+    dual = make_dual(m, B, dual_operator_for(problem, m.factor, B.rows()), rep.n_kinv);
     rep.dual_operator = dual.mode;
     rep.norm_Q = qp::estimate_norm(dual.Q, rep.n_dual, kPowerIterations, kPowerTolerance);
   }
@@ -179,8 +264,7 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m, PhaseTimes&
     it.qp_termination = qp::to_string(last_qp.termination);
     {
       ScopedPhase phase(times, "recovery");
-      w = m.factor.solve(VectorXd(m.f - B.transpose() * lambda));
-      ++rep.n_kinv;
+      recover(m, B, dual, lambda, w, rep.n_kinv);
     }
     fields.phi = phi;
     surface_components(m, fields.surface, w, fields);
@@ -213,7 +297,16 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m, PhaseTimes&
   }
   rep.fixed_point_residual = rep.err_history.empty() ? 0.0 : rep.err_history.back();
 
-  // @sect: certificate and measures of the last iterate.
+  // @sect: the displacement of the whole body, once, and the certificate of the last iterate.
+  if (dual.mode == "schur") {
+    ScopedPhase phase(times, "recovery");
+    const VectorXd w_c = w;
+    w = m.factor.solve(VectorXd(m.f - B.transpose() * lambda));
+    ++rep.n_kinv;
+    FRICON_CHECK(
+        (w - w_c).cwiseProduct(w_c.cwiseAbs().cwiseSign()).norm() <= 1e-8 * w.norm() + 1e-300,
+        "the Schur recovery of the contact displacement disagrees with the full solve");
+  }
   {
     ScopedPhase phase(times, "postprocess");
     // The gradient through K^-1 itself, independent of a dense Q.

@@ -77,30 +77,37 @@ mesh::TetMesh make_mesh(const Problem& problem) {
   return m;
 }
 
-Model build_model(const Problem& problem, PhaseTimes& times,
-                  const std::function<void(const std::string&)>& on_phase_start) {
-  auto starting = [&](const char* phase) {
-    if (on_phase_start) on_phase_start(phase);
-  };
+Model assemble_model(const Problem& problem, PhaseTimes& times,
+                     const std::function<void(const std::string&)>& on_phase_start) {
   Model model;
-  starting("mesh");
+  if (on_phase_start) on_phase_start("mesh");
   {
     ScopedPhase phase(times, "mesh");
     model.mesh = make_mesh(problem);
     model.material = make_material(problem);
   }
-  starting("assembly");
+  if (on_phase_start) on_phase_start("assembly");
   {
     ScopedPhase phase(times, "assembly");
     model.dofs = make_dofs(problem, model.mesh);
     model.K = fe::assemble_stiffness(model.mesh, model.material, model.dofs);
     model.f = full_load(problem, model.mesh, model.dofs);
   }
-  starting("factorize");
-  {
-    ScopedPhase phase(times, "factorize");
-    model.factor.factorize(model.K);
-  }
+  return model;
+}
+
+void factorize_model(Model& model, PhaseTimes& times,
+                     const std::function<void(const std::string&)>& on_phase_start,
+                     const std::vector<Index>& last) {
+  if (on_phase_start) on_phase_start("factorize");
+  ScopedPhase phase(times, "factorize");
+  model.factor.factorize(model.K, last);
+}
+
+Model build_model(const Problem& problem, PhaseTimes& times,
+                  const std::function<void(const std::string&)>& on_phase_start) {
+  Model model = assemble_model(problem, times, on_phase_start);
+  factorize_model(model, times, on_phase_start);
   return model;
 }
 

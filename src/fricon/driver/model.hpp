@@ -5,6 +5,7 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "fricon/core/timer.hpp"
 #include "fricon/driver/problem.hpp"
@@ -35,6 +36,17 @@ fe::DofMap make_dofs(const Problem& problem, const mesh::TetMesh& mesh);
 /// Builds the whole model: mesh, material, dofs, K, f and the factor of K. Times the phases
 /// "mesh", "assembly" and "factorize" into `times`. Throws InputError when a boundary tag named
 /// by the problem does not exist on the mesh, and NumericalError when K is singular.
+/// The model up to the factorization: mesh, material, dofs, K and f (phases "mesh", "assembly").
+Model assemble_model(const Problem& problem, PhaseTimes& times,
+                     const std::function<void(const std::string&)>& on_phase_start = {});
+
+/// Factorizes K (phase "factorize"); with `last` non-empty, those dofs are ordered last so that
+/// the factor's trailing block is the Cholesky factor of the Schur complement onto them.
+void factorize_model(Model& model, PhaseTimes& times,
+                     const std::function<void(const std::string&)>& on_phase_start = {},
+                     const std::vector<Index>& last = {});
+
+/// assemble_model then factorize_model.
 /// `on_phase_start`, if set, is called with each phase's name as it starts.
 Model build_model(const Problem& problem, PhaseTimes& times,
                   const std::function<void(const std::string&)>& on_phase_start = {});

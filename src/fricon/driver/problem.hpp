@@ -69,7 +69,8 @@ struct SolverOptions {
   int qp_max = 100000;     ///< [solver.qp_max] maximum QP iterations per outer step
   bool warm_start = true;  ///< [solver.warm_start] start each QP from the previous multipliers
   /// [solver.dual_operator] "implicit" (each Q product = one solve with K, the paper's n_mult),
-  /// "dense" (Q formed once by a block solve with n_dual right-hand sides), or "auto".
+  /// "dense" (Q formed once by a block solve with n_dual right-hand sides), "schur" (K factored
+  /// with the contact dofs last, Q from the factor of the Schur complement), or "auto".
   std::string dual_operator = "auto";
 };
 

@@ -37,7 +37,13 @@ RunResult run(const Problem& problem, const RunOptions& options) {
   RunResult r;
   RunReport& rep = r.report;
   // @sect: the elastic model (mesh, assembly, factorization), shared by every later stage.
-  r.model = build_model(problem, rep.times, options.on_phase_start);
+  r.model = assemble_model(problem, rep.times, options.on_phase_start);
+  std::vector<Index> last;
+  if (problem.contact) {
+    last = contact_dofs(problem, r.model);
+    if (!wants_schur(problem, static_cast<Index>(last.size()))) last.clear();
+  }
+  factorize_model(r.model, rep.times, options.on_phase_start, last);
   const Model& m = r.model;
   rep.n_nodes = m.mesh.n_nodes();
   rep.n_tets = m.mesh.n_tets();

@@ -451,7 +451,7 @@ void read_solver(const Context& ctx, const Field& f, driver::SolverOptions& s) {
     s.qp_max = static_cast<int>(get_int(ctx, *k, "an integer >= 1", 1, INT_MAX));
   if (auto k = t.find("warm_start")) s.warm_start = get_bool(ctx, *k);
   if (auto k = t.find("dual_operator"))
-    s.dual_operator = get_choice(ctx, *k, {"auto", "implicit", "dense"});
+    s.dual_operator = get_choice(ctx, *k, {"auto", "implicit", "dense", "schur"});
 }
 
 void read_output(const Context& ctx, const Field& f, driver::OutputOptions& o) {

@@ -1,5 +1,7 @@
 #include "fricon/linalg/cholesky.hpp"
 
+#include <algorithm>
+
 #include <cholmod.h>
 #include <fmt/format.h>
 
@@ -58,6 +60,10 @@ const char* ordering_name(int ordering) {
 }  // namespace
 
 void CholeskyFactor::factorize(const SparseMatrix& K) {
+  factorize(K, {});
+}
+
+void CholeskyFactor::factorize(const SparseMatrix& K, const std::vector<Index>& last) {
   FRICON_CHECK(K.rows() == K.cols(), "K is " << K.rows() << " x " << K.cols());
   FRICON_CHECK(K.isCompressed(), "K must be compressed");
   cholmod_common* c = &impl_->common;
@@ -79,7 +85,39 @@ void CholeskyFactor::factorize(const SparseMatrix& K) {
   A.sorted = 1;
   A.packed = 1;
 
-  impl_->L = cholmod_l_analyze(&A, c);
+  trailing_order_.clear();
+  if (last.empty()) {
+    c->nmethods = 0;  // CHOLMOD's default strategy (AMD, METIS when it pays)
+    c->postorder = 1;
+    impl_->L = cholmod_l_analyze(&A, c);
+  } else {
+    // CAMD with two constraint sets: every other dof first, the `last` dofs after them. No
+    // postordering, which could move the constrained dofs away from the end.
+    const Index n = info_.n;
+    std::vector<SuiteSparse_long> cmember(static_cast<size_t>(n), 0), perm(static_cast<size_t>(n));
+    for (Index k : last) {
+      FRICON_CHECK(k >= 0 && k < n, "constrained dof " << k << " out of range " << n);
+      cmember[static_cast<size_t>(k)] = 1;
+    }
+    if (!cholmod_l_camd(&A, nullptr, 0, cmember.data(), perm.data(), c))
+      throw NumericalError(fmt::format(
+          "constrained ordering (CAMD) of K failed (CHOLMOD status {}, n = {})", c->status, n));
+    c->nmethods = 1;
+    c->method[0].ordering = CHOLMOD_GIVEN;
+    c->postorder = 0;
+    impl_->L = cholmod_l_analyze_p(&A, perm.data(), nullptr, 0, c);
+    c->nmethods = 0;
+    c->postorder = 1;
+    if (impl_->L) {
+      const auto* P = static_cast<const SuiteSparse_long*>(impl_->L->Perm);
+      const Index m = static_cast<Index>(last.size());
+      trailing_order_.assign(P + (n - m), P + n);
+      std::vector<Index> a = trailing_order_, b = last;
+      std::sort(a.begin(), a.end());
+      std::sort(b.begin(), b.end());
+      FRICON_CHECK(a == b, "the constrained ordering did not put the " << m << " dofs last");
+    }
+  }
   if (!impl_->L || c->status < CHOLMOD_OK)
     throw NumericalError(
         fmt::format("Cholesky analysis of K failed (CHOLMOD status {}, n = {}, nnz = {})",
@@ -108,6 +146,32 @@ void CholeskyFactor::factorize(const SparseMatrix& K) {
   info_.flops = c->fl;
   info_.supernodal = impl_->L->is_super != 0;
   info_.ordering = ordering_name(impl_->L->ordering);
+}
+
+MatrixXd CholeskyFactor::trailing_factor() const {
+  FRICON_CHECK(impl_->L && !trailing_order_.empty(), "no trailing block: use factorize(K, last)");
+  const cholmod_factor* L = impl_->L;
+  FRICON_CHECK(L->is_super, "the factor is not supernodal");
+  const Index n = info_.n, m = static_cast<Index>(trailing_order_.size()), first = n - m;
+  const auto* super = static_cast<const SuiteSparse_long*>(L->super);
+  const auto* pi = static_cast<const SuiteSparse_long*>(L->pi);
+  const auto* px = static_cast<const SuiteSparse_long*>(L->px);
+  const auto* rows = static_cast<const SuiteSparse_long*>(L->s);
+  const auto* x = static_cast<const Real*>(L->x);
+  MatrixXd L22 = MatrixXd::Zero(m, m);
+  for (size_t sn = 0; sn < L->nsuper; ++sn) {
+    const Index k1 = super[sn], k2 = super[sn + 1];
+    if (k2 <= first) continue;
+    const Index nsrow = pi[sn + 1] - pi[sn];
+    for (Index jj = 0; jj < k2 - k1; ++jj) {
+      const Index col = k1 + jj;
+      if (col < first) continue;
+      // Column col of the supernode: rows rows[pi + ii], values x[px + ii + jj nsrow], ii >= jj.
+      for (Index ii = jj; ii < nsrow; ++ii)
+        L22(rows[pi[sn] + ii] - first, col - first) = x[px[sn] + ii + jj * nsrow];
+    }
+  }
+  return L22;
 }
 
 MatrixXd CholeskyFactor::solve(const MatrixXd& B) const {

@@ -6,6 +6,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "fricon/core/types.hpp"
 
@@ -35,6 +36,17 @@ class CholeskyFactor {
   /// the column where the factorization broke down (e.g. when nothing is clamped).
   void factorize(const SparseMatrix& K);
 
+  /// As factorize(K), with a constrained fill-reducing ordering (CAMD) that puts the dofs `last`
+  /// after all others, so that the trailing block L22 of the factor is the Cholesky factor of the
+  /// Schur complement of K onto those dofs: S = K22 - K21 K11^-1 K12 = L22 L22^T.
+  void factorize(const SparseMatrix& K, const std::vector<Index>& last);
+
+  /// The dense trailing block L22 (m x m lower triangular, m = last.size()) of a factor built with
+  /// factorize(K, last), rows and columns in trailing_order().
+  MatrixXd trailing_factor() const;
+  /// The dofs of the trailing block in pivot order (a permutation of `last`).
+  const std::vector<Index>& trailing_order() const { return trailing_order_; }
+
   /// x = K^-1 b. Each call is one forward and one backward substitution.
   VectorXd solve(const VectorXd& b) const;
   /// X = K^-1 B for a block of right-hand sides (one supernodal solve for all columns).
@@ -50,6 +62,7 @@ class CholeskyFactor {
   std::unique_ptr<Impl> impl_;
   CholeskyInfo info_;
   mutable long n_solves_ = 0;
+  std::vector<Index> trailing_order_;
 };
 
 }  // namespace fricon::linalg

@@ -44,3 +44,47 @@ TEST(Cholesky, UnclampedStiffnessIsReportedAsNotPositiveDefinite) {
     EXPECT_NE(std::string(e.what()).find("dirichlet"), std::string::npos) << e.what();
   }
 }
+
+TEST(Cholesky, TrailingBlockIsTheFactorOfTheSchurComplement) {
+  // Constrain the dofs of the bottom face to come last; then L22 L22^T must equal the Schur
+  // complement S = K22 - K21 K11^-1 K12 computed with dense algebra.
+  const mesh::TetMesh m = mesh::make_brick({Vec3(2, 1, 1), {4, 2, 2}});
+  std::vector<bool> fixed(static_cast<size_t>(3 * m.n_nodes()), false);
+  for (Index a : m.nodes_with_tag("x0"))
+    for (int c = 0; c < 3; ++c)
+      fixed[static_cast<size_t>(3 * a + c)] = true;
+  const fe::DofMap dofs(fixed);
+  const SparseMatrix K = fe::assemble_stiffness(m, fe::isotropic(2e11, 0.3), dofs);
+  std::vector<Index> last;
+  for (Index a : m.nodes_with_tag("z0"))
+    for (int c = 0; c < 3; ++c)
+      if (dofs.dof(a, c) >= 0) last.push_back(dofs.dof(a, c));
+  linalg::CholeskyFactor chol;
+  chol.factorize(K, last);
+  const auto& order = chol.trailing_order();
+  ASSERT_EQ(order.size(), last.size());
+  const MatrixXd L22 = chol.trailing_factor();
+
+  const Index n = K.rows(), mlast = static_cast<Index>(order.size());
+  std::vector<bool> is_last(static_cast<size_t>(n), false);
+  for (Index k : order)
+    is_last[static_cast<size_t>(k)] = true;
+  std::vector<Index> first;
+  for (Index k = 0; k < n; ++k)
+    if (!is_last[static_cast<size_t>(k)]) first.push_back(k);
+  const MatrixXd Kd(K);
+  auto block = [&](const std::vector<Index>& r, const std::vector<Index>& c) {
+    MatrixXd M(static_cast<Index>(r.size()), static_cast<Index>(c.size()));
+    for (size_t i = 0; i < r.size(); ++i)
+      for (size_t j = 0; j < c.size(); ++j)
+        M(static_cast<Index>(i), static_cast<Index>(j)) = Kd(r[i], c[j]);
+    return M;
+  };
+  const MatrixXd S = block(order, order) -
+                     block(order, first) * block(first, first).llt().solve(block(first, order));
+  EXPECT_EQ(L22.rows(), mlast);
+  EXPECT_NEAR((L22 * L22.transpose() - S).norm() / S.norm(), 0.0, 1e-12);
+  // Solves with the constrained factor agree with dense algebra too.
+  const VectorXd b = VectorXd::LinSpaced(n, -1.0, 1.0);
+  EXPECT_NEAR((chol.solve(b) - Kd.llt().solve(b)).norm() / Kd.llt().solve(b).norm(), 0.0, 1e-12);
+}
