@@ -91,17 +91,50 @@ void CholeskyFactor::factorize(const SparseMatrix& K, const std::vector<Index>& 
     c->postorder = 1;
     impl_->L = cholmod_l_analyze(&A, c);
   } else {
-    // CAMD with two constraint sets: every other dof first, the `last` dofs after them. No
-    // postordering, which could move the constrained dofs away from the end.
+    // The dofs that are not constrained are ordered by METIS nested dissection on their own
+    // block K11 (the fill-reducing ordering CHOLMOD prefers for these meshes); the constrained
+    // dofs follow. CAMD with constraint sets was measured at twice the fill on the paper's brick.
     const Index n = info_.n;
-    std::vector<SuiteSparse_long> cmember(static_cast<size_t>(n), 0), perm(static_cast<size_t>(n));
+    std::vector<bool> is_last(static_cast<size_t>(n), false);
     for (Index k : last) {
       FRICON_CHECK(k >= 0 && k < n, "constrained dof " << k << " out of range " << n);
-      cmember[static_cast<size_t>(k)] = 1;
+      is_last[static_cast<size_t>(k)] = true;
     }
-    if (!cholmod_l_camd(&A, nullptr, 0, cmember.data(), perm.data(), c))
-      throw NumericalError(fmt::format(
-          "constrained ordering (CAMD) of K failed (CHOLMOD status {}, n = {})", c->status, n));
+    std::vector<SuiteSparse_long> first, position(static_cast<size_t>(n), -1);
+    for (Index k = 0; k < n; ++k)
+      if (!is_last[static_cast<size_t>(k)]) {
+        position[static_cast<size_t>(k)] = static_cast<SuiteSparse_long>(first.size());
+        first.push_back(k);
+      }
+    std::vector<SuiteSparse_long> perm;
+    perm.reserve(static_cast<size_t>(n));
+    if (!first.empty()) {
+      // K11 in compressed columns (lower and upper parts as stored in K).
+      std::vector<SuiteSparse_long> p11{0}, i11;
+      std::vector<Real> x11;
+      for (SuiteSparse_long j : first) {
+        for (SparseIndex q = K.outerIndexPtr()[j]; q < K.outerIndexPtr()[j + 1]; ++q) {
+          const SuiteSparse_long r = position[static_cast<size_t>(K.innerIndexPtr()[q])];
+          if (r < 0) continue;
+          i11.push_back(r);
+          x11.push_back(K.valuePtr()[q]);
+        }
+        p11.push_back(static_cast<SuiteSparse_long>(i11.size()));
+      }
+      cholmod_sparse A11 = A;
+      A11.nrow = A11.ncol = first.size();
+      A11.nzmax = i11.size();
+      A11.p = p11.data();
+      A11.i = i11.data();
+      A11.x = x11.data();
+      std::vector<SuiteSparse_long> perm11(first.size());
+      if (!cholmod_l_metis(&A11, nullptr, 0, 1, perm11.data(), c))
+        throw NumericalError(fmt::format("METIS ordering of K failed (CHOLMOD status {}, n = {})",
+                                         c->status, first.size()));
+      for (SuiteSparse_long k : perm11)
+        perm.push_back(first[static_cast<size_t>(k)]);
+    }
+    perm.insert(perm.end(), last.begin(), last.end());
     c->nmethods = 1;
     c->method[0].ordering = CHOLMOD_GIVEN;
     c->postorder = 0;
