@@ -2,7 +2,11 @@
 // run the library, write the results, print a summary, and map the outcome to an exit code:
 //   0 converged, 1 bad input (or an ill-posed problem), 2 not converged, 3 internal error.
 
+#include <spawn.h>
+#include <sys/wait.h>
+
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -77,6 +81,7 @@ struct SolveOptions {
   std::vector<std::string> sets;
   std::string dump_dual;
   Verbosity verbosity = Verbosity::Normal;
+  bool plot = false;
 };
 
 // Progress on stderr: phases as they start, one monitor line per outer iteration and, verbose,
@@ -108,6 +113,36 @@ fricon::driver::RunOptions progress_options(Verbosity v, const fricon::Stopwatch
   return o;
 }
 
+// Renders the figures of a results folder with scripts/plot_results.py under Debian's Python
+// (which has matplotlib); returns its exit status. FRICON_SCRIPTS_DIR in the environment
+// overrides where the script is looked for.
+int plot(const std::string& dir, const std::string& out) {
+  const char* env = std::getenv("FRICON_SCRIPTS_DIR");
+  const std::filesystem::path script =
+      std::filesystem::path(env ? env : FRICON_SCRIPTS_DIR) / "plot_results.py";
+  if (!std::filesystem::exists(script))
+    throw fricon::Error(fmt::format("plot script {} not found", script.string()));
+  std::vector<std::string> args{"/usr/bin/python3", script.string(), dir};
+  if (!out.empty()) {
+    args.push_back("--out");
+    args.push_back(out);
+  }
+  std::vector<char*> argv;
+  for (auto& a : args)
+    argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  if (posix_spawn(&pid, argv[0], nullptr, nullptr, argv.data(), environ) != 0)
+    throw fricon::Error("cannot run /usr/bin/python3 (install python3-matplotlib: make deps)");
+  int status = 0;
+  waitpid(pid, &status, 0);
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    std::cerr << "fricon: plotting " << dir << " failed\n";
+    return kBadInput;
+  }
+  return kConverged;
+}
+
 int solve(const std::string& file, const SolveOptions& so, const std::string& command_line) {
   const fricon::Stopwatch clock;
   const fricon::driver::Problem problem = fricon::io::read_problem(file, so.sets);
@@ -123,6 +158,7 @@ int solve(const std::string& file, const SolveOptions& so, const std::string& co
   }
   fricon::io::write_results(dir, problem, result, {so.sets, command_line});
   if (so.verbosity != Verbosity::Quiet) print_summary(result, dir);
+  if (so.plot) plot(dir.string(), "");
   if (result.report.status != fricon::driver::Status::Converged) {
     std::cerr << "fricon: NOT CONVERGED: " << result.report.message << "\n";
     return kNotConverged;
@@ -242,6 +278,7 @@ int main(int argc, char** argv) {
                         "Also write the dual QP of the first outer iteration to this file\n"
                         "(format: docs/dual-format.md)");
   solve_cmd->add_flag("--quiet,-q", quiet, "Print nothing but errors");
+  solve_cmd->add_flag("--plot", solve_opt.plot, "Also render the figures (as `fricon plot`)");
   solve_cmd->add_flag("--verbose,-v", verbose, "Also print every step of the inner QP solver");
 
   auto* check_cmd =
@@ -250,6 +287,15 @@ int main(int argc, char** argv) {
   check_cmd
       ->add_option("--set", solve_opt.sets, "Override a key of the file: KEY=VALUE, repeatable")
       ->allow_extra_args(false);
+
+  std::string plot_dir, plot_out;
+  auto* plot_cmd = app.add_subcommand(
+      "plot",
+      "Render PNG figures of a results folder like the paper's: convergence history, friction\n"
+      "law, contact-surface maps of -w_n, lambda_n, ||w_t||, ||lambda_t||, F on the surface,\n"
+      "friction circles and arrows, and the deformed body (matplotlib, Debian's python3)");
+  plot_cmd->add_option("dir", plot_dir, "Results folder written by `fricon solve`")->required();
+  plot_cmd->add_option("--out,-o", plot_out, "Folder for the figures (default: DIR/plots)");
 
   PaperOptions paper_opt;
   auto* paper_cmd = app.add_subcommand(
@@ -279,6 +325,7 @@ int main(int argc, char** argv) {
     if (*solve_cmd) return solve(file, solve_opt, join_command_line(argc, argv));
     if (*check_cmd) return check(file, solve_opt.sets);
     if (*paper_cmd) return paper(paper_opt);
+    if (*plot_cmd) return plot(plot_dir, plot_out);
   } catch (const fricon::InputError& e) {
     std::cerr << "fricon: error: " << e.what() << "\n";
     return kBadInput;
