@@ -1,0 +1,129 @@
+// Benchmark of the whole contact solve on the paper's brick against one linear elastic solve of
+// the same mesh, measured in the same process: for each n, first assembly + factorization + one
+// solve (the floor of any method with a direct factorization), then the full frictional run
+// (param = 6e4, the paper's tolerances). Each n runs in its own child process so that the peak
+// resident memory belongs to that size.
+//   build/bench/contact_bench                  n = 4, 6, ..., 16
+//   build/bench/contact_bench 24 32            chosen sizes
+//   build/bench/contact_bench --operator implicit 8
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "fricon/core/timer.hpp"
+#include "fricon/driver/model.hpp"
+#include "fricon/driver/paper.hpp"
+#include "fricon/driver/run.hpp"
+
+namespace {
+
+struct Row {
+  long n = 0, n_primal = 0, n_dual = 0, outer = 0, qp_its = 0, n_mult = 0, n_kinv = 0;
+  double linear = 0, total = 0, factorize = 0, dual = 0, qp = 0, other = 0, peak_mib = 0;
+  bool converged = false;
+  char mode[16] = {};
+};
+
+double peak_mib() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_maxrss) / 1024.0;
+}
+
+Row measure(long n, const std::string& mode) {
+  using namespace fricon;
+  Row r;
+  r.n = n;
+  driver::Problem p = driver::paper_problem(n, 6e4);
+  p.solver.dual_operator = mode;
+  {
+    Stopwatch watch;
+    PhaseTimes times;
+    const driver::Model m = driver::build_model(p, times);
+    const VectorXd u = m.factor.solve(m.f);
+    r.linear = watch.seconds();
+    if (!u.allFinite()) std::exit(3);
+  }
+  const driver::RunResult result = driver::run(p);
+  const auto& rep = result.report;
+  const auto& c = *rep.contact;
+  r.n_primal = rep.n_primal;
+  r.n_dual = c.n_dual;
+  r.outer = c.outer_iterations;
+  r.qp_its = c.qp_iterations;
+  r.n_mult = c.n_mult;
+  r.n_kinv = c.n_kinv;
+  r.total = rep.time_s;
+  r.factorize = rep.times.seconds("factorize");
+  r.dual = rep.times.seconds("dual");
+  r.qp = rep.times.seconds("qp");
+  r.other = r.total - r.factorize - r.dual - r.qp;
+  r.converged = rep.status == driver::Status::Converged;
+  std::snprintf(r.mode, sizeof r.mode, "%s", c.dual_operator.c_str());
+  r.peak_mib = peak_mib();
+  return r;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<long> sizes;
+  std::string mode = "auto";
+  for (int i = 1; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--operator") == 0 && i + 1 < argc) {
+      mode = argv[++i];
+    } else {
+      sizes.push_back(std::atol(argv[i]));
+    }
+  }
+  if (sizes.empty()) sizes = {4, 6, 8, 10, 12, 14, 16};
+  fmt::print(
+      "Paper brick, param = 6e4: the full frictional run against one linear solve of the same "
+      "mesh\n");
+  fmt::print(
+      "(linear = assembly + factorization + one solve; ratio = total / linear; times in s)\n\n");
+  fmt::print(
+      "| n | n_p | n_d | operator | outer | QP its | n_mult | K^-1 solves | factorize | dual | qp "
+      "| other | total | linear | ratio | peak RSS [MiB] |\n");
+  fmt::print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  int code = 0;
+  for (long n : sizes) {
+    int fd[2];
+    if (pipe(fd) != 0) return 3;
+    const pid_t pid = fork();
+    if (pid == 0) {
+      close(fd[0]);
+      const Row r = measure(n, mode);
+      if (write(fd[1], &r, sizeof r) != static_cast<ssize_t>(sizeof r)) _exit(3);
+      _exit(0);
+    }
+    close(fd[1]);
+    Row r;
+    const bool ok = read(fd[0], &r, sizeof r) == static_cast<ssize_t>(sizeof r);
+    close(fd[0]);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    if (!ok || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+      fmt::print("| {} | failed (out of memory or killed) |\n", n);
+      code = 3;
+      continue;
+    }
+    fmt::print(
+        "| {} | {} | {} | {} | {}{} | {} | {} | {} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | "
+        "{:.3f} | {:.2f} | {:.0f} |\n",
+        r.n, r.n_primal, r.n_dual, r.mode, r.outer, r.converged ? "" : " (not converged)", r.qp_its,
+        r.n_mult, r.n_kinv, r.factorize, r.dual, r.qp, r.other, r.total, r.linear,
+        r.total / r.linear, r.peak_mib);
+    std::fflush(stdout);
+    if (!r.converged) code = 2;
+  }
+  return code;
+}
