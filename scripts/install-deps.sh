@@ -14,6 +14,8 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   # reading results back (tests) and plots: Debian's Python packages for /usr/bin/python3
   python3 python3-numpy python3-meshio python3-matplotlib
+  # peer comparison in bench/ (optional for the library)
+  libsiconos-numerics-dev
 )
 
 missing=()
