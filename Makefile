@@ -33,7 +33,7 @@ test-sanitize: deps
 	  -DFRICON_SANITIZE=ON -DFRICON_BUILD_BENCH=OFF -DFRICON_WERROR=$(WERROR)
 	cmake --build $(SAN_BUILD)
 	ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
-	  ctest --test-dir $(SAN_BUILD) -L unit --output-on-failure -j $(CTEST_JOBS)
+	  ctest --test-dir $(SAN_BUILD) -L "unit|leak" --output-on-failure -j $(CTEST_JOBS)
 
 bench: build
 	@for b in $(BUILD)/bench/*_bench; do echo "== $$b"; $$b || exit 1; done

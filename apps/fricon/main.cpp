@@ -5,6 +5,8 @@
 #include <spawn.h>
 #include <sys/wait.h>
 
+#include <atomic>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -75,6 +77,16 @@ void print_summary(const fricon::driver::RunResult& result, const std::filesyste
 }
 
 enum class Verbosity { Quiet, Normal, Verbose };
+
+// Ctrl-C (SIGINT) and SIGTERM ask the run to stop at its next QP step; the run then writes its
+// last iterate as not converged. A second signal ends the program at once.
+std::atomic<bool> g_stop{false};
+extern "C" void on_signal(int sig) {
+  if (g_stop.exchange(true)) {
+    std::signal(sig, SIG_DFL);
+    std::raise(sig);
+  }
+}
 
 struct SolveOptions {
   std::string out;
@@ -150,6 +162,9 @@ int solve(const std::string& file, const SolveOptions& so, const std::string& co
       std::filesystem::path(so.out.empty() ? problem.output.dir : so.out);
   fricon::driver::RunOptions options = progress_options(so.verbosity, clock);
   options.keep_first_dual = !so.dump_dual.empty();
+  options.stop_requested = &g_stop;
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
   const fricon::driver::RunResult result = fricon::driver::run(problem, options);
   if (!so.dump_dual.empty()) {
     if (!result.first_dual)
@@ -160,7 +175,8 @@ int solve(const std::string& file, const SolveOptions& so, const std::string& co
   if (so.verbosity != Verbosity::Quiet) print_summary(result, dir);
   if (so.plot) plot(dir.string(), "");
   if (result.report.status != fricon::driver::Status::Converged) {
-    std::cerr << "fricon: NOT CONVERGED: " << result.report.message << "\n";
+    std::cerr << "fricon: NOT CONVERGED: " << result.report.message << "\n"
+              << "fricon: the last iterate is in " << dir.string() << "/*.not-converged.*\n";
     return kNotConverged;
   }
   return kConverged;

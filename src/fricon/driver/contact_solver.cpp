@@ -148,6 +148,27 @@ void recover(const Model& m, const SparseMatrix& B, const Dual& d, const VectorX
   }
 }
 
+bool stop_requested(const RunOptions& o) {
+  return o.stop_requested && o.stop_requested->load();
+}
+
+// Geometric mean of err(k)/err(k-1) over the last (up to three) iterations after the first:
+// the observed contraction factor of the successive approximations (0 if not measurable).
+Real contraction_ratio(const std::vector<Real>& err) {
+  const size_t n = err.size();
+  if (n < 3) return 0.0;
+  const size_t first = std::max<size_t>(1, n - 4);
+  if (!(err[first] > 0.0) || !(err.back() > 0.0)) return 0.0;
+  return std::pow(err.back() / err[first], 1.0 / static_cast<Real>(n - 1 - first));
+}
+
+std::string history_text(const std::vector<Real>& err) {
+  std::string s;
+  for (Real e : err)
+    s += fmt::format(" {:.3e}", e);
+  return s;
+}
+
 // phi = ||w_t|| per surface node, and the components of w there.
 void surface_components(const Model& m, const contact::ContactSurface& s, const VectorXd& w,
                         ContactFields& f) {
@@ -217,7 +238,10 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m, PhaseTimes&
   qopt.rel_tolerance = so.qp_rtol;
   qopt.max_iterations = so.qp_max;
   qopt.norm_A = rep.norm_Q;
-  if (options.on_qp_iteration) qopt.monitor = options.on_qp_iteration;
+  qopt.monitor = [&options](const qp::MpgpIteration& it) {
+    if (stop_requested(options)) return false;
+    return options.on_qp_iteration ? options.on_qp_iteration(it) : true;
+  };
 
   // @sect: successive approximations (method.md §3).
   VectorXd phi = VectorXd::Zero(fields.surface.n_nodes());
@@ -276,6 +300,10 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m, PhaseTimes&
     rep.err_history.push_back(it.err);
     rep.outer_iterations = k;
     if (options.on_outer_iteration) options.on_outer_iteration(it);
+    if (stop_requested(options)) {
+      out.message = fmt::format("interrupted during outer iteration {}", k);
+      break;
+    }
     if (last_qp.termination != qp::Termination::Converged) {
       out.message =
           fmt::format("the dual QP of outer iteration {} did not converge: {}", k, last_qp.message);
@@ -286,15 +314,27 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m, PhaseTimes&
       out.converged = true;
       break;
     }
+    // The map Psi contracts when F's Lipschitz constant is small (method.md §1). Growth of
+    // err(k) over three iterations in a row means it does not: stop and say so.
+    rep.contraction_ratio = contraction_ratio(rep.err_history);
+    const size_t nk = rep.err_history.size();
+    if (nk >= 4 && rep.err_history[nk - 1] >= rep.err_history[nk - 2] &&
+        rep.err_history[nk - 2] >= rep.err_history[nk - 3] &&
+        rep.err_history[nk - 3] >= rep.err_history[nk - 4]) {
+      out.message = fmt::format(
+          "the successive approximations do not contract: err(k) grew for three iterations in a "
+          "row (observed ratio err(k)/err(k-1) = {:.3g}); the friction law's Lipschitz constant "
+          "{:.3g} 1/m may be too large for this problem; err(k):{}",
+          rep.contraction_ratio, law->lipschitz(), history_text(rep.err_history));
+      break;
+    }
   }
-  if (!out.converged && out.message.empty()) {
-    std::string hist;
-    for (Real e : rep.err_history)
-      hist += fmt::format(" {:.3e}", e);
+  rep.contraction_ratio = contraction_ratio(rep.err_history);
+  if (!out.converged && out.message.empty())
     out.message = fmt::format(
-        "the successive approximations did not reach err <= {:.1e} in {} iterations; err(k):{}",
-        so.outer_tol, so.outer_max, hist);
-  }
+        "the successive approximations did not reach err <= {:.1e} in {} iterations (observed "
+        "contraction ratio {:.3g}); err(k):{}",
+        so.outer_tol, so.outer_max, rep.contraction_ratio, history_text(rep.err_history));
   rep.fixed_point_residual = rep.err_history.empty() ? 0.0 : rep.err_history.back();
 
   // @sect: the displacement of the whole body, once, and the certificate of the last iterate.

@@ -7,6 +7,7 @@
 //      MPGP (warm-started), w = K^-1 (f - B^T lambda), phi^k = ||w_t|| at the surface nodes,
 //      err(k) = ||phi^k - phi^(k-1)|| / ||phi^k||, stop when err(k) <= outer_tol.
 
+#include <atomic>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -62,6 +63,9 @@ struct ContactReport {
   /// ||Psi(phi) - phi|| / ||phi|| at the returned phi (the last err, which compares
   /// phi^k = Psi(phi^(k-1)) with phi^(k-1)).
   Real fixed_point_residual = 0.0;
+  /// Observed contraction factor of the successive approximations: geometric mean of
+  /// err(k)/err(k-1) over the last iterations (0 if fewer than three).
+  Real contraction_ratio = 0.0;
 };
 
 /// Fields on the contact surface, per surface node and per patch.
@@ -96,6 +100,9 @@ struct RunOptions {
   std::function<bool(const qp::MpgpIteration&)> on_qp_iteration;
   /// Called when a phase starts ("assembly", "factorize", ...) so that long phases are visible.
   std::function<void(const std::string& phase)> on_phase_start;
+  /// If set and true, the run stops at the next QP step (e.g. set by a SIGINT handler) and
+  /// returns what it has, not converged.
+  const std::atomic<bool>* stop_requested = nullptr;
 };
 
 struct ContactOutcome {

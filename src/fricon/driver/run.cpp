@@ -69,6 +69,11 @@ RunResult run(const Problem& problem, const RunOptions& options) {
     rep.linear_residual = (m.K * u - m.f).norm() / std::max(m.f.norm(), 1e-300);
   }
 
+  if (options.stop_requested && options.stop_requested->load() && rep.status == Status::Converged) {
+    rep.status = Status::NotConverged;
+    rep.message = "interrupted";
+  }
+
   // @sect: fields and the self-check of the result.
   {
     ScopedPhase phase(rep.times, "postprocess");

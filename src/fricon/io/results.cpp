@@ -90,11 +90,34 @@ nlohmann::json report_json(const driver::Problem& problem, const driver::RunResu
   return j;
 }
 
+namespace {
+// Every file a run may write, by its base name and extension.
+const std::vector<std::pair<std::string, std::string>> kResultFiles{
+    {"solution", ".vtu"},      {"contact", ".vtu"}, {"solution", ".pvd"},
+    {"contact_nodes", ".csv"}, {"patches", ".csv"}, {"report", ".json"}};
+constexpr const char* kNotConverged = ".not-converged";
+}  // namespace
+
+std::filesystem::path result_path(const std::filesystem::path& dir, const std::string& base,
+                                  const std::string& extension, bool converged) {
+  return dir / (base + (converged ? "" : kNotConverged) + extension);
+}
+
 std::vector<std::filesystem::path> write_results(const std::filesystem::path& dir,
                                                  const driver::Problem& problem,
                                                  const driver::RunResult& result,
                                                  const RunContext& context) {
   std::vector<std::filesystem::path> written;
+  const bool converged = result.report.status == driver::Status::Converged;
+  // Results of an earlier run in the same folder, converged or not, would contradict this one.
+  for (const auto& [base, ext] : kResultFiles)
+    for (bool c : {true, false}) {
+      std::error_code ec;
+      std::filesystem::remove(result_path(dir, base, ext, c), ec);
+    }
+  auto path = [&](const std::string& base, const std::string& ext) {
+    return result_path(dir, base, ext, converged);
+  };
   const auto& mesh = result.model.mesh;
 
   VtuGrid body;
@@ -103,16 +126,16 @@ std::vector<std::filesystem::path> write_results(const std::filesystem::path& di
   body.point_data.push_back({"displacement", result.displacement});
   body.cell_data.push_back({"stress", result.stress});
   body.cell_data.push_back({"von_mises", result.von_mises.transpose()});
-  write_vtu(dir / "solution.vtu", body);
-  written.push_back(dir / "solution.vtu");
+  write_vtu(path("solution", ".vtu"), body);
+  written.push_back(path("solution", ".vtu"));
 
-  std::vector<std::string> parts{"solution.vtu"};
+  std::vector<std::string> parts{path("solution", ".vtu").filename().string()};
   if (result.contact) {
     const driver::ContactFields& c = *result.contact;
     const auto& s = c.surface;
     const Index np = c.patches.size();
     // Per surface node: w_n, w_t1, w_t2, phi, F (and coordinates).
-    write_atomically(dir / "contact_nodes.csv", [&](std::ostream& out) {
+    write_atomically(path("contact_nodes", ".csv"), [&](std::ostream& out) {
       out << "x,y,z,w_n,w_t1,w_t2,phi,F\n";
       for (Index k = 0; k < s.n_nodes(); ++k) {
         const auto x = mesh.nodes.col(s.nodes[static_cast<size_t>(k)]);
@@ -121,15 +144,15 @@ std::vector<std::filesystem::path> write_results(const std::filesystem::path& di
                            c.wt2(k), phi, c.F(k));
       }
     });
-    written.push_back(dir / "contact_nodes.csv");
-    write_atomically(dir / "patches.csv", [&](std::ostream& out) {
+    written.push_back(path("contact_nodes", ".csv"));
+    write_atomically(path("patches", ".csv"), [&](std::ostream& out) {
       out << "x,y,area,lambda_n,lambda_t1,lambda_t2,radius\n";
       for (Index p = 0; p < np; ++p)
         out << fmt::format("{},{},{},{},{},{},{}\n", c.patches.centroid(0, p),
                            c.patches.centroid(1, p), c.patches.area(p), c.lambda(3 * p),
                            c.lambda(3 * p + 1), c.lambda(3 * p + 2), c.radius(p));
     });
-    written.push_back(dir / "patches.csv");
+    written.push_back(path("patches", ".csv"));
 
     // The contact surface as triangles: nodal w and slip, per-triangle multipliers of its patch.
     VtuGrid surface;
@@ -160,16 +183,17 @@ std::vector<std::filesystem::path> write_results(const std::filesystem::path& di
                          {"norm_lambda_t", per_face.row(1)},
                          {"radius", per_face.row(2)},
                          {"patch", per_face.row(3)}};
-    write_vtu(dir / "contact.vtu", surface);
-    written.push_back(dir / "contact.vtu");
-    parts.push_back("contact.vtu");
+    write_vtu(path("contact", ".vtu"), surface);
+    written.push_back(path("contact", ".vtu"));
+    parts.push_back(path("contact", ".vtu").filename().string());
   }
-  write_pvd(dir / "solution.pvd", parts);
-  written.push_back(dir / "solution.pvd");
+  write_pvd(path("solution", ".pvd"), parts);
+  written.push_back(path("solution", ".pvd"));
 
   const nlohmann::json report = report_json(problem, result, context);
-  write_atomically(dir / "report.json", [&](std::ostream& out) { out << report.dump(2) << '\n'; });
-  written.push_back(dir / "report.json");
+  write_atomically(path("report", ".json"),
+                   [&](std::ostream& out) { out << report.dump(2) << '\n'; });
+  written.push_back(path("report", ".json"));
   return written;
 }
 
