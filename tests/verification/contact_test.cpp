@@ -238,3 +238,17 @@ TEST(PaperBrick, EveryDualOperatorGivesTheSameSolution) {
   EXPECT_GT(runs[0].report.contact->n_kinv, runs[0].report.contact->n_mult);
   EXPECT_EQ(runs[2].report.contact->n_kinv, 3);
 }
+
+TEST(PaperBrick, AndersonMixingReachesTheSameFixedPoint) {
+  // The accelerated outer loop must converge to the same slip and multipliers (to the outer
+  // tolerance), in no more iterations than the plain successive approximations.
+  Problem plain = tight(paper_problem(4, 6e4));
+  plain.solver.outer_tol = 1e-8;
+  Problem accelerated = plain;
+  accelerated.solver.acceleration = "anderson";
+  const RunResult a = run(plain), b = run(accelerated);
+  ASSERT_EQ(b.report.status, Status::Converged) << b.report.message;
+  EXPECT_LE(b.report.contact->outer_iterations, a.report.contact->outer_iterations);
+  EXPECT_LT((b.contact->lambda - a.contact->lambda).norm() / a.contact->lambda.norm(), 1e-6);
+  EXPECT_LT((b.displacement - a.displacement).norm() / a.displacement.norm(), 1e-6);
+}

@@ -162,6 +162,42 @@ Real contraction_ratio(const std::vector<Real>& err) {
   return std::pow(err.back() / err[first], 1.0 / static_cast<Real>(n - 1 - first));
 }
 
+// Anderson mixing (type II) for the fixed point phi = Psi(phi): from the last iterates x_i and
+// their images g_i = Psi(x_i), the next iterate is g_k - sum_i gamma_i (g_i+1 - g_i), with gamma
+// minimising the norm of the mixed residual f_k - sum_i gamma_i (f_i+1 - f_i), f = g - x. Slips
+// are clipped at 0. With depth 0 or a single pair it is the plain iteration.
+class AndersonMixing {
+ public:
+  explicit AndersonMixing(int depth) : depth_(static_cast<size_t>(depth)) {}
+  VectorXd next(const VectorXd& x, const VectorXd& g) {
+    const VectorXd f = g - x;
+    if (!x_.empty() && x_.back().size() == x.size()) {
+      dF_.push_back(f - f_last_);
+      dG_.push_back(g - g_last_);
+      if (dF_.size() > depth_) {
+        dF_.erase(dF_.begin());
+        dG_.erase(dG_.begin());
+      }
+    }
+    x_.assign(1, x);
+    f_last_ = f;
+    g_last_ = g;
+    if (dF_.empty()) return g;
+    MatrixXd F(f.size(), static_cast<Index>(dF_.size())), G(g.size(), F.cols());
+    for (size_t i = 0; i < dF_.size(); ++i) {
+      F.col(static_cast<Index>(i)) = dF_[i];
+      G.col(static_cast<Index>(i)) = dG_[i];
+    }
+    const VectorXd gamma = F.colPivHouseholderQr().solve(f);
+    return (g - G * gamma).cwiseMax(0.0);
+  }
+
+ private:
+  size_t depth_;
+  std::vector<VectorXd> x_, dF_, dG_;
+  VectorXd f_last_, g_last_;
+};
+
 std::string history_text(const std::vector<Real>& err) {
   std::string s;
   for (Real e : err)
@@ -245,6 +281,7 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m, PhaseTimes&
 
   // @sect: successive approximations (method.md §3).
   VectorXd phi = VectorXd::Zero(fields.surface.n_nodes());
+  AndersonMixing anderson(so.anderson_depth);
   VectorXd lambda = VectorXd::Zero(rep.n_dual);
   VectorXd w;
   qp::MpgpReport last_qp;
@@ -309,7 +346,7 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m, PhaseTimes&
           fmt::format("the dual QP of outer iteration {} did not converge: {}", k, last_qp.message);
       break;
     }
-    phi = phi_new;
+    phi = so.acceleration == "anderson" ? anderson.next(phi, phi_new) : phi_new;
     if (it.err <= so.outer_tol) {
       out.converged = true;
       break;

@@ -72,6 +72,11 @@ struct SolverOptions {
   /// "dense" (Q formed once by a block solve with n_dual right-hand sides), "schur" (K factored
   /// with the contact dofs last, Q from the factor of the Schur complement), or "auto".
   std::string dual_operator = "auto";
+  /// [solver.acceleration] of the successive approximations: "none" (the paper's plain
+  /// iteration phi^k = Psi(phi^(k-1))) or "anderson" (Anderson mixing of the last iterates).
+  std::string acceleration = "none";
+  /// [solver.anderson_depth] number of previous iterates Anderson mixing uses, in [1, 20].
+  int anderson_depth = 1;
 };
 
 /// [output]
