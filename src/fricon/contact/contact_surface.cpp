@@ -86,7 +86,7 @@ Patches chessboard_patches(const mesh::TetMesh& mesh, const ContactSurface& surf
     throw InputError(fmt::format(
         "{}: contact.patches = \"chessboard\" needs a rectangular contact surface of grid squares "
         "with an even number (>= 2) in each direction; '{}' has {} x {} grid intervals and {} "
-        "triangles",
+        "triangles (on a brick: mesh.cells must be even along both edges of the contact face)",
         where, surface.tag, m1, m2, surface.faces.size()));
   const Real h1 = (lines1.back() - lines1.front()) / static_cast<Real>(m1);
   const Real h2 = (lines2.back() - lines2.front()) / static_cast<Real>(m2);

@@ -278,6 +278,10 @@ class TableReader {
         hint = fmt::format(" (did you mean '{}'?)", join_key(self_.path, a));
       }
     }
+    if (hint.empty() && !self_.path.empty() &&
+        (worst->str() == "title" || worst->str() == "volume_force"))
+      hint = fmt::format(" ('{}' is a top-level key: write it before the first [table] header)",
+                         worst->str());
     if (hint.empty()) {
       hint = fmt::format("; {} takes:", self_.path.empty() ? "the top level" : self_.path);
       for (const auto a : allowed_)
@@ -310,6 +314,15 @@ void read_mesh(const Context& ctx, const Field& f, driver::MeshOptions& m) {
     for (std::size_t i = 0; i < 3; ++i)
       m.cells[i] = static_cast<Index>(
           get_int(ctx, element(*k, a, i), "an integer >= 1", 1, std::int64_t{1} << 31));
+    // 5 tetrahedra and about 3 dofs per cube: keep every count far from overflow (and from
+    // 32-bit indices in the ordering libraries) instead of failing on allocation later.
+    constexpr double kMaxCells = 1e8;
+    const double total = static_cast<double>(m.cells[0]) * static_cast<double>(m.cells[1]) *
+                         static_cast<double>(m.cells[2]);
+    if (total > kMaxCells)
+      fail(ctx, *k,
+           fmt::format("expected at most {:.0f} cubes in all, got {} x {} x {} = {:.3g}", kMaxCells,
+                       m.cells[0], m.cells[1], m.cells[2], total));
   }
 }
 
@@ -682,6 +695,45 @@ void apply_override(Context& ctx, toml::table& root, const std::string& text) {
   }
 }
 
+/// Line `line` (1-based) of `text` without its end of line; empty past the end.
+std::string_view line_of(std::string_view text, std::size_t line) {
+  std::size_t begin = 0;
+  for (std::size_t l = 1; l < line; ++l) {
+    begin = text.find('\n', begin);
+    if (begin == std::string_view::npos) return {};
+    ++begin;
+  }
+  std::string_view rest = text.substr(std::min(begin, text.size()));
+  rest = rest.substr(0, std::min(rest.find('\n'), rest.size()));
+  if (!rest.empty() && rest.back() == '\r') rest.remove_suffix(1);
+  return rest;
+}
+
+/// Whether 1-based `column` is just past the end of `line` (toml++ counts columns in code points
+/// or bytes: either is accepted).
+bool at_end_of_line(std::string_view line, std::size_t column) {
+  const auto code_points =
+      static_cast<std::size_t>(std::count_if(line.begin(), line.end(), [](char c) {
+        return (static_cast<unsigned char>(c) & 0xC0) != 0x80;
+      }));
+  return column == code_points + 1 || column == line.size() + 1;
+}
+
+/// The line of a syntax error as it is shown in the message: trimmed, shortened, control
+/// characters replaced by '?'.
+std::string quote_line(std::string_view line) {
+  line = trim(line);
+  constexpr std::size_t kMax = 60;
+  std::string out;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const auto c = static_cast<unsigned char>(line[i]);
+    // Cut at a code point boundary.
+    if (out.size() >= kMax && (c & 0xC0) != 0x80) return out + "...";
+    out += (c < 0x20 || c == 0x7F) ? '?' : static_cast<char>(c);
+  }
+  return out;
+}
+
 nlohmann::json vec_json(const Vec3& v) {
   return nlohmann::json::array({v[0], v[1], v[2]});
 }
@@ -697,8 +749,18 @@ driver::Problem parse_problem(std::string_view text, const std::string& source_n
     root = toml::parse(text, std::string_view(source_name));
   } catch (const toml::parse_error& e) {
     const auto& b = e.source().begin;
+    const std::string_view line = line_of(text, b.line);
+    // toml++ reports a string left open at the end of its line as a control character (the
+    // newline) inside the string.
+    const bool open_string = e.description().find("control characters") != std::string_view::npos &&
+                             at_end_of_line(line, b.column);
+    // The offending line names the key; not when the text is not UTF-8 (it cannot be shown).
+    const bool show =
+        !trim(line).empty() && e.description().find("utf-8") == std::string_view::npos;
     throw InputError(
-        fmt::format("{}:{}:{}: invalid TOML: {}", source_name, b.line, b.column, e.description()));
+        fmt::format("{}:{}:{}: invalid TOML: {}{}{}", source_name, b.line, b.column,
+                    e.description(), show ? fmt::format(" in `{}`", quote_line(line)) : "",
+                    open_string ? " (is the closing quote of a string missing?)" : ""));
   }
   for (const auto& o : overrides)
     apply_override(ctx, root, o);
