@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 
 #include <fmt/format.h>
 
@@ -123,42 +122,64 @@ FaceKey sorted_face(Index a, Index b, Index c) {
 constexpr int kTetFace[4][4] = {{1, 2, 3, 0}, {0, 3, 2, 1}, {0, 1, 3, 2}, {0, 2, 1, 3}};
 }  // namespace
 
-FaceSharing face_sharing(const TetMesh& mesh) {
-  std::map<FaceKey, int> count;
+namespace {
+// Every face of every tetrahedron, oriented outward (for a positively oriented tetrahedron),
+// sorted by its vertex set so that copies of the same face are adjacent.
+struct TetFace {
+  FaceKey key;
+  std::array<Index, 3> oriented;
+};
+std::vector<TetFace> sorted_tet_faces(const TetMesh& mesh) {
+  std::vector<TetFace> faces;
+  faces.reserve(static_cast<size_t>(4 * mesh.n_tets()));
   for (Index t = 0; t < mesh.n_tets(); ++t)
-    for (const auto& lf : kTetFace)
-      ++count[sorted_face(mesh.tets(lf[0], t), mesh.tets(lf[1], t), mesh.tets(lf[2], t))];
+    for (const auto& lf : kTetFace) {
+      const std::array<Index, 3> o{mesh.tets(lf[0], t), mesh.tets(lf[1], t), mesh.tets(lf[2], t)};
+      faces.push_back({sorted_face(o[0], o[1], o[2]), o});
+    }
+  std::sort(faces.begin(), faces.end(),
+            [](const TetFace& a, const TetFace& b) { return a.key < b.key; });
+  return faces;
+}
+// Calls visit(first, count) for each group of equal faces.
+template <class Visit>
+void for_each_face_group(const std::vector<TetFace>& faces, Visit visit) {
+  for (size_t i = 0; i < faces.size();) {
+    size_t j = i + 1;
+    while (j < faces.size() && faces[j].key == faces[i].key)
+      ++j;
+    visit(i, j - i);
+    i = j;
+  }
+}
+}  // namespace
+
+FaceSharing face_sharing(const TetMesh& mesh) {
   FaceSharing s;
-  for (const auto& [key, c] : count) {
-    if (c == 1)
+  for_each_face_group(sorted_tet_faces(mesh), [&](size_t, size_t count) {
+    if (count == 1)
       ++s.n_boundary;
-    else if (c == 2)
+    else if (count == 2)
       ++s.n_interior;
     else
       ++s.n_overshared;
-  }
+  });
   return s;
 }
 
 Eigen::Matrix<Index, 3, Eigen::Dynamic> boundary_faces_of(const TetMesh& mesh) {
   // For a positively oriented tetrahedron, the local faces of kTetFace are listed so that their
   // right-hand normal points away from the opposite vertex, i.e. outward.
-  std::map<FaceKey, std::pair<int, std::array<Index, 3>>> seen;
-  for (Index t = 0; t < mesh.n_tets(); ++t)
-    for (const auto& lf : kTetFace) {
-      std::array<Index, 3> oriented{mesh.tets(lf[0], t), mesh.tets(lf[1], t), mesh.tets(lf[2], t)};
-      auto& entry = seen[sorted_face(oriented[0], oriented[1], oriented[2])];
-      entry.first += 1;
-      entry.second = oriented;
-    }
-  std::vector<std::array<Index, 3>> boundary;
-  for (const auto& [key, entry] : seen)
-    if (entry.first == 1) boundary.push_back(entry.second);
-  Eigen::Matrix<Index, 3, Eigen::Dynamic> faces(3, static_cast<Index>(boundary.size()));
+  const std::vector<TetFace> faces = sorted_tet_faces(mesh);
+  std::vector<size_t> boundary;
+  for_each_face_group(faces, [&](size_t first, size_t count) {
+    if (count == 1) boundary.push_back(first);
+  });
+  Eigen::Matrix<Index, 3, Eigen::Dynamic> result(3, static_cast<Index>(boundary.size()));
   for (size_t f = 0; f < boundary.size(); ++f)
     for (int v = 0; v < 3; ++v)
-      faces(v, static_cast<Index>(f)) = boundary[f][v];
-  return faces;
+      result(v, static_cast<Index>(f)) = faces[boundary[f]].oriented[v];
+  return result;
 }
 
 }  // namespace fricon::mesh
