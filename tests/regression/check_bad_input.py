@@ -1,0 +1,83 @@
+"""The bad-input corpus: every malformed or inconsistent problem file is refused cleanly.
+
+Usage: check_bad_input.py FRICON CORPUS_DIR OUTDIR
+
+Each CORPUS_DIR/*.toml starts with a line
+    # expect: <fragment> | <fragment> ...
+listing text that the error message must contain (the file name and line, the key, what is
+wrong). Every file is run as `FRICON solve FILE --out OUTDIR/<name>` and must give exit code 1,
+exactly one line "fricon: error: ..." on stderr containing every fragment, no sanitizer report
+or traceback, no crash or hang (10 s each), and no file in the --out folder.
+"""
+import pathlib
+import subprocess
+import sys
+
+TIMEOUT_S = 10
+# Text that only a crash, a sanitizer or an uncaught exception prints.
+ALARMS = ("AddressSanitizer", "UndefinedBehaviorSanitizer", "LeakSanitizer", "runtime error:",
+          "Traceback", "terminate called", "internal error", "Segmentation fault", "Aborted")
+
+
+def expectations(path):
+    first = path.read_text(encoding="utf-8", errors="replace").splitlines()[:1]
+    prefix = "# expect:"
+    if not first or not first[0].startswith(prefix):
+        return None
+    frags = [f.strip() for f in first[0][len(prefix):].split("|")]
+    return [f for f in frags if f]
+
+
+def check(exe, path, out_root):
+    """Returns the list of problems with one corpus file (empty when it passes)."""
+    problems = []
+    frags = expectations(path)
+    if not frags:
+        return [f"no '# expect: ...' first line"]
+    out = out_root / path.stem
+    try:
+        r = subprocess.run([exe, "solve", str(path), "--out", str(out)], capture_output=True,
+                           timeout=TIMEOUT_S)
+    except subprocess.TimeoutExpired:
+        return [f"did not finish within {TIMEOUT_S} s"]
+    stderr = r.stderr.decode("utf-8", errors="replace")
+    stdout = r.stdout.decode("utf-8", errors="replace")
+    if r.returncode != 1:
+        problems.append(f"exit code {r.returncode}, expected 1")
+    errors = [line for line in stderr.splitlines() if line.startswith("fricon: error:")]
+    if len(errors) != 1:
+        problems.append(f"{len(errors)} lines start with 'fricon: error:', expected 1")
+    message = errors[0] if errors else ""
+    for f in frags:
+        if f not in message:
+            problems.append(f"message lacks {f!r}")
+    for alarm in ALARMS:
+        if alarm in stderr or alarm in stdout:
+            problems.append(f"output contains {alarm!r}")
+    if out.exists() and any(out.iterdir()):
+        problems.append(f"wrote into {out}: {sorted(p.name for p in out.iterdir())}")
+    if problems:
+        problems.append(f"stderr was:\n{stderr.rstrip()}")
+    return problems
+
+
+def main():
+    if len(sys.argv) != 4:
+        sys.exit(__doc__)
+    exe, corpus, out_root = sys.argv[1], pathlib.Path(sys.argv[2]), pathlib.Path(sys.argv[3])
+    out_root.mkdir(parents=True, exist_ok=True)
+    files = sorted(corpus.glob("*.toml"))
+    if not files:
+        sys.exit(f"no *.toml files in {corpus}")
+    failed = 0
+    for path in files:
+        problems = check(exe, path, out_root)
+        if problems:
+            failed += 1
+            print(f"FAIL {path.name}:\n  " + "\n  ".join(problems), flush=True)
+    print(f"{len(files) - failed} passed, {failed} failed")
+    sys.exit(1 if failed else 0)
+
+
+if __name__ == "__main__":
+    main()
