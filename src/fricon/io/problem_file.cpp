@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <charconv>
 #include <climits>
 #include <cmath>
 #include <cstdint>
@@ -622,10 +623,12 @@ void apply_override(Context& ctx, toml::table& root, const std::string& text) {
     if (!is_index(path[i]))
       fail_override(text, fmt::format("'{}' is an array: address its entries as {}.0, {}.1, ...",
                                       prefix(i), prefix(i), prefix(i)));
-    const std::size_t idx = std::stoul(path[i]);
-    if (idx > a.size())
-      fail_override(text, fmt::format("index {} out of range: '{}' has {} entries", idx, prefix(i),
-                                      a.size()));
+    // Digits only (is_index); an index too large for size_t is out of range like any other.
+    std::size_t idx = 0;
+    const auto [end, ec] = std::from_chars(path[i].data(), path[i].data() + path[i].size(), idx);
+    if (ec != std::errc{} || idx > a.size())
+      fail_override(text, fmt::format("index {} out of range: '{}' has {} entries", path[i],
+                                      prefix(i), a.size()));
     return idx;  // == size appends a new entry
   };
   const auto unregister = [&](const toml::node& old) {

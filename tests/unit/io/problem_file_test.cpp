@@ -273,6 +273,9 @@ TEST(ProblemFileOverrides, AreValidatedAndNamed) {
               HasSubstr("--set mesh.cells=[1,2: invalid TOML value"));
   EXPECT_THAT(error_of("[mesh]\n[material]\n", {"mesh..cells=1"}),
               HasSubstr("--set mesh..cells=1: invalid key"));
+  // An index beyond size_t threw std::out_of_range (an internal error, exit code 3).
+  EXPECT_THAT(error_of("[mesh]\n[material]\n", {"dirichlet.99999999999999999999999.boundary=x0"}),
+              HasSubstr("index 99999999999999999999999 out of range: 'dirichlet' has 0 entries"));
   EXPECT_THAT(error_of("[mesh]\n[material]\n", {"material.young=inf"}),
               HasSubstr("--set material.young=inf: material.young: expected a positive number "
                         "[Pa], got inf (numbers must be finite)"));
