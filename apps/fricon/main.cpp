@@ -323,7 +323,7 @@ int main(int argc, char** argv) {
   paper_cmd
       ->add_option("--dual-operator", paper_opt.dual_operator,
                    "How Q = B K^-1 B^T is applied: implicit (the paper's way), dense, schur, auto")
-      ->check(CLI::IsMember({"auto", "implicit", "dense", "schur"}));
+      ->check(CLI::IsMember({"auto", "implicit", "dense", "schur", "forward"}));
   paper_cmd->add_option("--qp-rtol", paper_opt.qp_rtol, "QP tolerance (paper: 1e-6)")
       ->check(CLI::PositiveNumber);
 

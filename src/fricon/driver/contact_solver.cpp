@@ -108,6 +108,14 @@ Dual make_dual(const Model& m, const SparseMatrix& B, const std::string& mode, l
     d.u0_c.resize(nc);
     for (Index k = 0; k < nc; ++k)
       d.u0_c(k) = d.u0(d.order[static_cast<size_t>(k)]);
+  } else if (mode == "forward") {
+    // Q = Y^T Y with Y = L^-1 P B^T, computed only on the rows B^T reaches.
+    const auto fs = m.factor.forward_solve(SparseMatrix(B.transpose()));
+    auto Q = std::make_shared<MatrixXd>(MatrixXd::Zero(nd, nd));
+    Q->selfadjointView<Eigen::Lower>().rankUpdate(fs.Y.transpose());
+    *Q = Q->selfadjointView<Eigen::Lower>();
+    d.Q_dense = Q;
+    n_kinv += nd;
   } else if (mode == "dense") {
     const SparseMatrix Bt = B.transpose();
     auto Q = std::make_shared<MatrixXd>(nd, nd);

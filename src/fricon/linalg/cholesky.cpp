@@ -207,6 +207,70 @@ MatrixXd CholeskyFactor::trailing_factor() const {
   return L22;
 }
 
+CholeskyFactor::ForwardSolution CholeskyFactor::forward_solve(const SparseMatrix& B) const {
+  FRICON_CHECK(impl_->L && impl_->L->is_super, "forward_solve needs a supernodal factor");
+  FRICON_CHECK(B.rows() == info_.n, "B has " << B.rows() << " rows, K has " << info_.n);
+  const cholmod_factor* L = impl_->L;
+  const Index n = info_.n;
+  const auto nsuper = static_cast<Index>(L->nsuper);
+  const auto* perm = static_cast<const SuiteSparse_long*>(L->Perm);
+  const auto* super = static_cast<const SuiteSparse_long*>(L->super);
+  const auto* pi = static_cast<const SuiteSparse_long*>(L->pi);
+  const auto* px = static_cast<const SuiteSparse_long*>(L->px);
+  const auto* ls = static_cast<const SuiteSparse_long*>(L->s);
+  const auto* lx = static_cast<const Real*>(L->x);
+
+  std::vector<Index> pinv(static_cast<size_t>(n)), super_of(static_cast<size_t>(n));
+  for (Index k = 0; k < n; ++k)
+    pinv[static_cast<size_t>(perm[k])] = k;
+  for (Index sn = 0; sn < nsuper; ++sn)
+    for (Index k = super[sn]; k < super[sn + 1]; ++k)
+      super_of[static_cast<size_t>(k)] = sn;
+
+  // Supernodes reached: those holding a non-zero of P B, and every supernode they update.
+  std::vector<char> touched(static_cast<size_t>(nsuper), 0);
+  for (Index j = 0; j < B.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(B, j); it; ++it)
+      touched[static_cast<size_t>(
+          super_of[static_cast<size_t>(pinv[static_cast<size_t>(it.row())])])] = 1;
+  for (Index sn = 0; sn < nsuper; ++sn) {
+    if (!touched[static_cast<size_t>(sn)]) continue;
+    const Index ncol = super[sn + 1] - super[sn];
+    for (Index q = pi[sn] + ncol; q < pi[sn + 1]; ++q)
+      touched[static_cast<size_t>(super_of[static_cast<size_t>(ls[q])])] = 1;
+  }
+  ForwardSolution out;
+  std::vector<Index> compact(static_cast<size_t>(n), -1);
+  for (Index sn = 0; sn < nsuper; ++sn)
+    if (touched[static_cast<size_t>(sn)])
+      for (Index k = super[sn]; k < super[sn + 1]; ++k) {
+        compact[static_cast<size_t>(k)] = static_cast<Index>(out.rows.size());
+        out.rows.push_back(k);
+      }
+  MatrixXd& X = out.Y;
+  X = MatrixXd::Zero(static_cast<Index>(out.rows.size()), B.cols());
+  for (Index j = 0; j < B.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(B, j); it; ++it)
+      X(compact[static_cast<size_t>(pinv[static_cast<size_t>(it.row())])], j) += it.value();
+
+  // Supernodal forward substitution over the reached supernodes: diagonal block solve, then the
+  // update of the rows below, scattered through `compact`.
+  MatrixXd update;
+  for (Index sn = 0; sn < nsuper; ++sn) {
+    if (!touched[static_cast<size_t>(sn)]) continue;
+    const Index k1 = super[sn], ncol = super[sn + 1] - k1, nrow = pi[sn + 1] - pi[sn];
+    const Eigen::Map<const MatrixXd> Ls(lx + px[sn], nrow, ncol);
+    auto X1 = X.middleRows(compact[static_cast<size_t>(k1)], ncol);
+    Ls.topRows(ncol).triangularView<Eigen::Lower>().solveInPlace(X1);
+    if (nrow == ncol) continue;
+    update.noalias() = Ls.bottomRows(nrow - ncol) * X1;
+    for (Index i = 0; i < nrow - ncol; ++i)
+      X.row(compact[static_cast<size_t>(ls[pi[sn] + ncol + i])]) -= update.row(i);
+  }
+  n_solves_ += B.cols();
+  return out;
+}
+
 MatrixXd CholeskyFactor::solve(const MatrixXd& B) const {
   FRICON_CHECK(impl_->L, "solve() before factorize()");
   FRICON_CHECK(B.rows() == info_.n,

@@ -52,6 +52,17 @@ class CholeskyFactor {
   /// X = K^-1 B for a block of right-hand sides (one supernodal solve for all columns).
   MatrixXd solve(const MatrixXd& B) const;
 
+  /// Rows of Y = L^-1 P B that can be non-zero for a sparse B (n x k), and Y on those rows
+  /// (rows.size() x k). `rows` are permuted (pivot) indices: the union of the paths from B's
+  /// non-zeros to the root of the elimination tree. Supernodes off those paths are skipped, so
+  /// the cost follows the reach of B, not the size of L. With K = P^T L L^T P,
+  /// B^T K^-1 B = Y^T Y.
+  struct ForwardSolution {
+    std::vector<Index> rows;
+    MatrixXd Y;
+  };
+  ForwardSolution forward_solve(const SparseMatrix& B) const;
+
   Index size() const { return info_.n; }
   const CholeskyInfo& info() const { return info_; }
   /// Number of solve() calls (a matrix solve with m columns counts m).

@@ -88,3 +88,31 @@ TEST(Cholesky, TrailingBlockIsTheFactorOfTheSchurComplement) {
   const VectorXd b = VectorXd::LinSpaced(n, -1.0, 1.0);
   EXPECT_NEAR((chol.solve(b) - Kd.llt().solve(b)).norm() / Kd.llt().solve(b).norm(), 0.0, 1e-12);
 }
+
+TEST(Cholesky, ForwardSolveOnTheReachGivesTheDualHessian) {
+  // B^T K^-1 B = Y^T Y for Y = L^-1 P B computed on the reach of a sparse B only.
+  const mesh::TetMesh m = mesh::make_brick({Vec3(3, 1, 1), {12, 4, 4}});
+  std::vector<bool> fixed(static_cast<size_t>(3 * m.n_nodes()), false);
+  for (Index a : m.nodes_with_tag("x0"))
+    for (int c = 0; c < 3; ++c)
+      fixed[static_cast<size_t>(3 * a + c)] = true;
+  const fe::DofMap dofs(fixed);
+  const SparseMatrix K = fe::assemble_stiffness(m, fe::isotropic(2e11, 0.3), dofs);
+  // Columns touching a few dofs of the bottom face, like the rows of the contact operator.
+  const auto bottom = m.nodes_with_tag("z0");
+  std::vector<Eigen::Triplet<Real, SparseIndex>> t;
+  for (Index j = 0; j < 10; ++j)
+    for (int k = 0; k < 3; ++k) {
+      const Index dof = dofs.dof(bottom[static_cast<size_t>(7 * j + 5 * k + 3)], k);
+      if (dof >= 0) t.emplace_back(dof, j, 1.0 + 0.1 * static_cast<Real>(j + k));
+    }
+  SparseMatrix B(K.rows(), 10);
+  B.setFromTriplets(t.begin(), t.end());
+  linalg::CholeskyFactor chol;
+  chol.factorize(K);
+  const auto fs = chol.forward_solve(B);
+  EXPECT_LT(static_cast<Index>(fs.rows.size()), K.rows());  // the reach is not everything
+  const MatrixXd Q = fs.Y.transpose() * fs.Y;
+  const MatrixXd Qref = MatrixXd(B.transpose()) * chol.solve(MatrixXd(B));
+  EXPECT_NEAR((Q - Qref).norm() / Qref.norm(), 0.0, 1e-12);
+}
