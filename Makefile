@@ -46,3 +46,10 @@ format:
 
 clean:
 	rm -rf $(BUILD) $(SAN_BUILD)
+
+# make fuzz    fuzz the problem-file reader with libFuzzer (clang, ASan + UBSan) for FUZZ_SECONDS,
+#              in its own build (build-fuzz); not part of the tests. See docs/fuzzing.md.
+FUZZ_SECONDS ?= 60
+.PHONY: fuzz
+fuzz: deps
+	bash fuzz/run.sh $(FUZZ_SECONDS)

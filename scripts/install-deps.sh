@@ -16,6 +16,8 @@ packages=(
   python3 python3-numpy python3-meshio python3-matplotlib
   # peer comparison in bench/ (optional for the library)
   libsiconos-numerics-dev
+  # fuzzing (make fuzz): clang with libFuzzer and the sanitizer runtimes
+  clang libclang-rt-14-dev
 )
 
 missing=()
