@@ -45,7 +45,7 @@ format:
 	clang-format -i $$(git ls-files '*.cpp' '*.hpp')
 
 clean:
-	rm -rf $(BUILD) $(SAN_BUILD)
+	rm -rf $(BUILD) $(SAN_BUILD) build-fuzz
 
 # make fuzz    fuzz the problem-file reader with libFuzzer (clang, ASan + UBSan) for FUZZ_SECONDS,
 #              in its own build (build-fuzz); not part of the tests. See docs/fuzzing.md.
