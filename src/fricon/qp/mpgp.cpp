@@ -1,9 +1,11 @@
 #include "fricon/qp/mpgp.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -47,6 +49,33 @@ std::string to_string(ProportioningTest t) {
       return "free";
   }
   return "unknown";
+}
+
+std::string to_string(MpgpVariant v) {
+  switch (v) {
+    case MpgpVariant::Paper:
+      return "paper";
+    case MpgpVariant::ExpansionOpt:
+      return "expansion_opt";
+    case MpgpVariant::ProjectedCG:
+      return "projcg";
+    case MpgpVariant::BarzilaiBorwein:
+      return "bb";
+    case MpgpVariant::SpectralProjectedGradient:
+      return "spg";
+  }
+  return "unknown";
+}
+
+MpgpVariant mpgp_variant_from_string(std::string_view s) {
+  for (auto v : {MpgpVariant::Paper, MpgpVariant::ExpansionOpt, MpgpVariant::ProjectedCG,
+                 MpgpVariant::BarzilaiBorwein, MpgpVariant::SpectralProjectedGradient}) {
+    if (s == to_string(v)) return v;
+  }
+  throw InputError(fmt::format(
+      "qp variant = \"{}\" is not one of \"paper\", \"expansion_opt\", \"projcg\", \"bb\", "
+      "\"spg\"",
+      s));
 }
 
 ProportioningStep proportioning_step_from_string(std::string_view s) {
@@ -103,13 +132,29 @@ void MpgpOptions::validate() const {
               proportioning_test == ProportioningTest::Free,
           "proportioning_test", static_cast<int>(proportioning_test),
           "a ProportioningTest enumerator");
+  require(variant == MpgpVariant::Paper || variant == MpgpVariant::ExpansionOpt ||
+              variant == MpgpVariant::ProjectedCG || variant == MpgpVariant::BarzilaiBorwein ||
+              variant == MpgpVariant::SpectralProjectedGradient,
+          "variant", static_cast<int>(variant), "an MpgpVariant enumerator");
 }
 
 std::string MpgpReport::brief() const {
+  if (variant == MpgpVariant::Paper) {
+    return fmt::format(
+        "MPGP {}: {} it ({} cg, {} exp, {} prop), {} products (+{} power), |gP|/|b| = {:.3e}",
+        to_string(termination), iterations, n_cg, n_expansion, n_proportioning, n_products,
+        n_power_products, rel_gp);
+  }
+  if (variant == MpgpVariant::SpectralProjectedGradient) {
+    return fmt::format(
+        "MPGP[spg] {}: {} it, {} products (+{} power, {} refresh), |gP|/|b| = {:.3e}",
+        to_string(termination), iterations, n_products, n_power_products, n_refreshes, rel_gp);
+  }
   return fmt::format(
-      "MPGP {}: {} it ({} cg, {} exp, {} prop), {} products (+{} power), |gP|/|b| = {:.3e}",
-      to_string(termination), iterations, n_cg, n_expansion, n_proportioning, n_products,
-      n_power_products, rel_gp);
+      "MPGP[{}] {}: {} it ({} cg, {} exp, {} prop; {} fallback, {} refresh), {} products (+{} "
+      "power), |gP|/|b| = {:.3e}",
+      to_string(variant), to_string(termination), iterations, n_cg, n_expansion, n_proportioning,
+      n_fallbacks, n_refreshes, n_products, n_power_products, rel_gp);
 }
 
 std::string MpgpReport::full() const {
@@ -120,10 +165,14 @@ std::string MpgpReport::full() const {
   s += "MPGP report\n";
   line("termination", to_string(termination));
   line("message", message);
+  line("variant", to_string(variant));
   line("iterations", std::to_string(iterations));
   line("n_cg", std::to_string(n_cg));
   line("n_expansion", std::to_string(n_expansion));
   line("n_proportioning", std::to_string(n_proportioning));
+  line("n_gradient", std::to_string(n_gradient));
+  line("n_fallbacks", std::to_string(n_fallbacks));
+  line("n_refreshes", std::to_string(n_refreshes));
   line("n_products", std::to_string(n_products));
   line("n_power_products", std::to_string(n_power_products));
   line("norm_A_used",
@@ -265,6 +314,21 @@ class Kernels {
     return s;
   }
 
+  /// Sum over the blocks of ||g_i|| ||x_i||: the scale of the rounding error of g^T d for a
+  /// projected direction d (each d_i is exact only to about eps ||x_i||).
+  double rounding_scale(const Eigen::VectorXd& x, const Eigen::VectorXd& g) const {
+    double sum = 0.0;
+    for (const Block& blk : c_.blocks) {
+      const Index o = blk.offset;
+      if (blk.kind == BlockKind::Bound) {
+        sum += std::abs(g(o) * x(o));
+      } else {
+        sum += detail::norm2(g(o), g(o + 1)) * detail::norm2(x(o), x(o + 1));
+      }
+    }
+    return sum;
+  }
+
   /// Largest t >= 0 with x - t p in Omega (+inf if no block restricts); x must be feasible up to
   /// rounding.
   double max_feasible_step(const Eigen::VectorXd& x, const Eigen::VectorXd& p) const {
@@ -300,6 +364,50 @@ class Kernels {
   double alpha_bar_;
 };
 
+/// Safety factor on the rounding level eps ||g|| ||x|| below which g^T d is trusted (see
+/// spectral_move in solve_mpgp). Measured: 1 to 64 give about the same counts.
+constexpr double kRoundingFactor = 4.0;
+
+/// The adaptive Barzilai-Borwein length "ABBmin" (Frassoldati, Zanghirati and Zanni, 2008) of
+/// the spectral moves: after a step s with y = A s, the long length a1 = s^T s / s^T y and the
+/// short one a2 = s^T y / y^T y (a2 <= a1, both in [1/||A||, 1/lambda_min]); the next length is
+/// the smallest a2 of the last kMemory steps when a2 / a1 < kTau (the step was dominated by large
+/// eigenvalues), else a1. Clamped to [lo, hi]. kTau = 0.2 gave the fewest products on the
+/// paper's problems among 0.1, 0.2, 0.3 and 0.5 (bench/qp_variants_bench.cpp); the memory 2 ... 5
+/// hardly matters.
+class SpectralLength {
+ public:
+  SpectralLength(double initial, double lo, double hi) : length_(initial), lo_(lo), hi_(hi) {}
+
+  double length() const { return length_; }
+
+  /// The last step through s^T s, s^T A s and (A s)^T (A s); a common positive factor cancels,
+  /// so a direction d and its multiple t d give the same lengths. A step without positive
+  /// curvature (or non-finite values) keeps the current length.
+  void update(double ss, double sy, double yy) {
+    if (!(ss > 0.0 && sy > 0.0 && yy > 0.0) || !std::isfinite(ss + sy + yy)) return;
+    const double a1 = ss / sy;
+    const double a2 = sy / yy;
+    short_[count_ % kMemory] = a2;
+    ++count_;
+    double a = a1;
+    if (a2 < kTau * a1) {
+      a = a2;
+      for (int k = 0; k < std::min(count_, kMemory); ++k)
+        a = std::min(a, short_[static_cast<std::size_t>(k)]);
+    }
+    if (std::isfinite(a)) length_ = std::clamp(a, lo_, hi_);
+  }
+
+ private:
+  static constexpr int kMemory = 3;
+  static constexpr double kTau = 0.2;
+  double length_;
+  double lo_, hi_;
+  std::array<double, kMemory> short_{};
+  int count_ = 0;
+};
+
 }  // namespace
 
 MpgpReport solve_mpgp(const Operator& A, const Eigen::VectorXd& b, const SeparableConstraints& c,
@@ -317,23 +425,33 @@ MpgpReport solve_mpgp(const Operator& A, const Eigen::VectorXd& b, const Separab
   if (!b.allFinite()) throw InputError("solve_mpgp: b has non-finite entries");
   if (!x.allFinite()) throw InputError("solve_mpgp: the initial guess x has non-finite entries");
 
+  const MpgpVariant variant = opt.variant;
   MpgpReport rep;
+  rep.variant = variant;
   rep.norm_b = b.norm();
 
-  // Work vectors, allocated once: g = A x - b, p = search direction, Ap = A p (also A beta),
-  // phi = free gradient, beta = chopped gradient.
-  Eigen::VectorXd g(n), p(n), Ap(n), phi(n), beta(n);
+  // Work vectors, allocated once: g = A x - b, p = search direction (also the projected-gradient
+  // direction d of the spectral moves), Ap = A p (also A beta, A phi), phi = free gradient,
+  // beta = chopped gradient; xt, gt = trial point and its gradient (fallback variants only).
+  Eigen::VectorXd g(n), p(n), Ap(n), phi(n), beta(n), xt, gt;
+  if (variant == MpgpVariant::ExpansionOpt || variant == MpgpVariant::ProjectedCG) {
+    xt.resize(n);
+    gt.resize(n);
+  }
   auto mult = [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) {
     A(in, out);
     ++rep.n_products;
     FRICON_CHECK(out.size() == n,
                  "operator returned a vector of size " << out.size() << ", expected " << n);
   };
+  auto steps = [&rep]() {
+    return rep.n_cg + rep.n_expansion + rep.n_proportioning + rep.n_gradient;
+  };
   // Completes the report; called exactly once, by a return statement.
   auto finish = [&](Termination t, std::string message) -> MpgpReport {
     rep.termination = t;
     rep.message = std::move(message);
-    rep.iterations = rep.n_cg + rep.n_expansion + rep.n_proportioning;
+    rep.iterations = steps();
     rep.seconds = watch.seconds();
     return std::move(rep);
   };
@@ -378,6 +496,13 @@ MpgpReport solve_mpgp(const Operator& A, const Eigen::VectorXd& b, const Separab
   const double gamma2 = opt.gamma * opt.gamma;
   const bool reduced_test = opt.proportioning_test == ProportioningTest::ReducedFree;
   const bool chopped_cg = opt.proportioning == ProportioningStep::ChoppedGradientCG;
+  // Trial lengths of the spectral moves (BarzilaiBorwein, SpectralProjectedGradient), starting
+  // from alpha_bar. Every such length lies in [1/||A||, 1/lambda_min(A)]; the clamp only guards
+  // against rounding.
+  SpectralLength spectral(abar, 1e-3 / rep.norm_A_used, 1e12 / rep.norm_A_used);
+  // True while g has been updated recursively (g -= a A p) since the last product A x; a variant
+  // other than Paper then recomputes g before it accepts the stopping test.
+  bool recursive = false;
 
   mult(x, g);
   g -= b;
@@ -403,16 +528,27 @@ MpgpReport solve_mpgp(const Operator& A, const Eigen::VectorXd& b, const Separab
     rep.rel_gp = rep.norm_gp / rep.norm_b;
     rep.objective = objective();
   };
-
-  while (true) {
-    // Line 3 and the other stopping tests.
+  // Rounding allowance of a comparison of objective values.
+  auto q_tolerance = [&](double q_a, double q_b) {
+    return 1e-12 * std::max({std::abs(q_a), std::abs(q_b), rep.norm_b * x_scale});
+  };
+  // Line 3 and the other stopping tests; returns the final report if the solver stops.
+  auto stop_test = [&]() -> std::optional<MpgpReport> {
+    if (recursive && std::isfinite(s.gp2) && norm_gp() <= threshold) {
+      mult(x, g);  // certify the test with the exact gradient
+      g -= b;
+      s = kern.split(x, g, phi, beta);
+      p = phi;  // restart the CG direction (the free set is the same, phi has changed)
+      q_prev = objective();
+      ++rep.n_refreshes;
+      recursive = false;
+    }
     if (!std::isfinite(s.gp2) || !std::isfinite(q_prev)) {
       set_final();
       return finish(Termination::NumericalFailure,
-                    fmt::format("non-finite gradient or objective after {} iterations",
-                                rep.n_cg + rep.n_expansion + rep.n_proportioning));
+                    fmt::format("non-finite gradient or objective after {} iterations", steps()));
     }
-    const int done = rep.n_cg + rep.n_expansion + rep.n_proportioning;
+    const int done = steps();
     if (norm_gp() <= threshold) {
       set_final();
       return finish(Termination::Converged,
@@ -431,6 +567,81 @@ MpgpReport solve_mpgp(const Operator& A, const Eigen::VectorXd& b, const Separab
                                 "(target {:.3e})",
                                 opt.max_iterations, rep.rel_gp, threshold / rep.norm_b));
     }
+    return std::nullopt;
+  };
+  // After a step: the monitor record, the monotonicity count, history and monitor.
+  auto step_done = [&]() {
+    it.iteration = steps();
+    it.norm_gp = norm_gp();
+    it.norm_phi = std::sqrt(s.phi2);
+    it.norm_beta = std::sqrt(s.beta2);
+    it.objective = objective();
+    // With alpha_bar <= 2/||A|| no step increases q; count increases beyond rounding.
+    if (it.objective > q_prev + q_tolerance(q_prev, it.objective)) ++rep.n_objective_increases;
+    q_prev = it.objective;
+    if (opt.record_history) rep.history.push_back(it);
+    if (opt.monitor && !opt.monitor(it)) stopped = true;
+  };
+  // The spectral move from x along the projected direction d = P(x - a v) - x, a the current
+  // spectral length, v = g or phi (v is the gradient restricted to the blocks d may move, so
+  // g^T d = v^T d <= -||d||^2 / a < 0 for d != 0): x := x + t d with t = min(1, -g^T d / d^T A d),
+  // the exact minimiser of q on the segment [x, x + d] (which lies in Omega); 1 product.
+  // Each block of d carries a rounding error of order eps ||x_i|| (a projection puts a point on a
+  // circle only to rounding) and g is large on active blocks (the normal forces), so g^T d can be
+  // trusted only below -eps sum_i ||g_i|| ||x_i|| (times a safety factor). Near the solution it no
+  // longer is; then the move is Paper's fixed-length one, x := P(x - alpha_bar v), monotone without
+  // a line search, with g recomputed (also 1 product; counted in n_fallbacks). Returns the length
+  // of the move along -v (t a or alpha_bar), or a negative value if A is found not positive
+  // definite along d.
+  auto spectral_move = [&](const Eigen::VectorXd& v) -> double {
+    const double a = spectral.length();
+    p = x - a * v;
+    c.project(p);
+    p -= x;
+    const double gd = g.dot(p);
+    if (!(gd <
+          -kRoundingFactor * std::numeric_limits<double>::epsilon() * kern.rounding_scale(x, g))) {
+      x.noalias() -= abar * v;
+      c.project(x);
+      mult(x, g);
+      g -= b;
+      recursive = false;
+      ++rep.n_fallbacks;
+      return abar;
+    }
+    mult(p, Ap);
+    const double dAd = p.dot(Ap);
+    if (!(dAd > 0.0) || !std::isfinite(dAd)) return -1.0;
+    const double t = std::min(1.0, -gd / dAd);
+    x.noalias() += t * p;
+    g.noalias() += t * Ap;
+    c.project(x);  // only removes rounding-level infeasibility (x + t d is a convex combination)
+    recursive = true;
+    spectral.update(p.squaredNorm(), dAd, Ap.squaredNorm());
+    return t * a;
+  };
+
+  if (variant == MpgpVariant::SpectralProjectedGradient) {
+    while (true) {
+      if (auto r = stop_test()) return std::move(*r);
+      const double a = spectral_move(g);
+      ++rep.n_gradient;
+      if (a < 0.0) {
+        set_final();
+        return finish(Termination::NumericalFailure,
+                      "spectral projected gradient step: A is not positive definite along the "
+                      "projected gradient direction");
+      }
+      s = kern.split(x, g, phi, beta);
+      it.step = 'g';
+      it.alpha = a;
+      step_done();
+    }
+  }
+
+  const bool bb = variant == MpgpVariant::BarzilaiBorwein;
+  while (true) {
+    if (auto r = stop_test()) return std::move(*r);
 
     // Line 4: proportionality test.
     const double rhs = gamma2 * (reduced_test ? s.phit_phi : s.phi2);
@@ -450,6 +661,7 @@ MpgpReport solve_mpgp(const Operator& A, const Eigen::VectorXd& b, const Separab
       const double a_f = kern.max_feasible_step(x, p);
       if (a_cg <= a_f) {
         // Lines 7-8: CG step inside the feasible set.
+        if (bb) spectral.update(p.squaredNorm(), pAp, Ap.squaredNorm());
         x.noalias() -= a_cg * p;
         g.noalias() -= a_cg * Ap;
         c.project(x);  // only removes rounding-level infeasibility when a_cg ~ a_f
@@ -459,20 +671,82 @@ MpgpReport solve_mpgp(const Operator& A, const Eigen::VectorXd& b, const Separab
         ++rep.n_cg;
         it.step = 'c';
         it.alpha = a_cg;
-      } else {
-        // Lines 10-12: to the boundary, then a fixed-step projected free-gradient move.
-        x.noalias() -= a_f * p;
-        g.noalias() -= a_f * Ap;
-        kern.split(x, g, phi, beta);
-        x.noalias() -= abar * phi;
-        c.project(x);
-        mult(x, g);
-        g -= b;
+        recursive = variant != MpgpVariant::Paper;
+      } else if (variant == MpgpVariant::ProjectedCG) {
+        // Expansion by the projected CG step, if it decreases q; else Paper's expansion below.
+        xt = x - a_cg * p;
+        c.project(xt);
+        mult(xt, gt);
+        gt -= b;
+        const double q_t = 0.5 * (xt.dot(gt) - xt.dot(b));
+        if (q_t <= q_prev) {
+          x.swap(xt);
+          g.swap(gt);
+        } else {
+          ++rep.n_fallbacks;
+          x.noalias() -= a_f * p;
+          g.noalias() -= a_f * Ap;
+          kern.split(x, g, phi, beta);
+          x.noalias() -= abar * phi;
+          c.project(x);
+          mult(x, g);
+          g -= b;
+        }
         s = kern.split(x, g, phi, beta);
         p = phi;
         ++rep.n_expansion;
         it.step = 'e';
         it.alpha = a_f;
+        recursive = false;
+      } else {
+        // Lines 10-12: to the boundary, then a projected free-gradient move.
+        x.noalias() -= a_f * p;
+        g.noalias() -= a_f * Ap;
+        kern.split(x, g, phi, beta);
+        if (bb) {
+          if (spectral_move(phi) < 0.0) {
+            ++rep.n_expansion;
+            set_final();
+            return finish(Termination::NumericalFailure,
+                          "expansion step: A is not positive definite along the projected "
+                          "free-gradient direction");
+          }
+        } else if (variant == MpgpVariant::ExpansionOpt) {
+          // PERMON's "opt" length along -phi, projected; fixed length if q increases.
+          mult(phi, Ap);
+          const double phi2 = phi.squaredNorm();
+          const double pAphi = phi.dot(Ap);
+          const double q_half = objective();
+          bool accepted = false;
+          if (pAphi > 0.0 && std::isfinite(pAphi)) {
+            xt = x - (phi2 / pAphi) * phi;
+            c.project(xt);
+            mult(xt, g);
+            g -= b;
+            const double q_t = 0.5 * (xt.dot(g) - xt.dot(b));
+            accepted = q_t <= q_half;
+          }
+          if (accepted) {
+            x.swap(xt);
+          } else {
+            ++rep.n_fallbacks;
+            x.noalias() -= abar * phi;
+            c.project(x);
+            mult(x, g);
+            g -= b;
+          }
+        } else {
+          x.noalias() -= abar * phi;
+          c.project(x);
+          mult(x, g);
+          g -= b;
+        }
+        s = kern.split(x, g, phi, beta);
+        p = phi;
+        ++rep.n_expansion;
+        it.step = 'e';
+        it.alpha = a_f;
+        recursive = bb;
       }
     } else {
       // Line 14: proportioning.
@@ -489,9 +763,22 @@ MpgpReport solve_mpgp(const Operator& A, const Eigen::VectorXd& b, const Separab
                                     "positive definite along beta",
                                     bAb));
         }
+        if (bb) spectral.update(s.beta2, bAb, Ap.squaredNorm());
         x.noalias() -= a * beta;
         g.noalias() -= a * Ap;
         c.project(x);
+        it.alpha = a;
+        recursive = variant != MpgpVariant::Paper;
+      } else if (bb) {
+        // 14(b) with the spectral length and the exact line search.
+        const double a = spectral_move(g);
+        if (a < 0.0) {
+          ++rep.n_proportioning;
+          set_final();
+          return finish(Termination::NumericalFailure,
+                        "proportioning step: A is not positive definite along the projected "
+                        "gradient direction");
+        }
         it.alpha = a;
       } else {
         // 14(b): projected gradient step of fixed length.
@@ -500,25 +787,14 @@ MpgpReport solve_mpgp(const Operator& A, const Eigen::VectorXd& b, const Separab
         mult(x, g);
         g -= b;
         it.alpha = abar;
+        recursive = false;
       }
       s = kern.split(x, g, phi, beta);
       p = phi;  // line 15
       ++rep.n_proportioning;
       it.step = 'p';
     }
-
-    it.iteration = rep.n_cg + rep.n_expansion + rep.n_proportioning;
-    it.norm_gp = norm_gp();
-    it.norm_phi = std::sqrt(s.phi2);
-    it.norm_beta = std::sqrt(s.beta2);
-    it.objective = objective();
-    // With alpha_bar <= 2/||A|| no step increases q; count increases beyond rounding.
-    const double q_tol =
-        1e-12 * std::max({std::abs(q_prev), std::abs(it.objective), rep.norm_b * x_scale});
-    if (it.objective > q_prev + q_tol) ++rep.n_objective_increases;
-    q_prev = it.objective;
-    if (opt.record_history) rep.history.push_back(it);
-    if (opt.monitor && !opt.monitor(it)) stopped = true;
+    step_done();
   }
 }
 

@@ -17,6 +17,11 @@
 // alpha_bar = step_factor / ||A|| with ||A|| given or estimated by power iteration. With
 // step_factor <= 2 no step increases q. Convergence is R-linear in the condition number of A.
 // No preconditioning.
+//
+// MpgpOptions::variant selects opt-in accelerations (MpgpVariant below); the default, Paper, is
+// the algorithm above unchanged. Every variant stops on the same test, ||g^P|| <= max(
+// rel_tolerance ||b||, abs_tolerance) (the others certify it with a recomputed gradient), and
+// counts every product with A in MpgpReport::n_products.
 
 #include <functional>
 #include <string>
@@ -65,19 +70,57 @@ std::string to_string(ProportioningTest t);
 /// Inverse of to_string; throws fricon::InputError naming the accepted spellings.
 ProportioningTest proportioning_test_from_string(std::string_view s);
 
+/// The algorithm solve_mpgp runs. All variants keep the iterates feasible, stop on the same test
+/// and decrease q monotonically (a step whose trial point would increase q is redone or shortened).
+enum class MpgpVariant {
+  /// The algorithm of method.md 4.2 as reproduced from [HL09], bit for bit (its product counts
+  /// match the paper's n_mult). Default.
+  Paper,
+  /// Expansion with PERMON's "opt" length: the projected free-gradient move of the expansion uses
+  /// the minimiser a = phi^T phi / phi^T A phi of q along -phi (one more product) instead of
+  /// alpha_bar; if the projected point increases q the move is redone with alpha_bar (fallback,
+  /// one more product). Proportioning as in Paper.
+  ExpansionOpt,
+  /// Expansion by the projected CG step ("projcg"): when the CG step leaves Omega, x := P(x -
+  /// a_cg p) (same 2 products as Paper's expansion); if that increases q, Paper's expansion is
+  /// done instead (fallback, one more product). Proportioning as in Paper.
+  ProjectedCG,
+  /// MPGP whose projected-gradient moves (the expansion's free-gradient move and the
+  /// proportioning step 14(b)) are spectral: the trial length is a Barzilai-Borwein length
+  /// (adaptive ABBmin rule) of the last step instead of alpha_bar, followed by the exact line
+  /// search of q on the segment to the projected trial point (same product counts as Paper:
+  /// the product with the move replaces the gradient recomputation). Where the line search is
+  /// below the rounding level (near a tight solution) the move is Paper's fixed-length one.
+  /// CG steps as in Paper, so it stays as fast as Paper where CG dominates (few active blocks).
+  BarzilaiBorwein,
+  /// No CG: the spectral projected gradient method for the whole QP (Birgin-Martinez-Raydan with
+  /// the ABBmin length and the exact, monotone line search on the projected segment):
+  /// d = P(x - a g) - x, x := x + t d with t = min(1, -g^T d / d^T A d); 1 product per step;
+  /// the same rounding-level fallback as BarzilaiBorwein. Slow where CG would dominate.
+  SpectralProjectedGradient,
+};
+/// "paper", "expansion_opt", "projcg", "bb", "spg".
+std::string to_string(MpgpVariant v);
+/// Inverse of to_string; throws fricon::InputError naming the accepted spellings.
+MpgpVariant mpgp_variant_from_string(std::string_view s);
+
 /// One completed iteration (or the starting point, step 's'), as passed to the monitor.
 struct MpgpIteration {
   int iteration = 0;     ///< 0 for the starting point, then 1, 2, ...
-  char step = 's';       ///< 's' start, 'c' CG, 'e' expansion, 'p' proportioning
+  char step = 's';       ///< 's' start, 'c' CG, 'e' expansion, 'p' proportioning,
+                         ///< 'g' spectral projected gradient (variant SpectralProjectedGradient)
   double norm_gp = 0;    ///< ||g^P(x)||_2 after the step
   double norm_phi = 0;   ///< ||phi(x)||_2 after the step
   double norm_beta = 0;  ///< ||beta(x)||_2 after the step
   double alpha = 0;      ///< step length: a_cg ('c'), feasible step a_f ('e'), line-search step of
-                         ///< 14(a) or alpha_bar ('p'); 0 for 's'
+                         ///< 14(a) or alpha_bar ('p'); for a spectral move ('g', and 'p' of
+                         ///< BarzilaiBorwein) t times the trial length; 0 for 's'
   double objective = 0;  ///< q(x) after the step
 };
 
 struct MpgpOptions {
+  /// The algorithm; Paper (default) is the reference.
+  MpgpVariant variant = MpgpVariant::Paper;
   /// Stop when ||g^P|| <= rel_tolerance * ||b||_2. Default 1e-6 ([HL09]); range >= 0.
   double rel_tolerance = 1e-6;
   /// ... or when ||g^P|| <= abs_tolerance (same unit as b). Default 0 (off); range >= 0.
@@ -96,6 +139,7 @@ struct MpgpOptions {
   /// Power iteration stops when the estimate changes by <= power_tolerance relative.
   /// Default 1e-8; range > 0.
   double power_tolerance = 1e-8;
+  /// Proportioning step and test of the MPGP variants (not used by SpectralProjectedGradient).
   ProportioningStep proportioning = ProportioningStep::ProjectedGradient;
   ProportioningTest proportioning_test = ProportioningTest::ReducedFree;
   /// Relative tolerance of the active-set tests: a Disc block is active iff
@@ -115,13 +159,27 @@ struct MpgpOptions {
 
 struct MpgpReport {
   Termination termination = Termination::NumericalFailure;
-  std::string message;  ///< one sentence: why the solver stopped
-  int iterations = 0;   ///< steps taken = n_cg + n_expansion + n_proportioning
+  std::string message;                       ///< one sentence: why the solver stopped
+  MpgpVariant variant = MpgpVariant::Paper;  ///< the algorithm that ran
+  /// Steps taken = n_cg + n_expansion + n_proportioning + n_gradient.
+  int iterations = 0;
   int n_cg = 0;
   int n_expansion = 0;
   int n_proportioning = 0;
-  /// Products with A made by the iteration, the initial gradient included:
-  /// 1 + n_cg + 2 n_expansion + n_proportioning. Power-method products are not included.
+  int n_gradient = 0;  ///< spectral projected-gradient steps (SpectralProjectedGradient only)
+  /// Moves not done the variant's way: for ExpansionOpt and ProjectedCG a trial that increased q,
+  /// redone the Paper way (one more product each); for BarzilaiBorwein and
+  /// SpectralProjectedGradient a spectral move whose line search was below the rounding level,
+  /// replaced by Paper's fixed-length move (no extra product).
+  int n_fallbacks = 0;
+  /// Gradients recomputed as A x - b (one product each) to certify the stopping test where the
+  /// gradient had been updated recursively (every variant but Paper).
+  int n_refreshes = 0;
+  /// Products with A made by the iteration, the initial gradient included. Paper:
+  /// 1 + n_cg + 2 n_expansion + n_proportioning; BarzilaiBorwein adds n_refreshes; ExpansionOpt
+  /// adds n_expansion + n_fallbacks + n_refreshes, ProjectedCG n_fallbacks + n_refreshes;
+  /// SpectralProjectedGradient: 1 + n_gradient + n_refreshes. Power-method products are not
+  /// included.
   long n_products = 0;
   long n_power_products = 0;  ///< products spent estimating ||A|| (0 if MpgpOptions::norm_A > 0)
   bool norm_A_estimated = false;  ///< true if norm_A_used comes from the power method
@@ -137,7 +195,8 @@ struct MpgpReport {
   double seconds = 0.0;                ///< wall time of solve_mpgp [s], power method included
   std::vector<MpgpIteration> history;  ///< filled if MpgpOptions::record_history
 
-  /// One line: termination, iterations, products, relative ||g^P||.
+  /// One line: termination, iterations, products, relative ||g^P|| (and the variant if not
+  /// Paper).
   std::string brief() const;
   /// Aligned multi-line block with every counter and norm.
   std::string full() const;

@@ -29,6 +29,31 @@ MpgpOptions tight() {
   return o;
 }
 
+const std::vector<MpgpVariant> kVariants = {MpgpVariant::Paper, MpgpVariant::ExpansionOpt,
+                                            MpgpVariant::ProjectedCG, MpgpVariant::BarzilaiBorwein,
+                                            MpgpVariant::SpectralProjectedGradient};
+
+// The tests that check solutions, counters and failures run once per variant: inside them,
+// options() and tight() carry the variant.
+class MpgpVariants : public ::testing::TestWithParam<MpgpVariant> {
+ protected:
+  MpgpOptions options() const {
+    MpgpOptions o;
+    o.variant = GetParam();
+    return o;
+  }
+  MpgpOptions tight() const {
+    MpgpOptions o = qp::tight();
+    o.variant = GetParam();
+    return o;
+  }
+};
+
+INSTANTIATE_TEST_SUITE_P(All, MpgpVariants, ::testing::ValuesIn(kVariants),
+                         [](const ::testing::TestParamInfo<MpgpVariant>& param_info) {
+                           return to_string(param_info.param);
+                         });
+
 SeparableConstraints all_bounds(Index n) {
   SeparableConstraints c;
   for (Index i = 0; i < n; ++i)
@@ -96,6 +121,7 @@ TEST(MpgpOptions, ValidateRejectsOutOfRangeFields) {
       bad([](MpgpOptions& o) { o.active_tolerance = -1e-12; }),
       bad([](MpgpOptions& o) { o.active_tolerance = 0.5; }),
       bad([](MpgpOptions& o) { o.proportioning = static_cast<ProportioningStep>(7); }),
+      bad([](MpgpOptions& o) { o.variant = static_cast<MpgpVariant>(9); }),
   };
   for (const auto& o : cases)
     EXPECT_THROW(o.validate(), InputError);
@@ -120,6 +146,14 @@ TEST(MpgpEnums, StringConversionRoundTrips) {
   for (auto t : {ProportioningTest::ReducedFree, ProportioningTest::Free}) {
     EXPECT_EQ(proportioning_test_from_string(to_string(t)), t);
   }
+  for (auto v : kVariants) {
+    EXPECT_EQ(mpgp_variant_from_string(to_string(v)), v);
+  }
+  EXPECT_EQ(to_string(MpgpVariant::Paper), "paper");
+  EXPECT_EQ(to_string(MpgpVariant::BarzilaiBorwein), "bb");
+  EXPECT_EQ(to_string(MpgpVariant::SpectralProjectedGradient), "spg");
+  EXPECT_EQ(MpgpOptions{}.variant, MpgpVariant::Paper);
+  EXPECT_THROW(mpgp_variant_from_string("BB"), InputError);
   EXPECT_THROW(proportioning_step_from_string("projected"), InputError);
   EXPECT_THROW(proportioning_test_from_string(""), InputError);
 }
@@ -127,7 +161,7 @@ TEST(MpgpEnums, StringConversionRoundTrips) {
 // ---------------------------------------------------------------------------------------------
 // Problems with hand-checkable optima
 
-TEST(Mpgp, DiagonalBoundProblemGivesClippedUnconstrainedSolution) {
+TEST_P(MpgpVariants, DiagonalBoundProblemGivesClippedUnconstrainedSolution) {
   const Eigen::VectorXd d = (Eigen::VectorXd(5) << 1.0, 2.0, 4.0, 0.5, 3.0).finished();
   const Eigen::VectorXd b = (Eigen::VectorXd(5) << 1.0, -2.0, 2.0, -0.1, 0.0).finished();
   const Eigen::MatrixXd M = d.asDiagonal();
@@ -135,10 +169,14 @@ TEST(Mpgp, DiagonalBoundProblemGivesClippedUnconstrainedSolution) {
   const auto rep = solve_mpgp(dense_operator(M), b, all_bounds(5), tight(), x);
   ASSERT_EQ(rep.termination, Termination::Converged) << rep.full();
   const Eigen::VectorXd expected = (Eigen::VectorXd(5) << 1.0, 0.0, 0.5, 0.0, 0.0).finished();
-  EXPECT_LE((x - expected).norm(), 1e-12) << x.transpose();
+  // CG ends exactly on a diagonal face; SPG only within the stopping test, ||g^P|| / lambda_min.
+  const double tol = GetParam() == MpgpVariant::SpectralProjectedGradient
+                         ? 1e-10 * b.norm() / d.minCoeff()
+                         : 1e-12;
+  EXPECT_LE((x - expected).norm(), tol) << x.transpose();
 }
 
-TEST(Mpgp, BlockScalarDiscProblemGivesProjectedUnconstrainedSolution) {
+TEST_P(MpgpVariants, BlockScalarDiscProblemGivesProjectedUnconstrainedSolution) {
   // A = diag(c_k I_2): the problem splits per disc and the optimum is P_disc(b_k / c_k).
   const Eigen::Vector3d ck(2.0, 0.5, 1.0), rho(1.0, 4.0, 0.0);
   Eigen::VectorXd d(6), b(6);
@@ -155,7 +193,7 @@ TEST(Mpgp, BlockScalarDiscProblemGivesProjectedUnconstrainedSolution) {
   EXPECT_LE((x - expected).norm(), 1e-10) << x.transpose();
 }
 
-TEST(Mpgp, CoupledTwoByTwoBoundProblemMatchesHandSolution) {
+TEST_P(MpgpVariants, CoupledTwoByTwoBoundProblemMatchesHandSolution) {
   // A = [2 1; 1 2], b = (1, -2): the unconstrained optimum (4/3, -5/3) is infeasible; with x2 = 0,
   // x1 = b1 / 2 = 1/2 and g2 = 1/2 + 2 = 5/2 >= 0, so x = (1/2, 0).
   const Eigen::Matrix2d M{{2.0, 1.0}, {1.0, 2.0}};
@@ -169,7 +207,7 @@ TEST(Mpgp, CoupledTwoByTwoBoundProblemMatchesHandSolution) {
   EXPECT_NEAR(rep.objective, 0.5 * 2 * 0.25 - 0.5, 1e-12);
 }
 
-TEST(Mpgp, CoupledTwoByTwoDiscProblemMatchesHandSolution) {
+TEST_P(MpgpVariants, CoupledTwoByTwoDiscProblemMatchesHandSolution) {
   // A = [2 1; 1 2], b = (3, 3), rho = 1: A^-1 b = (1, 1) lies outside; at x = (1, 1)/sqrt 2 the
   // gradient (3/sqrt 2 - 3)(1, 1) is a negative multiple of the outward normal: optimal.
   const Eigen::MatrixXd M = Eigen::Matrix2d{{2.0, 1.0}, {1.0, 2.0}};
@@ -181,7 +219,7 @@ TEST(Mpgp, CoupledTwoByTwoDiscProblemMatchesHandSolution) {
   EXPECT_NEAR(x(1), std::sqrt(0.5), 1e-10);
 }
 
-TEST(Mpgp, AnisotropicDiscMatchesSecularEquation) {
+TEST_P(MpgpVariants, AnisotropicDiscMatchesSecularEquation) {
   std::mt19937 rng(5);
   for (int trial = 0; trial < 20; ++trial) {
     const Eigen::MatrixXd M = random_spd(2, 1.0 + 50.0 * trial, rng);
@@ -196,7 +234,7 @@ TEST(Mpgp, AnisotropicDiscMatchesSecularEquation) {
   }
 }
 
-TEST(Mpgp, BoundProblemsMatchActiveSetEnumeration) {
+TEST_P(MpgpVariants, BoundProblemsMatchActiveSetEnumeration) {
   std::mt19937 rng(17);
   for (int trial = 0; trial < 24; ++trial) {
     const Index n = 2 + trial % 7;
@@ -244,6 +282,87 @@ TEST(Mpgp, ProportioningStepsMatchHandComputation) {
   }
 }
 
+// The same start with the spectral moves (norm_A = 1, so the first trial length is alpha_bar =
+// 1.95): d = P(x0 - 1.95 g) - x0 = (1.95, -1), g^T d = -2.95, d^T A d = 1.95^2 + 1, so the exact
+// line search gives t = 2.95 / 4.8025 and x1 = x0 + t d. For A = I both Barzilai-Borwein lengths
+// are 1, so the second move is x1 - g(x1) = b = (1, 0), the solution.
+TEST(Mpgp, SpectralStepsMatchHandComputation) {
+  const Eigen::MatrixXd M = Eigen::Matrix2d::Identity();
+  const double t = 2.95 / (1.95 * 1.95 + 1.0);
+  const Eigen::Vector2d x1(1.95 * t, 1.0 - t);
+  for (auto v : {MpgpVariant::BarzilaiBorwein, MpgpVariant::SpectralProjectedGradient}) {
+    auto opt = tight();
+    opt.variant = v;
+    opt.norm_A = 1.0;
+    opt.record_history = true;
+    Eigen::VectorXd x = Eigen::Vector2d(0.0, 1.0);
+    const auto rep =
+        solve_mpgp(dense_operator(M), Eigen::Vector2d(1.0, 0.0), all_bounds(2), opt, x);
+    ASSERT_EQ(rep.termination, Termination::Converged) << rep.full();
+    ASSERT_GE(rep.history.size(), 2u);
+    const auto& h = rep.history[1];
+    EXPECT_EQ(h.step, v == MpgpVariant::BarzilaiBorwein ? 'p' : 'g');
+    EXPECT_NEAR(h.alpha, 1.95 * t, 1e-15);
+    EXPECT_NEAR(h.objective, objective(M, Eigen::Vector2d(1.0, 0.0), x1), 1e-15);
+    EXPECT_LE((x - Eigen::Vector2d(1.0, 0.0)).norm(), 1e-15) << x.transpose();
+    if (v == MpgpVariant::SpectralProjectedGradient) {
+      EXPECT_EQ(rep.n_gradient, 2);
+      EXPECT_EQ(rep.n_products, 4);  // initial gradient, two moves, the certifying refresh
+      EXPECT_EQ(rep.n_refreshes, 1);
+    }
+  }
+}
+
+// Every variant but Paper updates g recursively and recomputes it before it stops: the reported
+// ||g^P|| is that of the exact gradient, computed here independently.
+TEST(Mpgp, VariantsCertifyTheStoppingTestWithTheExactGradient) {
+  const Problem p = random_contact_problem(15, 1000.0, 31);
+  for (auto v : kVariants) {
+    if (v == MpgpVariant::Paper) continue;
+    auto opt = tight();
+    opt.variant = v;
+    opt.rel_tolerance = 1e-8;
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(p.b.size());
+    const auto rep = solve_mpgp(dense_operator(p.M), p.b, p.c, opt, x);
+    ASSERT_EQ(rep.termination, Termination::Converged) << rep.full();
+    const Eigen::VectorXd g = p.M * x - p.b;
+    double gp2 = 0.0;  // method.md 4.1 with exact active tests
+    for (Index i = 0; i < 15; ++i) {
+      const double gn = g(3 * i);
+      gp2 += x(3 * i) > 0.0 ? gn * gn : std::min(gn, 0.0) * std::min(gn, 0.0);
+      const Eigen::Vector2d xt = x.segment<2>(3 * i + 1), gt = g.segment<2>(3 * i + 1);
+      const double rho = p.c.radius(2 * i + 1);
+      if (rho == 0.0) continue;
+      if (xt.norm() < rho * (1.0 - 1e-12)) {
+        gp2 += gt.squaredNorm();
+      } else {
+        const Eigen::Vector2d eta = xt.normalized();
+        gp2 += (gt - std::min(eta.dot(gt), 0.0) * eta).squaredNorm();
+      }
+    }
+    EXPECT_NEAR(std::sqrt(gp2), rep.norm_gp, 1e-6 * rep.norm_gp) << to_string(v);
+    EXPECT_LE(std::sqrt(gp2), 1e-8 * p.b.norm() * (1.0 + 1e-6)) << to_string(v);
+  }
+}
+
+// Near a very tight solution the exact line search of a spectral move drowns in rounding (the
+// normal forces times the rounding of points on the circles); the move is then Paper's fixed one
+// and the solver still reaches the tolerance.
+TEST(Mpgp, SpectralMovesFallBackToFixedStepsAtTheRoundingLevel) {
+  const Problem p = random_contact_problem(5, 10.0, 1);
+  for (auto v : {MpgpVariant::BarzilaiBorwein, MpgpVariant::SpectralProjectedGradient}) {
+    auto opt = tight();
+    opt.variant = v;
+    opt.rel_tolerance = 1e-13;
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(p.b.size());
+    const auto rep = solve_mpgp(dense_operator(p.M), p.b, p.c, opt, x);
+    ASSERT_EQ(rep.termination, Termination::Converged) << rep.full();
+    EXPECT_GT(rep.n_fallbacks, 0) << rep.full();
+    EXPECT_EQ(rep.n_objective_increases, 0) << rep.full();
+    EXPECT_LE(kkt(p.M, p.b, x, p.c).max(), 1e-12) << rep.full();
+  }
+}
+
 // ---------------------------------------------------------------------------------------------
 // Random contact-layout problems
 
@@ -263,7 +382,7 @@ std::vector<RandomCase> random_cases() {
   return cases;
 }
 
-TEST(Mpgp, RandomContactProblemsSatisfyKktToTightTolerance) {
+TEST_P(MpgpVariants, RandomContactProblemsSatisfyKktToTightTolerance) {
   for (const auto& rc : random_cases()) {
     const Problem p = random_contact_problem(rc.n_patches, rc.cond, rc.seed);
     Eigen::VectorXd x = Eigen::VectorXd::Zero(p.b.size());
@@ -280,7 +399,7 @@ TEST(Mpgp, RandomContactProblemsSatisfyKktToTightTolerance) {
   }
 }
 
-TEST(Mpgp, RandomContactProblemsMatchReferenceSolver) {
+TEST_P(MpgpVariants, RandomContactProblemsMatchReferenceSolver) {
   for (const auto& rc : random_cases()) {
     if (rc.cond > 100.0 || rc.n_patches > 8) continue;  // keeps the FISTA reference fast
     const Problem p = random_contact_problem(rc.n_patches, rc.cond, rc.seed + 1000);
@@ -295,7 +414,7 @@ TEST(Mpgp, RandomContactProblemsMatchReferenceSolver) {
   }
 }
 
-TEST(Mpgp, VariantsAgreeOnRandomContactProblems) {
+TEST_P(MpgpVariants, VariantsAgreeOnRandomContactProblems) {
   for (const auto& rc : random_cases()) {
     if (rc.n_patches > 8) continue;
     const Problem p = random_contact_problem(rc.n_patches, rc.cond, rc.seed + 2000);
@@ -317,7 +436,7 @@ TEST(Mpgp, VariantsAgreeOnRandomContactProblems) {
 
 // Builds b around a chosen optimum x*: per block pick a state, x*_i and g*_i satisfying the KKT
 // conditions, and set b = A x* - g*. Strict convexity makes x* the unique solution.
-TEST(Mpgp, ManufacturedOptimumIsRecovered) {
+TEST_P(MpgpVariants, ManufacturedOptimumIsRecovered) {
   for (unsigned seed = 1; seed <= 12; ++seed) {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> U(0.0, 1.0);
@@ -359,7 +478,7 @@ TEST(Mpgp, ManufacturedOptimumIsRecovered) {
   }
 }
 
-TEST(Mpgp, AllInactiveProblemGivesUnconstrainedSolution) {
+TEST_P(MpgpVariants, AllInactiveProblemGivesUnconstrainedSolution) {
   std::mt19937 rng(3);
   const Index n_patches = 10;
   const Eigen::MatrixXd M = random_spd(3 * n_patches, 10.0, rng);
@@ -381,7 +500,7 @@ TEST(Mpgp, AllInactiveProblemGivesUnconstrainedSolution) {
   EXPECT_LE((x - M.llt().solve(b)).norm(), 1e-10 * xs.norm());
 }
 
-TEST(Mpgp, AllActiveProblemGivesBoundaryValues) {
+TEST_P(MpgpVariants, AllActiveProblemGivesBoundaryValues) {
   std::mt19937 rng(4);
   const Index n_patches = 10;
   const Eigen::MatrixXd M = random_spd(3 * n_patches, 100.0, rng);
@@ -411,7 +530,7 @@ TEST(Mpgp, AllActiveProblemGivesBoundaryValues) {
 // ---------------------------------------------------------------------------------------------
 // Counters, history, monitor, termination
 
-TEST(Mpgp, ProductCountMatchesOperatorCalls) {
+TEST_P(MpgpVariants, ProductCountMatchesOperatorCalls) {
   const Problem p = random_contact_problem(12, 300.0, 7);
   for (bool given_norm : {false, true}) {
     long calls = 0;
@@ -422,12 +541,31 @@ TEST(Mpgp, ProductCountMatchesOperatorCalls) {
     Eigen::VectorXd x = Eigen::VectorXd::Zero(p.b.size());
     const auto rep = solve_mpgp(dense_operator(p.M, &calls), p.b, p.c, opt, x);
     ASSERT_EQ(rep.termination, Termination::Converged) << rep.full();
-    // All three step kinds occur, so the formula below tests each coefficient.
-    EXPECT_GT(rep.n_cg, 0);
-    EXPECT_GT(rep.n_expansion, 0);
-    EXPECT_GT(rep.n_proportioning, 0);
-    EXPECT_EQ(rep.iterations, rep.n_cg + rep.n_expansion + rep.n_proportioning);
-    EXPECT_EQ(rep.n_products, 1 + rep.n_cg + 2L * rep.n_expansion + rep.n_proportioning);
+    EXPECT_EQ(rep.variant, opt.variant);
+    EXPECT_EQ(rep.iterations, rep.n_cg + rep.n_expansion + rep.n_proportioning + rep.n_gradient);
+    switch (opt.variant) {
+      case MpgpVariant::SpectralProjectedGradient:
+        EXPECT_GT(rep.n_gradient, 0);
+        EXPECT_EQ(rep.n_cg + rep.n_expansion + rep.n_proportioning, 0);
+        EXPECT_EQ(rep.n_products, 1 + rep.n_gradient + rep.n_refreshes);
+        break;
+      default:
+        // All three step kinds occur, so the formulas below test each coefficient.
+        EXPECT_GT(rep.n_cg, 0);
+        EXPECT_GT(rep.n_expansion, 0);
+        EXPECT_GT(rep.n_proportioning, 0);
+        EXPECT_EQ(rep.n_gradient, 0);
+        long expected = 1 + rep.n_cg + 2L * rep.n_expansion + rep.n_proportioning;
+        if (opt.variant == MpgpVariant::Paper) {
+          EXPECT_EQ(rep.n_fallbacks + rep.n_refreshes, 0);
+        } else {
+          expected += rep.n_refreshes;
+        }
+        if (opt.variant == MpgpVariant::ExpansionOpt) expected += rep.n_expansion;
+        if (opt.variant == MpgpVariant::ExpansionOpt || opt.variant == MpgpVariant::ProjectedCG)
+          expected += rep.n_fallbacks;
+        EXPECT_EQ(rep.n_products, expected) << rep.full();
+    }
     EXPECT_EQ(calls, rep.n_products + rep.n_power_products);
     EXPECT_EQ(rep.norm_A_estimated, !given_norm);
     if (given_norm) {
@@ -440,7 +578,7 @@ TEST(Mpgp, ProductCountMatchesOperatorCalls) {
   }
 }
 
-TEST(Mpgp, ObjectiveDecreasesMonotonicallyAlongHistory) {
+TEST_P(MpgpVariants, ObjectiveDecreasesMonotonicallyAlongHistory) {
   const Problem p = random_contact_problem(15, 1000.0, 8);
   auto opt = tight();
   opt.record_history = true;
@@ -450,26 +588,28 @@ TEST(Mpgp, ObjectiveDecreasesMonotonicallyAlongHistory) {
   ASSERT_EQ(rep.history.size(), static_cast<std::size_t>(rep.iterations) + 1);
   EXPECT_EQ(rep.history.front().step, 's');
   EXPECT_EQ(rep.history.front().objective, 0.0);  // q(0)
-  int counts[3] = {0, 0, 0};
+  int counts[4] = {0, 0, 0, 0};
   for (std::size_t k = 1; k < rep.history.size(); ++k) {
     const auto& h = rep.history[k];
     EXPECT_EQ(h.iteration, static_cast<int>(k));
     EXPECT_LE(h.objective, rep.history[k - 1].objective + 1e-13 * std::abs(h.objective))
         << "step " << k << " (" << h.step << ")";
     EXPECT_GT(h.alpha, 0.0);
-    ASSERT_TRUE(h.step == 'c' || h.step == 'e' || h.step == 'p');
-    ++counts[h.step == 'c' ? 0 : h.step == 'e' ? 1 : 2];
+    ASSERT_TRUE(h.step == 'c' || h.step == 'e' || h.step == 'p' || h.step == 'g');
+    ++counts[h.step == 'c' ? 0 : h.step == 'e' ? 1 : h.step == 'p' ? 2 : 3];
   }
   EXPECT_EQ(counts[0], rep.n_cg);
   EXPECT_EQ(counts[1], rep.n_expansion);
   EXPECT_EQ(counts[2], rep.n_proportioning);
+  EXPECT_EQ(counts[3], rep.n_gradient);
+  EXPECT_EQ(rep.n_objective_increases, 0);
   const double q = objective(p.M, p.b, x);
   EXPECT_NEAR(rep.history.back().objective, q, 1e-12 * std::abs(q));
   EXPECT_NEAR(rep.objective, q, 1e-12 * std::abs(q));
   EXPECT_NEAR(rep.history.back().norm_gp, rep.norm_gp, 0.0);
 }
 
-TEST(Mpgp, MonitorReturningFalseStopsWithUserStopped) {
+TEST_P(MpgpVariants, MonitorReturningFalseStopsWithUserStopped) {
   const Problem p = random_contact_problem(10, 100.0, 9);
   int seen = 0;
   auto opt = tight();
@@ -486,7 +626,7 @@ TEST(Mpgp, MonitorReturningFalseStopsWithUserStopped) {
   EXPECT_FALSE(rep.message.empty());
 }
 
-TEST(Mpgp, MaxIterationsIsReportedWithMessage) {
+TEST_P(MpgpVariants, MaxIterationsIsReportedWithMessage) {
   const Problem p = random_contact_problem(10, 1000.0, 10);
   auto opt = tight();
   opt.max_iterations = 5;
@@ -501,7 +641,7 @@ TEST(Mpgp, MaxIterationsIsReportedWithMessage) {
   EXPECT_NE(rep.full().find("n_expansion"), std::string::npos);
 }
 
-TEST(Mpgp, WarmStartAtSolutionTakesNoStep) {
+TEST_P(MpgpVariants, WarmStartAtSolutionTakesNoStep) {
   const Problem p = random_contact_problem(6, 10.0, 11);
   Eigen::VectorXd x = Eigen::VectorXd::Zero(p.b.size());
   solve_mpgp(dense_operator(p.M), p.b, p.c, tight(), x);
@@ -516,11 +656,11 @@ TEST(Mpgp, WarmStartAtSolutionTakesNoStep) {
 // ---------------------------------------------------------------------------------------------
 // Edge cases and failures
 
-TEST(Mpgp, ZeroRightHandSideGivesZeroSolution) {
+TEST_P(MpgpVariants, ZeroRightHandSideGivesZeroSolution) {
   const Problem p = random_contact_problem(4, 10.0, 12);
   Eigen::VectorXd x = Eigen::VectorXd::Constant(p.b.size(), 0.3);
   const auto rep =
-      solve_mpgp(dense_operator(p.M), Eigen::VectorXd::Zero(p.b.size()), p.c, MpgpOptions{}, x);
+      solve_mpgp(dense_operator(p.M), Eigen::VectorXd::Zero(p.b.size()), p.c, options(), x);
   EXPECT_EQ(rep.termination, Termination::Converged) << rep.full();
   EXPECT_EQ(x, Eigen::VectorXd::Zero(p.b.size()));
   EXPECT_EQ(rep.rel_gp, 0.0);
@@ -528,7 +668,7 @@ TEST(Mpgp, ZeroRightHandSideGivesZeroSolution) {
   EXPECT_TRUE(std::isfinite(rep.alpha_bar_used));
 }
 
-TEST(Mpgp, InfeasibleInitialGuessIsProjectedFirst) {
+TEST_P(MpgpVariants, InfeasibleInitialGuessIsProjectedFirst) {
   const Problem p = random_contact_problem(8, 100.0, 13);
   std::mt19937 rng(1);
   const Eigen::VectorXd x0 = 10.0 * random_vector(p.b.size(), rng);
@@ -544,7 +684,7 @@ TEST(Mpgp, InfeasibleInitialGuessIsProjectedFirst) {
               1e-12 * std::abs(objective(p.M, p.b, px)));
 }
 
-TEST(Mpgp, ZeroRadiusPinsTangentialUnknowns) {
+TEST_P(MpgpVariants, ZeroRadiusPinsTangentialUnknowns) {
   Problem p = random_contact_problem(6, 10.0, 14);
   p.c.set_disc_radii(Eigen::VectorXd::Zero(6));  // frictionless
   Eigen::VectorXd x = Eigen::VectorXd::Ones(p.b.size());
@@ -586,25 +726,25 @@ TEST(Mpgp, NonFiniteOrMismatchedInputsThrow) {
   EXPECT_THROW(solve_mpgp(Operator{}, p.b, p.c, MpgpOptions{}, x), InputError);
 }
 
-TEST(Mpgp, IndefiniteOperatorReportsNumericalFailure) {
+TEST_P(MpgpVariants, IndefiniteOperatorReportsNumericalFailure) {
   // A = -I: the power method finds ||A|| = 1, then p^T A p < 0 at the first CG step.
   const Operator A = [](const Eigen::VectorXd& v, Eigen::VectorXd& y) { y = -v; };
   auto c = SeparableConstraints::contact_layout(2);
   c.set_disc_radii(Eigen::Vector2d(1.0, 1.0));
   Eigen::VectorXd x = Eigen::VectorXd::Constant(6, 0.1);
   const Eigen::VectorXd b = Eigen::VectorXd::Constant(6, 1.0);
-  const auto rep = solve_mpgp(A, b, c, MpgpOptions{}, x);
+  const auto rep = solve_mpgp(A, b, c, options(), x);
   EXPECT_EQ(rep.termination, Termination::NumericalFailure) << rep.full();
   EXPECT_FALSE(rep.message.empty());
 }
 
-TEST(Mpgp, OperatorProducingNanReportsNumericalFailure) {
+TEST_P(MpgpVariants, OperatorProducingNanReportsNumericalFailure) {
   const Operator A = [](const Eigen::VectorXd& v, Eigen::VectorXd& y) {
     y = v;
     if (v(0) != 0.0) y(0) = NAN;
   };
   Eigen::VectorXd x = Eigen::VectorXd::Constant(3, 0.5);
-  MpgpOptions opt;
+  MpgpOptions opt = options();
   opt.norm_A = 1.0;
   const auto rep =
       solve_mpgp(A, Eigen::Vector3d(1, 1, 1), SeparableConstraints::contact_layout(1), opt, x);

@@ -1,0 +1,359 @@
+// bench: the variants of the inner QP solver (qp::MpgpVariant) on the paper's dual problems.
+//
+//   minimise 1/2 l^T Q l - l^T h  over  l_n >= 0,  ||l_t|| <= radius  (per patch)
+//
+// Problems: the paper's brick (param 6e4) for n = 4, 8, 12, 16, built through the library with
+// Q = B K^-1 B^T formed densely (as bench/siconos_compare.cpp does), or dual files (--dump,
+// docs/dual-format.md). ||Q|| is estimated once per problem (200 power iterations, as the driver
+// does) and passed to every solve, so no count below includes it.
+//
+// Table 1, "single QP": the dual problem of the first outer iteration (phi = 0, every radius
+// F(0) g = 0.3 * 2e7 Pa), solved from l = 0 to ||g^P|| <= tol ||h|| for each variant and tol:
+// iterations, products with Q, time (median of --reps runs) and the largest relative KKT
+// residual of the result (fricon::qp::kkt_residuals, default scales, g = Q l - h recomputed).
+//
+// Table 2, "whole run" (problems built from the mesh only): the successive approximations of
+// method.md 3 as the driver runs them (radii from phi, QP warm-started from the previous
+// multipliers at the paper's tolerance 1e-6, w = K^-1 (f - B^T l), phi = ||w_t|| at the surface
+// nodes, stop when err(k) <= 1e-4): outer iterations, QP iterations and products over the run
+// (the paper's n_mult), QP time over the run (median of --reps runs of the whole loop), the KKT
+// residual of the last QP and the relative difference of the final phi from the Paper variant's.
+//
+//   build/bench/qp_variants_bench [--n 4,8,12,16] [--dump FILE ...] [--variants paper,spg,...]
+//                                 [--tol 1e-6,1e-8] [--reps 5] [--no-run]
+
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <filesystem>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <Eigen/Dense>
+
+#include "fricon/contact/contact_surface.hpp"
+#include "fricon/contact/friction_law.hpp"
+#include "fricon/core/error.hpp"
+#include "fricon/core/timer.hpp"
+#include "fricon/driver/model.hpp"
+#include "fricon/driver/paper.hpp"
+#include "fricon/io/dual_dump.hpp"
+#include "fricon/qp/kkt.hpp"
+#include "fricon/qp/mpgp.hpp"
+
+namespace {
+
+using fricon::Index;
+using fricon::MatrixXd;
+using fricon::VectorXd;
+namespace fs = std::filesystem;
+namespace qp = fricon::qp;
+namespace contact = fricon::contact;
+
+struct Settings {
+  std::vector<qp::MpgpVariant> variants = {
+      qp::MpgpVariant::Paper, qp::MpgpVariant::ExpansionOpt, qp::MpgpVariant::ProjectedCG,
+      qp::MpgpVariant::BarzilaiBorwein, qp::MpgpVariant::SpectralProjectedGradient};
+  std::vector<double> tols = {1e-6, 1e-8};
+  int reps = 5;
+  bool run = true;
+};
+
+// What the outer loop needs besides Q and h (paper problems only).
+struct Outer {
+  fricon::driver::Problem problem;
+  fricon::driver::Model model;
+  contact::ContactSurface surface;
+  contact::Patches patches;
+  fricon::SparseMatrix B;
+  std::unique_ptr<contact::FrictionLaw> law;
+  VectorXd slip_bound;  // g per surface node
+};
+
+struct Case {
+  std::string name;
+  MatrixXd Q;
+  VectorXd h, radius;
+  double norm_Q = 0.0;
+  std::unique_ptr<Outer> outer;  // null for dual files
+
+  qp::Operator A() const {
+    return [Q = &Q](const VectorXd& x, VectorXd& y) { y.noalias() = *Q * x; };
+  }
+  qp::SeparableConstraints constraints(const VectorXd& r) const {
+    auto c = qp::SeparableConstraints::contact_layout(r.size());
+    c.set_disc_radii(r);
+    return c;
+  }
+};
+
+void finish_case(Case& k) {
+  k.norm_Q = qp::estimate_norm(k.A(), k.h.size(), 200, 1e-10);  // the driver's settings
+}
+
+Case paper_case(Index n) {
+  Case k;
+  k.name = fmt::format("paper-n{}", n);
+  auto o = std::make_unique<Outer>();
+  o->problem = fricon::driver::paper_problem(n, 6e4);
+  fricon::PhaseTimes times;
+  o->model = fricon::driver::build_model(o->problem, times);
+  const auto& opt = *o->problem.contact;
+  o->surface =
+      contact::make_contact_surface(o->model.mesh, o->model.dofs, opt.boundary, o->problem.source);
+  o->patches = contact::chessboard_patches(o->model.mesh, o->surface, o->problem.source);
+  o->B = contact::assemble_b(o->model.mesh, o->model.dofs, o->surface, o->patches);
+  o->law = contact::paper_law(opt.friction.param);
+  o->slip_bound = VectorXd::Constant(o->surface.n_nodes(), opt.slip_bound);
+  const VectorXd phi = VectorXd::Zero(o->surface.n_nodes());
+  k.radius =
+      contact::patch_radii(o->model.mesh, o->surface, o->patches, *o->law, phi, o->slip_bound);
+  k.h = o->B * o->model.factor.solve(VectorXd(o->model.f));
+  const Index nd = o->B.rows();
+  const fricon::SparseMatrix Bt = o->B.transpose();
+  k.Q.resize(nd, nd);
+  for (Index j = 0; j < nd; j += 64) {
+    const Index nb = std::min<Index>(64, nd - j);
+    k.Q.middleCols(j, nb) = o->B * o->model.factor.solve(MatrixXd(Bt.middleCols(j, nb)));
+  }
+  k.Q = 0.5 * (k.Q + k.Q.transpose()).eval();
+  k.outer = std::move(o);
+  finish_case(k);
+  return k;
+}
+
+Case file_case(const fs::path& p) {
+  const auto d = fricon::io::read_dual(p);
+  Case k;
+  k.name = p.filename().string();
+  k.Q = d.Q;
+  k.h = d.h;
+  k.radius = d.radius;
+  finish_case(k);
+  return k;
+}
+
+double kkt_max(const Case& k, const qp::SeparableConstraints& c, const VectorXd& l) {
+  const VectorXd g = k.Q * l - k.h;
+  const auto s = qp::default_kkt_scales(l, k.h, c);
+  return qp::kkt_residuals(l, g, c, s.x, s.g).max();
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+qp::MpgpOptions options(const Case& k, qp::MpgpVariant v, double tol) {
+  qp::MpgpOptions o;
+  o.variant = v;
+  o.rel_tolerance = tol;
+  o.norm_A = k.norm_Q;
+  return o;
+}
+
+// ------------------------------------------------------------------------------------------
+// Table 1: one QP from l = 0.
+
+void single_qp(const Case& k, const Settings& s) {
+  const auto c = k.constraints(k.radius);
+  const qp::Operator A = k.A();
+  for (const double tol : s.tols) {
+    double paper_ms = 0.0;
+    long paper_products = 0;
+    for (const auto v : s.variants) {
+      const auto opt = options(k, v, tol);
+      std::vector<double> ms;
+      qp::MpgpReport rep;
+      VectorXd l;
+      for (int r = 0; r < s.reps; ++r) {
+        l = VectorXd::Zero(k.h.size());
+        rep = qp::solve_mpgp(A, k.h, c, opt, l);
+        ms.push_back(1e3 * rep.seconds);
+      }
+      const double t = median(ms);
+      if (v == qp::MpgpVariant::Paper) {
+        paper_ms = t;
+        paper_products = rep.n_products;
+      }
+      fmt::print(
+          "{:<10} {:>5} {:>8.0e} {:<14} {:>7} {:>8} {:>9.2f} {:>9.2e} {:>7} {:>7}  {}\n", k.name,
+          k.h.size(), tol, qp::to_string(v), rep.iterations, rep.n_products, t, kkt_max(k, c, l),
+          paper_products > 0 ? fmt::format("{:.2f}", static_cast<double>(rep.n_products) /
+                                                         static_cast<double>(paper_products))
+                             : "-",
+          paper_ms > 0 ? fmt::format("{:.2f}", t / paper_ms) : "-", qp::to_string(rep.termination));
+    }
+  }
+}
+
+// ------------------------------------------------------------------------------------------
+// Table 2: the whole outer loop, warm-started.
+
+struct RunResult {
+  int outer = 0;
+  long iterations = 0, products = 0;
+  double qp_ms = 0.0;
+  double kkt = 0.0;
+  bool converged = false;
+  VectorXd phi;
+};
+
+RunResult run_outer(const Case& k, qp::MpgpVariant v) {
+  const Outer& o = *k.outer;
+  const auto& so = o.problem.solver;
+  const auto& m = o.model;
+  const qp::Operator A = k.A();
+  auto c = k.constraints(k.radius);
+  const auto opt = options(k, v, so.qp_rtol);
+  RunResult res;
+  VectorXd phi = VectorXd::Zero(o.surface.n_nodes());
+  VectorXd l = VectorXd::Zero(k.h.size());
+  for (int it = 1; it <= so.outer_max; ++it) {
+    c.set_disc_radii(contact::patch_radii(m.mesh, o.surface, o.patches, *o.law, phi, o.slip_bound));
+    const auto rep = qp::solve_mpgp(A, k.h, c, opt, l);
+    res.outer = it;
+    res.iterations += rep.iterations;
+    res.products += rep.n_products;
+    res.qp_ms += 1e3 * rep.seconds;
+    if (rep.termination != qp::Termination::Converged) break;
+    const VectorXd w = m.factor.solve(VectorXd(m.f - o.B.transpose() * l));
+    VectorXd phi_new(o.surface.n_nodes());
+    for (Index a = 0; a < o.surface.n_nodes(); ++a) {
+      fricon::Vec3 u = fricon::Vec3::Zero();
+      for (int comp = 0; comp < 3; ++comp) {
+        const Index dof = m.dofs.dof(o.surface.nodes[static_cast<std::size_t>(a)], comp);
+        if (dof >= 0) u(comp) = w(dof);
+      }
+      phi_new(a) = std::hypot(u.dot(o.surface.t1), u.dot(o.surface.t2));
+    }
+    const double err = phi_new.norm() > 0 ? (phi_new - phi).norm() / phi_new.norm() : 0.0;
+    phi = phi_new;
+    if (err <= so.outer_tol) {
+      res.converged = true;
+      break;
+    }
+  }
+  res.kkt = kkt_max(k, c, l);
+  res.phi = phi;
+  return res;
+}
+
+void whole_run(const Case& k, const Settings& s) {
+  RunResult paper;
+  for (const auto v : s.variants) {
+    RunResult res;
+    std::vector<double> ms;
+    for (int r = 0; r < s.reps; ++r) {
+      res = run_outer(k, v);
+      ms.push_back(res.qp_ms);
+    }
+    res.qp_ms = median(ms);
+    if (v == qp::MpgpVariant::Paper) paper = res;
+    const double dphi = paper.phi.size() == res.phi.size() && paper.phi.norm() > 0
+                            ? (res.phi - paper.phi).norm() / paper.phi.norm()
+                            : NAN;
+    fmt::print("{:<10} {:<14} {:>5} {:>8} {:>8} {:>9.2f} {:>9.2e} {:>9.1e} {:>7} {:>7}  {}\n",
+               k.name, qp::to_string(v), res.outer, res.iterations, res.products, res.qp_ms,
+               res.kkt, dphi,
+               paper.products > 0 ? fmt::format("{:.2f}", static_cast<double>(res.products) /
+                                                              static_cast<double>(paper.products))
+                                  : "-",
+               paper.qp_ms > 0 ? fmt::format("{:.2f}", res.qp_ms / paper.qp_ms) : "-",
+               res.converged ? "converged" : "NOT converged");
+  }
+}
+
+template <typename T, typename F>
+std::vector<T> parse_list(const std::string& s, F convert) {
+  std::vector<T> out;
+  std::stringstream ss(s);
+  for (std::string item; std::getline(ss, item, ',');)
+    if (!item.empty()) out.push_back(convert(item));
+  if (out.empty()) throw fricon::InputError(fmt::format("empty list '{}'", s));
+  return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    Settings s;
+    std::vector<fs::path> dumps;
+    std::vector<Index> ns = {4, 8, 12, 16};
+    for (int i = 1; i < argc; ++i) {
+      const std::string a = argv[i];
+      auto value = [&]() -> std::string {
+        if (i + 1 >= argc) throw fricon::InputError(fmt::format("{} needs a value", a));
+        return argv[++i];
+      };
+      if (a == "--dump") {
+        dumps.emplace_back(value());
+        while (i + 1 < argc && std::string(argv[i + 1]).rfind("--", 0) != 0)
+          dumps.emplace_back(argv[++i]);
+      } else if (a == "--n") {
+        ns = parse_list<Index>(value(), [](const std::string& t) { return std::stol(t); });
+      } else if (a == "--variants") {
+        s.variants = parse_list<qp::MpgpVariant>(
+            value(), [](const std::string& t) { return qp::mpgp_variant_from_string(t); });
+      } else if (a == "--tol") {
+        s.tols = parse_list<double>(value(), [](const std::string& t) { return std::stod(t); });
+      } else if (a == "--reps") {
+        s.reps = std::max(1, std::stoi(value()));
+      } else if (a == "--no-run") {
+        s.run = false;
+      } else if (a == "--help" || a == "-h") {
+        fmt::print(
+            "usage: qp_variants_bench [--n 4,8,12,16] [--dump FILE ...] [--variants "
+            "paper,expansion_opt,projcg,bb,spg]\n"
+            "                         [--tol 1e-6,1e-8] [--reps 5] [--no-run]\n");
+        return 0;
+      } else {
+        throw fricon::InputError(fmt::format("unknown argument '{}' (see --help)", a));
+      }
+    }
+    if (std::find(s.variants.begin(), s.variants.end(), qp::MpgpVariant::Paper) == s.variants.end())
+      s.variants.insert(s.variants.begin(), qp::MpgpVariant::Paper);  // the reference
+
+    std::vector<Case> cases;
+    if (!dumps.empty()) {
+      for (const auto& p : dumps)
+        cases.push_back(file_case(p));
+    } else {
+      for (const Index n : ns)
+        cases.push_back(paper_case(n));
+    }
+
+    fmt::print(
+        "QP variants (qp::MpgpVariant) on the dual problem of the paper's brick, param 6e4.\n"
+        "Single QP: first outer iteration (all radii 6e6 Pa), from l = 0, stop at ||g^P|| <= tol "
+        "||h||; time = median of {} runs; kkt = max relative KKT residual of the result;\n"
+        "x prod, x time = ratio to the variant paper (the default).\n\n",
+        s.reps);
+    fmt::print("{:<10} {:>5} {:>8} {:<14} {:>7} {:>8} {:>9} {:>9} {:>7} {:>7}  {}\n", "problem",
+               "n_d", "tol", "variant", "iters", "products", "time[ms]", "kkt", "x prod", "x time",
+               "termination");
+    for (const auto& k : cases)
+      single_qp(k, s);
+
+    if (s.run && dumps.empty()) {
+      fmt::print(
+          "\nWhole run: successive approximations as in the driver (warm starts, QP tol 1e-6, "
+          "outer tol 1e-4); products = n_mult of the run; QP time = median of {} runs;\n"
+          "dphi = ||phi - phi_paper|| / ||phi_paper|| of the final slips.\n\n",
+          s.reps);
+      fmt::print("{:<10} {:<14} {:>5} {:>8} {:>8} {:>9} {:>9} {:>9} {:>7} {:>7}  {}\n", "problem",
+                 "variant", "outer", "qp iters", "n_mult", "QP[ms]", "kkt", "dphi", "x prod",
+                 "x time", "status");
+      for (const auto& k : cases)
+        whole_run(k, s);
+    }
+    return 0;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "qp_variants_bench: {}\n", e.what());
+    return 1;
+  }
+}
