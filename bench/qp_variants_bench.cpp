@@ -54,9 +54,8 @@ namespace qp = fricon::qp;
 namespace contact = fricon::contact;
 
 struct Settings {
-  std::vector<qp::MpgpVariant> variants = {
-      qp::MpgpVariant::Paper, qp::MpgpVariant::ExpansionOpt, qp::MpgpVariant::ProjectedCG,
-      qp::MpgpVariant::BarzilaiBorwein, qp::MpgpVariant::SpectralProjectedGradient};
+  std::vector<qp::MpgpVariant> variants = {qp::MpgpVariant::Paper, qp::MpgpVariant::BarzilaiBorwein,
+                                           qp::MpgpVariant::SpectralProjectedGradient};
   std::vector<double> tols = {1e-6, 1e-8};
   int reps = 5;
   bool run = true;
@@ -308,7 +307,7 @@ int main(int argc, char** argv) {
       } else if (a == "--help" || a == "-h") {
         fmt::print(
             "usage: qp_variants_bench [--n 4,8,12,16] [--dump FILE ...] [--variants "
-            "paper,expansion_opt,projcg,bb,spg]\n"
+            "paper,bb,spg]\n"
             "                         [--tol 1e-6,1e-8] [--reps 5] [--no-run]\n");
         return 0;
       } else {

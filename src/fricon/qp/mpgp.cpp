@@ -55,10 +55,6 @@ std::string to_string(MpgpVariant v) {
   switch (v) {
     case MpgpVariant::Paper:
       return "paper";
-    case MpgpVariant::ExpansionOpt:
-      return "expansion_opt";
-    case MpgpVariant::ProjectedCG:
-      return "projcg";
     case MpgpVariant::BarzilaiBorwein:
       return "bb";
     case MpgpVariant::SpectralProjectedGradient:
@@ -68,14 +64,11 @@ std::string to_string(MpgpVariant v) {
 }
 
 MpgpVariant mpgp_variant_from_string(std::string_view s) {
-  for (auto v : {MpgpVariant::Paper, MpgpVariant::ExpansionOpt, MpgpVariant::ProjectedCG,
-                 MpgpVariant::BarzilaiBorwein, MpgpVariant::SpectralProjectedGradient}) {
+  for (auto v :
+       {MpgpVariant::Paper, MpgpVariant::BarzilaiBorwein, MpgpVariant::SpectralProjectedGradient}) {
     if (s == to_string(v)) return v;
   }
-  throw InputError(fmt::format(
-      "qp variant = \"{}\" is not one of \"paper\", \"expansion_opt\", \"projcg\", \"bb\", "
-      "\"spg\"",
-      s));
+  throw InputError(fmt::format("qp variant = \"{}\" is not one of \"paper\", \"bb\", \"spg\"", s));
 }
 
 ProportioningStep proportioning_step_from_string(std::string_view s) {
@@ -132,8 +125,7 @@ void MpgpOptions::validate() const {
               proportioning_test == ProportioningTest::Free,
           "proportioning_test", static_cast<int>(proportioning_test),
           "a ProportioningTest enumerator");
-  require(variant == MpgpVariant::Paper || variant == MpgpVariant::ExpansionOpt ||
-              variant == MpgpVariant::ProjectedCG || variant == MpgpVariant::BarzilaiBorwein ||
+  require(variant == MpgpVariant::Paper || variant == MpgpVariant::BarzilaiBorwein ||
               variant == MpgpVariant::SpectralProjectedGradient,
           "variant", static_cast<int>(variant), "an MpgpVariant enumerator");
 }
@@ -432,12 +424,8 @@ MpgpReport solve_mpgp(const Operator& A, const Eigen::VectorXd& b, const Separab
 
   // Work vectors, allocated once: g = A x - b, p = search direction (also the projected-gradient
   // direction d of the spectral moves), Ap = A p (also A beta, A phi), phi = free gradient,
-  // beta = chopped gradient; xt, gt = trial point and its gradient (fallback variants only).
-  Eigen::VectorXd g(n), p(n), Ap(n), phi(n), beta(n), xt, gt;
-  if (variant == MpgpVariant::ExpansionOpt || variant == MpgpVariant::ProjectedCG) {
-    xt.resize(n);
-    gt.resize(n);
-  }
+  // beta = chopped gradient.
+  Eigen::VectorXd g(n), p(n), Ap(n), phi(n), beta(n);
   auto mult = [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) {
     A(in, out);
     ++rep.n_products;
@@ -672,32 +660,6 @@ MpgpReport solve_mpgp(const Operator& A, const Eigen::VectorXd& b, const Separab
         it.step = 'c';
         it.alpha = a_cg;
         recursive = variant != MpgpVariant::Paper;
-      } else if (variant == MpgpVariant::ProjectedCG) {
-        // Expansion by the projected CG step, if it decreases q; else Paper's expansion below.
-        xt = x - a_cg * p;
-        c.project(xt);
-        mult(xt, gt);
-        gt -= b;
-        const double q_t = 0.5 * (xt.dot(gt) - xt.dot(b));
-        if (q_t <= q_prev) {
-          x.swap(xt);
-          g.swap(gt);
-        } else {
-          ++rep.n_fallbacks;
-          x.noalias() -= a_f * p;
-          g.noalias() -= a_f * Ap;
-          kern.split(x, g, phi, beta);
-          x.noalias() -= abar * phi;
-          c.project(x);
-          mult(x, g);
-          g -= b;
-        }
-        s = kern.split(x, g, phi, beta);
-        p = phi;
-        ++rep.n_expansion;
-        it.step = 'e';
-        it.alpha = a_f;
-        recursive = false;
       } else {
         // Lines 10-12: to the boundary, then a projected free-gradient move.
         x.noalias() -= a_f * p;
@@ -711,42 +673,18 @@ MpgpReport solve_mpgp(const Operator& A, const Eigen::VectorXd& b, const Separab
                           "expansion step: A is not positive definite along the projected "
                           "free-gradient direction");
           }
-        } else if (variant == MpgpVariant::ExpansionOpt) {
-          // PERMON's "opt" length along -phi, projected; fixed length if q increases.
-          mult(phi, Ap);
-          const double phi2 = phi.squaredNorm();
-          const double pAphi = phi.dot(Ap);
-          const double q_half = objective();
-          bool accepted = false;
-          if (pAphi > 0.0 && std::isfinite(pAphi)) {
-            xt = x - (phi2 / pAphi) * phi;
-            c.project(xt);
-            mult(xt, g);
-            g -= b;
-            const double q_t = 0.5 * (xt.dot(g) - xt.dot(b));
-            accepted = q_t <= q_half;
-          }
-          if (accepted) {
-            x.swap(xt);
-          } else {
-            ++rep.n_fallbacks;
-            x.noalias() -= abar * phi;
-            c.project(x);
-            mult(x, g);
-            g -= b;
-          }
         } else {
           x.noalias() -= abar * phi;
           c.project(x);
           mult(x, g);
           g -= b;
+          recursive = false;
         }
         s = kern.split(x, g, phi, beta);
         p = phi;
         ++rep.n_expansion;
         it.step = 'e';
         it.alpha = a_f;
-        recursive = bb;
       }
     } else {
       // Line 14: proportioning.

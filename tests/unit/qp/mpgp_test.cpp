@@ -29,8 +29,7 @@ MpgpOptions tight() {
   return o;
 }
 
-const std::vector<MpgpVariant> kVariants = {MpgpVariant::Paper, MpgpVariant::ExpansionOpt,
-                                            MpgpVariant::ProjectedCG, MpgpVariant::BarzilaiBorwein,
+const std::vector<MpgpVariant> kVariants = {MpgpVariant::Paper, MpgpVariant::BarzilaiBorwein,
                                             MpgpVariant::SpectralProjectedGradient};
 
 // The tests that check solutions, counters and failures run once per variant: inside them,
@@ -561,9 +560,6 @@ TEST_P(MpgpVariants, ProductCountMatchesOperatorCalls) {
         } else {
           expected += rep.n_refreshes;
         }
-        if (opt.variant == MpgpVariant::ExpansionOpt) expected += rep.n_expansion;
-        if (opt.variant == MpgpVariant::ExpansionOpt || opt.variant == MpgpVariant::ProjectedCG)
-          expected += rep.n_fallbacks;
         EXPECT_EQ(rep.n_products, expected) << rep.full();
     }
     EXPECT_EQ(calls, rep.n_products + rep.n_power_products);
