@@ -342,6 +342,9 @@ int main(int argc, char** argv) {
     if (*check_cmd) return check(file, solve_opt.sets);
     if (*paper_cmd) return paper(paper_opt);
     if (*plot_cmd) return plot(plot_dir, plot_out);
+  } catch (const fricon::Interrupted& e) {
+    std::cerr << "fricon: " << e.what() << " (no iterate to write yet)\n";
+    return kNotConverged;
   } catch (const fricon::InputError& e) {
     std::cerr << "fricon: error: " << e.what() << "\n";
     return kBadInput;

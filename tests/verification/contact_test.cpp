@@ -252,3 +252,15 @@ TEST(PaperBrick, AndersonMixingReachesTheSameFixedPoint) {
   EXPECT_LT((b.contact->lambda - a.contact->lambda).norm() / a.contact->lambda.norm(), 1e-6);
   EXPECT_LT((b.displacement - a.displacement).norm() / a.displacement.norm(), 1e-6);
 }
+
+TEST(PaperBrick, BarzilaiBorweinVariantGivesTheSameSolutionWithFewerProducts) {
+  Problem paper = tight(paper_problem(4, 6e4));
+  Problem fast = paper;
+  fast.solver.qp_variant = "bb";
+  const RunResult a = run(paper), b = run(fast);
+  ASSERT_EQ(b.report.status, Status::Converged) << b.report.message;
+  EXPECT_LT(b.report.contact->kkt.max(), 1e-9);
+  EXPECT_LT(b.report.contact->n_mult, a.report.contact->n_mult / 2);
+  // Both stop at err <= 1e-4 of the same fixed point.
+  EXPECT_LT((b.displacement - a.displacement).norm() / a.displacement.norm(), 1e-4);
+}

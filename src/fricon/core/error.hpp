@@ -29,6 +29,12 @@ class NumericalError : public Error {
   using Error::Error;
 };
 
+/// The user asked the run to stop (Ctrl-C) at a point where there is no iterate to return yet.
+class Interrupted : public Error {
+ public:
+  using Error::Error;
+};
+
 namespace detail {
 [[noreturn]] void throw_check_failure(const char* condition, const char* file, int line,
                                       const std::string& message);

@@ -60,6 +60,10 @@ constexpr Index kDenseBlock = 64;
 constexpr int kPowerIterations = 200;
 constexpr Real kPowerTolerance = 1e-10;
 
+bool stop_requested(const RunOptions& o) {
+  return o.stop_requested && o.stop_requested->load();
+}
+
 // The dual data of method.md §2.6: Q = B K^-1 B^T (as a product), h = B K^-1 f, u0 = K^-1 f.
 // Modes:
 //   implicit  each product with Q is one solve with the factor of K (the paper's way);
@@ -79,7 +83,8 @@ struct Dual {
   VectorXd u0_c;
 };
 
-Dual make_dual(const Model& m, const SparseMatrix& B, const std::string& mode, long& n_kinv) {
+Dual make_dual(const Model& m, const SparseMatrix& B, const std::string& mode, long& n_kinv,
+               const RunOptions& options) {
   Dual d;
   d.u0 = m.factor.solve(m.f);
   ++n_kinv;
@@ -121,6 +126,7 @@ Dual make_dual(const Model& m, const SparseMatrix& B, const std::string& mode, l
     auto Q = std::make_shared<MatrixXd>(nd, nd);
     for (Index j = 0; j < nd; j += kDenseBlock) {
       const Index nb = std::min(kDenseBlock, nd - j);
+      if (stop_requested(options)) throw Interrupted("interrupted while forming Q");
       const MatrixXd X = m.factor.solve(MatrixXd(Bt.middleCols(j, nb)));
       Q->middleCols(j, nb) = B * X;
       n_kinv += nb;
@@ -128,7 +134,9 @@ Dual make_dual(const Model& m, const SparseMatrix& B, const std::string& mode, l
     *Q = 0.5 * (*Q + Q->transpose()).eval();
     d.Q_dense = Q;
   } else {
-    d.Q = [&m, &B, &n_kinv](const VectorXd& x, VectorXd& y) {
+    // Each product is a solve with K; a stop request ends the power iteration for ||Q|| too.
+    d.Q = [&m, &B, &n_kinv, &options](const VectorXd& x, VectorXd& y) {
+      if (stop_requested(options)) throw Interrupted("interrupted while applying Q");
       y = B * m.factor.solve(VectorXd(B.transpose() * x));
       ++n_kinv;
     };
@@ -156,16 +164,12 @@ void recover(const Model& m, const SparseMatrix& B, const Dual& d, const VectorX
   }
 }
 
-bool stop_requested(const RunOptions& o) {
-  return o.stop_requested && o.stop_requested->load();
-}
-
 // Geometric mean of err(k)/err(k-1) over the last (up to three) iterations after the first:
 // the observed contraction factor of the successive approximations (0 if not measurable).
 Real contraction_ratio(const std::vector<Real>& err) {
   const size_t n = err.size();
   if (n < 3) return 0.0;
-  const size_t first = std::max<size_t>(1, n - 4);
+  const size_t first = n >= 5 ? n - 4 : 1;  // the ratios of the last (up to) three steps
   if (!(err[first] > 0.0) || !(err.back() > 0.0)) return 0.0;
   return std::pow(err.back() / err[first], 1.0 / static_cast<Real>(n - 1 - first));
 }
@@ -272,7 +276,7 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m, PhaseTimes&
   if (options.on_phase_start) options.on_phase_start("dual");
   {
     ScopedPhase phase(times, "dual");
-    dual = make_dual(m, B, dual_operator_for(problem, m.factor, B.rows()), rep.n_kinv);
+    dual = make_dual(m, B, dual_operator_for(problem, m.factor, B.rows()), rep.n_kinv, options);
     rep.dual_operator = dual.mode;
     rep.norm_Q = qp::estimate_norm(dual.Q, rep.n_dual, kPowerIterations, kPowerTolerance);
   }
@@ -282,6 +286,7 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m, PhaseTimes&
   qopt.rel_tolerance = so.qp_rtol;
   qopt.max_iterations = so.qp_max;
   qopt.norm_A = rep.norm_Q;
+  qopt.variant = qp::mpgp_variant_from_string(so.qp_variant);
   qopt.monitor = [&options](const qp::MpgpIteration& it) {
     if (stop_requested(options)) return false;
     return options.on_qp_iteration ? options.on_qp_iteration(it) : true;

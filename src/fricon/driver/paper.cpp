@@ -23,6 +23,7 @@ Problem paper_problem(Index n, Real param) {
   p.contact = c;
   p.solver.outer_tol = 1e-4;
   p.solver.qp_rtol = 1e-6;
+  p.solver.qp_variant = "paper";  // the paper's plain MPGP, so that n_mult compares
   p.output.dir = fmt::format("results/paper-n{}-param{:g}", n, param);
   return p;
 }

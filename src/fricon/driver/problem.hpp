@@ -75,6 +75,11 @@ struct SolverOptions {
   /// [solver.acceleration] of the successive approximations: "none" (the paper's plain
   /// iteration phi^k = Psi(phi^(k-1))) or "anderson" (Anderson mixing of the last iterates).
   std::string acceleration = "none";
+  /// [solver.qp_variant] inner QP algorithm: "bb" (MPGP with Barzilai-Borwein expansion and
+  /// proportioning lengths, 5-8x fewer products with Q on the paper's problems), "paper" (the
+  /// plain MPGP of the paper, which reproduces its n_mult), or "spg" (spectral projected
+  /// gradient).
+  std::string qp_variant = "bb";
   /// [solver.anderson_depth] number of previous iterates Anderson mixing uses, in [1, 20].
   int anderson_depth = 1;
 };

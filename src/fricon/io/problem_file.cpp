@@ -455,7 +455,7 @@ void read_contact(const Context& ctx, const Field& f, driver::ContactOptions& c,
 void read_solver(const Context& ctx, const Field& f, driver::SolverOptions& s) {
   const TableReader t(ctx, f, "a table [solver]",
                       {"outer_tol", "outer_max", "qp_rtol", "qp_max", "warm_start", "dual_operator",
-                       "acceleration", "anderson_depth"});
+                       "acceleration", "anderson_depth", "qp_variant"});
   if (auto k = t.find("outer_tol")) s.outer_tol = get_real(ctx, *k, "a positive number", positive);
   if (auto k = t.find("outer_max"))
     s.outer_max = static_cast<int>(get_int(ctx, *k, "an integer >= 1", 1, INT_MAX));
@@ -467,6 +467,7 @@ void read_solver(const Context& ctx, const Field& f, driver::SolverOptions& s) {
   if (auto k = t.find("dual_operator"))
     s.dual_operator = get_choice(ctx, *k, {"auto", "implicit", "dense", "schur", "forward"});
   if (auto k = t.find("acceleration")) s.acceleration = get_choice(ctx, *k, {"none", "anderson"});
+  if (auto k = t.find("qp_variant")) s.qp_variant = get_choice(ctx, *k, {"bb", "paper", "spg"});
   if (auto k = t.find("anderson_depth"))
     s.anderson_depth = static_cast<int>(get_int(ctx, *k, "an integer in [1, 20]", 1, 20));
 }
@@ -826,7 +827,8 @@ nlohmann::json to_json(const driver::Problem& p) {
   j["solver"] = {{"outer_tol", s.outer_tol},       {"outer_max", s.outer_max},
                  {"qp_rtol", s.qp_rtol},           {"qp_max", s.qp_max},
                  {"warm_start", s.warm_start},     {"dual_operator", s.dual_operator},
-                 {"acceleration", s.acceleration}, {"anderson_depth", s.anderson_depth}};
+                 {"acceleration", s.acceleration}, {"anderson_depth", s.anderson_depth},
+                 {"qp_variant", s.qp_variant}};
   j["output"] = {{"dir", p.output.dir}};
   return j;
 }
