@@ -15,6 +15,14 @@ SparseMatrix random_spd(Index n, unsigned seed) {
   const MatrixXd A = R * R.transpose() + static_cast<Real>(n) * MatrixXd::Identity(n, n);
   return A.sparseView().cast<Real>();
 }
+// The dofs of a brick clamped on its face x = 0.
+fe::DofMap clamped_at_x0(const mesh::TetMesh& m) {
+  std::vector<bool> fixed(static_cast<size_t>(3 * m.n_nodes()), false);
+  for (Index a : m.nodes_with_tag("x0"))
+    for (int c = 0; c < 3; ++c)
+      fixed[static_cast<size_t>(3 * a + c)] = true;
+  return fe::DofMap(fixed);
+}
 }  // namespace
 
 TEST(Cholesky, AgreesWithDenseSolve) {
@@ -49,11 +57,7 @@ TEST(Cholesky, TrailingBlockIsTheFactorOfTheSchurComplement) {
   // Constrain the dofs of the bottom face to come last; then L22 L22^T must equal the Schur
   // complement S = K22 - K21 K11^-1 K12 computed with dense algebra.
   const mesh::TetMesh m = mesh::make_brick({Vec3(2, 1, 1), {4, 2, 2}});
-  std::vector<bool> fixed(static_cast<size_t>(3 * m.n_nodes()), false);
-  for (Index a : m.nodes_with_tag("x0"))
-    for (int c = 0; c < 3; ++c)
-      fixed[static_cast<size_t>(3 * a + c)] = true;
-  const fe::DofMap dofs(fixed);
+  const fe::DofMap dofs = clamped_at_x0(m);
   const SparseMatrix K = fe::assemble_stiffness(m, fe::isotropic(2e11, 0.3), dofs);
   std::vector<Index> last;
   for (Index a : m.nodes_with_tag("z0"))
@@ -92,11 +96,7 @@ TEST(Cholesky, TrailingBlockIsTheFactorOfTheSchurComplement) {
 TEST(Cholesky, ForwardSolveOnTheReachGivesTheDualHessian) {
   // B^T K^-1 B = Y^T Y for Y = L^-1 P B computed on the reach of a sparse B only.
   const mesh::TetMesh m = mesh::make_brick({Vec3(3, 1, 1), {12, 4, 4}});
-  std::vector<bool> fixed(static_cast<size_t>(3 * m.n_nodes()), false);
-  for (Index a : m.nodes_with_tag("x0"))
-    for (int c = 0; c < 3; ++c)
-      fixed[static_cast<size_t>(3 * a + c)] = true;
-  const fe::DofMap dofs(fixed);
+  const fe::DofMap dofs = clamped_at_x0(m);
   const SparseMatrix K = fe::assemble_stiffness(m, fe::isotropic(2e11, 0.3), dofs);
   // Columns touching a few dofs of the bottom face, like the rows of the contact operator.
   const auto bottom = m.nodes_with_tag("z0");
