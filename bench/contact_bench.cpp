@@ -6,6 +6,7 @@
 //   build/bench/contact_bench                  n = 4, 6, ..., 16
 //   build/bench/contact_bench 24 32            chosen sizes
 //   build/bench/contact_bench --operator implicit 8
+//   build/bench/contact_bench --qp-variant paper 16   the paper's MPGP (default: fricon's default)
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -30,6 +31,7 @@ struct Row {
   double linear = 0, total = 0, factorize = 0, dual = 0, qp = 0, other = 0, peak_mib = 0;
   bool converged = false;
   char mode[16] = {};
+  char variant[16] = {};
 };
 
 double peak_mib() {
@@ -38,12 +40,13 @@ double peak_mib() {
   return static_cast<double>(u.ru_maxrss) / 1024.0;
 }
 
-Row measure(long n, const std::string& mode) {
+Row measure(long n, const std::string& mode, const std::string& variant) {
   using namespace fricon;
   Row r;
   r.n = n;
   driver::Problem p = driver::paper_problem(n, 6e4);
   p.solver.dual_operator = mode;
+  p.solver.qp_variant = variant;
   {
     Stopwatch watch;
     PhaseTimes times;
@@ -68,6 +71,7 @@ Row measure(long n, const std::string& mode) {
   r.other = r.total - r.factorize - r.dual - r.qp;
   r.converged = rep.status == driver::Status::Converged;
   std::snprintf(r.mode, sizeof r.mode, "%s", c.dual_operator.c_str());
+  std::snprintf(r.variant, sizeof r.variant, "%s", p.solver.qp_variant.c_str());
   r.peak_mib = peak_mib();
   return r;
 }
@@ -77,9 +81,12 @@ Row measure(long n, const std::string& mode) {
 int main(int argc, char** argv) {
   std::vector<long> sizes;
   std::string mode = "auto";
+  std::string variant = fricon::driver::SolverOptions{}.qp_variant;
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--operator") == 0 && i + 1 < argc) {
       mode = argv[++i];
+    } else if (std::strcmp(argv[i], "--qp-variant") == 0 && i + 1 < argc) {
+      variant = argv[++i];
     } else {
       sizes.push_back(std::atol(argv[i]));
     }
@@ -91,9 +98,10 @@ int main(int argc, char** argv) {
   fmt::print(
       "(linear = assembly + factorization + one solve; ratio = total / linear; times in s)\n\n");
   fmt::print(
-      "| n | n_p | n_d | operator | outer | QP its | n_mult | K^-1 solves | factorize | dual | qp "
+      "| n | n_p | n_d | operator | QP variant | outer | QP its | n_mult | K^-1 solves | factorize "
+      "| dual | qp "
       "| other | total | linear | ratio | peak RSS [MiB] |\n");
-  fmt::print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  fmt::print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   int code = 0;
   for (long n : sizes) {
     int fd[2];
@@ -101,7 +109,7 @@ int main(int argc, char** argv) {
     const pid_t pid = fork();
     if (pid == 0) {
       close(fd[0]);
-      const Row r = measure(n, mode);
+      const Row r = measure(n, mode, variant);
       if (write(fd[1], &r, sizeof r) != static_cast<ssize_t>(sizeof r)) _exit(3);
       _exit(0);
     }
@@ -117,11 +125,12 @@ int main(int argc, char** argv) {
       continue;
     }
     fmt::print(
-        "| {} | {} | {} | {} | {}{} | {} | {} | {} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | "
+        "| {} | {} | {} | {} | {} | {}{} | {} | {} | {} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | "
+        "{:.3f} | "
         "{:.3f} | {:.2f} | {:.0f} |\n",
-        r.n, r.n_primal, r.n_dual, r.mode, r.outer, r.converged ? "" : " (not converged)", r.qp_its,
-        r.n_mult, r.n_kinv, r.factorize, r.dual, r.qp, r.other, r.total, r.linear,
-        r.total / r.linear, r.peak_mib);
+        r.n, r.n_primal, r.n_dual, r.mode, r.variant, r.outer,
+        r.converged ? "" : " (not converged)", r.qp_its, r.n_mult, r.n_kinv, r.factorize, r.dual,
+        r.qp, r.other, r.total, r.linear, r.total / r.linear, r.peak_mib);
     std::fflush(stdout);
     if (!r.converged) code = 2;
   }

@@ -216,11 +216,11 @@ TEST(ContactColumn, FrictionlessColumnUnderGravityCarriesHalfItsWeight) {
 }
 
 TEST(PaperBrick, EveryDualOperatorGivesTheSameSolution) {
-  // implicit (solves with K), dense (block solves), schur (constrained factor): the same QP, so
-  // the same multipliers to the QP tolerance and, the iterates being the same up to rounding,
-  // the same counts.
+  // implicit (solves with K), dense (block solves), schur (constrained factor), forward (sweep
+  // over the reach of the surface): the same QP, so the same multipliers to the QP tolerance
+  // and the same outer iterations.
   std::vector<RunResult> runs;
-  for (const char* mode : {"implicit", "dense", "schur"}) {
+  for (const char* mode : {"implicit", "dense", "schur", "forward"}) {
     Problem p = tight(paper_problem(4, 6e4));
     p.solver.dual_operator = mode;
     runs.push_back(run(p));
@@ -237,6 +237,9 @@ TEST(PaperBrick, EveryDualOperatorGivesTheSameSolution) {
   // KKT check.
   EXPECT_GT(runs[0].report.contact->n_kinv, runs[0].report.contact->n_mult);
   EXPECT_EQ(runs[2].report.contact->n_kinv, 3);
+  // "auto" is the forward sweep at this size.
+  Problem p = tight(paper_problem(4, 6e4));
+  EXPECT_EQ(run(p).report.contact->dual_operator, "forward");
 }
 
 TEST(PaperBrick, AndersonMixingReachesTheSameFixedPoint) {

@@ -6,14 +6,14 @@
 #include <fmt/format.h>
 
 #include "fricon/core/error.hpp"
+#include "fricon/linalg/blas.hpp"
 
 namespace fricon::driver {
 
 namespace {
-// "auto" uses the Schur complement while its dense factor (m^2 doubles, m = contact dofs) stays
-// small; beyond it a dense Q is formed by block solves up to this many multipliers, and beyond
-// that Q stays implicit.
-constexpr Index kSchurDofLimit = 12000;
+// "auto" forms a dense Q by the forward sweep over the reach of the contact surface (measured the
+// fastest on the paper's brick, docs/benchmarks.md) up to this many multipliers (Q then takes at
+// most 288 MB); beyond it Q stays implicit.
 constexpr Index kDenseDualLimit = 6000;
 }  // namespace
 
@@ -25,24 +25,28 @@ std::string dual_operator_for(const Problem& problem, const linalg::CholeskyFact
       throw Error("dual_operator = schur needs K factored with the contact dofs last");
     return requested;
   }
-  if (!factor.trailing_order().empty()) return "schur";
-  return n_dual <= kDenseDualLimit ? "dense" : "implicit";
+  return n_dual <= kDenseDualLimit ? "forward" : "implicit";
 }
 
-std::vector<Index> contact_dofs(const Problem& problem, const Model& m) {
-  const auto surface =
-      contact::make_contact_surface(m.mesh, m.dofs, problem.contact->boundary, problem.source);
-  std::vector<Index> dofs;
+namespace {
+// The free dofs of the surface nodes, node by node.
+std::vector<Index> surface_dofs(const contact::ContactSurface& surface, const fe::DofMap& dofs) {
+  std::vector<Index> out;
   for (Index a : surface.nodes)
     for (int c = 0; c < 3; ++c)
-      if (m.dofs.dof(a, c) >= 0) dofs.push_back(m.dofs.dof(a, c));
-  return dofs;
+      if (dofs.dof(a, c) >= 0) out.push_back(dofs.dof(a, c));
+  return out;
+}
+}  // namespace
+
+std::vector<Index> contact_dofs(const Problem& problem, const Model& m) {
+  return surface_dofs(
+      contact::make_contact_surface(m.mesh, m.dofs, problem.contact->boundary, problem.source),
+      m.dofs);
 }
 
-bool wants_schur(const Problem& problem, Index n_contact_dofs) {
-  const std::string& requested = problem.solver.dual_operator;
-  return problem.contact &&
-         (requested == "schur" || (requested == "auto" && n_contact_dofs <= kSchurDofLimit));
+bool wants_schur(const Problem& problem) {
+  return problem.contact && problem.solver.dual_operator == "schur";
 }
 
 std::unique_ptr<contact::FrictionLaw> make_friction_law(const FrictionOptions& o) {
@@ -79,12 +83,16 @@ struct Dual {
   std::string mode;
   // schur mode:
   MatrixXd L22, Y;
-  std::vector<Index> order;  // dofs of L22's rows, in pivot order
   VectorXd u0_c;
+  // schur and forward modes: the contact dofs (in schur mode L22's rows, in pivot order), the
+  // only dofs where w is recovered inside the outer loop.
+  std::vector<Index> order;
+  linalg::CholeskyFactor::Reach reach;  // forward mode: the part of the factor they reach
+  bool surface_only() const { return mode == "schur" || mode == "forward"; }
 };
 
-Dual make_dual(const Model& m, const SparseMatrix& B, const std::string& mode, long& n_kinv,
-               const RunOptions& options) {
+Dual make_dual(const Model& m, const SparseMatrix& B, const std::vector<Index>& surface_dof_list,
+               const std::string& mode, long& n_kinv, const RunOptions& options) {
   Dual d;
   d.u0 = m.factor.solve(m.f);
   ++n_kinv;
@@ -105,22 +113,25 @@ Dual make_dual(const Model& m, const SparseMatrix& B, const std::string& mode, l
                      "B touches dof " << col << " outside the contact dofs");
         BcT(position[static_cast<size_t>(col)], it.row()) = it.value();
       }
-    d.Y = d.L22.triangularView<Eigen::Lower>().solve(BcT);
+    d.Y = std::move(BcT);
+    linalg::solve_lower(d.L22, d.Y);
     auto Q = std::make_shared<MatrixXd>(MatrixXd::Zero(nd, nd));
-    Q->selfadjointView<Eigen::Lower>().rankUpdate(d.Y.transpose());
+    linalg::add_gram_lower(d.Y, *Q);
     *Q = Q->selfadjointView<Eigen::Lower>();
     d.Q_dense = Q;
     d.u0_c.resize(nc);
     for (Index k = 0; k < nc; ++k)
       d.u0_c(k) = d.u0(d.order[static_cast<size_t>(k)]);
   } else if (mode == "forward") {
-    // Q = Y^T Y with Y = L^-1 P B^T, computed only on the rows B^T reaches.
-    const auto fs = m.factor.forward_solve(SparseMatrix(B.transpose()));
-    auto Q = std::make_shared<MatrixXd>(MatrixXd::Zero(nd, nd));
-    Q->selfadjointView<Eigen::Lower>().rankUpdate(fs.Y.transpose());
-    *Q = Q->selfadjointView<Eigen::Lower>();
-    d.Q_dense = Q;
+    // Q = Y^T Y with Y = L^-1 P B^T, on the part of the factor the contact dofs reach, and the
+    // outer loop on that part only.
+    const SparseMatrix Bt = B.transpose();
+    d.Q_dense = std::make_shared<const MatrixXd>(m.factor.inverse_gram(Bt, [&options] {
+      if (stop_requested(options)) throw Interrupted("interrupted while forming Q");
+    }));
     n_kinv += nd;
+    d.order = surface_dof_list;
+    d.reach = m.factor.reach(d.order);
   } else if (mode == "dense") {
     const SparseMatrix Bt = B.transpose();
     auto Q = std::make_shared<MatrixXd>(nd, nd);
@@ -148,8 +159,8 @@ Dual make_dual(const Model& m, const SparseMatrix& B, const std::string& mode, l
   return d;
 }
 
-// w = K^-1 (f - B^T lambda): in schur mode only on the contact dofs (the rest of w is left
-// as it is), otherwise everywhere by one solve.
+// w = K^-1 (f - B^T lambda): in schur and forward modes only on the contact dofs (the rest of w
+// is left as it is), otherwise everywhere by one solve.
 void recover(const Model& m, const SparseMatrix& B, const Dual& d, const VectorXd& lambda,
              VectorXd& w, long& n_kinv) {
   if (d.mode == "schur") {
@@ -158,6 +169,13 @@ void recover(const Model& m, const SparseMatrix& B, const Dual& d, const VectorX
     if (w.size() != m.dofs.n_free()) w = VectorXd::Zero(m.dofs.n_free());
     for (size_t k = 0; k < d.order.size(); ++k)
       w(d.order[k]) = wc(static_cast<Index>(k));
+  } else if (d.mode == "forward") {
+    VectorXd x = B.transpose() * lambda;
+    m.factor.solve_on_reach(d.reach, x);
+    ++n_kinv;
+    if (w.size() != m.dofs.n_free()) w = VectorXd::Zero(m.dofs.n_free());
+    for (Index dof : d.order)
+      w(dof) = d.u0(dof) - x(dof);
   } else {
     w = m.factor.solve(VectorXd(m.f - B.transpose() * lambda));
     ++n_kinv;
@@ -276,7 +294,8 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m, PhaseTimes&
   if (options.on_phase_start) options.on_phase_start("dual");
   {
     ScopedPhase phase(times, "dual");
-    dual = make_dual(m, B, dual_operator_for(problem, m.factor, B.rows()), rep.n_kinv, options);
+    dual = make_dual(m, B, surface_dofs(fields.surface, m.dofs),
+                     dual_operator_for(problem, m.factor, B.rows()), rep.n_kinv, options);
     rep.dual_operator = dual.mode;
     rep.norm_Q = qp::estimate_norm(dual.Q, rep.n_dual, kPowerIterations, kPowerTolerance);
   }
@@ -388,14 +407,14 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m, PhaseTimes&
   rep.fixed_point_residual = rep.err_history.empty() ? 0.0 : rep.err_history.back();
 
   // @sect: the displacement of the whole body, once, and the certificate of the last iterate.
-  if (dual.mode == "schur") {
+  if (dual.surface_only()) {
     ScopedPhase phase(times, "recovery");
     const VectorXd w_c = w;
     w = m.factor.solve(VectorXd(m.f - B.transpose() * lambda));
     ++rep.n_kinv;
     FRICON_CHECK(
         (w - w_c).cwiseProduct(w_c.cwiseAbs().cwiseSign()).norm() <= 1e-8 * w.norm() + 1e-300,
-        "the Schur recovery of the contact displacement disagrees with the full solve");
+        "the recovery of the contact displacement on the surface disagrees with the full solve");
   }
   {
     ScopedPhase phase(times, "postprocess");

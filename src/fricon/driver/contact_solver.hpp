@@ -125,12 +125,11 @@ ContactOutcome solve_contact(const Problem& problem, const Model& model, PhaseTi
 /// The free dofs of the contact surface's nodes (the columns B can touch).
 std::vector<Index> contact_dofs(const Problem& problem, const Model& model);
 
-/// Whether to factor K with the contact dofs last (dual operator "schur", or "auto" with at most
-/// a few thousand contact dofs).
-bool wants_schur(const Problem& problem, Index n_contact_dofs);
+/// Whether to factor K with the contact dofs last (dual operator "schur").
+bool wants_schur(const Problem& problem);
 
-/// The dual operator a run uses: the requested one, or for "auto" "schur" when the factor has a
-/// trailing block, else "dense" for at most a few thousand multipliers, else "implicit".
+/// The dual operator a run uses: the requested one, or for "auto" "forward" for at most 6000
+/// multipliers, else "implicit".
 std::string dual_operator_for(const Problem& problem, const linalg::CholeskyFactor& factor,
                               Index n_dual);
 

@@ -39,10 +39,7 @@ RunResult run(const Problem& problem, const RunOptions& options) {
   // @sect: the elastic model (mesh, assembly, factorization), shared by every later stage.
   r.model = assemble_model(problem, rep.times, options.on_phase_start);
   std::vector<Index> last;
-  if (problem.contact) {
-    last = contact_dofs(problem, r.model);
-    if (!wants_schur(problem, static_cast<Index>(last.size()))) last.clear();
-  }
+  if (wants_schur(problem)) last = contact_dofs(problem, r.model);
   factorize_model(r.model, rep.times, options.on_phase_start, last);
   const Model& m = r.model;
   rep.n_nodes = m.mesh.n_nodes();

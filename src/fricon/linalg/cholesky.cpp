@@ -1,20 +1,67 @@
 #include "fricon/linalg/cholesky.hpp"
 
 #include <algorithm>
+#include <optional>
 
 #include <cholmod.h>
 #include <fmt/format.h>
 
 #include "fricon/core/error.hpp"
+#include "fricon/linalg/blas.hpp"
 
 namespace fricon::linalg {
 
 static_assert(sizeof(SuiteSparse_long) == sizeof(SparseIndex),
               "SparseIndex must match CHOLMOD's long integer");
 
+namespace {
+
+// The supernodal structure of a CHOLMOD factor, read in place: supernode s holds the pivot
+// columns super[s] .. super[s+1]-1; its column block is nrow x ncol at x + px[s] (column-major),
+// with the pivot row indices rows[pi[s]] .. rows[pi[s+1]-1] (the first ncol are its own).
+struct Supernodes {
+  Index n = 0, count = 0;
+  const SuiteSparse_long *perm, *super, *pi, *px, *rows;
+  const Real* x;
+  std::vector<Index> pinv;      // dof -> pivot
+  std::vector<Index> super_of;  // pivot -> supernode
+  std::vector<Index> parent;    // supernode -> parent supernode, -1 at a root
+
+  explicit Supernodes(const cholmod_factor* L)
+      : n(static_cast<Index>(L->n)),
+        count(static_cast<Index>(L->nsuper)),
+        perm(static_cast<const SuiteSparse_long*>(L->Perm)),
+        super(static_cast<const SuiteSparse_long*>(L->super)),
+        pi(static_cast<const SuiteSparse_long*>(L->pi)),
+        px(static_cast<const SuiteSparse_long*>(L->px)),
+        rows(static_cast<const SuiteSparse_long*>(L->s)),
+        x(static_cast<const Real*>(L->x)),
+        pinv(static_cast<size_t>(n)),
+        super_of(static_cast<size_t>(n)),
+        parent(static_cast<size_t>(count), -1) {
+    for (Index k = 0; k < n; ++k)
+      pinv[static_cast<size_t>(perm[k])] = k;
+    for (Index s = 0; s < count; ++s)
+      for (Index k = super[s]; k < super[s + 1]; ++k)
+        super_of[static_cast<size_t>(k)] = s;
+    for (Index s = 0; s < count; ++s)
+      if (nrow(s) > ncol(s)) parent[static_cast<size_t>(s)] = super_of[idx(rows[pi[s] + ncol(s)])];
+  }
+  static size_t idx(Index i) { return static_cast<size_t>(i); }
+  Index ncol(Index s) const { return super[s + 1] - super[s]; }
+  Index nrow(Index s) const { return pi[s + 1] - pi[s]; }
+  Eigen::Map<const MatrixXd> block(Index s) const {
+    return Eigen::Map<const MatrixXd>(x + px[s], nrow(s), ncol(s));
+  }
+  Index supernode_of_dof(Index dof) const { return super_of[idx(pinv[idx(dof)])]; }
+};
+
+}  // namespace
+
 struct CholeskyFactor::Impl {
   cholmod_common common{};
   cholmod_factor* L = nullptr;
+  std::optional<Supernodes> supernodes;  // of L, when it is supernodal
   Impl() {
     cholmod_l_start(&common);
     common.supernodal = CHOLMOD_SUPERNODAL;
@@ -67,6 +114,7 @@ void CholeskyFactor::factorize(const SparseMatrix& K, const std::vector<Index>& 
   FRICON_CHECK(K.rows() == K.cols(), "K is " << K.rows() << " x " << K.cols());
   FRICON_CHECK(K.isCompressed(), "K must be compressed");
   cholmod_common* c = &impl_->common;
+  impl_->supernodes.reset();
   if (impl_->L) cholmod_l_free_factor(&impl_->L, c);
   info_ = CholeskyInfo{};
   info_.n = K.rows();
@@ -179,6 +227,7 @@ void CholeskyFactor::factorize(const SparseMatrix& K, const std::vector<Index>& 
   info_.flops = c->fl;
   info_.supernodal = impl_->L->is_super != 0;
   info_.ordering = ordering_name(impl_->L->ordering);
+  if (info_.supernodal) impl_->supernodes.emplace(impl_->L);
 }
 
 MatrixXd CholeskyFactor::trailing_factor() const {
@@ -207,68 +256,156 @@ MatrixXd CholeskyFactor::trailing_factor() const {
   return L22;
 }
 
-CholeskyFactor::ForwardSolution CholeskyFactor::forward_solve(const SparseMatrix& B) const {
-  FRICON_CHECK(impl_->L && impl_->L->is_super, "forward_solve needs a supernodal factor");
+MatrixXd CholeskyFactor::inverse_gram(const SparseMatrix& B,
+                                      const std::function<void()>& poll) const {
+  FRICON_CHECK(impl_->supernodes, "inverse_gram needs a supernodal factor");
   FRICON_CHECK(B.rows() == info_.n, "B has " << B.rows() << " rows, K has " << info_.n);
-  const cholmod_factor* L = impl_->L;
-  const Index n = info_.n;
-  const auto nsuper = static_cast<Index>(L->nsuper);
-  const auto* perm = static_cast<const SuiteSparse_long*>(L->Perm);
-  const auto* super = static_cast<const SuiteSparse_long*>(L->super);
-  const auto* pi = static_cast<const SuiteSparse_long*>(L->pi);
-  const auto* px = static_cast<const SuiteSparse_long*>(L->px);
-  const auto* ls = static_cast<const SuiteSparse_long*>(L->s);
-  const auto* lx = static_cast<const Real*>(L->x);
+  const Supernodes& sn = *impl_->supernodes;
+  const Index k = B.cols();
+  auto at = [](auto& v, Index i) -> auto& {
+    return v[static_cast<size_t>(i)];
+  };
 
-  std::vector<Index> pinv(static_cast<size_t>(n)), super_of(static_cast<size_t>(n));
-  for (Index k = 0; k < n; ++k)
-    pinv[static_cast<size_t>(perm[k])] = k;
-  for (Index sn = 0; sn < nsuper; ++sn)
-    for (Index k = super[sn]; k < super[sn + 1]; ++k)
-      super_of[static_cast<size_t>(k)] = sn;
-
-  // Supernodes reached: those holding a non-zero of P B, and every supernode they update.
-  std::vector<char> touched(static_cast<size_t>(nsuper), 0);
+  // Columns of B carried by each supernode: those with a non-zero in it, and all its children's.
+  // Supernodes are numbered children first, so one ascending pass closes the sets.
+  std::vector<std::vector<Index>> cols(static_cast<size_t>(sn.count));
   for (Index j = 0; j < B.outerSize(); ++j)
     for (SparseMatrix::InnerIterator it(B, j); it; ++it)
-      touched[static_cast<size_t>(
-          super_of[static_cast<size_t>(pinv[static_cast<size_t>(it.row())])])] = 1;
-  for (Index sn = 0; sn < nsuper; ++sn) {
-    if (!touched[static_cast<size_t>(sn)]) continue;
-    const Index ncol = super[sn + 1] - super[sn];
-    for (Index q = pi[sn] + ncol; q < pi[sn + 1]; ++q)
-      touched[static_cast<size_t>(super_of[static_cast<size_t>(ls[q])])] = 1;
+      at(cols, sn.supernode_of_dof(it.row())).push_back(j);
+  for (Index s = 0; s < sn.count; ++s) {
+    auto& c = at(cols, s);
+    if (c.empty()) continue;
+    std::sort(c.begin(), c.end());
+    c.erase(std::unique(c.begin(), c.end()), c.end());
+    const Index p = at(sn.parent, s);
+    if (p >= 0) at(cols, p).insert(at(cols, p).end(), c.begin(), c.end());
   }
-  ForwardSolution out;
-  std::vector<Index> compact(static_cast<size_t>(n), -1);
-  for (Index sn = 0; sn < nsuper; ++sn)
-    if (touched[static_cast<size_t>(sn)])
-      for (Index k = super[sn]; k < super[sn + 1]; ++k) {
-        compact[static_cast<size_t>(k)] = static_cast<Index>(out.rows.size());
-        out.rows.push_back(k);
+  // Position of column j in a sorted column set (j must be in it).
+  auto position = [](const std::vector<Index>& c, Index j) {
+    return static_cast<Index>(std::lower_bound(c.begin(), c.end(), j) - c.begin());
+  };
+
+  // Y restricted to supernode s and its columns: ncol(s) x cols[s].size(), created on first use.
+  std::vector<MatrixXd> Y(static_cast<size_t>(sn.count));
+  auto block_of = [&](Index s) -> MatrixXd& {
+    MatrixXd& y = at(Y, s);
+    if (y.size() == 0) y = MatrixXd::Zero(sn.ncol(s), static_cast<Index>(at(cols, s).size()));
+    return y;
+  };
+  for (Index j = 0; j < B.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(B, j); it; ++it) {
+      const Index pivot = at(sn.pinv, it.row()), s = at(sn.super_of, pivot);
+      block_of(s)(pivot - sn.super[s], position(at(cols, s), j)) += it.value();
+    }
+
+  MatrixXd Q = MatrixXd::Zero(k, k);
+  MatrixXd update, gram;
+  std::vector<Index> map;
+  for (Index s = 0; s < sn.count; ++s) {
+    const std::vector<Index>& c = at(cols, s);
+    if (c.empty()) continue;
+    if (poll) poll();
+    const Index ncol = sn.ncol(s), nbelow = sn.nrow(s) - ncol, nc = static_cast<Index>(c.size());
+    const auto Ls = sn.block(s);
+    MatrixXd& y = block_of(s);
+    solve_lower(Ls.topRows(ncol), y);
+    // This supernode's share of Y^T Y, into Q's lower triangle (c is sorted, so the lower
+    // triangle of the small Gram matrix lands in Q's lower triangle).
+    if (nc == k) {
+      add_gram_lower(y, Q);
+    } else {
+      gram.setZero(nc, nc);
+      add_gram_lower(y, gram);
+      for (Index b = 0; b < nc; ++b)
+        for (Index a = b; a < nc; ++a)
+          Q(at(c, a), at(c, b)) += gram(a, b);
+    }
+    // The update of the rows below, -L(below, s) y, scattered into the ancestors' blocks.
+    if (nbelow > 0) {
+      update.setZero(nbelow, nc);
+      subtract_product(Ls.bottomRows(nbelow), y, update);
+      for (Index i = 0; i < nbelow;) {
+        const Index t = at(sn.super_of, sn.rows[sn.pi[s] + ncol + i]);
+        Index i_end = i;
+        while (i_end < nbelow && at(sn.super_of, sn.rows[sn.pi[s] + ncol + i_end]) == t)
+          ++i_end;
+        const std::vector<Index>& ct = at(cols, t);
+        map.resize(static_cast<size_t>(nc));
+        auto from = ct.begin();
+        for (Index a = 0; a < nc; ++a) {
+          from = std::lower_bound(from, ct.end(), at(c, a));
+          at(map, a) = static_cast<Index>(from - ct.begin());
+        }
+        MatrixXd& yt = block_of(t);
+        for (Index a = 0; a < nc; ++a) {
+          const Index col = at(map, a);
+          for (Index r = i; r < i_end; ++r)
+            yt(sn.rows[sn.pi[s] + ncol + r] - sn.super[t], col) += update(r, a);
+        }
+        i = i_end;
       }
-  MatrixXd& X = out.Y;
-  X = MatrixXd::Zero(static_cast<Index>(out.rows.size()), B.cols());
-  for (Index j = 0; j < B.outerSize(); ++j)
-    for (SparseMatrix::InnerIterator it(B, j); it; ++it)
-      X(compact[static_cast<size_t>(pinv[static_cast<size_t>(it.row())])], j) += it.value();
-
-  // Supernodal forward substitution over the reached supernodes: diagonal block solve, then the
-  // update of the rows below, scattered through `compact`.
-  MatrixXd update;
-  for (Index sn = 0; sn < nsuper; ++sn) {
-    if (!touched[static_cast<size_t>(sn)]) continue;
-    const Index k1 = super[sn], ncol = super[sn + 1] - k1, nrow = pi[sn + 1] - pi[sn];
-    const Eigen::Map<const MatrixXd> Ls(lx + px[sn], nrow, ncol);
-    auto X1 = X.middleRows(compact[static_cast<size_t>(k1)], ncol);
-    Ls.topRows(ncol).triangularView<Eigen::Lower>().solveInPlace(X1);
-    if (nrow == ncol) continue;
-    update.noalias() = Ls.bottomRows(nrow - ncol) * X1;
-    for (Index i = 0; i < nrow - ncol; ++i)
-      X.row(compact[static_cast<size_t>(ls[pi[sn] + ncol + i])]) -= update.row(i);
+    }
+    at(Y, s) = MatrixXd();  // done with this supernode's rows of Y
   }
-  n_solves_ += B.cols();
-  return out;
+  n_solves_ += k;
+  return Q.selfadjointView<Eigen::Lower>();
+}
+
+CholeskyFactor::Reach CholeskyFactor::reach(const std::vector<Index>& dofs) const {
+  FRICON_CHECK(impl_->supernodes, "reach needs a supernodal factor");
+  const Supernodes& sn = *impl_->supernodes;
+  std::vector<char> on(static_cast<size_t>(sn.count), 0);
+  for (Index d : dofs) {
+    FRICON_CHECK(d >= 0 && d < sn.n, "dof " << d << " out of range " << sn.n);
+    on[static_cast<size_t>(sn.supernode_of_dof(d))] = 1;
+  }
+  Reach r;
+  for (Index s = 0; s < sn.count; ++s) {
+    if (!on[static_cast<size_t>(s)]) continue;
+    r.supernodes.push_back(s);
+    for (Index k = sn.super[s]; k < sn.super[s + 1]; ++k)
+      r.rows.push_back(k);
+    const Index p = sn.parent[static_cast<size_t>(s)];
+    if (p >= 0) on[static_cast<size_t>(p)] = 1;
+  }
+  return r;
+}
+
+void CholeskyFactor::solve_on_reach(const Reach& reach, VectorXd& x) const {
+  FRICON_CHECK(impl_->supernodes, "solve_on_reach needs a supernodal factor");
+  FRICON_CHECK(x.size() == info_.n, "x has " << x.size() << " entries, K has " << info_.n);
+  const Supernodes& sn = *impl_->supernodes;
+  VectorXd z = VectorXd::Zero(sn.n), below;
+  for (Index k : reach.rows)
+    z(k) = x(sn.perm[k]);
+  // L z = P x over the reach: its supernodes in ascending order, updates into their ancestors.
+  for (Index s : reach.supernodes) {
+    const Index k1 = sn.super[s], ncol = sn.ncol(s), nbelow = sn.nrow(s) - ncol;
+    const auto Ls = sn.block(s);
+    auto zs = z.segment(k1, ncol);
+    Ls.topRows(ncol).triangularView<Eigen::Lower>().solveInPlace(zs);
+    if (nbelow == 0) continue;
+    below.noalias() = Ls.bottomRows(nbelow) * zs;
+    for (Index i = 0; i < nbelow; ++i)
+      z(sn.rows[sn.pi[s] + ncol + i]) -= below(i);
+  }
+  // L^T z = z, in descending order: each supernode needs only its ancestors, all on the reach.
+  for (auto it = reach.supernodes.rbegin(); it != reach.supernodes.rend(); ++it) {
+    const Index s = *it, k1 = sn.super[s], ncol = sn.ncol(s), nbelow = sn.nrow(s) - ncol;
+    const auto Ls = sn.block(s);
+    auto zs = z.segment(k1, ncol);
+    if (nbelow > 0) {
+      below.resize(nbelow);
+      for (Index i = 0; i < nbelow; ++i)
+        below(i) = z(sn.rows[sn.pi[s] + ncol + i]);
+      zs.noalias() -= Ls.bottomRows(nbelow).transpose() * below;
+    }
+    Ls.topRows(ncol).triangularView<Eigen::Lower>().transpose().solveInPlace(zs);
+  }
+  x.setZero();
+  for (Index k : reach.rows)
+    x(sn.perm[k]) = z(k);
+  ++n_solves_;
 }
 
 MatrixXd CholeskyFactor::solve(const MatrixXd& B) const {

@@ -4,6 +4,7 @@
 // needed: every product with K^-1 in fricon goes through one factor of this class.
 // Knows nothing of meshes.
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -52,16 +53,28 @@ class CholeskyFactor {
   /// X = K^-1 B for a block of right-hand sides (one supernodal solve for all columns).
   MatrixXd solve(const MatrixXd& B) const;
 
-  /// Rows of Y = L^-1 P B that can be non-zero for a sparse B (n x k), and Y on those rows
-  /// (rows.size() x k). `rows` are permuted (pivot) indices: the union of the paths from B's
-  /// non-zeros to the root of the elimination tree. Supernodes off those paths are skipped, so
-  /// the cost follows the reach of B, not the size of L. With K = P^T L L^T P,
-  /// B^T K^-1 B = Y^T Y.
-  struct ForwardSolution {
-    std::vector<Index> rows;
-    MatrixXd Y;
+  /// B^T K^-1 B (k x k, dense and symmetric) for a sparse B (n x k), e.g. the dual Hessian
+  /// Q = B K^-1 B^T from B^T. With K = P^T L L^T P it is Y^T Y, Y = L^-1 P B, and Y is computed by
+  /// a supernodal forward substitution that visits only the supernodes B reaches (the paths from
+  /// its non-zeros to the root of the elimination tree), each with only the columns of B whose
+  /// paths pass through it: a column touching a few dofs costs its path, not the whole factor.
+  /// Y^T Y is summed supernode by supernode and Y is never stored whole. Dense blocks go to the
+  /// BLAS. `poll`, if set, is called once per supernode visited (it may throw to interrupt).
+  /// Counts k solves.
+  MatrixXd inverse_gram(const SparseMatrix& B, const std::function<void()>& poll = {}) const;
+
+  /// The part of the factor that a set of dofs reaches: the supernodes on the paths from their
+  /// pivots to the root, and the pivot rows these supernodes hold.
+  struct Reach {
+    std::vector<Index> supernodes;  ///< ascending (children before parents)
+    std::vector<Index> rows;        ///< pivot rows of those supernodes
   };
-  ForwardSolution forward_solve(const SparseMatrix& B) const;
+  Reach reach(const std::vector<Index>& dofs) const;
+
+  /// x <- K^-1 x for x that is zero outside the dofs `reach` was built from; the result is exact
+  /// on those dofs (and on every dof pivoted on the reach) and zero elsewhere. One forward and one
+  /// backward substitution over the reached part of L only. Counts one solve.
+  void solve_on_reach(const Reach& reach, VectorXd& x) const;
 
   Index size() const { return info_.n; }
   const CholeskyInfo& info() const { return info_; }

@@ -1,6 +1,8 @@
 // The CHOLMOD wrapper against dense algebra, and its failure on a singular K.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "fricon/core/error.hpp"
 #include "fricon/fe/assembly.hpp"
 #include "fricon/linalg/cholesky.hpp"
@@ -93,26 +95,62 @@ TEST(Cholesky, TrailingBlockIsTheFactorOfTheSchurComplement) {
   EXPECT_NEAR((chol.solve(b) - Kd.llt().solve(b)).norm() / Kd.llt().solve(b).norm(), 0.0, 1e-12);
 }
 
-TEST(Cholesky, ForwardSolveOnTheReachGivesTheDualHessian) {
-  // B^T K^-1 B = Y^T Y for Y = L^-1 P B computed on the reach of a sparse B only.
+namespace {
+// Columns touching a few dofs of the bottom face, like the rows of the contact operator.
+SparseMatrix bottom_columns(const mesh::TetMesh& m, const fe::DofMap& dofs, Index n_cols) {
+  const auto bottom = m.nodes_with_tag("z0");
+  std::vector<Eigen::Triplet<Real, SparseIndex>> t;
+  for (Index j = 0; j < n_cols; ++j)
+    for (int k = 0; k < 3; ++k) {
+      const Index dof = dofs.dof(bottom[static_cast<size_t>((7 * j + 5 * k + 3) % 65)], k);
+      if (dof >= 0) t.emplace_back(dof, j, 1.0 + 0.1 * static_cast<Real>(j + k));
+    }
+  SparseMatrix B(dofs.n_free(), n_cols);
+  B.setFromTriplets(t.begin(), t.end());
+  return B;
+}
+}  // namespace
+
+TEST(Cholesky, InverseGramOnTheReachIsTheDualHessian) {
+  // B^T K^-1 B from the forward sweep over the reach of B, against dense solves with K.
   const mesh::TetMesh m = mesh::make_brick({Vec3(3, 1, 1), {12, 4, 4}});
   const fe::DofMap dofs = clamped_at_x0(m);
   const SparseMatrix K = fe::assemble_stiffness(m, fe::isotropic(2e11, 0.3), dofs);
-  // Columns touching a few dofs of the bottom face, like the rows of the contact operator.
-  const auto bottom = m.nodes_with_tag("z0");
-  std::vector<Eigen::Triplet<Real, SparseIndex>> t;
-  for (Index j = 0; j < 10; ++j)
-    for (int k = 0; k < 3; ++k) {
-      const Index dof = dofs.dof(bottom[static_cast<size_t>(7 * j + 5 * k + 3)], k);
-      if (dof >= 0) t.emplace_back(dof, j, 1.0 + 0.1 * static_cast<Real>(j + k));
-    }
-  SparseMatrix B(K.rows(), 10);
-  B.setFromTriplets(t.begin(), t.end());
+  const SparseMatrix B = bottom_columns(m, dofs, 10);
   linalg::CholeskyFactor chol;
   chol.factorize(K);
-  const auto fs = chol.forward_solve(B);
-  EXPECT_LT(static_cast<Index>(fs.rows.size()), K.rows());  // the reach is not everything
-  const MatrixXd Q = fs.Y.transpose() * fs.Y;
+  const MatrixXd Q = chol.inverse_gram(B);
   const MatrixXd Qref = MatrixXd(B.transpose()) * chol.solve(MatrixXd(B));
   EXPECT_NEAR((Q - Qref).norm() / Qref.norm(), 0.0, 1e-12);
+  EXPECT_EQ(Q, Q.transpose());
+  // The reach of the surface is a part of the factor, not all of it.
+  std::vector<Index> touched;
+  for (Index dof = 0; dof < B.rows(); ++dof)
+    if (MatrixXd(B.row(dof)).norm() > 0) touched.push_back(dof);
+  EXPECT_LT(static_cast<Index>(chol.reach(touched).rows.size()), K.rows());
+  // A poll that throws interrupts the sweep.
+  EXPECT_THROW(chol.inverse_gram(B, [] { throw Interrupted("stop"); }), Interrupted);
+}
+
+TEST(Cholesky, SolveOnTheReachIsExactOnItsDofs) {
+  const mesh::TetMesh m = mesh::make_brick({Vec3(3, 1, 1), {12, 4, 4}});
+  const fe::DofMap dofs = clamped_at_x0(m);
+  const SparseMatrix K = fe::assemble_stiffness(m, fe::isotropic(2e11, 0.3), dofs);
+  std::vector<Index> surface;
+  for (Index a : m.nodes_with_tag("z0"))
+    for (int c = 0; c < 3; ++c)
+      if (dofs.dof(a, c) >= 0) surface.push_back(dofs.dof(a, c));
+  linalg::CholeskyFactor chol;
+  chol.factorize(K);
+  const auto reach = chol.reach(surface);
+  VectorXd b = VectorXd::Zero(K.rows());
+  for (size_t i = 0; i < surface.size(); ++i)
+    b(surface[i]) = std::sin(1.0 + static_cast<Real>(i));
+  const VectorXd exact = chol.solve(b);
+  VectorXd x = b;
+  chol.solve_on_reach(reach, x);
+  for (Index d : surface)
+    EXPECT_NEAR(x(d), exact(d), 1e-12 * exact.cwiseAbs().maxCoeff()) << "dof " << d;
+  // Off the reach nothing is computed.
+  EXPECT_LE(x.cwiseAbs().cwiseSign().sum(), static_cast<Real>(reach.rows.size()));
 }

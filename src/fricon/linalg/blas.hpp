@@ -1,0 +1,25 @@
+#pragma once
+// linalg: the few dense kernels fricon needs at full speed, handed to the BLAS CHOLMOD is linked
+// to (OpenBLAS, multithreaded). Eigen's own kernels run on one core without the machine's vector
+// extensions; on the dense blocks of the dual operator OpenBLAS is several times faster.
+// Blocks are Eigen column-major views, so sub-blocks of larger matrices can be passed in place.
+
+#include "fricon/core/types.hpp"
+
+namespace fricon::linalg {
+
+using ConstBlockRef = Eigen::Ref<const MatrixXd, 0, Eigen::OuterStride<>>;
+using BlockRef = Eigen::Ref<MatrixXd, 0, Eigen::OuterStride<>>;
+
+/// X <- L^-1 X, or L^-T X when `transpose`. L is square and lower triangular (its strict upper
+/// part is not read), X has L.rows() rows.
+void solve_lower(ConstBlockRef L, BlockRef X, bool transpose = false);
+
+/// C <- C - A B, with A m x k, B k x n, C m x n.
+void subtract_product(ConstBlockRef A, ConstBlockRef B, BlockRef C);
+
+/// Lower triangle of C <- lower triangle of C + Y^T Y, with Y m x k and C k x k. The strict upper
+/// part of C is not touched.
+void add_gram_lower(ConstBlockRef Y, BlockRef C);
+
+}  // namespace fricon::linalg
