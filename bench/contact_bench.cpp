@@ -7,10 +7,6 @@
 //   build/bench/contact_bench 24 32            chosen sizes
 //   build/bench/contact_bench --operator implicit 8
 //   build/bench/contact_bench --qp-variant paper 16   the paper's MPGP (default: fricon's default)
-#include <sys/resource.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -19,6 +15,7 @@
 
 #include <fmt/format.h>
 
+#include "child_process.hpp"
 #include "fricon/core/timer.hpp"
 #include "fricon/driver/model.hpp"
 #include "fricon/driver/paper.hpp"
@@ -33,12 +30,6 @@ struct Row {
   char mode[16] = {};
   char variant[16] = {};
 };
-
-double peak_mib() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return static_cast<double>(u.ru_maxrss) / 1024.0;
-}
 
 Row measure(long n, const std::string& mode, const std::string& variant) {
   using namespace fricon;
@@ -72,7 +63,7 @@ Row measure(long n, const std::string& mode, const std::string& variant) {
   r.converged = rep.status == driver::Status::Converged;
   std::snprintf(r.mode, sizeof r.mode, "%s", c.dual_operator.c_str());
   std::snprintf(r.variant, sizeof r.variant, "%s", p.solver.qp_variant.c_str());
-  r.peak_mib = peak_mib();
+  r.peak_mib = fricon::bench::peak_mib();
   return r;
 }
 
@@ -104,26 +95,13 @@ int main(int argc, char** argv) {
   fmt::print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   int code = 0;
   for (long n : sizes) {
-    int fd[2];
-    if (pipe(fd) != 0) return 3;
-    const pid_t pid = fork();
-    if (pid == 0) {
-      close(fd[0]);
-      const Row r = measure(n, mode, variant);
-      if (write(fd[1], &r, sizeof r) != static_cast<ssize_t>(sizeof r)) _exit(3);
-      _exit(0);
-    }
-    close(fd[1]);
-    Row r;
-    const bool ok = read(fd[0], &r, sizeof r) == static_cast<ssize_t>(sizeof r);
-    close(fd[0]);
-    int status = 0;
-    waitpid(pid, &status, 0);
-    if (!ok || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    const auto row = fricon::bench::run_in_child([&] { return measure(n, mode, variant); });
+    if (!row) {
       fmt::print("| {} | failed (out of memory or killed) |\n", n);
       code = 3;
       continue;
     }
+    const Row& r = *row;
     fmt::print(
         "| {} | {} | {} | {} | {} | {}{} | {} | {} | {} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | "
         "{:.3f} | "

@@ -2,10 +2,6 @@
 // factorization and one solve, for n = 8, 16, 24 (or the n given on the command line).
 // Each n runs in its own child process, so that the peak resident memory is that of one size.
 //   build/bench/elasticity_bench [n ...]
-#include <sys/resource.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -13,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include "child_process.hpp"
 #include "fricon/core/timer.hpp"
 #include "fricon/driver/model.hpp"
 #include "fricon/driver/paper.hpp"
@@ -23,12 +20,6 @@ struct Row {
   long n = 0, n_primal = 0;
   double nnz_L = 0, mesh = 0, assembly = 0, factorize = 0, solve = 0, peak_mib = 0;
 };
-
-double peak_mib() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return static_cast<double>(u.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB on Linux
-}
 
 Row measure(fricon::Index n) {
   using namespace fricon;
@@ -45,7 +36,7 @@ Row measure(fricon::Index n) {
   r.mesh = times.seconds("mesh");
   r.assembly = times.seconds("assembly");
   r.factorize = times.seconds("factorize");
-  r.peak_mib = peak_mib();
+  r.peak_mib = fricon::bench::peak_mib();
   if (!u.allFinite()) std::exit(3);
   return r;
 }
@@ -64,25 +55,12 @@ int main(int argc, char** argv) {
       "[MiB] |\n");
   fmt::print("|---|---|---|---|---|---|---|---|\n");
   for (long n : sizes) {
-    int fd[2];
-    if (pipe(fd) != 0) return 3;
-    const pid_t pid = fork();
-    if (pid == 0) {
-      close(fd[0]);
-      const Row r = measure(n);
-      if (write(fd[1], &r, sizeof r) != static_cast<ssize_t>(sizeof r)) _exit(3);
-      _exit(0);
-    }
-    close(fd[1]);
-    Row r;
-    const bool ok = read(fd[0], &r, sizeof r) == static_cast<ssize_t>(sizeof r);
-    close(fd[0]);
-    int status = 0;
-    waitpid(pid, &status, 0);
-    if (!ok || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    const auto row = fricon::bench::run_in_child([n] { return measure(n); });
+    if (!row) {
       fmt::print("| {} | failed |\n", n);
       return 3;
     }
+    const Row& r = *row;
     fmt::print("| {} | {} | {:.3e} | {:.3f} | {:.3f} | {:.3f} | {:.4f} | {:.0f} |\n", r.n,
                r.n_primal, r.nnz_L, r.mesh, r.assembly, r.factorize, r.solve, r.peak_mib);
     std::fflush(stdout);
