@@ -63,8 +63,13 @@ SparseMatrix assemble_b(const mesh::TetMesh& mesh, const fe::DofMap& dofs,
 
 /// Stability of the multiplier space (condition (5.1)): B^T has full column rank on the contact
 /// dofs. Returns sigma_min / sigma_max of B; throws NumericalError naming `where` and the value
-/// when it is below `min_ratio` (default 1e-8).
-Real check_stability(const SparseMatrix& B, const std::string& where, Real min_ratio = 1e-8);
+/// when it is below `min_ratio` (default 1e-8). Up to `dense_limit` rows the eigenvalues of
+/// B B^T are computed exactly (dense, O(n_dual^3)); beyond, B B^T (sparse: neighbouring patches
+/// only) is factored by a sparse Cholesky and its extreme eigenvalues estimated by power and
+/// inverse iteration (to about a per cent), so that the check stays cheap for thousands of
+/// patches.
+Real check_stability(const SparseMatrix& B, const std::string& where, Real min_ratio = 1e-8,
+                     Index dense_limit = 1000);
 
 /// Radii rho_p = (1/|R_p|) int_{R_p} F(phi_h) g_h dS [Pa] for nodal slips phi and nodal slip
 /// bounds g (both per surface node). Exact when F is piecewise linear: every triangle is cut at

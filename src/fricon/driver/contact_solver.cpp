@@ -154,7 +154,7 @@ Dual make_dual(const Model& m, const SparseMatrix& B, const std::vector<Index>& 
   }
   if (d.Q_dense) {
     std::shared_ptr<const MatrixXd> Q = d.Q_dense;
-    d.Q = [Q](const VectorXd& x, VectorXd& y) { y.noalias() = *Q * x; };
+    d.Q = [Q](const VectorXd& x, VectorXd& y) { linalg::symmetric_product(*Q, x, y); };
   }
   return d;
 }

@@ -15,6 +15,8 @@ void dtrsm_(const char* side, const char* uplo, const char* transa, const char* 
 void dgemm_(const char* transa, const char* transb, const int* m, const int* n, const int* k,
             const double* alpha, const double* a, const int* lda, const double* b, const int* ldb,
             const double* beta, double* c, const int* ldc);
+void dsymv_(const char* uplo, const int* n, const double* alpha, const double* a, const int* lda,
+            const double* x, const int* incx, const double* beta, double* y, const int* incy);
 void dsyrk_(const char* uplo, const char* trans, const int* n, const int* k, const double* alpha,
             const double* a, const int* lda, const double* beta, double* c, const int* ldc);
 }
@@ -43,16 +45,28 @@ void solve_lower(ConstBlockRef L, BlockRef X, bool transpose) {
   dtrsm_("L", "L", transpose ? "T" : "N", "N", &m, &n, &one, L.data(), &lda, X.data(), &ldb);
 }
 
-void subtract_product(ConstBlockRef A, ConstBlockRef B, BlockRef C) {
-  FRICON_CHECK(A.cols() == B.rows() && C.rows() == A.rows() && C.cols() == B.cols(),
-               "shapes " << A.rows() << "x" << A.cols() << ", " << B.rows() << "x" << B.cols()
-                         << ", " << C.rows() << "x" << C.cols());
-  if (C.size() == 0 || A.cols() == 0) return;
-  const int m = blas_int(C.rows()), n = blas_int(C.cols()), k = blas_int(A.cols());
+void subtract_product(ConstBlockRef A, ConstBlockRef B, BlockRef C, bool transpose_a) {
+  const Index m = transpose_a ? A.cols() : A.rows(), k = transpose_a ? A.rows() : A.cols();
+  FRICON_CHECK(k == B.rows() && C.rows() == m && C.cols() == B.cols(),
+               "shapes " << A.rows() << "x" << A.cols() << (transpose_a ? "^T, " : ", ") << B.rows()
+                         << "x" << B.cols() << ", " << C.rows() << "x" << C.cols());
+  if (C.size() == 0 || k == 0) return;
+  const int mi = blas_int(m), n = blas_int(C.cols()), ki = blas_int(k);
   const int lda = leading(A.outerStride(), A.rows()), ldb = leading(B.outerStride(), B.rows()),
             ldc = leading(C.outerStride(), C.rows());
   const double minus_one = -1.0, one = 1.0;
-  dgemm_("N", "N", &m, &n, &k, &minus_one, A.data(), &lda, B.data(), &ldb, &one, C.data(), &ldc);
+  dgemm_(transpose_a ? "T" : "N", "N", &mi, &n, &ki, &minus_one, A.data(), &lda, B.data(), &ldb,
+         &one, C.data(), &ldc);
+}
+
+void symmetric_product(const MatrixXd& A, const VectorXd& x, VectorXd& y) {
+  FRICON_CHECK(A.rows() == A.cols() && x.size() == A.rows(),
+               "A " << A.rows() << "x" << A.cols() << ", x " << x.size());
+  y.resize(x.size());
+  if (x.size() == 0) return;
+  const int n = blas_int(x.size()), lda = leading(A.rows(), A.rows()), inc = 1;
+  const double one = 1.0, zero = 0.0;
+  dsymv_("L", &n, &one, A.data(), &lda, x.data(), &inc, &zero, y.data(), &inc);
 }
 
 void add_gram_lower(ConstBlockRef Y, BlockRef C) {

@@ -15,8 +15,13 @@ using BlockRef = Eigen::Ref<MatrixXd, 0, Eigen::OuterStride<>>;
 /// part is not read), X has L.rows() rows.
 void solve_lower(ConstBlockRef L, BlockRef X, bool transpose = false);
 
-/// C <- C - A B, with A m x k, B k x n, C m x n.
-void subtract_product(ConstBlockRef A, ConstBlockRef B, BlockRef C);
+/// C <- C - op(A) B, op(A) = A (k = A.cols()) or A^T when `transpose_a` (k = A.rows()); op(A) is
+/// m x k, B k x n, C m x n.
+void subtract_product(ConstBlockRef A, ConstBlockRef B, BlockRef C, bool transpose_a = false);
+
+/// y = A x for a symmetric A of which only the lower triangle is read (BLAS dsymv: it reads half
+/// of A, which is what a product with a large dense A costs).
+void symmetric_product(const MatrixXd& A, const VectorXd& x, VectorXd& y);
 
 /// Lower triangle of C <- lower triangle of C + Y^T Y, with Y m x k and C k x k. The strict upper
 /// part of C is not touched.

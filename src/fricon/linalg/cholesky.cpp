@@ -452,11 +452,12 @@ void CholeskyFactor::solve_on_reach(const Reach& reach, VectorXd& x) const {
     const Index k1 = sn.super[s], ncol = sn.ncol(s), nbelow = sn.nrow(s) - ncol;
     const auto Ls = sn.block(s);
     auto zs = z.segment(k1, ncol);
-    Ls.topRows(ncol).triangularView<Eigen::Lower>().solveInPlace(zs);
+    solve_lower(Ls.topRows(ncol), zs);
     if (nbelow == 0) continue;
-    below.noalias() = Ls.bottomRows(nbelow) * zs;
+    below.setZero(nbelow);
+    subtract_product(Ls.bottomRows(nbelow), zs, below);  // below = -L(below, s) z_s
     for (Index i = 0; i < nbelow; ++i)
-      z(sn.rows[sn.pi[s] + ncol + i]) -= below(i);
+      z(sn.rows[sn.pi[s] + ncol + i]) += below(i);
   }
   // L^T z = z, in descending order: each supernode needs only its ancestors, all on the reach.
   for (auto it = reach.supernodes.rbegin(); it != reach.supernodes.rend(); ++it) {
@@ -467,9 +468,9 @@ void CholeskyFactor::solve_on_reach(const Reach& reach, VectorXd& x) const {
       below.resize(nbelow);
       for (Index i = 0; i < nbelow; ++i)
         below(i) = z(sn.rows[sn.pi[s] + ncol + i]);
-      zs.noalias() -= Ls.bottomRows(nbelow).transpose() * below;
+      subtract_product(Ls.bottomRows(nbelow), below, zs, /*transpose_a=*/true);
     }
-    Ls.topRows(ncol).triangularView<Eigen::Lower>().transpose().solveInPlace(zs);
+    solve_lower(Ls.topRows(ncol), zs, /*transpose=*/true);
   }
   x.setZero();
   for (Index k : reach.rows)

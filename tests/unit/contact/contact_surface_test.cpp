@@ -109,6 +109,13 @@ TEST(ContactSurface, StabilityHoldsForTheChessboardAndFailsForFinePatches) {
   fine.area = VectorXd::Constant(static_cast<Index>(fine.faces.size()), 1.0);
   const SparseMatrix Bfine = assemble_b(b.mesh, b.dofs, b.surface, fine);
   EXPECT_THROW(check_stability(Bfine, "test"), NumericalError);
+  // The sparse estimate (used beyond dense_limit rows) agrees with the exact ratio to a per cent
+  // (it is an estimate of the order of magnitude, the check a margin of 1e6) and refuses
+  // the same partition.
+  const Brick b8 = paper_brick(8);
+  const Real exact = check_stability(b8.B, "test");
+  EXPECT_NEAR(check_stability(b8.B, "test", 1e-8, /*dense_limit=*/0), exact, 1e-2 * exact);
+  EXPECT_THROW(check_stability(Bfine, "test", 1e-8, /*dense_limit=*/0), NumericalError);
 }
 
 TEST(ContactSurface, RejectsMissingAndClampedSurfaces) {
