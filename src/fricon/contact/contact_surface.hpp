@@ -69,7 +69,7 @@ SparseMatrix assemble_b(const mesh::TetMesh& mesh, const fe::DofMap& dofs,
 /// inverse iteration (to about a per cent), so that the check stays cheap for thousands of
 /// patches.
 Real check_stability(const SparseMatrix& B, const std::string& where, Real min_ratio = 1e-8,
-                     Index dense_limit = 1000);
+                     Index dense_limit = 500);
 
 /// Radii rho_p = (1/|R_p|) int_{R_p} F(phi_h) g_h dS [Pa] for nodal slips phi and nodal slip
 /// bounds g (both per surface node). Exact when F is piecewise linear: every triangle is cut at

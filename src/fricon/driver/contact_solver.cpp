@@ -418,9 +418,9 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m, PhaseTimes&
   }
   {
     ScopedPhase phase(times, "postprocess");
-    // The gradient through K^-1 itself, independent of a dense Q.
-    const VectorXd g = B * m.factor.solve(VectorXd(B.transpose() * lambda)) - dual.h;
-    rep.n_kinv += 1;
+    // The gradient through K^-1 itself, independent of a dense Q: w = K^-1 (f - B^T lambda) is
+    // the full solve above, so Q lambda = B K^-1 B^T lambda = B (u0 - w).
+    const VectorXd g = B * (dual.u0 - w) - dual.h;
     const qp::KktScales scales = qp::default_kkt_scales(lambda, dual.h, constraints);
     rep.kkt = qp::kkt_residuals(lambda, g, constraints, scales.x, scales.g);
 
