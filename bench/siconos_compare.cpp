@@ -17,7 +17,9 @@
 // options' dWork. The problem is scaled first (x = l / L, L = max radius; W = Q / ||Q||,
 // q = -h / (L ||Q||), thresholds radius / L), because Siconos' error ||r - P(r - u)|| / ||q|| adds
 // r to u and its local solvers use absolute tolerances; the KKT residuals are computed on
-// l = L x in SI units. Solvers (all other options at Siconos' defaults):
+// l = L x in SI units. fricon's MPGP runs twice: fricon-bb (the default QP variant of fricon
+// solve; every ratio is against it) and fricon-paper (the paper's plain MPGP). Siconos solvers
+// (all other options at Siconos' defaults):
 //   nsgs-cyl-li50  fc3d_nsgs, options solver_options_create(SICONOS_FRICTION_3D_NSGS): error
 //                  evaluation LIGHT_WITH_FULL_FINAL (stops on fc3d_Tresca_compute_error < tol),
 //                  no shuffle, no relaxation; dWork = the m thresholds; local solver
@@ -73,6 +75,7 @@
 #include "fricon/driver/model.hpp"
 #include "fricon/driver/paper.hpp"
 #include "fricon/io/dual_dump.hpp"
+#include "fricon/linalg/blas.hpp"
 #include "fricon/qp/kkt.hpp"
 #include "fricon/qp/mpgp.hpp"
 
@@ -96,7 +99,9 @@ struct Case {
 
   /// y = Q x (refers to this Case: do not move it while the operator is in use).
   qp::Operator A() const {
-    return [Q = &d.Q](const VectorXd& x, VectorXd& y) { y.noalias() = *Q * x; };
+    // As the driver applies a dense Q (BLAS dsymv).
+    return
+        [Q = &d.Q](const VectorXd& x, VectorXd& y) { fricon::linalg::symmetric_product(*Q, x, y); };
   }
 };
 
@@ -303,8 +308,9 @@ Outcome run_pg(SiconosProblem& sp, double tol, int max_iter, bool count_iteratio
   return out;
 }
 
-Outcome run_mpgp(const Case& k, double tol, int max_iter) {
+Outcome run_mpgp(const Case& k, double tol, int max_iter, qp::MpgpVariant variant) {
   qp::MpgpOptions opt;
+  opt.variant = variant;
   opt.rel_tolerance = tol;
   opt.max_iterations = max_iter;
   opt.norm_A = k.norm_Q;  // computed once per problem (power_ms), as the driver does
@@ -389,10 +395,14 @@ std::vector<Row> compare(const Case& k, const Settings& s) {
   SiconosProblem sp(k);
   std::vector<Row> rows;
 
-  Row f = calibrate(
-      k, "fricon-mpgp", [&](double tol) { return run_mpgp(k, tol, s.mpgp_max); }, s.kkt);
-  f.ms = median_ms([&] { return run_mpgp(k, f.tol, s.mpgp_max).seconds; }, s.reps);
-  rows.push_back(f);
+  // fricon's default QP (bb) first: the ratios are against it. Then the paper's plain MPGP.
+  for (const auto& [name, variant] : {std::pair{"fricon-bb", qp::MpgpVariant::BarzilaiBorwein},
+                                      std::pair{"fricon-paper", qp::MpgpVariant::Paper}}) {
+    Row f = calibrate(
+        k, name, [&](double tol) { return run_mpgp(k, tol, s.mpgp_max, variant); }, s.kkt);
+    f.ms = median_ms([&] { return run_mpgp(k, f.tol, s.mpgp_max, variant).seconds; }, s.reps);
+    rows.push_back(f);
+  }
 
   for (const int local_iter : {50, 1}) {
     Row r = calibrate(
@@ -471,7 +481,8 @@ void self_check(const Settings& s) {
       r.siconos_err = sp.error(o.l);
       rows.push_back(r);
     };
-    add("fricon-mpgp", run_mpgp(k, tol, s.mpgp_max));
+    add("fricon-bb", run_mpgp(k, tol, s.mpgp_max, qp::MpgpVariant::BarzilaiBorwein));
+    add("fricon-paper", run_mpgp(k, tol, s.mpgp_max, qp::MpgpVariant::Paper));
     add("nsgs-cyl-li50", run_nsgs(sp, 50, tol, s.nsgs_max));
     add("nsgs-cyl-li1", run_nsgs(sp, 1, tol, s.nsgs_max));
     add("cqp-pg-cyl", run_pg(sp, tol, s.pg_max, true));
