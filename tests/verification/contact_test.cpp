@@ -267,3 +267,22 @@ TEST(PaperBrick, BarzilaiBorweinVariantGivesTheSameSolutionWithFewerProducts) {
   // Both stop at err <= 1e-4 of the same fixed point.
   EXPECT_LT((b.displacement - a.displacement).norm() / a.displacement.norm(), 1e-4);
 }
+
+TEST(PaperBrick, AnOuterLoopThatDoesNotContractStopsAndSaysSo) {
+  // Friction that rises steeply with slip (F from 0 to 3 over 1 micrometre): no slip gives no
+  // friction and a large slip, which gives strong friction and little slip, and so on. The
+  // successive approximations cycle between two states; the loop must stop within a few
+  // iterations of the stall, not run to outer_max, and name the cause.
+  Problem p = paper_problem(4, 6e4);
+  p.contact->friction.law = "table";
+  p.contact->friction.t = {1.0e-5, 1.1e-5};
+  p.contact->friction.f = {0.0, 3.0};
+  p.solver.outer_max = 50;
+  const RunResult r = run(p);
+  EXPECT_EQ(r.report.status, Status::NotConverged);
+  EXPECT_LE(r.report.contact->outer_iterations, 10);
+  EXPECT_NE(r.report.message.find("do not contract"), std::string::npos) << r.report.message;
+  // The paper's law contracts: the same check never fires there (7 iterations at most).
+  const RunResult ok = run(paper_problem(4, 6e4));
+  EXPECT_EQ(ok.report.status, Status::Converged) << ok.report.message;
+}

@@ -12,8 +12,9 @@ namespace fricon::driver {
 
 namespace {
 // "auto" forms a dense Q by the forward sweep over the reach of the contact surface (measured the
-// fastest on the paper's brick, docs/benchmarks.md) up to this many multipliers (Q then takes at
-// most 288 MB); beyond it Q stays implicit.
+// fastest on the paper's brick, docs/benchmarks.md) while Q (n_dual^2 doubles) takes no more
+// memory than the factor of K already does, or at most this many multipliers (288 MB) on small
+// meshes; beyond, Q stays implicit.
 constexpr Index kDenseDualLimit = 6000;
 }  // namespace
 
@@ -25,7 +26,10 @@ std::string dual_operator_for(const Problem& problem, const linalg::CholeskyFact
       throw Error("dual_operator = schur needs K factored with the contact dofs last");
     return requested;
   }
-  return n_dual <= kDenseDualLimit ? "forward" : "implicit";
+  const double q_entries = static_cast<double>(n_dual) * static_cast<double>(n_dual);
+  const double limit = std::max(factor.info().nnz_L, static_cast<double>(kDenseDualLimit) *
+                                                         static_cast<double>(kDenseDualLimit));
+  return q_entries <= limit ? "forward" : "implicit";
 }
 
 namespace {
@@ -228,6 +232,16 @@ class AndersonMixing {
   VectorXd f_last_, g_last_;
 };
 
+// Iterations without a new smallest err(k) after which the outer loop is declared stalled.
+constexpr size_t kStallWindow = 4;
+
+// Whether the last kStallWindow values of err(k) are all at or above the smallest before them.
+bool stalled(const std::vector<Real>& err) {
+  if (err.size() <= kStallWindow + 1) return false;
+  const auto split = err.end() - static_cast<std::ptrdiff_t>(kStallWindow);
+  return *std::min_element(split, err.end()) >= *std::min_element(err.begin(), split);
+}
+
 std::string history_text(const std::vector<Real>& err) {
   std::string s;
   for (Real e : err)
@@ -383,17 +397,17 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m, PhaseTimes&
       out.converged = true;
       break;
     }
-    // The map Psi contracts when F's Lipschitz constant is small (method.md §1). Growth of
-    // err(k) over three iterations in a row means it does not: stop and say so.
+    // The map Psi contracts when F's Lipschitz constant is small (method.md §1); then err(k)
+    // falls at every step. If it has not gone below its best value for kStallWindow iterations
+    // (growth, or a cycle between two states), the iteration does not contract: stop and say so.
     rep.contraction_ratio = contraction_ratio(rep.err_history);
-    const size_t nk = rep.err_history.size();
-    if (nk >= 4 && rep.err_history[nk - 1] >= rep.err_history[nk - 2] &&
-        rep.err_history[nk - 2] >= rep.err_history[nk - 3] &&
-        rep.err_history[nk - 3] >= rep.err_history[nk - 4]) {
+    if (stalled(rep.err_history)) {
       out.message = fmt::format(
-          "the successive approximations do not contract: err(k) grew for three iterations in a "
-          "row (observed ratio err(k)/err(k-1) = {:.3g}); the friction law's Lipschitz constant "
-          "{:.3g} 1/m may be too large for this problem; err(k):{}",
+          "the successive approximations do not contract: err(k) has not gone below its best "
+          "value {:.3g} for {} iterations (observed ratio err(k)/err(k-1) = {:.3g}); the "
+          "friction law's Lipschitz constant {:.3g} 1/m may be too large for this problem, or "
+          "qp_rtol too loose for outer_tol; err(k):{}",
+          *std::min_element(rep.err_history.begin(), rep.err_history.end()), kStallWindow,
           rep.contraction_ratio, law->lipschitz(), history_text(rep.err_history));
       break;
     }

@@ -128,8 +128,8 @@ std::vector<Index> contact_dofs(const Problem& problem, const Model& model);
 /// Whether to factor K with the contact dofs last (dual operator "schur").
 bool wants_schur(const Problem& problem);
 
-/// The dual operator a run uses: the requested one, or for "auto" "forward" for at most 6000
-/// multipliers, else "implicit".
+/// The dual operator a run uses: the requested one, or for "auto" "forward" while the dense Q
+/// (n_dual^2 entries) is no larger than the factor of K or n_dual <= 6000, else "implicit".
 std::string dual_operator_for(const Problem& problem, const linalg::CholeskyFactor& factor,
                               Index n_dual);
 
