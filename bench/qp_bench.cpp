@@ -1,13 +1,17 @@
 // Benchmarks of the qp module: solve_mpgp on random dense SPD "dual" problems with the contact
 // layout (one bound and one disc per patch), at the sizes of the model example's multiplier
-// spaces (36, 144, 576 unknowns), plus one dense product for reference (a solve costs about
-// n_products of them). ||A|| is computed once outside the timed loop, as the driver does.
+// spaces (36, 144, 576, 1296, 2304 unknowns: n = 4, 8, 16, 24, 32), for the default QP variant
+// (bb) and the paper's (paper), plus one dense product for reference (a solve costs about
+// n_products of them). Products go through BLAS dsymv, as in the driver. ||A|| is computed once
+// outside the timed loop, as the driver does.
 
+#include <cstdint>
 #include <random>
 
 #include <benchmark/benchmark.h>
 #include <Eigen/Dense>
 
+#include "fricon/linalg/blas.hpp"
 #include "fricon/qp/mpgp.hpp"
 
 namespace {
@@ -58,10 +62,12 @@ DualProblem make_problem(Index n_unknowns, double cond, unsigned seed) {
 void BM_SolveMpgp(benchmark::State& state) {
   const DualProblem p = make_problem(state.range(0), 100.0, 2009);
   const fricon::qp::Operator A = [&p](const Eigen::VectorXd& x, Eigen::VectorXd& y) {
-    y.noalias() = p.Q * x;
+    fricon::linalg::symmetric_product(p.Q, x, y);
   };
   fricon::qp::MpgpOptions opt;  // rel_tolerance 1e-6, as in [HL09]
   opt.norm_A = p.norm_Q;
+  opt.variant = static_cast<fricon::qp::MpgpVariant>(state.range(1));
+  state.SetLabel(fricon::qp::to_string(opt.variant));
   Eigen::VectorXd x(p.h.size());
   fricon::qp::MpgpReport rep;
   for (auto _ : state) {
@@ -75,17 +81,28 @@ void BM_SolveMpgp(benchmark::State& state) {
   state.counters["n_expansion"] = rep.n_expansion;
   state.counters["n_proportioning"] = rep.n_proportioning;
 }
-BENCHMARK(BM_SolveMpgp)->Arg(36)->Arg(144)->Arg(576)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_SolveMpgp)
+    ->ArgsProduct({{36, 144, 576, 1296, 2304},
+                   {static_cast<int64_t>(fricon::qp::MpgpVariant::BarzilaiBorwein),
+                    static_cast<int64_t>(fricon::qp::MpgpVariant::Paper)}})
+    ->ArgNames({"n_dual", "variant"})
+    ->Unit(benchmark::kMicrosecond);
 
 void BM_DenseProduct(benchmark::State& state) {
   const DualProblem p = make_problem(state.range(0), 100.0, 2009);
   Eigen::VectorXd x = p.h, y(p.h.size());
   for (auto _ : state) {
-    y.noalias() = p.Q * x;
+    fricon::linalg::symmetric_product(p.Q, x, y);
     benchmark::DoNotOptimize(y.data());
   }
 }
-BENCHMARK(BM_DenseProduct)->Arg(36)->Arg(144)->Arg(576)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_DenseProduct)
+    ->Arg(36)
+    ->Arg(144)
+    ->Arg(576)
+    ->Arg(1296)
+    ->Arg(2304)
+    ->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 
