@@ -25,6 +25,7 @@
 #include "fricon/io/dual_dump.hpp"
 #include "fricon/io/problem_file.hpp"
 #include "fricon/io/results.hpp"
+#include "fricon/linalg/blas.hpp"
 
 namespace {
 
@@ -270,6 +271,14 @@ int main(int argc, char** argv) {
       "Exit codes: 0 converged, 1 bad input, 2 not converged, 3 internal error."};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("fricon ") + FRICON_VERSION);
+  int threads = 0;
+  app.add_option("--threads", threads,
+                 "Threads of the BLAS (factorization, forming Q). Default: one per core, or\n"
+                 "OPENBLAS_NUM_THREADS. Use 1 when other busy processes share the machine\n"
+                 "(parallel parameter studies): spinning BLAS threads are then several times\n"
+                 "slower")
+      ->check(CLI::Range(1, 1024));
+  app.fallthrough();
 
   std::string file;
   SolveOptions solve_opt;
@@ -335,6 +344,7 @@ int main(int argc, char** argv) {
   }
 
   try {
+    if (threads > 0) fricon::linalg::set_threads(threads);
     solve_opt.verbosity = quiet     ? Verbosity::Quiet
                           : verbose ? Verbosity::Verbose
                                     : Verbosity::Normal;

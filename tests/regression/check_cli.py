@@ -61,6 +61,15 @@ expect(["solve", elastic, "--out", str(out / "set"), "--set", "material.poisson=
 expect(["solve", elastic, "--out", str(out / "set2"), "--set", "material.nonsense=1"], 1,
        "nonsense", results=out / "set2")
 
+# --threads sets the BLAS threads (recorded in report.json) and refuses nonsense.
+import json
+expect(["solve", elastic, "--out", str(out / "threads"), "--threads", "1", "--quiet"], 0)
+report = out / "threads" / "report.json"
+if not report.exists() or json.loads(report.read_text())["factor"]["blas_threads"] != 1:
+    failures.append("--threads 1: report.json factor.blas_threads is not 1")
+expect(["solve", elastic, "--out", str(out / "threads0"), "--threads", "0"], 1, "--threads",
+       results=out / "threads0")
+
 # Not converged: exit 2, the last iterate under names that say so, no report.json.
 paper = str(examples / "paper-brick.toml")
 nc = out / "nc"

@@ -35,7 +35,8 @@ nlohmann::json report_json(const driver::Problem& problem, const driver::RunResu
                  {"flops", r.factor.flops},
                  {"ordering", r.factor.ordering},
                  {"supernodal", r.factor.supernodal},
-                 {"rcond_estimate", r.factor.rcond}};
+                 {"rcond_estimate", r.factor.rcond},
+                 {"blas_threads", r.factor.blas_threads}};
   nlohmann::json timings = nlohmann::json::object();
   for (const auto& [name, e] : r.times.phases)
     timings[name] = e.seconds;

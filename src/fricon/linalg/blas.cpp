@@ -6,8 +6,8 @@
 #include "fricon/core/error.hpp"
 
 // The reference BLAS interface (Fortran calling convention, 32-bit integers as in Debian's
-// OpenBLAS), declared here rather than through a CBLAS header whose path depends on the BLAS
-// variant installed.
+// OpenBLAS) and OpenBLAS's thread control, declared here rather than through a CBLAS header whose
+// path depends on the BLAS variant installed.
 extern "C" {
 void dtrsm_(const char* side, const char* uplo, const char* transa, const char* diag, const int* m,
             const int* n, const double* alpha, const double* a, const int* lda, double* b,
@@ -17,6 +17,8 @@ void dgemm_(const char* transa, const char* transb, const int* m, const int* n, 
             const double* beta, double* c, const int* ldc);
 void dsymv_(const char* uplo, const int* n, const double* alpha, const double* a, const int* lda,
             const double* x, const int* incx, const double* beta, double* y, const int* incy);
+void openblas_set_num_threads(int num_threads);
+int openblas_get_num_threads(void);
 void dsyrk_(const char* uplo, const char* trans, const int* n, const int* k, const double* alpha,
             const double* a, const int* lda, const double* beta, double* c, const int* ldc);
 }
@@ -34,6 +36,15 @@ int leading(Index stride, Index rows) {
   return blas_int(std::max<Index>({stride, rows, 1}));
 }
 }  // namespace
+
+void set_threads(int n) {
+  FRICON_CHECK(n >= 1, "the BLAS needs at least one thread, got " << n);
+  openblas_set_num_threads(n);
+}
+
+int threads() {
+  return openblas_get_num_threads();
+}
 
 void solve_lower(ConstBlockRef L, BlockRef X, bool transpose) {
   FRICON_CHECK(L.rows() == L.cols() && X.rows() == L.rows(),

@@ -11,6 +11,15 @@ namespace fricon::linalg {
 using ConstBlockRef = Eigen::Ref<const MatrixXd, 0, Eigen::OuterStride<>>;
 using BlockRef = Eigen::Ref<MatrixXd, 0, Eigen::OuterStride<>>;
 
+/// Sets the number of threads of the BLAS (OpenBLAS), for every later call in the process,
+/// including CHOLMOD's. n >= 1. By default OpenBLAS uses one thread per core (or the environment
+/// variable OPENBLAS_NUM_THREADS): the fastest on an idle machine, but its threads wait by
+/// spinning, and next to other busy processes that costs several times the work
+/// (docs/benchmarks.md): there one thread is the better choice.
+void set_threads(int n);
+/// The number of threads the BLAS uses.
+int threads();
+
 /// X <- L^-1 X, or L^-T X when `transpose`. L is square and lower triangular (its strict upper
 /// part is not read), X has L.rows() rows.
 void solve_lower(ConstBlockRef L, BlockRef X, bool transpose = false);

@@ -290,6 +290,7 @@ void CholeskyFactor::factorize(const SparseMatrix& K, const std::vector<Index>& 
         "[[dirichlet]] boundary that removes all rigid motions)?",
         info_.n, info_.nnz_K, info_.rcond));
   info_.nnz_L = c->lnz;
+  info_.blas_threads = threads();
   info_.flops = c->fl;
   info_.supernodal = impl_->L->is_super != 0;
   info_.ordering = impl_->L->ordering == CHOLMOD_GIVEN

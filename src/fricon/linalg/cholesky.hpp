@@ -21,6 +21,7 @@ struct CholeskyInfo {
   bool supernodal = true;  ///< CHOLMOD chose the supernodal method
   std::string ordering;    ///< fill-reducing ordering CHOLMOD selected (AMD, METIS, ...)
   double rcond = 0.0;      ///< CHOLMOD's reciprocal condition estimate (min/max diag of L)^2
+  int blas_threads = 1;    ///< threads of the BLAS during the factorization
 };
 
 class CholeskyFactor {
