@@ -3,9 +3,9 @@
 //   minimise 1/2 l^T Q l - l^T h  over  l_n >= 0,  ||l_t|| <= radius  (per patch)
 //
 // Problems: the paper's brick (param 6e4) for n = 4, 8, 12, 16, built through the library with
-// Q = B K^-1 B^T formed densely (as bench/siconos_compare.cpp does), or dual files (--dump,
-// docs/dual-format.md). ||Q|| is estimated once per problem (200 power iterations, as the driver
-// does) and passed to every solve, so no count below includes it.
+// Q = B K^-1 B^T formed densely (bench/paper_dual.hpp, shared with siconos_compare), or dual files
+// (--dump, docs/dual-format.md). ||Q|| is estimated once per problem (200 power iterations, as the
+// driver does) and passed to every solve, so no count below includes it.
 //
 // Table 1, "single QP": the dual problem of the first outer iteration (phi = 0, every radius
 // F(0) g = 0.3 * 2e7 Pa), solved from l = 0 to ||g^P|| <= tol ||h|| for each variant and tol:
@@ -41,8 +41,10 @@
 #include "fricon/driver/model.hpp"
 #include "fricon/driver/paper.hpp"
 #include "fricon/io/dual_dump.hpp"
+#include "fricon/linalg/blas.hpp"
 #include "fricon/qp/kkt.hpp"
 #include "fricon/qp/mpgp.hpp"
+#include "paper_dual.hpp"
 
 namespace {
 
@@ -61,26 +63,17 @@ struct Settings {
   bool run = true;
 };
 
-// What the outer loop needs besides Q and h (paper problems only).
-struct Outer {
-  fricon::driver::Problem problem;
-  fricon::driver::Model model;
-  contact::ContactSurface surface;
-  contact::Patches patches;
-  fricon::SparseMatrix B;
-  std::unique_ptr<contact::FrictionLaw> law;
-  VectorXd slip_bound;  // g per surface node
-};
-
 struct Case {
   std::string name;
   MatrixXd Q;
   VectorXd h, radius;
   double norm_Q = 0.0;
-  std::unique_ptr<Outer> outer;  // null for dual files
+  std::unique_ptr<fricon::bench::PaperDual> outer;  // what the outer loop needs; null for files
 
   qp::Operator A() const {
-    return [Q = &Q](const VectorXd& x, VectorXd& y) { y.noalias() = *Q * x; };
+    // As the driver applies a dense Q (BLAS dsymv).
+    return
+        [Q = &Q](const VectorXd& x, VectorXd& y) { fricon::linalg::symmetric_product(*Q, x, y); };
   }
   qp::SeparableConstraints constraints(const VectorXd& r) const {
     auto c = qp::SeparableConstraints::contact_layout(r.size());
@@ -96,30 +89,10 @@ void finish_case(Case& k) {
 Case paper_case(Index n) {
   Case k;
   k.name = fmt::format("paper-n{}", n);
-  auto o = std::make_unique<Outer>();
-  o->problem = fricon::driver::paper_problem(n, 6e4);
-  fricon::PhaseTimes times;
-  o->model = fricon::driver::build_model(o->problem, times);
-  const auto& opt = *o->problem.contact;
-  o->surface =
-      contact::make_contact_surface(o->model.mesh, o->model.dofs, opt.boundary, o->problem.source);
-  o->patches = contact::chessboard_patches(o->model.mesh, o->surface, o->problem.source);
-  o->B = contact::assemble_b(o->model.mesh, o->model.dofs, o->surface, o->patches);
-  o->law = contact::paper_law(opt.friction.param);
-  o->slip_bound = VectorXd::Constant(o->surface.n_nodes(), opt.slip_bound);
-  const VectorXd phi = VectorXd::Zero(o->surface.n_nodes());
-  k.radius =
-      contact::patch_radii(o->model.mesh, o->surface, o->patches, *o->law, phi, o->slip_bound);
-  k.h = o->B * o->model.factor.solve(VectorXd(o->model.f));
-  const Index nd = o->B.rows();
-  const fricon::SparseMatrix Bt = o->B.transpose();
-  k.Q.resize(nd, nd);
-  for (Index j = 0; j < nd; j += 64) {
-    const Index nb = std::min<Index>(64, nd - j);
-    k.Q.middleCols(j, nb) = o->B * o->model.factor.solve(MatrixXd(Bt.middleCols(j, nb)));
-  }
-  k.Q = 0.5 * (k.Q + k.Q.transpose()).eval();
-  k.outer = std::move(o);
+  k.outer = fricon::bench::paper_dual(n);
+  k.Q = k.outer->Q;
+  k.h = k.outer->h;
+  k.radius = k.outer->radius;
   finish_case(k);
   return k;
 }
@@ -202,7 +175,7 @@ struct RunResult {
 };
 
 RunResult run_outer(const Case& k, qp::MpgpVariant v) {
-  const Outer& o = *k.outer;
+  const fricon::bench::PaperDual& o = *k.outer;
   const auto& so = o.problem.solver;
   const auto& m = o.model;
   const qp::Operator A = k.A();
@@ -266,16 +239,6 @@ void whole_run(const Case& k, const Settings& s) {
   }
 }
 
-template <typename T, typename F>
-std::vector<T> parse_list(const std::string& s, F convert) {
-  std::vector<T> out;
-  std::stringstream ss(s);
-  for (std::string item; std::getline(ss, item, ',');)
-    if (!item.empty()) out.push_back(convert(item));
-  if (out.empty()) throw fricon::InputError(fmt::format("empty list '{}'", s));
-  return out;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -294,12 +257,14 @@ int main(int argc, char** argv) {
         while (i + 1 < argc && std::string(argv[i + 1]).rfind("--", 0) != 0)
           dumps.emplace_back(argv[++i]);
       } else if (a == "--n") {
-        ns = parse_list<Index>(value(), [](const std::string& t) { return std::stol(t); });
+        ns = fricon::bench::parse_list<Index>(value(),
+                                              [](const std::string& t) { return std::stol(t); });
       } else if (a == "--variants") {
-        s.variants = parse_list<qp::MpgpVariant>(
+        s.variants = fricon::bench::parse_list<qp::MpgpVariant>(
             value(), [](const std::string& t) { return qp::mpgp_variant_from_string(t); });
       } else if (a == "--tol") {
-        s.tols = parse_list<double>(value(), [](const std::string& t) { return std::stod(t); });
+        s.tols = fricon::bench::parse_list<double>(
+            value(), [](const std::string& t) { return std::stod(t); });
       } else if (a == "--reps") {
         s.reps = std::max(1, std::stoi(value()));
       } else if (a == "--no-run") {

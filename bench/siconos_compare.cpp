@@ -10,7 +10,8 @@
 //
 // Problems: the dual problems of the first outer iteration (phi = 0, radius = F(0) g = 6e6 Pa
 // everywhere) of the paper's brick for n = 4, 8, 12, 16 (param 6e4), built through the library
-// with Q = B K^-1 B^T formed densely; or the files given with --dump (docs/dual-format.md).
+// with Q = B K^-1 B^T formed densely (bench/paper_dual.hpp); or the files given with --dump
+// (docs/dual-format.md).
 //
 // Siconos (docs/dual-format.md, "Mapping"): FrictionContactProblem with dimension 3, one contact
 // per patch, M = W (dense) and q from Q and -h, r = l (normal first), thresholds in the solver
@@ -68,16 +69,14 @@
 #include "fc3d_Solvers.h"
 #include "fc3d_compute_error.h"
 
-#include "fricon/contact/contact_surface.hpp"
-#include "fricon/contact/friction_law.hpp"
 #include "fricon/core/error.hpp"
 #include "fricon/core/timer.hpp"
-#include "fricon/driver/model.hpp"
-#include "fricon/driver/paper.hpp"
+#include "fricon/driver/contact_solver.hpp"
 #include "fricon/io/dual_dump.hpp"
 #include "fricon/linalg/blas.hpp"
 #include "fricon/qp/kkt.hpp"
 #include "fricon/qp/mpgp.hpp"
+#include "paper_dual.hpp"
 
 namespace {
 
@@ -116,33 +115,14 @@ void finish_case(Case& k) {
 
 // The dual problem of the first outer iteration of the paper's brick for mesh parameter n.
 Case paper_case(Index n) {
-  namespace contact = fricon::contact;
-  const auto problem = fricon::driver::paper_problem(n, 6e4);
-  fricon::PhaseTimes times;
-  const auto model = fricon::driver::build_model(problem, times);
-  const auto& opt = *problem.contact;
-  const auto surface =
-      contact::make_contact_surface(model.mesh, model.dofs, opt.boundary, problem.source);
-  const auto patches = contact::chessboard_patches(model.mesh, surface, problem.source);
-  const fricon::SparseMatrix B = contact::assemble_b(model.mesh, model.dofs, surface, patches);
-  const auto law = contact::paper_law(opt.friction.param);
-  const VectorXd phi = VectorXd::Zero(surface.n_nodes());
-  const VectorXd g = VectorXd::Constant(surface.n_nodes(), opt.slip_bound);
-
+  const auto p = fricon::bench::paper_dual(n);
   Case k;
   k.name = fmt::format("paper-n{}", n);
-  k.d.source = problem.source;
-  k.d.radius = contact::patch_radii(model.mesh, surface, patches, *law, phi, g);
-  k.d.patch_area = patches.area;
-  k.d.h = B * model.factor.solve(VectorXd(model.f));
-  const Index nd = B.rows();
-  const fricon::SparseMatrix Bt = B.transpose();
-  k.d.Q.resize(nd, nd);
-  for (Index j = 0; j < nd; j += 64) {
-    const Index nb = std::min<Index>(64, nd - j);
-    k.d.Q.middleCols(j, nb) = B * model.factor.solve(MatrixXd(Bt.middleCols(j, nb)));
-  }
-  k.d.Q = 0.5 * (k.d.Q + k.d.Q.transpose()).eval();
+  k.d.source = p->problem.source;
+  k.d.radius = p->radius;
+  k.d.patch_area = p->patches.area;
+  k.d.h = p->h;
+  k.d.Q = p->Q;
   finish_case(k);
   return k;
 }
@@ -498,14 +478,6 @@ void self_check(const Settings& s) {
   fmt::print("\n");
 }
 
-std::vector<Index> parse_list(const std::string& s) {
-  std::vector<Index> out;
-  std::stringstream ss(s);
-  for (std::string item; std::getline(ss, item, ',');)
-    out.push_back(std::stol(item));
-  return out;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -527,7 +499,8 @@ int main(int argc, char** argv) {
       } else if (a == "--save") {
         save_dir = value();
       } else if (a == "--n") {
-        ns = parse_list(value());
+        ns = fricon::bench::parse_list<Index>(value(),
+                                              [](const std::string& t) { return std::stol(t); });
       } else if (a == "--kkt") {
         s.kkt = std::stod(value());
       } else if (a == "--reps") {

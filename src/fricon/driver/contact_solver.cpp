@@ -32,21 +32,10 @@ std::string dual_operator_for(const Problem& problem, const linalg::CholeskyFact
   return q_entries <= limit ? "forward" : "implicit";
 }
 
-namespace {
-// The free dofs of the surface nodes, node by node.
-std::vector<Index> surface_dofs(const contact::ContactSurface& surface, const fe::DofMap& dofs) {
-  std::vector<Index> out;
-  for (Index a : surface.nodes)
-    for (int c = 0; c < 3; ++c)
-      if (dofs.dof(a, c) >= 0) out.push_back(dofs.dof(a, c));
-  return out;
-}
-}  // namespace
-
 std::vector<Index> contact_dofs(const Problem& problem, const Model& m) {
-  return surface_dofs(
-      contact::make_contact_surface(m.mesh, m.dofs, problem.contact->boundary, problem.source),
-      m.dofs);
+  return m.dofs.free_dofs(
+      contact::make_contact_surface(m.mesh, m.dofs, problem.contact->boundary, problem.source)
+          .nodes);
 }
 
 bool wants_schur(const Problem& problem) {
@@ -308,7 +297,7 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m, PhaseTimes&
   if (options.on_phase_start) options.on_phase_start("dual");
   {
     ScopedPhase phase(times, "dual");
-    dual = make_dual(m, B, surface_dofs(fields.surface, m.dofs),
+    dual = make_dual(m, B, m.dofs.free_dofs(fields.surface.nodes),
                      dual_operator_for(problem, m.factor, B.rows()), rep.n_kinv, options);
     rep.dual_operator = dual.mode;
     rep.norm_Q = qp::estimate_norm(dual.Q, rep.n_dual, kPowerIterations, kPowerTolerance);

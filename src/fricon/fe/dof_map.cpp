@@ -33,4 +33,13 @@ VectorXd DofMap::from_nodal(const Eigen::Matrix<Real, 3, Eigen::Dynamic>& field)
   return u;
 }
 
+std::vector<Index> DofMap::free_dofs(const std::vector<Index>& nodes) const {
+  std::vector<Index> out;
+  out.reserve(3 * nodes.size());
+  for (Index a : nodes)
+    for (int c = 0; c < 3; ++c)
+      if (dof(a, c) >= 0) out.push_back(dof(a, c));
+  return out;
+}
+
 }  // namespace fricon::fe

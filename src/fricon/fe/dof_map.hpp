@@ -23,6 +23,8 @@ class DofMap {
   /// Dof index of component c in {0,1,2} of node, or -1 if fixed.
   Index dof(Index node, int c) const { return dof_[static_cast<size_t>(3 * node + c)]; }
   bool is_fixed(Index node, int c) const { return dof(node, c) < 0; }
+  /// The free dofs of the given nodes, node by node (x, y, z), fixed components skipped.
+  std::vector<Index> free_dofs(const std::vector<Index>& nodes) const;
 
   /// Nodal field (3 x n_nodes) from a vector of free dofs, with zeros at fixed components.
   Eigen::Matrix<Real, 3, Eigen::Dynamic> to_nodal(const VectorXd& u) const;

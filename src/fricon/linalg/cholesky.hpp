@@ -19,7 +19,7 @@ struct CholeskyInfo {
   double nnz_L = 0.0;      ///< non-zeros of the factor L
   double flops = 0.0;      ///< floating-point operations of the numerical factorization
   bool supernodal = true;  ///< CHOLMOD chose the supernodal method
-  std::string ordering;    ///< fill-reducing ordering CHOLMOD selected (AMD, METIS, ...)
+  std::string ordering;    ///< the fill-reducing ordering used
   double rcond = 0.0;      ///< CHOLMOD's reciprocal condition estimate (min/max diag of L)^2
   int blas_threads = 1;    ///< threads of the BLAS during the factorization
 };
@@ -34,13 +34,15 @@ class CholeskyFactor {
   CholeskyFactor& operator=(CholeskyFactor&&) noexcept;
 
   /// Symbolic analysis and numerical factorization of the symmetric matrix K (the lower triangle
-  /// is read). Throws NumericalError naming the phase, n, nnz and, if K is not positive definite,
-  /// the column where the factorization broke down (e.g. when nothing is clamped).
+  /// is read), ordered by nested dissection of its compressed graph (the dofs of a node merged
+  /// into one vertex, when both triangles are stored). Throws NumericalError naming the phase, n,
+  /// nnz and, if K is not positive definite, the column where the factorization broke down (e.g.
+  /// when nothing is clamped).
   void factorize(const SparseMatrix& K);
 
-  /// As factorize(K), with a constrained fill-reducing ordering (CAMD) that puts the dofs `last`
-  /// after all others, so that the trailing block L22 of the factor is the Cholesky factor of the
-  /// Schur complement of K onto those dofs: S = K22 - K21 K11^-1 K12 = L22 L22^T.
+  /// As factorize(K), with the dofs `last` ordered after all others (the others by nested
+  /// dissection of their own block), so that the trailing block L22 of the factor is the Cholesky
+  /// factor of the Schur complement of K onto those dofs: S = K22 - K21 K11^-1 K12 = L22 L22^T.
   void factorize(const SparseMatrix& K, const std::vector<Index>& last);
 
   /// The dense trailing block L22 (m x m lower triangular, m = last.size()) of a factor built with

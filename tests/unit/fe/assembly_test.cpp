@@ -144,3 +144,14 @@ TEST(Assembly, P1LoadsIntegrateLinearDataExactly) {
   EXPECT_NEAR(Fv.row(0).sum(), 0.5, 1e-14);
   EXPECT_NEAR(Fv.row(0).dot(m.nodes.row(0)), 1.0 / 3.0, 1e-14);
 }
+
+TEST(DofMap, FreeDofsOfNodesSkipTheFixedComponents) {
+  // Node 0: x fixed; node 1: free; node 2: all fixed. Numbering is node-major over free dofs.
+  std::vector<bool> fixed(9, false);
+  fixed[0] = true;
+  fixed[6] = fixed[7] = fixed[8] = true;
+  const DofMap dofs(fixed);
+  EXPECT_EQ(dofs.free_dofs({0, 1, 2}), (std::vector<Index>{0, 1, 2, 3, 4}));
+  EXPECT_EQ(dofs.free_dofs({1, 0}), (std::vector<Index>{2, 3, 4, 0, 1}));
+  EXPECT_TRUE(dofs.free_dofs({2}).empty());
+}
