@@ -39,8 +39,8 @@ Row measure(long n, const std::string& mode, const std::string& variant, int rep
   Row r;
   r.n = n;
   driver::Problem p = driver::paper_problem(n, 6e4);
-  p.solver.dual_operator = mode;
-  p.solver.qp_variant = variant;
+  p.solver.dual_operator = parse_enum<dual::DualOperatorKind>(mode);
+  p.solver.qp_variant = parse_enum<qp::MpgpVariant>(variant);
   for (int k = 0; k < repeat; ++k) {
     {
       Stopwatch watch;
@@ -67,8 +67,9 @@ Row measure(long n, const std::string& mode, const std::string& variant, int rep
     r.qp = rep.times.seconds("qp");
     r.other = r.total - r.factorize - r.dual - r.qp;
     r.converged = rep.status == driver::Status::Converged;
-    std::snprintf(r.mode, sizeof r.mode, "%s", c.dual_operator.c_str());
-    std::snprintf(r.variant, sizeof r.variant, "%s", p.solver.qp_variant.c_str());
+    std::snprintf(r.mode, sizeof r.mode, "%s", std::string(enum_name(c.dual_operator)).c_str());
+    std::snprintf(r.variant, sizeof r.variant, "%s",
+                  std::string(enum_name(p.solver.qp_variant)).c_str());
   }
   r.peak_mib = fricon::bench::peak_mib();
   return r;
@@ -79,7 +80,7 @@ Row measure(long n, const std::string& mode, const std::string& variant, int rep
 int main(int argc, char** argv) {
   std::vector<long> sizes;
   std::string mode = "auto";
-  std::string variant = fricon::driver::SolverOptions{}.qp_variant;
+  std::string variant(fricon::enum_name(fricon::driver::SolverOptions{}.qp_variant));
   int repeat = 0;  // 0: 3 up to n = 16, 1 beyond
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--operator") == 0 && i + 1 < argc) {

@@ -1,8 +1,8 @@
 #pragma once
-// Shared by the QP benchmarks (qp_variants_bench, siconos_compare): the dual problem of the first
-// outer iteration (phi = 0) of the paper's brick, built through the library as the driver builds
-// it (Q by the forward sweep over the reach of the contact surface), with everything the outer
-// loop needs besides; and the parsing of comma-separated option values.
+// Shared by the QP benchmarks (qp_variants_bench, siconos_compare): the paper's brick built
+// through the library exactly as `fricon solve` builds it (contact discretization, factor of K,
+// the forward dual operator), with the dual problem of its first outer iteration (phi = 0); and
+// the parsing of comma-separated option values.
 #include <memory>
 #include <sstream>
 #include <string>
@@ -10,25 +10,23 @@
 
 #include <fmt/format.h>
 
-#include "fricon/contact/contact_surface.hpp"
+#include "fricon/contact/discretization.hpp"
 #include "fricon/contact/friction_law.hpp"
+#include "fricon/contact/radii.hpp"
 #include "fricon/core/error.hpp"
 #include "fricon/driver/model.hpp"
 #include "fricon/driver/paper.hpp"
+#include "fricon/dual/dual_operator.hpp"
 
 namespace fricon::bench {
 
 struct PaperDual {
   driver::Problem problem;
   driver::Model model;
-  contact::ContactSurface surface;
-  contact::Patches patches;
-  SparseMatrix B;
+  contact::ContactDiscretization disc;
   std::unique_ptr<contact::FrictionLaw> law;
-  VectorXd slip_bound;  ///< g per surface node [Pa]
-  MatrixXd Q;           ///< B K^-1 B^T
-  VectorXd h;           ///< B K^-1 f
-  VectorXd radius;      ///< disc radii at phi = 0 [Pa]
+  std::unique_ptr<dual::DualOperator> Q;  ///< forward: Q = B K^-1 B^T formed
+  VectorXd radius;                        ///< disc radii at phi = 0 [Pa]
 };
 
 /// The paper's brick for mesh parameter n, param = 6e4, at its first outer iteration.
@@ -36,18 +34,14 @@ inline std::unique_ptr<PaperDual> paper_dual(Index n) {
   auto d = std::make_unique<PaperDual>();
   d->problem = driver::paper_problem(n, 6e4);
   PhaseTimes times;
-  d->model = driver::build_model(d->problem, times);
-  const driver::Model& m = d->model;
-  const auto& opt = *d->problem.contact;
-  d->surface = contact::make_contact_surface(m.mesh, m.dofs, opt.boundary, d->problem.source);
-  d->patches = contact::chessboard_patches(m.mesh, d->surface, d->problem.source);
-  d->B = contact::assemble_b(m.mesh, m.dofs, d->surface, d->patches);
-  d->law = contact::paper_law(opt.friction.param);
-  d->slip_bound = VectorXd::Constant(d->surface.n_nodes(), opt.slip_bound);
-  d->radius = contact::patch_radii(m.mesh, d->surface, d->patches, *d->law,
-                                   VectorXd::Zero(d->surface.n_nodes()), d->slip_bound);
-  d->h = d->B * m.factor.solve(VectorXd(m.f));
-  d->Q = m.factor.inverse_gram(SparseMatrix(d->B.transpose()));
+  d->model = driver::assemble_model(d->problem, times);
+  d->disc = driver::discretize_contact(d->problem, d->model.mesh, d->model.dofs);
+  driver::factorize_model(d->model, {}, times);
+  d->Q = dual::make_dual_operator(dual::DualOperatorKind::Forward,
+                                  {d->model.factor, d->disc.B, d->model.f, d->disc.dofs, {}});
+  d->law = contact::make_friction_law(d->problem.contact->friction);
+  d->radius = contact::patch_radii(d->model.mesh, d->disc.surface, d->disc.patches, *d->law,
+                                   VectorXd::Zero(d->disc.surface.n_nodes()), d->disc.slip_bound);
   return d;
 }
 

@@ -13,11 +13,12 @@
 // residual of the result (fricon::qp::kkt_residuals, default scales, g = Q l - h recomputed).
 //
 // Table 2, "whole run" (problems built from the mesh only): the successive approximations of
-// method.md 3 as the driver runs them (radii from phi, QP warm-started from the previous
-// multipliers at the paper's tolerance 1e-6, w = K^-1 (f - B^T l), phi = ||w_t|| at the surface
-// nodes, stop when err(k) <= 1e-4): outer iterations, QP iterations and products over the run
-// (the paper's n_mult), QP time over the run (median of --reps runs of the whole loop), the KKT
-// residual of the last QP and the relative difference of the final phi from the Paper variant's.
+// theory.md §5, run by the driver's own map and outer loop (radii from phi, QP warm-started from
+// the previous multipliers at the paper's tolerance 1e-6, w = K^-1 (f - B^T l), phi = ||w_t|| at
+// the surface nodes, stop when err(k) <= 1e-4): outer iterations, QP iterations and products over
+// the run (the paper's n_mult), QP time over the run (median of --reps runs of the whole loop), the
+// KKT residual of the last QP and the relative difference of the final phi from the Paper
+// variant's.
 //
 //   build/bench/qp_variants_bench [--n 4,8,12,16] [--dump FILE ...] [--variants paper,spg,...]
 //                                 [--tol 1e-6,1e-8] [--reps 5] [--no-run]
@@ -38,10 +39,13 @@
 #include "fricon/contact/friction_law.hpp"
 #include "fricon/core/error.hpp"
 #include "fricon/core/timer.hpp"
+#include "fricon/driver/contact_solver.hpp"
 #include "fricon/driver/model.hpp"
 #include "fricon/driver/paper.hpp"
+#include "fricon/driver/tresca_map.hpp"
 #include "fricon/io/dual_dump.hpp"
 #include "fricon/linalg/blas.hpp"
+#include "fricon/outer/outer_loop.hpp"
 #include "fricon/qp/kkt.hpp"
 #include "fricon/qp/mpgp.hpp"
 #include "paper_dual.hpp"
@@ -53,7 +57,6 @@ using fricon::MatrixXd;
 using fricon::VectorXd;
 namespace fs = std::filesystem;
 namespace qp = fricon::qp;
-namespace contact = fricon::contact;
 
 struct Settings {
   std::vector<qp::MpgpVariant> variants = {qp::MpgpVariant::Paper, qp::MpgpVariant::BarzilaiBorwein,
@@ -90,8 +93,8 @@ Case paper_case(Index n) {
   Case k;
   k.name = fmt::format("paper-n{}", n);
   k.outer = fricon::bench::paper_dual(n);
-  k.Q = k.outer->Q;
-  k.h = k.outer->h;
+  k.Q = *k.outer->Q->dense();
+  k.h = k.outer->Q->h();
   k.radius = k.outer->radius;
   finish_case(k);
   return k;
@@ -174,42 +177,25 @@ struct RunResult {
   VectorXd phi;
 };
 
+// The driver's own map Psi and outer loop (driver/tresca_map.hpp, outer/outer_loop.hpp) with
+// the QP variant v; the QP time is the sum of the solver's own timings.
 RunResult run_outer(const Case& k, qp::MpgpVariant v) {
   const fricon::bench::PaperDual& o = *k.outer;
   const auto& so = o.problem.solver;
-  const auto& m = o.model;
-  const qp::Operator A = k.A();
-  auto c = k.constraints(k.radius);
-  const auto opt = options(k, v, so.qp_rtol);
+  fricon::PhaseTimes times;
+  fricon::driver::TrescaMap map(o.model.mesh, o.model.dofs, o.disc, *o.Q, *o.law,
+                                options(k, v, so.qp_rtol), so.warm_start, times);
   RunResult res;
-  VectorXd phi = VectorXd::Zero(o.surface.n_nodes());
-  VectorXd l = VectorXd::Zero(k.h.size());
-  for (int it = 1; it <= so.outer_max; ++it) {
-    c.set_disc_radii(contact::patch_radii(m.mesh, o.surface, o.patches, *o.law, phi, o.slip_bound));
-    const auto rep = qp::solve_mpgp(A, k.h, c, opt, l);
-    res.outer = it;
-    res.iterations += rep.iterations;
-    res.products += rep.n_products;
-    res.qp_ms += 1e3 * rep.seconds;
-    if (rep.termination != qp::Termination::Converged) break;
-    const VectorXd w = m.factor.solve(VectorXd(m.f - o.B.transpose() * l));
-    VectorXd phi_new(o.surface.n_nodes());
-    for (Index a = 0; a < o.surface.n_nodes(); ++a) {
-      fricon::Vec3 u = fricon::Vec3::Zero();
-      for (int comp = 0; comp < 3; ++comp) {
-        const Index dof = m.dofs.dof(o.surface.nodes[static_cast<std::size_t>(a)], comp);
-        if (dof >= 0) u(comp) = w(dof);
-      }
-      phi_new(a) = std::hypot(u.dot(o.surface.t1), u.dot(o.surface.t2));
-    }
-    const double err = phi_new.norm() > 0 ? (phi_new - phi).norm() / phi_new.norm() : 0.0;
-    phi = phi_new;
-    if (err <= so.outer_tol) {
-      res.converged = true;
-      break;
-    }
-  }
-  res.kkt = kkt_max(k, c, l);
+  VectorXd phi = VectorXd::Zero(o.disc.surface.n_nodes());
+  const auto rep = fricon::outer::iterate(map, phi, fricon::driver::outer_options(so),
+                                          [&](const fricon::outer::OuterIteration&) {
+                                            res.iterations += map.last_qp().iterations;
+                                            res.products += map.last_qp().n_products;
+                                            res.qp_ms += 1e3 * map.last_qp().seconds;
+                                          });
+  res.outer = rep.iterations;
+  res.converged = rep.converged();
+  res.kkt = kkt_max(k, map.constraints(), map.lambda());
   res.phi = phi;
   return res;
 }

@@ -71,9 +71,9 @@
 
 #include "fricon/core/error.hpp"
 #include "fricon/core/timer.hpp"
-#include "fricon/driver/contact_solver.hpp"
 #include "fricon/io/dual_dump.hpp"
 #include "fricon/linalg/blas.hpp"
+#include "fricon/qp/dual_problem.hpp"
 #include "fricon/qp/kkt.hpp"
 #include "fricon/qp/mpgp.hpp"
 #include "paper_dual.hpp"
@@ -91,7 +91,7 @@ namespace qp = fricon::qp;
 
 struct Case {
   std::string name;
-  fricon::driver::DualSnapshot d;
+  fricon::qp::DualProblem d;
   qp::SeparableConstraints c;
   double norm_Q = 0.0;  // power-method estimate, as the driver computes it
   double power_ms = 0.0;
@@ -120,9 +120,9 @@ Case paper_case(Index n) {
   k.name = fmt::format("paper-n{}", n);
   k.d.source = p->problem.source;
   k.d.radius = p->radius;
-  k.d.patch_area = p->patches.area;
-  k.d.h = p->h;
-  k.d.Q = p->Q;
+  k.d.patch_area = p->disc.patches.area;
+  k.d.h = p->Q->h();
+  k.d.Q = *p->Q->dense();
   finish_case(k);
   return k;
 }

@@ -18,7 +18,6 @@
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
 
-#include "fricon/contact/contact_surface.hpp"
 #include "fricon/core/error.hpp"
 #include "fricon/driver/paper.hpp"
 #include "fricon/driver/run.hpp"
@@ -53,7 +52,7 @@ void print_summary(const fricon::driver::RunResult& result, const std::filesyste
       fmt::print(" {:.2e}", e);
     fmt::print(
         "\n  dual QP       {} MPGP steps, n_mult = {} products with Q ({}), {} solves with K\n",
-        c.qp_iterations, c.n_mult, c.dual_operator, c.n_kinv);
+        c.qp_iterations, c.n_mult, fricon::enum_name(c.dual_operator), c.n_kinv);
     fmt::print("  KKT           feasibility {:.1e}, stationarity {:.1e}, complementarity {:.1e}\n",
                c.kkt.feasibility, c.kkt.stationarity, c.kkt.complementarity);
     fmt::print(
@@ -192,14 +191,14 @@ int check(const std::string& file, const std::vector<std::string>& sets) {
              mesh.n_nodes(), mesh.n_tets(), mesh.n_faces(), mesh.tag_list());
   fmt::print("  unknowns   n_primal = {}\n", dofs.n_free());
   if (problem.contact) {
-    const auto surface = fricon::contact::make_contact_surface(
-        mesh, dofs, problem.contact->boundary, problem.source);
-    const auto patches = fricon::contact::chessboard_patches(mesh, surface, problem.source);
-    fmt::print("  contact    '{}': {} surface nodes ({} not clamped), {} patches, n_dual = {}\n",
-               surface.tag, surface.n_nodes(), surface.n_contact_nodes(), patches.size(),
-               3 * patches.size());
+    const auto disc = fricon::driver::discretize_contact(problem, mesh, dofs);
+    fmt::print(
+        "  contact    '{}': {} surface nodes ({} contact nodes), {} patches ({}), n_dual = {}, "
+        "stability sigma_min/sigma_max(B) = {:.3g}\n",
+        disc.surface.tag, disc.surface.n_nodes(), disc.surface.n_contact_nodes(), disc.n_patches(),
+        fricon::enum_name(problem.contact->patches), disc.n_dual(), disc.stability.ratio);
     fmt::print("  friction   {}\n",
-               fricon::driver::make_friction_law(problem.contact->friction)->describe());
+               fricon::contact::make_friction_law(problem.contact->friction)->describe());
   }
   fmt::print("effective problem:\n{}\n", fricon::io::to_json(problem).dump(2));
   return kConverged;
@@ -224,7 +223,8 @@ bool print_paper_table(const std::string& title, const std::vector<fricon::drive
   for (const auto& row : rows) {
     if (row.n > o.max_n) continue;
     fricon::driver::Problem problem = fricon::driver::paper_problem(row.n, row.param);
-    problem.solver.dual_operator = o.dual_operator;
+    problem.solver.dual_operator =
+        fricon::parse_enum<fricon::dual::DualOperatorKind>(o.dual_operator);
     problem.solver.qp_rtol = o.qp_rtol;
     const fricon::driver::RunResult r = fricon::driver::run(problem);
     const auto& c = *r.report.contact;
@@ -330,9 +330,10 @@ int main(int argc, char** argv) {
   paper_cmd->add_option("--table", paper_opt.table, "Which table: 1, 2 or both")
       ->check(CLI::IsMember({"1", "2", "both"}));
   paper_cmd
-      ->add_option("--dual-operator", paper_opt.dual_operator,
-                   "How Q = B K^-1 B^T is applied: implicit (the paper's way), dense, schur, auto")
-      ->check(CLI::IsMember({"auto", "implicit", "dense", "schur", "forward"}));
+      ->add_option(
+          "--dual-operator", paper_opt.dual_operator,
+          "How Q = B K^-1 B^T is applied: implicit (the paper's way), forward, schur, auto")
+      ->check(CLI::IsMember({"auto", "implicit", "schur", "forward"}));
   paper_cmd->add_option("--qp-rtol", paper_opt.qp_rtol, "QP tolerance (paper: 1e-6)")
       ->check(CLI::PositiveNumber);
 

@@ -38,10 +38,37 @@ class PiecewiseLinear : public FrictionLaw {
   std::string description_;
 };
 
-// Start of the paper's transition [m] (method.md §2.1).
+// Start of the paper's transition [m] (theory.md §7).
 constexpr Real kPaperT0 = 1e-5;
 
 }  // namespace
+
+std::span<const std::string_view> friction_law_parameters(FrictionLawKind kind) {
+  static constexpr std::array<std::string_view, 1> kPaper{"param"}, kConstant{"value"};
+  static constexpr std::array<std::string_view, 2> kTable{"t", "f"};
+  switch (kind) {
+    case FrictionLawKind::Paper:
+      return kPaper;
+    case FrictionLawKind::Constant:
+      return kConstant;
+    case FrictionLawKind::Table:
+      return kTable;
+  }
+  return {};
+}
+
+std::unique_ptr<FrictionLaw> make_friction_law(const FrictionLawSpec& spec) {
+  switch (spec.law) {
+    case FrictionLawKind::Paper:
+      return paper_law(spec.param);
+    case FrictionLawKind::Constant:
+      return constant_law(spec.value);
+    case FrictionLawKind::Table:
+      return table_law(spec.t, spec.f);
+  }
+  throw InputError(
+      fmt::format("contact.friction.law: invalid value {}", static_cast<int>(spec.law)));
+}
 
 std::unique_ptr<FrictionLaw> paper_law(Real param) {
   if (!(param > 0.0) || !std::isfinite(param))

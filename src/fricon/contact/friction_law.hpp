@@ -4,10 +4,14 @@
 // of F(phi_h) can be split there and computed exactly), and its Lipschitz constant (which governs
 // the contraction of the successive approximations).
 
+#include <array>
 #include <memory>
+#include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "fricon/core/enum_names.hpp"
 #include "fricon/core/types.hpp"
 
 namespace fricon::contact {
@@ -26,7 +30,26 @@ class FrictionLaw {
   virtual std::string describe() const = 0;
 };
 
-/// The paper's law (method.md §2.1): 0.3 up to t0 = 1e-5 m, then decreasing linearly with slope
+/// Which law: the paper's, a constant, or a table (the [contact.friction] law key).
+enum class FrictionLawKind { Paper, Constant, Table };
+
+/// A friction law as the user describes it ([contact.friction]); only the parameters of the
+/// chosen kind are used (friction_law_parameters lists them).
+struct FrictionLawSpec {
+  FrictionLawKind law = FrictionLawKind::Paper;  ///< [law]
+  Real param = 6.0e4;   ///< [param] paper's law (theory.md §7): slope parameter [1/m], > 0
+  Real value = 0.3;     ///< [value] constant law: F, >= 0
+  std::vector<Real> t;  ///< [t] table law: slips [m], strictly increasing, >= 0
+  std::vector<Real> f;  ///< [f] table law: F at those slips, >= 0, as many as t
+};
+
+/// The keys of [contact.friction] that law `kind` takes ({"param"}, {"value"}, {"t", "f"}).
+std::span<const std::string_view> friction_law_parameters(FrictionLawKind kind);
+
+/// The law a spec describes. Throws InputError for parameters out of range.
+std::unique_ptr<FrictionLaw> make_friction_law(const FrictionLawSpec& spec);
+
+/// The paper's law (theory.md §7): 0.3 up to t0 = 1e-5 m, then decreasing linearly with slope
 /// 0.05 param to 0.2, reached at t0 + 2/param; `param` [1/m] > 0.
 std::unique_ptr<FrictionLaw> paper_law(Real param);
 
@@ -38,3 +61,13 @@ std::unique_ptr<FrictionLaw> constant_law(Real value);
 std::unique_ptr<FrictionLaw> table_law(std::vector<Real> t, std::vector<Real> f);
 
 }  // namespace fricon::contact
+
+template <>
+struct fricon::EnumNames<fricon::contact::FrictionLawKind> {
+  static constexpr std::string_view what = "contact.friction.law";
+  static constexpr std::array<std::pair<contact::FrictionLawKind, std::string_view>, 3> table{{
+      {contact::FrictionLawKind::Paper, "paper"},
+      {contact::FrictionLawKind::Constant, "constant"},
+      {contact::FrictionLawKind::Table, "table"},
+  }};
+};

@@ -7,8 +7,10 @@
 #include <string>
 #include <vector>
 
+#include "fricon/contact/discretization.hpp"
 #include "fricon/core/timer.hpp"
 #include "fricon/driver/problem.hpp"
+#include "fricon/dual/dual_operator.hpp"
 #include "fricon/fe/assembly.hpp"
 #include "fricon/fe/dof_map.hpp"
 #include "fricon/fe/material.hpp"
@@ -33,23 +35,29 @@ mesh::TetMesh make_mesh(const Problem& problem);
 /// tag does not exist on the mesh or nothing is left free.
 fe::DofMap make_dofs(const Problem& problem, const mesh::TetMesh& mesh);
 
-/// Builds the whole model: mesh, material, dofs, K, f and the factor of K. Times the phases
-/// "mesh", "assembly" and "factorize" into `times`. Throws InputError when a boundary tag named
-/// by the problem does not exist on the mesh, and NumericalError when K is singular.
-/// The model up to the factorization: mesh, material, dofs, K and f (phases "mesh", "assembly").
+/// Called with each phase's name ("mesh", "assembly", "factorize", ...) as it starts.
+using PhaseCallback = std::function<void(const std::string& phase)>;
+
+/// The model up to the factorization: mesh, material, dofs, K and f (phases "mesh",
+/// "assembly"). Throws InputError when a boundary tag named by the problem does not exist on the
+/// mesh or the Dirichlet conditions leave rigid motions free.
 Model assemble_model(const Problem& problem, PhaseTimes& times,
-                     const std::function<void(const std::string&)>& on_phase_start = {});
+                     const PhaseCallback& on_phase_start = {});
 
-/// Factorizes K (phase "factorize"); with `last` non-empty, those dofs are ordered last so that
-/// the factor's trailing block is the Cholesky factor of the Schur complement onto them.
-void factorize_model(Model& model, PhaseTimes& times,
-                     const std::function<void(const std::string&)>& on_phase_start = {},
-                     const std::vector<Index>& last = {});
+/// Factorizes K as `request` asks (phase "factorize"; the dual operator's request, see
+/// dual/dual_operator.hpp). Throws NumericalError when K is not positive definite.
+void factorize_model(Model& model, const dual::FactorizationRequest& request, PhaseTimes& times,
+                     const PhaseCallback& on_phase_start = {});
 
-/// assemble_model then factorize_model.
-/// `on_phase_start`, if set, is called with each phase's name as it starts.
+/// assemble_model, then factorize_model with the default ordering.
 Model build_model(const Problem& problem, PhaseTimes& times,
-                  const std::function<void(const std::string&)>& on_phase_start = {});
+                  const PhaseCallback& on_phase_start = {});
+
+/// The contact discretization of the problem's [contact] section on the mesh and dofs: the one
+/// function that `solve`, `check`, the benchmarks and the dual dump use to build it. Errors name
+/// the positions of contact.boundary and contact.patches.
+contact::ContactDiscretization discretize_contact(const Problem& problem, const mesh::TetMesh& mesh,
+                                                  const fe::DofMap& dofs);
 
 /// Sum of all applied forces [N] (tractions and volume force), including the parts acting on
 /// fixed dofs, in each direction.

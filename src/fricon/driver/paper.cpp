@@ -18,12 +18,12 @@ Problem paper_problem(Index n, Real param) {
   ContactOptions c;
   c.boundary = "z0";
   c.slip_bound = 2.0e7;
-  c.friction.law = "paper";
+  c.friction.law = contact::FrictionLawKind::Paper;
   c.friction.param = param;
   p.contact = c;
   p.solver.outer_tol = 1e-4;
   p.solver.qp_rtol = 1e-6;
-  p.solver.qp_variant = "paper";  // the paper's plain MPGP, so that n_mult compares
+  p.solver.qp_variant = qp::MpgpVariant::Paper;  // the paper's plain MPGP, so that n_mult compares
   p.output.dir = fmt::format("results/paper-n{}-param{:g}", n, param);
   return p;
 }

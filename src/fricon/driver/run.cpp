@@ -1,8 +1,10 @@
 #include "fricon/driver/run.hpp"
 
-#include <cmath>
+#include <algorithm>
+#include <memory>
 
-#include "fricon/fe/p1_element.hpp"
+#include "fricon/core/error.hpp"
+#include "fricon/fe/stress.hpp"
 
 namespace fricon::driver {
 
@@ -12,76 +14,104 @@ std::string to_string(Status s) {
 
 namespace {
 
-void compute_stresses(RunResult& r) {
-  const auto& mesh = r.model.mesh;
-  r.stress.resize(6, mesh.n_tets());
-  r.von_mises.resize(mesh.n_tets());
-  for (Index t = 0; t < mesh.n_tets(); ++t) {
-    const fe::P1Gradients g = fe::p1_gradients(fe::tet_vertices(mesh, t));
-    Eigen::Matrix<Real, 12, 1> ue;
-    for (int a = 0; a < 4; ++a)
-      ue.segment<3>(3 * a) = r.displacement.col(mesh.tets(a, t));
-    const Eigen::Matrix<Real, 6, 1> s = r.model.material.D * (fe::strain_matrix(g.grad) * ue);
-    r.stress.col(t) = s;
-    r.von_mises(t) =
-        std::sqrt(0.5 * ((s(0) - s(1)) * (s(0) - s(1)) + (s(1) - s(2)) * (s(1) - s(2)) +
-                         (s(2) - s(0)) * (s(2) - s(0))) +
-                  3.0 * (s(3) * s(3) + s(4) * s(4) + s(5) * s(5)));
+bool stop_requested(const RunOptions& o) {
+  return o.stop_requested && o.stop_requested->load();
+}
+
+void phase_start(const RunOptions& o, const std::string& name) {
+  if (o.on_phase_start) o.on_phase_start(name);
+}
+
+// The contact solve on the factored model: the dual operator (phase "dual"), then the outer
+// loop. Fills the report's contact part and returns the displacement over the free dofs.
+VectorXd solve_with_contact(const Problem& problem, const contact::ContactDiscretization& disc,
+                            const RunOptions& options, RunResult& r) {
+  RunReport& rep = r.report;
+  const Model& m = r.model;
+  phase_start(options, "dual");
+  std::unique_ptr<dual::DualOperator> Q;
+  {
+    ScopedPhase phase(rep.times, "dual");
+    const dual::DualInput input{m.factor, disc.B, m.f, disc.dofs, [&options] {
+                                  if (stop_requested(options))
+                                    throw Interrupted("interrupted while forming Q");
+                                }};
+    Q = dual::make_dual_operator(problem.solver.dual_operator, input);
   }
+  phase_start(options, "outer loop");
+  ContactOutcome c = solve_contact(problem, m, disc, *Q, rep.times, options);
+  r.first_dual = std::move(c.first_dual);
+  rep.status = c.converged ? Status::Converged : Status::NotConverged;
+  rep.message = c.message;
+  rep.contact_force = c.contact_force;
+  rep.linear_residual = c.linear_residual;
+  rep.contact = std::move(c.report);
+  r.contact = std::move(c.fields);
+  return std::move(c.w);
+}
+
+// Without contact: one solve with the factor of K.
+VectorXd solve_elastic(RunResult& r) {
+  ScopedPhase phase(r.report.times, "solve");
+  const Model& m = r.model;
+  VectorXd u = m.factor.solve(m.f);
+  r.report.linear_residual = (m.K * u - m.f).norm() / std::max(m.f.norm(), 1e-300);
+  return u;
+}
+
+// Stresses, and the global equilibrium of applied loads, contact forces and reactions.
+void postprocess(const Problem& problem, const VectorXd& u, RunResult& r) {
+  RunReport& rep = r.report;
+  const Model& m = r.model;
+  ScopedPhase phase(rep.times, "postprocess");
+  r.displacement = m.dofs.to_nodal(u);
+  rep.max_displacement = r.displacement.colwise().norm().maxCoeff();
+  fe::StressField s = fe::compute_stresses(m.mesh, m.material, r.displacement);
+  r.stress = std::move(s.stress);
+  r.von_mises = std::move(s.von_mises);
+  rep.applied_force = applied_force_total(problem, m.mesh);
+  rep.reaction_force = reaction_total(m, problem, r.displacement);
+  rep.equilibrium_residual = (rep.applied_force + rep.contact_force + rep.reaction_force).norm() /
+                             std::max(rep.applied_force.norm(), 1e-300);
 }
 
 }  // namespace
 
 RunResult run(const Problem& problem, const RunOptions& options) {
-  Stopwatch total;
+  const Stopwatch total;
+  validate(problem);
   RunResult r;
   RunReport& rep = r.report;
-  // @sect: the elastic model (mesh, assembly, factorization), shared by every later stage.
-  r.model = assemble_model(problem, rep.times, options.on_phase_start);
-  std::vector<Index> last;
-  if (wants_schur(problem)) last = contact_dofs(problem, r.model);
-  factorize_model(r.model, rep.times, options.on_phase_start, last);
-  const Model& m = r.model;
-  rep.n_nodes = m.mesh.n_nodes();
-  rep.n_tets = m.mesh.n_tets();
-  rep.n_primal = m.dofs.n_free();
-  rep.factor = m.factor.info();
 
-  // @sect: the displacement. Without contact, one solve with the factor of K; with contact, the
-  // successive approximations of Tresca problems, each solved in its dual form.
-  VectorXd u;
+  // @sect: the elastic model and, with contact, its discretization on the contact surface.
+  r.model = assemble_model(problem, rep.times, options.on_phase_start);
+  std::optional<contact::ContactDiscretization> disc;
   if (problem.contact) {
-    ContactOutcome c = solve_contact(problem, m, rep.times, options);
-    r.first_dual = std::move(c.first_dual);
-    u = std::move(c.w);
-    rep.status = c.converged ? Status::Converged : Status::NotConverged;
-    rep.message = c.message;
-    rep.contact_force = c.contact_force;
-    rep.linear_residual = c.linear_residual;
-    rep.contact = std::move(c.report);
-    r.contact = std::move(c.fields);
-  } else {
-    ScopedPhase phase(rep.times, "solve");
-    u = m.factor.solve(m.f);
-    rep.linear_residual = (m.K * u - m.f).norm() / std::max(m.f.norm(), 1e-300);
+    phase_start(options, "contact");
+    ScopedPhase phase(rep.times, "contact");
+    disc = discretize_contact(problem, r.model.mesh, r.model.dofs);
   }
 
-  if (options.stop_requested && options.stop_requested->load() && rep.status == Status::Converged) {
+  // @sect: the factorization of K, ordered as the dual operator asks.
+  const dual::FactorizationRequest request =
+      disc ? dual::factorization_request(problem.solver.dual_operator, disc->dofs)
+           : dual::FactorizationRequest{};
+  factorize_model(r.model, request, rep.times, options.on_phase_start);
+  rep.n_nodes = r.model.mesh.n_nodes();
+  rep.n_tets = r.model.mesh.n_tets();
+  rep.n_primal = r.model.dofs.n_free();
+  rep.factor = r.model.factor.info();
+  if (stop_requested(options)) throw Interrupted("interrupted before the solve");
+
+  // @sect: the displacement: one solve, or the outer loop of dual QPs.
+  const VectorXd u = disc ? solve_with_contact(problem, *disc, options, r) : solve_elastic(r);
+  if (stop_requested(options) && rep.status == Status::Converged) {
     rep.status = Status::NotConverged;
     rep.message = "interrupted";
   }
 
   // @sect: fields and the self-check of the result.
-  {
-    ScopedPhase phase(rep.times, "postprocess");
-    r.displacement = m.dofs.to_nodal(u);
-    rep.max_displacement = r.displacement.colwise().norm().maxCoeff();
-    compute_stresses(r);
-    rep.applied_force = applied_force_total(problem, m.mesh);
-    rep.reaction_force = reaction_total(m, problem, r.displacement);
-    rep.equilibrium_residual = (rep.applied_force + rep.contact_force + rep.reaction_force).norm() /
-                               std::max(rep.applied_force.norm(), 1e-300);
-  }
+  postprocess(problem, u, r);
   rep.time_s = total.seconds();
   return r;
 }

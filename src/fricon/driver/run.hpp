@@ -1,7 +1,8 @@
 #pragma once
-// driver: one whole run of a problem, in the order of the data flow:
-//   build the model (mesh, assembly, factorization) -> [contact discretization -> outer loop of
-//   dual QPs] -> displacement, stresses and the self-check of the result.
+// driver: one whole run of a problem, in the order of the data flow (theory.md §2-5):
+//   validate -> mesh, assembly -> [contact discretization] -> factorization (as the dual operator
+//   asks) -> [dual operator -> outer loop of dual QPs -> certificate] -> displacement, stresses
+//   and the self-check of the result.
 // The run returns everything the output stage writes; it never writes files itself.
 
 #include <optional>
@@ -43,13 +44,14 @@ struct RunResult {
   fe::NodalField displacement;  ///< 3 x n_nodes [m], zero at fixed components
   /// Per tetrahedron: stress (Voigt order 11,22,33,23,13,12) [Pa], 6 x n_tets.
   Eigen::Matrix<Real, 6, Eigen::Dynamic> stress;
-  VectorXd von_mises;                      ///< per tetrahedron [Pa]
-  std::optional<ContactFields> contact;    ///< fields on the contact surface
-  std::optional<DualSnapshot> first_dual;  ///< if RunOptions::keep_first_dual and contact
+  VectorXd von_mises;                         ///< per tetrahedron [Pa]
+  std::optional<ContactFields> contact;       ///< fields on the contact surface
+  std::optional<qp::DualProblem> first_dual;  ///< if RunOptions::keep_first_dual and contact
 };
 
-/// Solves the problem. Throws InputError/NumericalError for ill-posed input; a run whose
-/// iterations did not converge returns with report.status == NotConverged.
+/// Validates and solves the problem. Throws InputError/NumericalError for ill-posed input, and
+/// Interrupted for a stop requested before any iterate exists; a run whose iterations did not
+/// converge (or whose certificate failed) returns with report.status == NotConverged.
 RunResult run(const Problem& problem, const RunOptions& options = {});
 
 }  // namespace fricon::driver

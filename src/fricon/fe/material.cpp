@@ -8,6 +8,13 @@
 
 namespace fricon::fe {
 
+std::span<const std::string_view> material_parameters(MaterialModel model) {
+  static constexpr std::array<std::string_view, 2> kIsotropic{"young", "poisson"};
+  static constexpr std::array<std::string_view, 1> kAnisotropic{"voigt"};
+  return model == MaterialModel::Isotropic ? std::span<const std::string_view>(kIsotropic)
+                                           : std::span<const std::string_view>(kAnisotropic);
+}
+
 namespace {
 // Voigt index of the symmetric pair (i, j).
 constexpr int kVoigt[3][3] = {{0, 5, 4}, {5, 1, 3}, {4, 3, 2}};

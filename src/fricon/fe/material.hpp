@@ -3,15 +3,25 @@
 //
 // Convention: stress and strain vectors are ordered (11, 22, 33, 23, 13, 12); the strain vector
 // carries engineering shears (2 e23, 2 e13, 2 e12), so sigma = D * eps with D(I,J) = C_ijkl for
-// I = (ij), J = (kl). The paper's conditions on C (method.md §1) are checked on construction:
+// I = (ij), J = (kl). The paper's conditions on C (theory.md §1) are checked on construction:
 // the symmetries C_ijkl = C_jikl = C_klij and ellipticity C_ijkl e_ij e_kl >= c e_ij e_ij, c > 0.
 
 #include <array>
+#include <span>
 #include <string>
+#include <string_view>
 
+#include "fricon/core/enum_names.hpp"
 #include "fricon/core/types.hpp"
 
 namespace fricon::fe {
+
+/// How a material is given: isotropic (Young's modulus and Poisson's ratio) or anisotropic (a
+/// 6x6 Hooke matrix in Voigt notation).
+enum class MaterialModel { Isotropic, Anisotropic };
+
+/// The keys of [material] that `model` takes ({"young", "poisson"} or {"voigt"}).
+std::span<const std::string_view> material_parameters(MaterialModel model);
 
 using Voigt6 = Eigen::Matrix<Real, 6, 6>;
 
@@ -41,3 +51,12 @@ Material from_tensor(const HookeTensor& C, const std::string& where = "material"
 HookeTensor to_tensor(const Material& m);
 
 }  // namespace fricon::fe
+
+template <>
+struct fricon::EnumNames<fricon::fe::MaterialModel> {
+  static constexpr std::string_view what = "material.model";
+  static constexpr std::array<std::pair<fe::MaterialModel, std::string_view>, 2> table{{
+      {fe::MaterialModel::Isotropic, "isotropic"},
+      {fe::MaterialModel::Anisotropic, "anisotropic"},
+  }};
+};

@@ -198,7 +198,7 @@ std::string unescape(const Lines& in, std::string_view s) {
 
 }  // namespace
 
-void write_dual(const std::filesystem::path& path, const driver::DualSnapshot& d) {
+void write_dual(const std::filesystem::path& path, const qp::DualProblem& d) {
   const Index m = d.radius.size();
   FRICON_CHECK(m >= 1, "a dual problem needs at least one patch");
   FRICON_CHECK(d.h.size() == 3 * m, "h has " << d.h.size() << " entries, expected " << 3 * m);
@@ -244,7 +244,7 @@ void write_dual(const std::filesystem::path& path, const driver::DualSnapshot& d
   });
 }
 
-driver::DualSnapshot read_dual(const std::filesystem::path& path) {
+qp::DualProblem read_dual(const std::filesystem::path& path) {
   const std::string file = path.string();
   std::string text;
   {
@@ -260,7 +260,7 @@ driver::DualSnapshot read_dual(const std::filesystem::path& path) {
   const std::string_view magic = in.first();
   if (magic != kDualMagic) in.fail(fmt::format("not a dual file: line 1 must be '{}'", kDualMagic));
 
-  driver::DualSnapshot d;
+  qp::DualProblem d;
 
   // source <text>: everything after "source " verbatim (then unescaped).
   {

@@ -20,7 +20,7 @@
 #include <filesystem>
 #include <string>
 
-#include "fricon/driver/contact_solver.hpp"
+#include "fricon/qp/dual_problem.hpp"
 
 namespace fricon::io {
 
@@ -30,13 +30,13 @@ inline constexpr const char* kDualMagic = "# fricon dual v1";
 /// Writes `dual` to `path` atomically (see atomic_file.hpp). Throws fricon::Error if the sizes
 /// are inconsistent (Q not 3m x 3m, h not 3m, patch_area not m, with m = radius.size() >= 1) or
 /// a value is not finite, and when the file cannot be written.
-void write_dual(const std::filesystem::path& path, const driver::DualSnapshot& dual);
+void write_dual(const std::filesystem::path& path, const qp::DualProblem& dual);
 
 /// Reads a "fricon dual v1" file. Throws fricon::InputError naming the file and the line
 /// ("file:line: ...") on malformed input: wrong magic line, missing or misspelt keyword, wrong
 /// counts, a token that is not a finite number, a negative radius, a non-positive area, a Q
 /// that is not symmetric (|Q_ij - Q_ji| > 1e-8 max|Q|) or has a non-positive diagonal entry,
 /// or text after `end`. Positive definiteness is not checked.
-driver::DualSnapshot read_dual(const std::filesystem::path& path);
+qp::DualProblem read_dual(const std::filesystem::path& path);
 
 }  // namespace fricon::io

@@ -169,15 +169,13 @@ std::string get_string(const Context& ctx, const Field& f, std::string_view expe
   return s->get();
 }
 
-std::string get_choice(const Context& ctx, const Field& f,
-                       std::initializer_list<std::string_view> choices) {
-  std::string expected = "one of";
-  for (const auto c : choices)
-    expected += fmt::format("{} \"{}\"", expected.size() > 6 ? "," : "", c);
+/// A choice spelt as in the enum's table (core/enum_names.hpp).
+template <typename E>
+E get_enum(const Context& ctx, const Field& f) {
   const auto* s = f.node->as_string();
-  if (s == nullptr || std::find(choices.begin(), choices.end(), s->get()) == choices.end())
-    fail_expected(ctx, f, expected);
-  return s->get();
+  if (s != nullptr)
+    if (const auto v = enum_from_name<E>(s->get())) return *v;
+  fail_expected(ctx, f, enum_choices<E>());
 }
 
 bool get_bool(const Context& ctx, const Field& f) {
@@ -306,7 +304,7 @@ const auto non_negative = [](Real v) { return v >= 0.0; };
 
 void read_mesh(const Context& ctx, const Field& f, driver::MeshOptions& m) {
   const TableReader t(ctx, f, "a table [mesh]", {"kind", "size", "cells"});
-  if (auto k = t.find("kind")) m.kind = get_choice(ctx, *k, {"brick"});
+  if (auto k = t.find("kind")) m.kind = get_enum<driver::MeshKind>(ctx, *k);
   if (auto k = t.find("size")) m.size = get_reals<3>(ctx, *k, "a positive number [m]", positive);
   if (auto k = t.find("cells")) {
     const auto& a = get_array(ctx, *k, "an array of 3 integers");
@@ -329,8 +327,8 @@ void read_mesh(const Context& ctx, const Field& f, driver::MeshOptions& m) {
 
 void read_material(const Context& ctx, const Field& f, driver::MaterialOptions& m) {
   const TableReader t(ctx, f, "a table [material]", {"model", "young", "poisson", "voigt"});
-  if (auto k = t.find("model")) m.model = get_choice(ctx, *k, {"isotropic", "anisotropic"});
-  if (m.model == "isotropic") {
+  if (auto k = t.find("model")) m.model = get_enum<fe::MaterialModel>(ctx, *k);
+  if (m.model == fe::MaterialModel::Isotropic) {
     if (auto k = t.find("voigt"))
       fail(ctx, *k,
            "not used by model \"isotropic\" (set material.model = \"anisotropic\" to give a "
@@ -404,22 +402,20 @@ std::vector<T> read_table_array(const Context& ctx, const Field& f, std::string_
 
 void read_friction(const Context& ctx, const Field& f, driver::FrictionOptions& fr) {
   const TableReader t(ctx, f, "a table [contact.friction]", {"law", "param", "value", "t", "f"});
-  if (auto k = t.find("law")) fr.law = get_choice(ctx, *k, {"paper", "constant", "table"});
-  const std::vector<std::string_view> used = fr.law == "paper"      ? std::vector{"param"sv}
-                                             : fr.law == "constant" ? std::vector{"value"sv}
-                                                                    : std::vector{"t"sv, "f"sv};
+  if (auto k = t.find("law")) fr.law = get_enum<contact::FrictionLawKind>(ctx, *k);
+  const auto used = contact::friction_law_parameters(fr.law);
   for (const auto key : {"param"sv, "value"sv, "t"sv, "f"sv}) {
     if (std::find(used.begin(), used.end(), key) != used.end()) continue;
     if (auto k = t.find(key)) {
       std::string takes;
       for (const auto u : used)
         takes += fmt::format("{}{}", takes.empty() ? "" : ", ", u);
-      fail(ctx, *k, fmt::format("not used by law \"{}\" (it takes: {})", fr.law, takes));
+      fail(ctx, *k, fmt::format("not used by law \"{}\" (it takes: {})", enum_name(fr.law), takes));
     }
   }
-  if (fr.law == "paper") {
+  if (fr.law == contact::FrictionLawKind::Paper) {
     if (auto k = t.find("param")) fr.param = get_real(ctx, *k, "a positive number [1/m]", positive);
-  } else if (fr.law == "constant") {
+  } else if (fr.law == contact::FrictionLawKind::Constant) {
     if (auto k = t.find("value")) fr.value = get_real(ctx, *k, "a number >= 0", non_negative);
   } else {
     const Field kt = t.require("t", "law \"table\" needs slips t [m] and coefficients f");
@@ -448,7 +444,7 @@ void read_contact(const Context& ctx, const Field& f, driver::ContactOptions& c,
     c.boundary = get_string(ctx, *boundary_field, "a non-empty boundary tag", false);
   if (auto k = t.find("slip_bound"))
     c.slip_bound = get_real(ctx, *k, "a number >= 0 [Pa]", non_negative);
-  if (auto k = t.find("patches")) c.patches = get_choice(ctx, *k, {"chessboard"});
+  if (auto k = t.find("patches")) c.patches = get_enum<contact::PatchKind>(ctx, *k);
   if (auto k = t.find("friction")) read_friction(ctx, *k, c.friction);
 }
 
@@ -464,10 +460,9 @@ void read_solver(const Context& ctx, const Field& f, driver::SolverOptions& s) {
   if (auto k = t.find("qp_max"))
     s.qp_max = static_cast<int>(get_int(ctx, *k, "an integer >= 1", 1, INT_MAX));
   if (auto k = t.find("warm_start")) s.warm_start = get_bool(ctx, *k);
-  if (auto k = t.find("dual_operator"))
-    s.dual_operator = get_choice(ctx, *k, {"auto", "implicit", "dense", "schur", "forward"});
-  if (auto k = t.find("acceleration")) s.acceleration = get_choice(ctx, *k, {"none", "anderson"});
-  if (auto k = t.find("qp_variant")) s.qp_variant = get_choice(ctx, *k, {"bb", "paper", "spg"});
+  if (auto k = t.find("dual_operator")) s.dual_operator = get_enum<dual::DualOperatorKind>(ctx, *k);
+  if (auto k = t.find("acceleration")) s.acceleration = get_enum<outer::Acceleration>(ctx, *k);
+  if (auto k = t.find("qp_variant")) s.qp_variant = get_enum<qp::MpgpVariant>(ctx, *k);
   if (auto k = t.find("anderson_depth"))
     s.anderson_depth = static_cast<int>(get_int(ctx, *k, "an integer in [1, 20]", 1, 20));
 }
@@ -789,10 +784,10 @@ nlohmann::json to_json(const driver::Problem& p) {
   using nlohmann::json;
   json j;
   j["title"] = p.title;
-  j["mesh"] = {{"kind", p.mesh.kind}, {"size", p.mesh.size}, {"cells", p.mesh.cells}};
+  j["mesh"] = {{"kind", enum_name(p.mesh.kind)}, {"size", p.mesh.size}, {"cells", p.mesh.cells}};
   json& mat = j["material"];
-  mat["model"] = p.material.model;
-  if (p.material.model == "anisotropic") {
+  mat["model"] = enum_name(p.material.model);
+  if (p.material.model == fe::MaterialModel::Anisotropic) {
     if (p.material.voigt) mat["voigt"] = *p.material.voigt;
   } else {
     mat["young"] = p.material.young;
@@ -811,24 +806,28 @@ nlohmann::json to_json(const driver::Problem& p) {
     j["traction"].push_back({{"boundary", t.boundary}, {"value", vec_json(t.value)}});
   if (p.contact) {
     const auto& c = *p.contact;
-    json fr = {{"law", c.friction.law}};
-    if (c.friction.law == "paper") fr["param"] = c.friction.param;
-    if (c.friction.law == "constant") fr["value"] = c.friction.value;
-    if (c.friction.law == "table") {
+    json fr = {{"law", enum_name(c.friction.law)}};
+    if (c.friction.law == contact::FrictionLawKind::Paper) fr["param"] = c.friction.param;
+    if (c.friction.law == contact::FrictionLawKind::Constant) fr["value"] = c.friction.value;
+    if (c.friction.law == contact::FrictionLawKind::Table) {
       fr["t"] = c.friction.t;
       fr["f"] = c.friction.f;
     }
     j["contact"] = {{"boundary", c.boundary},
                     {"slip_bound", c.slip_bound},
-                    {"patches", c.patches},
+                    {"patches", enum_name(c.patches)},
                     {"friction", fr}};
   }
   const auto& s = p.solver;
-  j["solver"] = {{"outer_tol", s.outer_tol},       {"outer_max", s.outer_max},
-                 {"qp_rtol", s.qp_rtol},           {"qp_max", s.qp_max},
-                 {"warm_start", s.warm_start},     {"dual_operator", s.dual_operator},
-                 {"acceleration", s.acceleration}, {"anderson_depth", s.anderson_depth},
-                 {"qp_variant", s.qp_variant}};
+  j["solver"] = {{"outer_tol", s.outer_tol},
+                 {"outer_max", s.outer_max},
+                 {"qp_rtol", s.qp_rtol},
+                 {"qp_max", s.qp_max},
+                 {"warm_start", s.warm_start},
+                 {"dual_operator", enum_name(s.dual_operator)},
+                 {"acceleration", enum_name(s.acceleration)},
+                 {"anderson_depth", s.anderson_depth},
+                 {"qp_variant", enum_name(s.qp_variant)}};
   j["output"] = {{"dir", p.output.dir}};
   return j;
 }

@@ -30,6 +30,7 @@
 
 #include <Eigen/Core>
 
+#include "fricon/core/enum_names.hpp"
 #include "fricon/core/types.hpp"
 #include "fricon/qp/constraints.hpp"
 #include "fricon/qp/operator.hpp"
@@ -211,3 +212,12 @@ double estimate_norm(const Operator& A, Index n, int max_iterations, double tole
                      long* n_products = nullptr);
 
 }  // namespace fricon::qp
+
+template <>
+struct fricon::EnumNames<fricon::qp::MpgpVariant> {
+  static constexpr std::string_view what = "solver.qp_variant";
+  static constexpr std::array<std::pair<qp::MpgpVariant, std::string_view>, 2> table{{
+      {qp::MpgpVariant::Paper, "paper"},
+      {qp::MpgpVariant::BarzilaiBorwein, "bb"},
+  }};
+};

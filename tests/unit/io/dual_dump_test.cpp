@@ -84,9 +84,9 @@ double positive(double v) {
   return v != 0.0 ? std::abs(v) : 1.0;
 }
 
-driver::DualSnapshot random_snapshot(Index m, unsigned seed) {
+qp::DualProblem random_snapshot(Index m, unsigned seed) {
   std::mt19937_64 rng(seed);
-  driver::DualSnapshot d;
+  qp::DualProblem d;
   const Index n = 3 * m;
   d.Q.resize(n, n);
   for (Index i = 0; i < n; ++i) {
@@ -180,7 +180,7 @@ TEST_F(DualDump, ReadsHandWrittenFile) {
 
 // The file the writer produces is the documented layout, line by line.
 TEST_F(DualDump, WrittenLayout) {
-  driver::DualSnapshot d;
+  qp::DualProblem d;
   d.Q = Eigen::MatrixXd::Identity(3, 3) * 2e-12;
   d.Q(0, 1) = d.Q(1, 0) = 0.1;
   d.h = Eigen::Vector3d(1e-7, -0.0, 3.0);

@@ -1,0 +1,35 @@
+#pragma once
+// contact: the matrix B that couples displacements and multipliers (theory.md §2.4), and the
+// stability check of the multiplier space, condition (5.1) of [HL09] (theory.md §2.5).
+
+#include <string>
+
+#include "fricon/contact/contact_surface.hpp"
+#include "fricon/contact/patches.hpp"
+#include "fricon/core/types.hpp"
+#include "fricon/fe/dof_map.hpp"
+#include "fricon/mesh/tet_mesh.hpp"
+
+namespace fricon::contact {
+
+/// B over the free dofs: n_dual = 3 n_patches rows ordered (n, t1, t2) per patch,
+/// (B v)_{n,p} = int_{R_p} v.n dS and likewise for t1, t2 [m^2], exact for the P1 traces; fixed
+/// dofs have no column.
+SparseMatrix assemble_b(const mesh::TetMesh& mesh, const fe::DofMap& dofs,
+                        const ContactSurface& surface, const Patches& patches);
+
+/// How the stability of B was checked.
+struct StabilityReport {
+  Real ratio = 0.0;        ///< sigma_min / sigma_max of B
+  bool estimated = false;  ///< true: power and inverse iteration; false: dense eigensolve
+};
+
+/// Condition (5.1): B^T has full column rank on the contact dofs. Up to `dense_limit` rows the
+/// eigenvalues of B B^T are computed exactly (dense, O(n_dual^3)); beyond, B B^T (sparse:
+/// neighbouring patches only) is factored by a sparse Cholesky and its extreme eigenvalues
+/// estimated by power and inverse iteration (to about a per cent). Throws NumericalError naming
+/// `where` and the ratio when it is below `min_ratio`.
+StabilityReport check_stability(const SparseMatrix& B, const std::string& where,
+                                Real min_ratio = 1e-8, Index dense_limit = 500);
+
+}  // namespace fricon::contact

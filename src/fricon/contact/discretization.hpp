@@ -1,0 +1,52 @@
+#pragma once
+// contact: the whole contact discretization of a problem as one value (theory.md §2.2-2.6),
+// built once by discretize_contact and read by every later stage: the dual operator (B and the
+// contact dofs), the outer loop (surface, patches, slip bounds for the radii), the output, the
+// `check` command, the benchmarks and the dual dump.
+
+#include <string>
+#include <vector>
+
+#include "fricon/contact/b_matrix.hpp"
+#include "fricon/contact/contact_surface.hpp"
+#include "fricon/contact/patches.hpp"
+#include "fricon/core/types.hpp"
+#include "fricon/fe/dof_map.hpp"
+#include "fricon/mesh/tet_mesh.hpp"
+
+namespace fricon::contact {
+
+/// What discretize_contact needs to know of the problem, with the positions of the keys (for
+/// messages: "file:line:col" or "--set KEY=VALUE").
+struct ContactSpec {
+  std::string boundary;  ///< tag of the contact surface
+  PatchKind patches = PatchKind::Chessboard;
+  Real slip_bound = 0.0;  ///< g [Pa], the same at every surface node
+  std::string where_boundary = "contact.boundary";
+  std::string where_patches = "contact.patches";
+};
+
+struct ContactDiscretization {
+  ContactSurface surface;
+  Patches patches;
+  SparseMatrix B;       ///< n_dual x n_free [m^2], rows (n, t1, t2) per patch (b_matrix.hpp)
+  VectorXd slip_bound;  ///< g per surface node [Pa]
+  /// Initial gap per surface node [m]: distance to the obstacle along the normal (0 here: the
+  /// body rests on the foundation).
+  VectorXd gap;
+  /// The free dofs of the surface nodes, node by node: the only columns B touches.
+  std::vector<Index> dofs;
+  StabilityReport stability;       ///< condition (5.1), checked
+  std::string radius_integration;  ///< how the radii are integrated (radii.hpp)
+
+  Index n_patches() const { return patches.size(); }
+  Index n_dual() const { return 3 * patches.size(); }
+};
+
+/// Surface, patches, B, slip bounds and gap of the contact boundary, with the stability of B
+/// checked. Throws InputError (a tag that does not exist, a surface that is not planar or admits
+/// no such partition) and NumericalError (an unstable partition), naming the key's position.
+ContactDiscretization discretize_contact(const mesh::TetMesh& mesh, const fe::DofMap& dofs,
+                                         const ContactSpec& spec);
+
+}  // namespace fricon::contact

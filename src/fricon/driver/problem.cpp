@@ -1,0 +1,16 @@
+#include "fricon/driver/problem.hpp"
+
+namespace fricon::driver {
+
+std::string Problem::where(std::string_view key) const {
+  // "traction[1].value[2]" -> "traction[1].value" -> "traction[1]" -> "traction".
+  while (!key.empty()) {
+    if (const auto it = positions.find(key); it != positions.end()) return it->second;
+    const auto cut = key.find_last_of(".[");
+    if (cut == std::string_view::npos) break;
+    key = key.substr(0, cut);
+  }
+  return source;
+}
+
+}  // namespace fricon::driver

@@ -1,0 +1,77 @@
+#include "fricon/dual/dual_operator.hpp"
+
+#include <algorithm>
+
+#include <fmt/format.h>
+
+#include "fricon/core/error.hpp"
+
+namespace fricon::dual {
+
+namespace {
+// Auto forms Q by the forward sweep (measured the fastest on the paper's brick,
+// docs/benchmarks.md) while Q (n_dual^2 doubles) takes no more memory than the factor of K
+// already does, or at most this many multipliers (288 MB) on small meshes; beyond, Q stays
+// implicit.
+constexpr Index kDenseDualLimit = 6000;
+}  // namespace
+
+FactorizationRequest factorization_request(DualOperatorKind kind,
+                                           const std::vector<Index>& contact_dofs) {
+  FactorizationRequest r;
+  if (kind == DualOperatorKind::Schur) r.last = contact_dofs;
+  return r;
+}
+
+DualOperatorKind resolve(DualOperatorKind kind, const linalg::CholeskyInfo& factor, Index n_dual) {
+  if (kind != DualOperatorKind::Auto) return kind;
+  const double q_entries = static_cast<double>(n_dual) * static_cast<double>(n_dual);
+  const double limit = std::max(
+      factor.nnz_L, static_cast<double>(kDenseDualLimit) * static_cast<double>(kDenseDualLimit));
+  return q_entries <= limit ? DualOperatorKind::Forward : DualOperatorKind::Implicit;
+}
+
+DualOperator::DualOperator(const DualInput& input) : in_(input) {
+  u0_ = in_.factor.solve(in_.f);
+  ++n_kinv_;
+  h_ = in_.B * u0_;
+}
+
+VectorXd DualOperator::displacement(const VectorXd& lambda) const {
+  ++n_kinv_;
+  return in_.factor.solve(VectorXd(in_.f - in_.B.transpose() * lambda));
+}
+
+MatrixXd DualOperator::to_dense() const {
+  if (const MatrixXd* Q = dense()) return *Q;
+  const Index n = size();
+  MatrixXd Q(n, n);
+  VectorXd e = VectorXd::Zero(n), y(n);
+  for (Index j = 0; j < n; ++j) {
+    e(j) = 1.0;
+    apply(e, y);
+    Q.col(j) = y;
+    e(j) = 0.0;
+  }
+  return Q;
+}
+
+qp::Operator DualOperator::as_qp_operator() const {
+  return [this](const VectorXd& x, VectorXd& y) { apply(x, y); };
+}
+
+std::unique_ptr<DualOperator> make_dual_operator(DualOperatorKind kind, const DualInput& input) {
+  switch (resolve(kind, input.factor.info(), input.B.rows())) {
+    case DualOperatorKind::Implicit:
+      return make_implicit_operator(input);
+    case DualOperatorKind::Forward:
+      return make_forward_operator(input);
+    case DualOperatorKind::Schur:
+      return make_schur_operator(input);
+    case DualOperatorKind::Auto:
+      break;
+  }
+  throw Error(fmt::format("make_dual_operator: invalid kind {}", static_cast<int>(kind)));
+}
+
+}  // namespace fricon::dual

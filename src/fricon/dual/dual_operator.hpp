@@ -1,0 +1,97 @@
+#pragma once
+// dual: the dual Hessian Q = B K^-1 B^T and everything the outer loop asks of it (theory.md §3):
+// products with Q, Q itself when an operator forms it, h = B K^-1 f, and the displacement
+// w = K^-1 (f - B^T lambda) on the contact dofs (inside the outer loop) and everywhere (once at
+// the end). One implementation per file, chosen by DualOperatorKind:
+//   implicit_operator.cpp  each product is a solve with the factor of K (the paper's way)
+//   forward_operator.cpp   Q formed by a forward sweep over the reach of the contact dofs
+//   schur_operator.cpp     Q from the trailing block of a factor ordered with the contact dofs last
+// An operator may need a particular factorization of K (schur does); the driver asks for it with
+// factorization_request() before it factorizes, so nothing else knows about orderings.
+
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "fricon/core/types.hpp"
+#include "fricon/dual/dual_operator_kind.hpp"
+#include "fricon/linalg/cholesky.hpp"
+#include "fricon/qp/operator.hpp"
+
+namespace fricon::dual {
+
+/// What an operator needs of the factorization of K.
+struct FactorizationRequest {
+  /// Dofs to order after all others, so that the trailing block of the factor is the Cholesky
+  /// factor of the Schur complement onto them; empty for the default (nested dissection) order.
+  std::vector<Index> last;
+};
+
+/// The request of operator `kind` (schur: the contact dofs last; the others: nothing).
+FactorizationRequest factorization_request(DualOperatorKind kind,
+                                           const std::vector<Index>& contact_dofs);
+
+/// Auto resolved for a factor of this size: Forward while the dense Q (n_dual^2 entries) is no
+/// larger than the factor's nnz(L) or n_dual <= 6000, else Implicit. Other kinds are returned
+/// as they are.
+DualOperatorKind resolve(DualOperatorKind kind, const linalg::CholeskyInfo& factor, Index n_dual);
+
+/// What an operator is built from; every reference must outlive the operator.
+struct DualInput {
+  const linalg::CholeskyFactor& factor;    ///< of K, built with factorization_request(kind)
+  const SparseMatrix& B;                   ///< n_dual x n_free [m^2]
+  const VectorXd& f;                       ///< load over the free dofs [N]
+  const std::vector<Index>& contact_dofs;  ///< the free dofs of the contact surface's nodes
+  /// Called while Q is being formed (it may throw fricon::Interrupted to stop); optional.
+  std::function<void()> poll;
+};
+
+class DualOperator {
+ public:
+  virtual ~DualOperator() = default;
+  DualOperator(const DualOperator&) = delete;
+  DualOperator& operator=(const DualOperator&) = delete;
+
+  virtual DualOperatorKind kind() const = 0;
+  /// n_dual, the number of multipliers.
+  Index size() const { return h_.size(); }
+  /// h = B K^-1 f [m^3].
+  const VectorXd& h() const { return h_; }
+  /// u0 = K^-1 f over the free dofs [m].
+  const VectorXd& u0() const { return u0_; }
+
+  /// y = Q x [m^3/Pa times the unit of x]; y arrives sized like x and is overwritten.
+  virtual void apply(const VectorXd& x, VectorXd& y) const = 0;
+  /// Q [m^3/Pa] when the operator forms it, else null.
+  virtual const MatrixXd* dense() const { return nullptr; }
+  /// w = K^-1 (f - B^T lambda) on the contact dofs; w is sized n_free on return and its other
+  /// entries are left as they were (exact on every dof pivoted on the contact dofs' reach).
+  virtual void contact_displacement(const VectorXd& lambda, VectorXd& w) const = 0;
+
+  /// w = K^-1 (f - B^T lambda) over all free dofs: one solve with the factor.
+  VectorXd displacement(const VectorXd& lambda) const;
+  /// Q as a dense matrix: dense() if formed, else n_dual products with unit vectors.
+  MatrixXd to_dense() const;
+  /// The operator as the QP layer applies it.
+  qp::Operator as_qp_operator() const;
+  /// Solves with the factor of K done by this operator so far (a block of m columns counts m).
+  long n_kinv() const { return n_kinv_; }
+
+ protected:
+  /// Computes u0 and h (one solve).
+  explicit DualOperator(const DualInput& input);
+  DualInput in_;
+  VectorXd h_, u0_;
+  mutable long n_kinv_ = 0;
+};
+
+/// The operator of `kind` (Auto resolved by resolve()). Throws Error if the factor was not built
+/// with factorization_request(kind), and whatever `poll` throws.
+std::unique_ptr<DualOperator> make_dual_operator(DualOperatorKind kind, const DualInput& input);
+
+/// The implementations, one per file (used by make_dual_operator).
+std::unique_ptr<DualOperator> make_implicit_operator(const DualInput& input);
+std::unique_ptr<DualOperator> make_forward_operator(const DualInput& input);
+std::unique_ptr<DualOperator> make_schur_operator(const DualInput& input);
+
+}  // namespace fricon::dual

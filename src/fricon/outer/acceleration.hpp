@@ -1,0 +1,26 @@
+#pragma once
+// outer: how the successive approximations are accelerated ([solver] acceleration).
+
+#include <array>
+#include <string_view>
+#include <utility>
+
+#include "fricon/core/enum_names.hpp"
+
+namespace fricon::outer {
+
+enum class Acceleration {
+  None,      ///< the paper's plain iteration x^k = Psi(x^(k-1))
+  Anderson,  ///< Anderson mixing of the last iterates (theory.md §5.3)
+};
+
+}  // namespace fricon::outer
+
+template <>
+struct fricon::EnumNames<fricon::outer::Acceleration> {
+  static constexpr std::string_view what = "solver.acceleration";
+  static constexpr std::array<std::pair<outer::Acceleration, std::string_view>, 2> table{{
+      {outer::Acceleration::None, "none"},
+      {outer::Acceleration::Anderson, "anderson"},
+  }};
+};
