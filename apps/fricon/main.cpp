@@ -4,6 +4,7 @@
 
 #include <spawn.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <atomic>
 #include <csignal>
@@ -39,7 +40,7 @@ std::string join_command_line(int argc, char** argv) {
 
 void print_summary(const fricon::driver::RunResult& result, const std::filesystem::path& dir) {
   const auto& r = result.report;
-  fmt::print("fricon {}: {}\n", FRICON_VERSION, fricon::driver::to_string(r.status));
+  fmt::print("fricon {}: {}\n", FRICON_VERSION, fricon::enum_name(r.status));
   fmt::print("  mesh          {} nodes, {} tetrahedra\n", r.n_nodes, r.n_tets);
   fmt::print("  unknowns      n_primal = {}\n", r.n_primal);
   fmt::print("  factor        nnz(L) = {:.0f}, ordering {}\n", r.factor.nnz_L, r.factor.ordering);
@@ -47,14 +48,22 @@ void print_summary(const fricon::driver::RunResult& result, const std::filesyste
     const auto& c = *r.contact;
     fmt::print("  contact       '{}': {} patches, n_dual = {}, {} contact nodes, friction {}\n",
                c.boundary, c.n_patches, c.n_dual, c.n_contact_nodes, c.friction_law);
-    fmt::print("  outer loop    {} iterations, err(k):", c.outer_iterations);
+    fmt::print("  outer loop    {} iterations ({}), err(k):", c.outer_iterations,
+               fricon::enum_name(c.termination));
     for (double e : c.err_history)
       fmt::print(" {:.2e}", e);
     fmt::print(
         "\n  dual QP       {} MPGP steps, n_mult = {} products with Q ({}), {} solves with K\n",
         c.qp_iterations, c.n_mult, fricon::enum_name(c.dual_operator), c.n_kinv);
-    fmt::print("  KKT           feasibility {:.1e}, stationarity {:.1e}, complementarity {:.1e}\n",
-               c.kkt.feasibility, c.kkt.stationarity, c.kkt.complementarity);
+    fmt::print(
+        "  KKT           feasibility {:.1e}, stationarity {:.1e}, complementarity {:.1e}: max "
+        "{:.1e} {} {:.1e} = 100 qp_rtol, certificate {}\n",
+        c.kkt.feasibility, c.kkt.stationarity, c.kkt.complementarity, c.kkt.max(),
+        c.kkt.max() <= c.kkt_bound ? "<=" : ">", c.kkt_bound,
+        c.kkt.max() <= c.kkt_bound ? "passed" : "FAILED");
+    if (c.n_objective_increases > 0)
+      fmt::print("  monotonicity  {} QP steps increased the objective (expected 0)\n",
+                 c.n_objective_increases);
     fmt::print(
         "  ||w_hn^+||    L2 {:.3e} m^2, max {:.3e} m; max(-w_n) {:.3e} m, max ||w_t|| {:.3e} m\n",
         c.wn_pos_l2, c.wn_pos_inf, c.max_neg_wn, c.max_wt);
@@ -78,14 +87,33 @@ void print_summary(const fricon::driver::RunResult& result, const std::filesyste
 
 enum class Verbosity { Quiet, Normal, Verbose };
 
-// Ctrl-C (SIGINT) and SIGTERM ask the run to stop at its next QP step; the run then writes its
-// last iterate as not converged. A second signal ends the program at once.
+// Ctrl-C (SIGINT) and SIGTERM. Once the outer loop has started there is an iterate to save: the
+// signal asks the run to stop at its next QP step, and the run writes its last iterate as not
+// converged. Before (assembly, factorization, forming Q: long library calls with nothing to
+// save) the program ends at once with exit code 2 and no results. A second signal ends it at
+// once in any case.
 std::atomic<bool> g_stop{false};
+std::atomic<bool> g_has_iterate{false};
+static_assert(std::atomic<bool>::is_always_lock_free, "the signal handler needs a lock-free flag");
 extern "C" void on_signal(int sig) {
+  if (!g_has_iterate.load()) {
+    // Only async-signal-safe calls here: write(2) and _exit(2).
+    constexpr char kMessage[] = "fricon: interrupted (no iterate to write yet)\n";
+    [[maybe_unused]] const ssize_t n = write(STDERR_FILENO, kMessage, sizeof kMessage - 1);
+    _exit(kNotConverged);
+  }
   if (g_stop.exchange(true)) {
     std::signal(sig, SIG_DFL);
     std::raise(sig);
   }
+}
+
+void install_signal_handlers() {
+  struct sigaction action {};
+  action.sa_handler = on_signal;
+  sigemptyset(&action.sa_mask);
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
 }
 
 struct SolveOptions {
@@ -163,8 +191,12 @@ int solve(const std::string& file, const SolveOptions& so, const std::string& co
   fricon::driver::RunOptions options = progress_options(so.verbosity, clock);
   options.keep_first_dual = !so.dump_dual.empty();
   options.stop_requested = &g_stop;
-  std::signal(SIGINT, on_signal);
-  std::signal(SIGTERM, on_signal);
+  // From the outer loop on, a signal stops the run at its next QP step with an iterate to save.
+  options.on_phase_start = [progress = options.on_phase_start](const std::string& phase) {
+    if (phase == "outer loop") g_has_iterate.store(true);
+    if (progress) progress(phase);
+  };
+  install_signal_handlers();
   const fricon::driver::RunResult result = fricon::driver::run(problem, options);
   if (!so.dump_dual.empty()) {
     if (!result.first_dual)
@@ -273,10 +305,9 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("fricon ") + FRICON_VERSION);
   int threads = 0;
   app.add_option("--threads", threads,
-                 "Threads of the BLAS (factorization, forming Q). Default: one per core, or\n"
-                 "OPENBLAS_NUM_THREADS. Use 1 when other busy processes share the machine\n"
-                 "(parallel parameter studies): spinning BLAS threads are then several times\n"
-                 "slower")
+                 "Threads of the BLAS (factorization, forming Q). Default: OPENBLAS_NUM_THREADS\n"
+                 "if set, else the cores that other runnable processes leave free (1 on a busy\n"
+                 "machine, where spinning BLAS threads would be several times slower)")
       ->check(CLI::Range(1, 1024));
   app.fallthrough();
 
@@ -345,7 +376,11 @@ int main(int argc, char** argv) {
   }
 
   try {
-    if (threads > 0) fricon::linalg::set_threads(threads);
+    if (threads > 0) {
+      fricon::linalg::set_threads(threads);
+    } else if (std::getenv("OPENBLAS_NUM_THREADS") == nullptr) {
+      fricon::linalg::set_threads(fricon::linalg::threads_for_load());
+    }
     solve_opt.verbosity = quiet     ? Verbosity::Quiet
                           : verbose ? Verbosity::Verbose
                                     : Verbosity::Normal;

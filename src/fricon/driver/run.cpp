@@ -8,10 +8,6 @@
 
 namespace fricon::driver {
 
-std::string to_string(Status s) {
-  return s == Status::Converged ? "converged" : "not_converged";
-}
-
 namespace {
 
 bool stop_requested(const RunOptions& o) {

@@ -15,8 +15,8 @@
 
 namespace fricon::driver {
 
+/// The outcome of a run as the report and the exit code give it.
 enum class Status { Converged, NotConverged };
-std::string to_string(Status);
 
 /// What a run reports (the JSON report serialises this struct).
 struct RunReport {
@@ -55,3 +55,12 @@ struct RunResult {
 RunResult run(const Problem& problem, const RunOptions& options = {});
 
 }  // namespace fricon::driver
+
+template <>
+struct fricon::EnumNames<fricon::driver::Status> {
+  static constexpr std::string_view what = "status";
+  static constexpr std::array<std::pair<driver::Status, std::string_view>, 2> table{{
+      {driver::Status::Converged, "converged"},
+      {driver::Status::NotConverged, "not_converged"},
+  }};
+};

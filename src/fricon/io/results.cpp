@@ -21,7 +21,7 @@ nlohmann::json report_json(const driver::Problem& problem, const driver::RunResu
   const driver::RunReport& r = result.report;
   nlohmann::json j;
   j["fricon_version"] = FRICON_VERSION;
-  j["status"] = driver::to_string(r.status);
+  j["status"] = enum_name(r.status);
   j["message"] = r.message;
   j["source"] = problem.source;
   j["overrides"] = context.overrides;
@@ -66,7 +66,11 @@ nlohmann::json report_json(const driver::Problem& problem, const driver::RunResu
     j["total_normal_force"] = c.total_normal_force;
     j["kkt"] = {{"feasibility", c.kkt.feasibility},
                 {"stationarity", c.kkt.stationarity},
-                {"complementarity", c.kkt.complementarity}};
+                {"complementarity", c.kkt.complementarity},
+                {"max", c.kkt.max()},
+                {"bound", c.kkt_bound}};
+    j["termination"] = enum_name(c.termination);
+    j["n_objective_increases"] = c.n_objective_increases;
     nlohmann::json history = nlohmann::json::array();
     for (const auto& it : c.history)
       history.push_back({{"k", it.k},
@@ -74,15 +78,19 @@ nlohmann::json report_json(const driver::Problem& problem, const driver::RunResu
                          {"qp_iterations", it.qp_iterations},
                          {"qp_products", it.qp_products},
                          {"qp_rel_gp", it.qp_rel_gp},
-                         {"qp_termination", it.qp_termination},
+                         {"qp_termination", enum_name(it.qp_termination)},
+                         {"n_objective_increases", it.n_objective_increases},
                          {"seconds", it.seconds}});
     j["contact"] = {{"boundary", c.boundary},
                     {"friction_law", c.friction_law},
-                    {"dual_operator", c.dual_operator},
+                    {"dual_operator", enum_name(c.dual_operator)},
                     {"n_patches", c.n_patches},
                     {"n_surface_nodes", c.n_surface_nodes},
                     {"n_contact_nodes", c.n_contact_nodes},
                     {"stability_ratio", c.stability_ratio},
+                    {"stability_estimated", c.stability_estimated},
+                    {"radius_integration", c.radius_integration},
+                    {"contraction_ratio", c.contraction_ratio},
                     {"norm_Q", c.norm_Q},
                     {"fixed_point_residual", c.fixed_point_residual},
                     {"history", history}};

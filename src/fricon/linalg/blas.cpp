@@ -1,7 +1,11 @@
 #include "fricon/linalg/blas.hpp"
 
 #include <algorithm>
+#include <charconv>
+#include <fstream>
 #include <limits>
+#include <string>
+#include <thread>
 
 #include "fricon/core/error.hpp"
 
@@ -44,6 +48,20 @@ void set_threads(int n) {
 
 int threads() {
   return openblas_get_num_threads();
+}
+
+int threads_for_load() {
+  const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  // /proc/loadavg: "0.52 0.58 0.59 3/312 4711"; the fourth field is runnable/total tasks, and
+  // the runnable ones include this process.
+  std::ifstream in("/proc/loadavg");
+  double avg1 = 0, avg5 = 0, avg15 = 0;
+  std::string tasks;
+  if (!(in >> avg1 >> avg5 >> avg15 >> tasks)) return cores;
+  int runnable = 1;
+  const auto [end, ec] = std::from_chars(tasks.data(), tasks.data() + tasks.size(), runnable);
+  if (ec != std::errc{}) return cores;
+  return std::clamp(cores - std::max(0, runnable - 1), 1, cores);
 }
 
 void solve_lower(ConstBlockRef L, BlockRef X, bool transpose) {

@@ -20,6 +20,11 @@ void set_threads(int n);
 /// The number of threads the BLAS uses.
 int threads();
 
+/// Threads for the machine's present load: the cores not taken by other runnable tasks (from the
+/// instantaneous count in /proc/loadavg), at least 1 and at most the number of cores. On a busy
+/// machine this is 1, where spinning BLAS threads would steal time from the working one.
+int threads_for_load();
+
 /// X <- L^-1 X, or L^-T X when `transpose`. L is square and lower triangular (its strict upper
 /// part is not read), X has L.rows() rows.
 void solve_lower(ConstBlockRef L, BlockRef X, bool transpose = false);

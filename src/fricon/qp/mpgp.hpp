@@ -221,3 +221,14 @@ struct fricon::EnumNames<fricon::qp::MpgpVariant> {
       {qp::MpgpVariant::BarzilaiBorwein, "bb"},
   }};
 };
+
+template <>
+struct fricon::EnumNames<fricon::qp::Termination> {
+  static constexpr std::string_view what = "qp termination";
+  static constexpr std::array<std::pair<qp::Termination, std::string_view>, 4> table{{
+      {qp::Termination::Converged, "converged"},
+      {qp::Termination::MaxIterations, "max_iterations"},
+      {qp::Termination::NumericalFailure, "numerical_failure"},
+      {qp::Termination::UserStopped, "user_stopped"},
+  }};
+};
