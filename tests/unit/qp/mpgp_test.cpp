@@ -650,6 +650,148 @@ TEST_P(MpgpVariants, WarmStartAtSolutionTakesNoStep) {
 }
 
 // ---------------------------------------------------------------------------------------------
+// Regression pin
+
+// The exact behaviour of both variants on three fixed problems (12, 30 and 60 unknowns, bounds
+// and discs, some of each active; the second from an infeasible start), recorded from the code
+// as it was before MPGP was restructured into named steps and required to stay the same: the
+// product counts of Paper are what reproduces the n_mult column of the paper's Table 1 (`fricon
+// paper`), so a change that alters them, even by one product, changes the reproduced results.
+// Change these numbers only with an intended change of the algorithm, after re-checking `fricon
+// paper`. The problems are drawn through std::normal_distribution and
+// std::uniform_real_distribution, whose algorithms the standard leaves to the library: the numbers
+// are those of libstdc++, and the test is skipped with another standard library.
+struct PinnedCounts {
+  int iterations, n_cg, n_expansion, n_proportioning;
+  long n_products;
+  int n_fallbacks, n_refreshes;
+};
+
+struct PinnedRun {
+  PinnedCounts counts;
+  std::vector<double> x;  // the final iterate
+};
+
+struct PinnedProblem {
+  Index n_patches;  // random_contact_problem(n_patches, cond, seed)
+  double cond;
+  unsigned seed;
+  double rel_tolerance;
+  bool infeasible_start;  // start from 2 N(0, 1) (std::mt19937 seed 7) instead of 0
+};
+
+struct PinnedCase {
+  PinnedProblem problem;
+  PinnedRun paper, bb;
+};
+
+// Counts: iterations, n_cg, n_expansion, n_proportioning, n_products, n_fallbacks, n_refreshes.
+const std::vector<PinnedCase>& pinned_cases() {
+  // clang-format off
+  static const std::vector<PinnedCase> cases = {
+      {{4, 100.0, 41u, 1e-10, false},
+       {{219, 5, 3, 211, 223, 0, 0},
+        {0.013592065402163053, -0.031334696914938898, 0.036270360239960525, 0.012209626792763353,
+         0.050712951241713003, -0.081146166146292997, 0, -0.0097499888099906312,
+         -0.01839047255865223, 0, -0.079207062243079343, -0.021365074539348362}},
+       {{167, 19, 13, 135, 181, 64, 0},
+        {0.013592065401309198, -0.031334696914568597, 0.036270360240280443, 0.01220962679196516,
+         0.050712951242313793, -0.081146166145917534, 0, -0.0097499888092873674,
+         -0.018390472559025074, 0, -0.07920706224277245, -0.021365074539351898}}},
+      {{10, 1000.0, 44u, 1e-6, true},
+       {{288, 163, 12, 113, 301, 0, 0},
+        {0, -0.0067336991118499938, -0.013172353328159908, 0.016413057860587301,
+         0.0091120814938779066, 0.0042653952479856042, 0.0016098888999979721, -0.015713371379424863,
+         -0.01729780771807142, 0, 0.024951758351422285, 0.0027314807011256268,
+         0, 0.016427836123637667, -0.013363482701378352, 0.023392592175033148,
+         -0.0031189379482196742, 0.0036970554882001399, 0, 0.0085001492983828811,
+         -0.0035823550666708899, 0, -0.0063864133113011, -0.015480133104304215,
+         0.024681335101465092, 0.0090564779305192227, -0.0183408365084262, 0,
+         0.0057714368926852144, -0.0085977769754733008}},
+       {{287, 145, 33, 109, 322, 0, 1},
+        {0, -0.0067337204465824129, -0.013172310774276639, 0.016413120841271243,
+         0.0091120777073582793, 0.0042654033370450083, 0.0016098181976651551, -0.015713293460335391,
+         -0.01729782934255306, 0, 0.02495166425614569, 0.0027315334581215528,
+         0, 0.016427773676458986, -0.013363496823376907, 0.023392479691008362,
+         -0.0031189977583822226, 0.0036970080902406209, 0, 0.0085001611124037018,
+         -0.0035823574007082717, 0, -0.0063863787691796391, -0.015480189478890937,
+         0.024681305821627097, 0.0090564642989892138, -0.018340883121287076, 0,
+         0.0057713558487327574, -0.0085977541528970726}}},
+      {{20, 300.0, 43u, 1e-8, false},
+       {{345, 130, 8, 207, 354, 0, 0},
+        {0, 0.05079275441067263, 0.088554204310152984, 0.015527233065237773,
+         -0.055466200615592105, -0.026167612016039492, 0.052899058940591555, 0.12102066635723328,
+         -0.018995995832536649, 0, 0, -0,
+         0.021889334253405932, -0.062961965781190177, 0.029293380019950809, 0.085439831611032385,
+         0.029231313566599752, -0.0087659196063732386, 0.080652523100748288, -0.010003414033616083,
+         0.020776925779796663, 0.0054317634676112978, 0.088295105419983561, 0.087459173239374424,
+         0.09056985574851964, -0.023991169653818704, 0.015623428471014311, 0.082452754018527724,
+         -0.023827122819724749, 0.071098784434423204, 0, 0.07159120341829775,
+         -0.061268265574446749, 0.056221142380910021, -0.035332806484322951, 0.04781096514392686,
+         0, 0.04723438243684179, 0.023498641222315025, 0.07515473005394864,
+         -0.039958867220385483, 0.0053325686988983136, 0.054136964605605985, 0,
+         -0, 0, -0.17842746288460506, 0.0029610149809449768,
+         0.054084175716934683, -0, -0, 0.046547926277291818,
+         0.12117521806326625, 0.023093177441188679, 0.033948583010627253, -0,
+         -0, 0, 0.016384707381765031, 0.043113123534926114}},
+       {{307, 125, 44, 138, 352, 10, 0},
+        {0, 0.050792754304301517, 0.088554204219854979, 0.015527233111967634,
+         -0.055466200634591831, -0.026167611975766711, 0.052899058802712673, 0.12102066619495266,
+         -0.018995995649747396, 0, 0, -0,
+         0.021889334189401439, -0.062961965721496913, 0.029293380148253029, 0.085439831365253446,
+         0.02923131379833321, -0.0087659193909059088, 0.080652523162155154, -0.010003413873086356,
+         0.02077692588141155, 0.0054317637139090344, 0.088295105060943999, 0.087459173336886992,
+         0.090569856006722751, -0.023991169705305109, 0.015623428176990506, 0.082452753519131686,
+         -0.023827122704215012, 0.071098784385519628, 0, 0.07159120333532365,
+         -0.061268265642687295, 0.056221141976495428, -0.035332806347186024, 0.047810964963830006,
+         0, 0.047234382436666916, 0.023498641222666532, 0.075154729956132427,
+         -0.039958867222562117, 0.0053325686825880132, 0.054136964455948788, 0,
+         -0, 0, -0.17842746231685583, 0.0029610149862943774,
+         0.054084176131113486, -0, -0, 0.046547926211886997,
+         0.12117521803736105, 0.02309317737692625, 0.033948582819534223, -0,
+         -0, 0, 0.016384707436888281, 0.043113123506921314}}}};
+  // clang-format on
+  return cases;
+}
+
+TEST(MpgpRegression, CountsAndIteratesArePinned) {
+#ifndef __GLIBCXX__
+  GTEST_SKIP() << "the pinned problems are those drawn by libstdc++'s distributions";
+#endif
+  for (const auto& [k, paper, bb] : pinned_cases()) {
+    const Problem prob = random_contact_problem(k.n_patches, k.cond, k.seed);
+    const Index n = prob.b.size();
+    for (const auto& [variant, pin] :
+         {std::pair{MpgpVariant::Paper, &paper}, std::pair{MpgpVariant::BarzilaiBorwein, &bb}}) {
+      MpgpOptions opt;
+      opt.variant = variant;
+      opt.rel_tolerance = k.rel_tolerance;
+      Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
+      if (k.infeasible_start) {
+        std::mt19937 rng(7);
+        x = 2.0 * random_vector(n, rng);
+      }
+      const auto rep = solve_mpgp(dense_operator(prob.M), prob.b, prob.c, opt, x);
+      const std::string where = "n " + std::to_string(n) + " seed " + std::to_string(k.seed) +
+                                (variant == MpgpVariant::Paper ? " paper\n" : " bb\n") + rep.full();
+      ASSERT_EQ(rep.termination, Termination::Converged) << where;
+      const PinnedCounts& c = pin->counts;
+      EXPECT_EQ(rep.iterations, c.iterations) << where;
+      EXPECT_EQ(rep.n_cg, c.n_cg) << where;
+      EXPECT_EQ(rep.n_expansion, c.n_expansion) << where;
+      EXPECT_EQ(rep.n_proportioning, c.n_proportioning) << where;
+      EXPECT_EQ(rep.n_products, c.n_products) << where;
+      EXPECT_EQ(rep.n_fallbacks, c.n_fallbacks) << where;
+      EXPECT_EQ(rep.n_refreshes, c.n_refreshes) << where;
+      ASSERT_EQ(static_cast<Index>(pin->x.size()), n);
+      const Eigen::Map<const Eigen::VectorXd> x_pin(pin->x.data(), n);
+      EXPECT_LE((x - x_pin).lpNorm<Eigen::Infinity>(), 1e-12 * x_pin.lpNorm<Eigen::Infinity>())
+          << where;
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
 // Edge cases and failures
 
 TEST_P(MpgpVariants, ZeroRightHandSideGivesZeroSolution) {
