@@ -308,7 +308,7 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m, PhaseTimes&
   qopt.rel_tolerance = so.qp_rtol;
   qopt.max_iterations = so.qp_max;
   qopt.norm_A = rep.norm_Q;
-  qopt.variant = qp::mpgp_variant_from_string(so.qp_variant);
+  qopt.variant = parse_enum<qp::MpgpVariant>(so.qp_variant);
   qopt.monitor = [&options](const qp::MpgpIteration& it) {
     if (stop_requested(options)) return false;
     return options.on_qp_iteration ? options.on_qp_iteration(it) : true;
@@ -357,7 +357,7 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m, PhaseTimes&
     it.qp_iterations = last_qp.iterations;
     it.qp_products = last_qp.n_products;
     it.qp_rel_gp = last_qp.rel_gp;
-    it.qp_termination = qp::to_string(last_qp.termination);
+    it.qp_termination = std::string(enum_name(last_qp.termination));
     {
       ScopedPhase phase(times, "recovery");
       recover(m, B, dual, lambda, w, rep.n_kinv);
