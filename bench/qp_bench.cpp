@@ -67,7 +67,7 @@ void BM_SolveMpgp(benchmark::State& state) {
   fricon::qp::MpgpOptions opt;  // rel_tolerance 1e-6, as in [HL09]
   opt.norm_A = p.norm_Q;
   opt.variant = static_cast<fricon::qp::MpgpVariant>(state.range(1));
-  state.SetLabel(fricon::qp::to_string(opt.variant));
+  state.SetLabel(std::string(fricon::enum_name(opt.variant)));
   Eigen::VectorXd x(p.h.size());
   fricon::qp::MpgpReport rep;
   for (auto _ : state) {

@@ -20,7 +20,7 @@
 // KKT residual of the last QP and the relative difference of the final phi from the Paper
 // variant's.
 //
-//   build/bench/qp_variants_bench [--n 4,8,12,16] [--dump FILE ...] [--variants paper,spg,...]
+//   build/bench/qp_variants_bench [--n 4,8,12,16] [--dump FILE ...] [--variants paper,bb]
 //                                 [--tol 1e-6,1e-8] [--reps 5] [--no-run]
 
 #include <algorithm>
@@ -59,8 +59,8 @@ namespace fs = std::filesystem;
 namespace qp = fricon::qp;
 
 struct Settings {
-  std::vector<qp::MpgpVariant> variants = {qp::MpgpVariant::Paper, qp::MpgpVariant::BarzilaiBorwein,
-                                           qp::MpgpVariant::SpectralProjectedGradient};
+  std::vector<qp::MpgpVariant> variants = {qp::MpgpVariant::Paper,
+                                           qp::MpgpVariant::BarzilaiBorwein};
   std::vector<double> tols = {1e-6, 1e-8};
   int reps = 5;
   bool run = true;
@@ -154,13 +154,14 @@ void single_qp(const Case& k, const Settings& s) {
         paper_ms = t;
         paper_products = rep.n_products;
       }
-      fmt::print(
-          "{:<10} {:>5} {:>8.0e} {:<14} {:>7} {:>8} {:>9.2f} {:>9.2e} {:>7} {:>7}  {}\n", k.name,
-          k.h.size(), tol, qp::to_string(v), rep.iterations, rep.n_products, t, kkt_max(k, c, l),
-          paper_products > 0 ? fmt::format("{:.2f}", static_cast<double>(rep.n_products) /
-                                                         static_cast<double>(paper_products))
-                             : "-",
-          paper_ms > 0 ? fmt::format("{:.2f}", t / paper_ms) : "-", qp::to_string(rep.termination));
+      fmt::print("{:<10} {:>5} {:>8.0e} {:<14} {:>7} {:>8} {:>9.2f} {:>9.2e} {:>7} {:>7}  {}\n",
+                 k.name, k.h.size(), tol, fricon::enum_name(v), rep.iterations, rep.n_products, t,
+                 kkt_max(k, c, l),
+                 paper_products > 0 ? fmt::format("{:.2f}", static_cast<double>(rep.n_products) /
+                                                                static_cast<double>(paper_products))
+                                    : "-",
+                 paper_ms > 0 ? fmt::format("{:.2f}", t / paper_ms) : "-",
+                 fricon::enum_name(rep.termination));
     }
   }
 }
@@ -215,7 +216,7 @@ void whole_run(const Case& k, const Settings& s) {
                             ? (res.phi - paper.phi).norm() / paper.phi.norm()
                             : NAN;
     fmt::print("{:<10} {:<14} {:>5} {:>8} {:>8} {:>9.2f} {:>9.2e} {:>9.1e} {:>7} {:>7}  {}\n",
-               k.name, qp::to_string(v), res.outer, res.iterations, res.products, res.qp_ms,
+               k.name, fricon::enum_name(v), res.outer, res.iterations, res.products, res.qp_ms,
                res.kkt, dphi,
                paper.products > 0 ? fmt::format("{:.2f}", static_cast<double>(res.products) /
                                                               static_cast<double>(paper.products))
@@ -247,7 +248,7 @@ int main(int argc, char** argv) {
                                               [](const std::string& t) { return std::stol(t); });
       } else if (a == "--variants") {
         s.variants = fricon::bench::parse_list<qp::MpgpVariant>(
-            value(), [](const std::string& t) { return qp::mpgp_variant_from_string(t); });
+            value(), [](const std::string& t) { return fricon::parse_enum<qp::MpgpVariant>(t); });
       } else if (a == "--tol") {
         s.tols = fricon::bench::parse_list<double>(
             value(), [](const std::string& t) { return std::stod(t); });
@@ -258,7 +259,7 @@ int main(int argc, char** argv) {
       } else if (a == "--help" || a == "-h") {
         fmt::print(
             "usage: qp_variants_bench [--n 4,8,12,16] [--dump FILE ...] [--variants "
-            "paper,bb,spg]\n"
+            "paper,bb]\n"
             "                         [--tol 1e-6,1e-8] [--reps 5] [--no-run]\n");
         return 0;
       } else {

@@ -1,7 +1,6 @@
 #include "fricon/qp/mpgp.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -11,81 +10,9 @@
 
 #include "fricon/core/error.hpp"
 #include "fricon/core/timer.hpp"
+#include "fricon/qp/mpgp_kernels.hpp"
 
 namespace fricon::qp {
-
-// ---------------------------------------------------------------------------------------------
-// Enum <-> string
-
-std::string to_string(Termination t) {
-  switch (t) {
-    case Termination::Converged:
-      return "converged";
-    case Termination::MaxIterations:
-      return "max_iterations";
-    case Termination::NumericalFailure:
-      return "numerical_failure";
-    case Termination::UserStopped:
-      return "user_stopped";
-  }
-  return "unknown";
-}
-
-std::string to_string(ProportioningStep s) {
-  switch (s) {
-    case ProportioningStep::ProjectedGradient:
-      return "projected_gradient";
-    case ProportioningStep::ChoppedGradientCG:
-      return "chopped_gradient_cg";
-  }
-  return "unknown";
-}
-
-std::string to_string(ProportioningTest t) {
-  switch (t) {
-    case ProportioningTest::ReducedFree:
-      return "reduced_free";
-    case ProportioningTest::Free:
-      return "free";
-  }
-  return "unknown";
-}
-
-std::string to_string(MpgpVariant v) {
-  switch (v) {
-    case MpgpVariant::Paper:
-      return "paper";
-    case MpgpVariant::BarzilaiBorwein:
-      return "bb";
-    case MpgpVariant::SpectralProjectedGradient:
-      return "spg";
-  }
-  return "unknown";
-}
-
-MpgpVariant mpgp_variant_from_string(std::string_view s) {
-  for (auto v :
-       {MpgpVariant::Paper, MpgpVariant::BarzilaiBorwein, MpgpVariant::SpectralProjectedGradient}) {
-    if (s == to_string(v)) return v;
-  }
-  throw InputError(fmt::format("qp variant = \"{}\" is not one of \"paper\", \"bb\", \"spg\"", s));
-}
-
-ProportioningStep proportioning_step_from_string(std::string_view s) {
-  for (auto v : {ProportioningStep::ProjectedGradient, ProportioningStep::ChoppedGradientCG}) {
-    if (s == to_string(v)) return v;
-  }
-  throw InputError(fmt::format(
-      "proportioning = \"{}\" is not one of \"projected_gradient\", \"chopped_gradient_cg\"", s));
-}
-
-ProportioningTest proportioning_test_from_string(std::string_view s) {
-  for (auto v : {ProportioningTest::ReducedFree, ProportioningTest::Free}) {
-    if (s == to_string(v)) return v;
-  }
-  throw InputError(
-      fmt::format("proportioning_test = \"{}\" is not one of \"reduced_free\", \"free\"", s));
-}
 
 // ---------------------------------------------------------------------------------------------
 // Options and report
@@ -118,34 +45,21 @@ void MpgpOptions::validate() const {
           power_tolerance, "> 0");
   require(std::isfinite(active_tolerance) && active_tolerance >= 0.0 && active_tolerance <= 1e-3,
           "active_tolerance", active_tolerance, "in [0, 1e-3]");
-  require(proportioning == ProportioningStep::ProjectedGradient ||
-              proportioning == ProportioningStep::ChoppedGradientCG,
-          "proportioning", static_cast<int>(proportioning), "a ProportioningStep enumerator");
-  require(proportioning_test == ProportioningTest::ReducedFree ||
-              proportioning_test == ProportioningTest::Free,
-          "proportioning_test", static_cast<int>(proportioning_test),
-          "a ProportioningTest enumerator");
-  require(variant == MpgpVariant::Paper || variant == MpgpVariant::BarzilaiBorwein ||
-              variant == MpgpVariant::SpectralProjectedGradient,
-          "variant", static_cast<int>(variant), "an MpgpVariant enumerator");
+  require(enum_is_valid(variant), "variant", static_cast<int>(variant),
+          "an MpgpVariant enumerator");
 }
 
 std::string MpgpReport::brief() const {
   if (variant == MpgpVariant::Paper) {
     return fmt::format(
         "MPGP {}: {} it ({} cg, {} exp, {} prop), {} products (+{} power), |gP|/|b| = {:.3e}",
-        to_string(termination), iterations, n_cg, n_expansion, n_proportioning, n_products,
+        enum_name(termination), iterations, n_cg, n_expansion, n_proportioning, n_products,
         n_power_products, rel_gp);
-  }
-  if (variant == MpgpVariant::SpectralProjectedGradient) {
-    return fmt::format(
-        "MPGP[spg] {}: {} it, {} products (+{} power, {} refresh), |gP|/|b| = {:.3e}",
-        to_string(termination), iterations, n_products, n_power_products, n_refreshes, rel_gp);
   }
   return fmt::format(
       "MPGP[{}] {}: {} it ({} cg, {} exp, {} prop; {} fallback, {} refresh), {} products (+{} "
       "power), |gP|/|b| = {:.3e}",
-      to_string(variant), to_string(termination), iterations, n_cg, n_expansion, n_proportioning,
+      enum_name(variant), enum_name(termination), iterations, n_cg, n_expansion, n_proportioning,
       n_fallbacks, n_refreshes, n_products, n_power_products, rel_gp);
 }
 
@@ -155,14 +69,13 @@ std::string MpgpReport::full() const {
     s += fmt::format("  {:<22} {}\n", key, value);
   };
   s += "MPGP report\n";
-  line("termination", to_string(termination));
+  line("termination", std::string(enum_name(termination)));
   line("message", message);
-  line("variant", to_string(variant));
+  line("variant", std::string(enum_name(variant)));
   line("iterations", std::to_string(iterations));
   line("n_cg", std::to_string(n_cg));
   line("n_expansion", std::to_string(n_expansion));
   line("n_proportioning", std::to_string(n_proportioning));
-  line("n_gradient", std::to_string(n_gradient));
   line("n_fallbacks", std::to_string(n_fallbacks));
   line("n_refreshes", std::to_string(n_refreshes));
   line("n_products", std::to_string(n_products));
@@ -219,192 +132,359 @@ double estimate_norm(const Operator& A, Index n, int max_iterations, double tole
 }
 
 // ---------------------------------------------------------------------------------------------
-// MPGP
+// MPGP (docs/theory.md §4.2, [HL09]; "line n" is a line of the MPGP algorithm as listed there)
 
 namespace {
 
-/// Scalars of the gradient split at one point (method.md 4.1).
-struct Split {
-  double gp2 = 0.0;           ///< ||g^P||^2
-  double phi2 = 0.0;          ///< ||phi||^2
-  double beta2 = 0.0;         ///< ||beta||^2
-  double phit_phi = 0.0;      ///< phitilde_{alpha_bar}^T phi
-  bool beta_on_disc = false;  ///< beta has a nonzero Disc component
-};
+using detail::Kernels;
+using detail::SpectralLength;
+using detail::Split;
 
-/// Block-wise kernels of MPGP for fixed constraints and tolerances.
-class Kernels {
- public:
-  Kernels(const SeparableConstraints& c, double tol_bound, double tol_disc, double alpha_bar)
-      : c_(c), tol_bound_(tol_bound), tol_disc_(tol_disc), alpha_bar_(alpha_bar) {}
-
-  /// Fills phi (free gradient) and beta (chopped gradient) for g at x and returns the norms.
-  /// Active: Bound x_i <= tol_bound; Disc ||x_i|| >= (1 - tol_disc) rho_i (always for rho_i = 0,
-  /// whose gradient parts are all 0).
-  Split split(const Eigen::VectorXd& x, const Eigen::VectorXd& g, Eigen::VectorXd& phi,
-              Eigen::VectorXd& beta) const {
-    Split s;
-    const double abar = alpha_bar_;
-    for (std::size_t k = 0; k < c_.blocks.size(); ++k) {
-      const Index o = c_.blocks[k].offset;
-      if (c_.blocks[k].kind == BlockKind::Bound) {
-        const double xi = x(o);
-        const double gi = g(o);
-        if (xi <= tol_bound_) {
-          const double bi = std::min(gi, 0.0);
-          phi(o) = 0.0;
-          beta(o) = bi;
-          s.gp2 += bi * bi;
-          s.beta2 += bi * bi;
-        } else {
-          phi(o) = gi;
-          beta(o) = 0.0;
-          s.gp2 += gi * gi;
-          s.phi2 += gi * gi;
-          // (x - max(x - abar g, 0)) / abar
-          const double ti = gi > 0.0 ? std::min(gi, xi / abar) : gi;
-          s.phit_phi += ti * gi;
-        }
-        continue;
-      }
-      const double rho = c_.radius(static_cast<Index>(k));
-      const double x1 = x(o), x2 = x(o + 1);
-      const double g1 = g(o), g2 = g(o + 1);
-      const double nx = detail::norm2(x1, x2);
-      if (rho == 0.0) {  // pinned block
-        phi(o) = phi(o + 1) = beta(o) = beta(o + 1) = 0.0;
-      } else if (nx >= (1.0 - tol_disc_) * rho) {  // active: nx > 0 here
-        const double e1 = x1 / nx, e2 = x2 / nx;   // outward normal
-        const double gn = std::min(e1 * g1 + e2 * g2, 0.0);
-        const double b1 = g1 - gn * e1, b2 = g2 - gn * e2;
-        phi(o) = phi(o + 1) = 0.0;
-        beta(o) = b1;
-        beta(o + 1) = b2;
-        const double bb = b1 * b1 + b2 * b2;
-        s.gp2 += bb;
-        s.beta2 += bb;
-        if (bb > 0.0) s.beta_on_disc = true;
-      } else {
-        phi(o) = g1;
-        phi(o + 1) = g2;
-        beta(o) = beta(o + 1) = 0.0;
-        const double gg = g1 * g1 + g2 * g2;
-        s.gp2 += gg;
-        s.phi2 += gg;
-        // (x - P_disc(x - abar g)) / abar
-        const double y1 = x1 - abar * g1, y2 = x2 - abar * g2;
-        const double ny = detail::norm2(y1, y2);
-        if (ny <= rho) {
-          s.phit_phi += gg;
-        } else {
-          const double t1 = (x1 - rho * y1 / ny) / abar;
-          const double t2 = (x2 - rho * y2 / ny) / abar;
-          s.phit_phi += t1 * g1 + t2 * g2;
-        }
-      }
-    }
-    return s;
-  }
-
-  /// Sum over the blocks of ||g_i|| ||x_i||: the scale of the rounding error of g^T d for a
-  /// projected direction d (each d_i is exact only to about eps ||x_i||).
-  double rounding_scale(const Eigen::VectorXd& x, const Eigen::VectorXd& g) const {
-    double sum = 0.0;
-    for (const Block& blk : c_.blocks) {
-      const Index o = blk.offset;
-      if (blk.kind == BlockKind::Bound) {
-        sum += std::abs(g(o) * x(o));
-      } else {
-        sum += detail::norm2(g(o), g(o + 1)) * detail::norm2(x(o), x(o + 1));
-      }
-    }
-    return sum;
-  }
-
-  /// Largest t >= 0 with x - t p in Omega (+inf if no block restricts); x must be feasible up to
-  /// rounding.
-  double max_feasible_step(const Eigen::VectorXd& x, const Eigen::VectorXd& p) const {
-    double a = std::numeric_limits<double>::infinity();
-    for (std::size_t k = 0; k < c_.blocks.size(); ++k) {
-      const Index o = c_.blocks[k].offset;
-      if (c_.blocks[k].kind == BlockKind::Bound) {
-        if (p(o) > 0.0) a = std::min(a, std::max(x(o), 0.0) / p(o));
-        continue;
-      }
-      const double p1 = p(o), p2 = p(o + 1);
-      const double pp = p1 * p1 + p2 * p2;
-      if (pp == 0.0) continue;
-      const double rho = c_.radius(static_cast<Index>(k));
-      const double x1 = x(o), x2 = x(o + 1);
-      const double nx = detail::norm2(x1, x2);
-      const double xp = x1 * p1 + x2 * p2;
-      // Root t >= 0 of ||x - t p||^2 = rho^2: pp t^2 - 2 xp t - slack = 0, with slack =
-      // rho^2 - ||x||^2 clipped at 0 (x may sit outside by rounding). The two algebraically equal
-      // forms avoid cancellation for either sign of xp.
-      const double slack = std::max((rho - nx) * (rho + nx), 0.0);
-      const double sq = std::sqrt(xp * xp + pp * slack);
-      const double t = xp >= 0.0 ? (xp + sq) / pp : (sq > xp ? slack / (sq - xp) : 0.0);
-      a = std::min(a, t);
-    }
-    return a;
-  }
-
- private:
-  const SeparableConstraints& c_;
-  double tol_bound_;
-  double tol_disc_;
-  double alpha_bar_;
-};
-
-/// Safety factor on the rounding level eps ||g|| ||x|| below which g^T d is trusted (see
-/// spectral_move in solve_mpgp). Measured: 1 to 64 give about the same counts.
+/// Safety factor on the rounding level eps sum_i ||g_i|| ||x_i|| below which g^T d is trusted
+/// (see Mpgp::spectral_move). Measured: 1 to 64 give about the same counts.
 constexpr double kRoundingFactor = 4.0;
 
-/// The adaptive Barzilai-Borwein length "ABBmin" (Frassoldati, Zanghirati and Zanni, 2008) of
-/// the spectral moves: after a step s with y = A s, the long length a1 = s^T s / s^T y and the
-/// short one a2 = s^T y / y^T y (a2 <= a1, both in [1/||A||, 1/lambda_min]); the next length is
-/// the smallest a2 of the last kMemory steps when a2 / a1 < kTau (the step was dominated by large
-/// eigenvalues), else a1. Clamped to [lo, hi]. kTau = 0.2 gave the fewest products on the
-/// paper's problems among 0.1, 0.2, 0.3 and 0.5 (bench/qp_variants_bench.cpp); the memory 2 ... 5
-/// hardly matters.
-class SpectralLength {
- public:
-  SpectralLength(double initial, double lo, double hi) : length_(initial), lo_(lo), hi_(hi) {}
+/// What changes from one iteration to the next. (The step counters are those of MpgpReport.)
+struct MpgpState {
+  /// Work vectors of the size of x, allocated once.
+  MpgpState(Eigen::VectorXd& iterate, const SpectralLength& trial_length)
+      : x(iterate),
+        g(x.size()),
+        p(x.size()),
+        Ap(x.size()),
+        phi(x.size()),
+        beta(x.size()),
+        spectral(trial_length) {}
 
-  double length() const { return length_; }
-
-  /// The last step through s^T s, s^T A s and (A s)^T (A s); a common positive factor cancels,
-  /// so a direction d and its multiple t d give the same lengths. A step without positive
-  /// curvature (or non-finite values) keeps the current length.
-  void update(double ss, double sy, double yy) {
-    if (!(ss > 0.0 && sy > 0.0 && yy > 0.0) || !std::isfinite(ss + sy + yy)) return;
-    const double a1 = ss / sy;
-    const double a2 = sy / yy;
-    short_[count_ % kMemory] = a2;
-    ++count_;
-    double a = a1;
-    if (a2 < kTau * a1) {
-      a = a2;
-      for (int k = 0; k < std::min(count_, kMemory); ++k)
-        a = std::min(a, short_[static_cast<std::size_t>(k)]);
-    }
-    if (std::isfinite(a)) length_ = std::clamp(a, lo_, hi_);
-  }
-
- private:
-  static constexpr int kMemory = 3;
-  static constexpr double kTau = 0.2;
-  double length_;
-  double lo_, hi_;
-  std::array<double, kMemory> short_{};
-  int count_ = 0;
+  Eigen::VectorXd& x;    ///< the iterate (the caller's vector), feasible
+  Eigen::VectorXd g;     ///< the gradient A x - b, recomputed or updated recursively
+  Eigen::VectorXd p;     ///< the CG direction; also the direction d of a spectral move
+  Eigen::VectorXd Ap;    ///< A p
+  Eigen::VectorXd phi;   ///< the free gradient at x (docs/theory.md §4.1)
+  Eigen::VectorXd beta;  ///< the chopped gradient at x
+  Split split;           ///< ||g^P||^2, ||phi||^2, ||beta||^2 and phitilde^T phi at x
+  /// True while g has been updated recursively (g -= a A p) since the last product A x and the
+  /// stopping test must be certified with a recomputed g (BarzilaiBorwein; Paper accepts the
+  /// recursive gradient, as [HL09] does).
+  bool recursive = false;
+  double q_prev = 0.0;      ///< q after the last step (for n_objective_increases)
+  bool stopped = false;     ///< the monitor returned false
+  SpectralLength spectral;  ///< the trial length of the spectral moves (BarzilaiBorwein)
 };
 
-}  // namespace
+/// How the iteration ends.
+struct Stop {
+  Termination termination;
+  std::string message;
+};
 
-MpgpReport solve_mpgp(const Operator& A, const Eigen::VectorXd& b, const SeparableConstraints& c,
-                      const MpgpOptions& opt, Eigen::VectorXd& x) {
-  const Stopwatch watch;
+/// What a step did: its kind ('c', 'e', 'p'), its length (MpgpIteration::alpha) and, if it failed
+/// (A found not positive definite along a direction, or non-finite values), why.
+struct StepResult {
+  char kind;
+  double alpha = 0.0;
+  std::optional<std::string> failure;
+};
+
+StepResult taken(char kind, double alpha) {
+  return {kind, alpha, std::nullopt};
+}
+
+StepResult failed(char kind, std::string why) {
+  return {kind, 0.0, std::move(why)};
+}
+
+/// One run of MPGP from a feasible x: the fixed data, the state and the steps.
+class Mpgp {
+ public:
+  /// rep must hold norm_b > 0, norm_A_used and alpha_bar_used.
+  Mpgp(const Operator& A, const Eigen::VectorXd& b, const SeparableConstraints& c,
+       const MpgpOptions& opt, MpgpReport& rep, Eigen::VectorXd& x);
+
+  /// Iterates until a Stop and completes the report (but for iterations and seconds).
+  void run();
+
+ private:
+  bool proportional() const;
+  StepResult cg_or_expansion_step();
+  StepResult cg_step(double a_cg, double pAp);
+  StepResult expansion_step(double a_f);
+  StepResult proportioning_step();
+  std::optional<double> projected_gradient_move(const Eigen::VectorXd& v);
+  std::optional<double> spectral_move(const Eigen::VectorXd& v);
+  double fixed_length_move(const Eigen::VectorXd& v);
+  void multiply(const Eigen::VectorXd& v, Eigen::VectorXd& Av);
+  void refresh_gradient();
+  void split_and_restart();
+  std::optional<Stop> stop_test();
+  void count(char kind);
+  void record(char kind, double alpha);
+  void finish(const Stop& stop);
+
+  int steps() const { return rep_.n_cg + rep_.n_expansion + rep_.n_proportioning; }
+  double norm_gp() const { return std::sqrt(s_.split.gp2); }
+  /// q(x) = x^T (g - b) / 2.
+  double objective() const { return 0.5 * (s_.x.dot(s_.g) - s_.x.dot(b_)); }
+
+  const Operator& A_;
+  const Eigen::VectorXd& b_;
+  const SeparableConstraints& c_;
+  const MpgpOptions& opt_;
+  MpgpReport& rep_;
+  const bool bb_;           ///< variant BarzilaiBorwein: spectral moves, certified stopping test
+  const double abar_;       ///< the fixed step length alpha_bar
+  const double x_scale_;    ///< the scale of x of the active-set and rounding tolerances
+  const double threshold_;  ///< the stopping test: ||g^P|| <= threshold_
+  const double gamma2_;     ///< Gamma^2 of the proportionality test
+  const Kernels kern_;
+  MpgpState s_;
+};
+
+Mpgp::Mpgp(const Operator& A, const Eigen::VectorXd& b, const SeparableConstraints& c,
+           const MpgpOptions& opt, MpgpReport& rep, Eigen::VectorXd& x)
+    : A_(A),
+      b_(b),
+      c_(c),
+      opt_(opt),
+      rep_(rep),
+      bb_(opt.variant == MpgpVariant::BarzilaiBorwein),
+      abar_(rep.alpha_bar_used),
+      x_scale_(
+          std::max({x.lpNorm<Eigen::Infinity>(), c.max_radius(), rep.norm_b / rep.norm_A_used})),
+      threshold_(std::max(opt.rel_tolerance * rep.norm_b, opt.abs_tolerance)),
+      gamma2_(opt.gamma * opt.gamma),
+      kern_(c, opt.active_tolerance * x_scale_, opt.active_tolerance, abar_),
+      // The spectral trial lengths start from alpha_bar. Every such length lies in
+      // [1/||A||, 1/lambda_min(A)]; the clamp only guards against rounding.
+      s_(x, SpectralLength(abar_, 1e-3 / rep.norm_A_used, 1e12 / rep.norm_A_used)) {}
+
+// The main loop: the stopping test, the proportionality test, then a CG or expansion step or a
+// proportioning step.
+void Mpgp::run() {
+  // The gradient and p = phi at the projected initial guess (line 1, done by solve_mpgp).
+  refresh_gradient();
+  split_and_restart();
+  record('s', 0.0);
+  while (true) {
+    if (std::optional<Stop> stop = stop_test()) return finish(*stop);  // line 3
+    const StepResult step = proportional() ? cg_or_expansion_step()    // line 4; lines 5-12
+                                           : proportioning_step();     // lines 14-15
+    count(step.kind);  // a failed step is counted too: its product was spent
+    if (step.failure) return finish({Termination::NumericalFailure, *step.failure});
+    record(step.kind, step.alpha);
+  }
+}
+
+// Line 4: x is proportional iff ||beta||^2 <= Gamma^2 phitilde_{alpha_bar}^T phi (the reduced
+// free gradient, as in MPRGP).
+bool Mpgp::proportional() const {
+  return s_.split.beta2 <= gamma2_ * s_.split.phit_phi;
+}
+
+// Lines 5-12: the CG step length a_cg along -p and the feasible one a_f decide between the CG
+// step and the expansion step (1 product, A p, shared by both).
+StepResult Mpgp::cg_or_expansion_step() {
+  multiply(s_.p, s_.Ap);
+  const double pAp = s_.p.dot(s_.Ap);
+  const double a_cg = s_.g.dot(s_.p) / pAp;
+  if (!(pAp > 0.0) || !std::isfinite(pAp) || !(a_cg > 0.0) || !std::isfinite(a_cg)) {
+    return failed('c', fmt::format("CG step: p^T A p = {:.3e}, step {:.3e}; A is not positive "
+                                   "definite along p, or the direction is not a descent direction",
+                                   pAp, a_cg));
+  }
+  const double a_f = kern_.max_feasible_step(s_.x, s_.p);
+  return a_cg <= a_f ? cg_step(a_cg, pAp) : expansion_step(a_f);
+}
+
+// Lines 7-8: the CG step inside the feasible set, g updated recursively, and the next conjugate
+// direction p = phi - beta_cg p.
+StepResult Mpgp::cg_step(double a_cg, double pAp) {
+  if (bb_) s_.spectral.update(s_.p.squaredNorm(), pAp, s_.Ap.squaredNorm());
+  s_.x.noalias() -= a_cg * s_.p;
+  s_.g.noalias() -= a_cg * s_.Ap;
+  c_.project(s_.x);  // only removes rounding-level infeasibility when a_cg ~ a_f
+  s_.split = kern_.split(s_.x, s_.g, s_.phi, s_.beta);
+  const double beta_cg = s_.phi.dot(s_.Ap) / pAp;
+  s_.p = s_.phi - beta_cg * s_.p;
+  s_.recursive = bb_;
+  return taken('c', a_cg);
+}
+
+// Lines 10-12: to the boundary along -p (step a_f), then a projected move along the free gradient
+// there (1 more product), and CG restarts from phi.
+StepResult Mpgp::expansion_step(double a_f) {
+  s_.x.noalias() -= a_f * s_.p;
+  s_.g.noalias() -= a_f * s_.Ap;
+  s_.split = kern_.split(s_.x, s_.g, s_.phi, s_.beta);  // phi at the boundary point
+  if (!projected_gradient_move(s_.phi)) {
+    return failed('e',
+                  "expansion step: A is not positive definite along the projected "
+                  "free-gradient direction");
+  }
+  split_and_restart();
+  return taken('e', a_f);
+}
+
+// Lines 14-15: the proportioning step 14(b), a projected move along the whole gradient
+// (1 product), and CG restarts from phi.
+StepResult Mpgp::proportioning_step() {
+  const std::optional<double> alpha = projected_gradient_move(s_.g);
+  if (!alpha) {
+    return failed('p',
+                  "proportioning step: A is not positive definite along the projected "
+                  "gradient direction");
+  }
+  split_and_restart();
+  return taken('p', *alpha);
+}
+
+// The projected move x := P(x - a v) of the expansion (v = phi) and the proportioning step
+// (v = g): of fixed length (Paper) or spectral (BarzilaiBorwein). Returns the length of the move
+// along -v, or nothing if A is found not positive definite along it.
+std::optional<double> Mpgp::projected_gradient_move(const Eigen::VectorXd& v) {
+  if (bb_) return spectral_move(v);
+  return fixed_length_move(v);
+}
+
+// x := P(x - alpha_bar v), monotone without a line search for alpha_bar <= 2/||A||, and g
+// recomputed (1 product). Returns alpha_bar.
+double Mpgp::fixed_length_move(const Eigen::VectorXd& v) {
+  s_.x.noalias() -= abar_ * v;
+  c_.project(s_.x);
+  refresh_gradient();
+  return abar_;
+}
+
+// The spectral move (docs/theory.md §4.3) along the projected direction d = P(x - a v) - x, a the
+// current spectral length, v = g or phi (v is the gradient restricted to the blocks d may move, so
+// g^T d = v^T d <= -||d||^2 / a < 0 for d != 0): x := x + t d with t = min(1, -g^T d / d^T A d),
+// the exact minimiser of q on the segment [x, x + d] (which lies in Omega), g updated recursively;
+// 1 product. Each block of d carries a rounding error of order eps ||x_i|| (a projection puts a
+// point on a circle only to rounding) and g is large on active blocks (the normal forces), so
+// g^T d can be trusted only below -eps sum_i ||g_i|| ||x_i|| (times kRoundingFactor). Near the
+// solution it no longer is; then the move is the fixed-length one (also 1 product; counted in
+// n_fallbacks). Returns t a (or alpha_bar), or nothing if A is not positive definite along d.
+std::optional<double> Mpgp::spectral_move(const Eigen::VectorXd& v) {
+  const double a = s_.spectral.length();
+  Eigen::VectorXd& d = s_.p;
+  d = s_.x - a * v;
+  c_.project(d);
+  d -= s_.x;
+  const double gd = s_.g.dot(d);
+  if (!(gd < -kRoundingFactor * std::numeric_limits<double>::epsilon() *
+                 kern_.rounding_scale(s_.x, s_.g))) {
+    ++rep_.n_fallbacks;
+    return fixed_length_move(v);
+  }
+  multiply(d, s_.Ap);
+  const double dAd = d.dot(s_.Ap);
+  if (!(dAd > 0.0) || !std::isfinite(dAd)) return std::nullopt;
+  const double t = std::min(1.0, -gd / dAd);
+  s_.x.noalias() += t * d;
+  s_.g.noalias() += t * s_.Ap;
+  c_.project(s_.x);  // only removes rounding-level infeasibility (x + t d is a convex combination)
+  s_.recursive = true;
+  s_.spectral.update(d.squaredNorm(), dAd, s_.Ap.squaredNorm());
+  return t * a;
+}
+
+// Av := A v, counted in n_products.
+void Mpgp::multiply(const Eigen::VectorXd& v, Eigen::VectorXd& Av) {
+  A_(v, Av);
+  ++rep_.n_products;
+  FRICON_CHECK(Av.size() == v.size(),
+               "operator returned a vector of size " << Av.size() << ", expected " << v.size());
+}
+
+// g := A x - b (1 product).
+void Mpgp::refresh_gradient() {
+  multiply(s_.x, s_.g);
+  s_.g -= b_;
+  s_.recursive = false;
+}
+
+// The split of g at x, and p := phi (line 15: CG restarts).
+void Mpgp::split_and_restart() {
+  s_.split = kern_.split(s_.x, s_.g, s_.phi, s_.beta);
+  s_.p = s_.phi;
+}
+
+// Line 3, ||g^P|| <= threshold, where BarzilaiBorwein first recomputes a recursive gradient
+// (counted in n_refreshes); then the other ends of the iteration.
+std::optional<Stop> Mpgp::stop_test() {
+  if (s_.recursive && std::isfinite(s_.split.gp2) && norm_gp() <= threshold_) {
+    refresh_gradient();
+    split_and_restart();  // the free set is the same, phi has changed
+    s_.q_prev = objective();
+    ++rep_.n_refreshes;
+  }
+  const int done = steps();
+  if (!std::isfinite(s_.split.gp2) || !std::isfinite(s_.q_prev)) {
+    return Stop{Termination::NumericalFailure,
+                fmt::format("non-finite gradient or objective after {} iterations", done)};
+  }
+  if (norm_gp() <= threshold_) {
+    return Stop{
+        Termination::Converged,
+        fmt::format("||g^P|| = {:.3e} <= {:.3e} after {} iterations", norm_gp(), threshold_, done)};
+  }
+  if (s_.stopped) {
+    return Stop{Termination::UserStopped,
+                fmt::format("stopped by the monitor after {} iterations", done)};
+  }
+  if (done >= opt_.max_iterations) {
+    return Stop{
+        Termination::MaxIterations,
+        fmt::format("reached max_iterations = {} with ||g^P|| / ||b|| = {:.3e} (target "
+                    "{:.3e})",
+                    opt_.max_iterations, norm_gp() / rep_.norm_b, threshold_ / rep_.norm_b)};
+  }
+  return std::nullopt;
+}
+
+void Mpgp::count(char kind) {
+  switch (kind) {
+    case 'c':
+      ++rep_.n_cg;
+      break;
+    case 'e':
+      ++rep_.n_expansion;
+      break;
+    default:
+      ++rep_.n_proportioning;
+  }
+}
+
+// The point after a step of the given kind ('s' for the start): the monotonicity count, the
+// history and the monitor.
+void Mpgp::record(char kind, double alpha) {
+  const MpgpIteration it{.iteration = steps(),
+                         .step = kind,
+                         .norm_gp = norm_gp(),
+                         .norm_phi = std::sqrt(s_.split.phi2),
+                         .norm_beta = std::sqrt(s_.split.beta2),
+                         .alpha = alpha,
+                         .objective = objective()};
+  // With alpha_bar <= 2/||A|| no step increases q; count the increases beyond rounding.
+  const double q_tolerance =
+      1e-12 * std::max({std::abs(s_.q_prev), std::abs(it.objective), rep_.norm_b * x_scale_});
+  if (kind != 's' && it.objective > s_.q_prev + q_tolerance) ++rep_.n_objective_increases;
+  s_.q_prev = it.objective;
+  if (opt_.record_history) rep_.history.push_back(it);
+  if (opt_.monitor && !opt_.monitor(it)) s_.stopped = true;
+}
+
+void Mpgp::finish(const Stop& stop) {
+  rep_.termination = stop.termination;
+  rep_.message = stop.message;
+  rep_.norm_gp = norm_gp();
+  rep_.rel_gp = rep_.norm_gp / rep_.norm_b;
+  rep_.objective = objective();
+}
+
+// The checks of solve_mpgp's documentation.
+void check_inputs(const Operator& A, const Eigen::VectorXd& b, const SeparableConstraints& c,
+                  const MpgpOptions& opt, const Eigen::VectorXd& x) {
   opt.validate();
   c.validate();
   if (!A) throw InputError("solve_mpgp: the operator A is empty");
@@ -416,50 +496,32 @@ MpgpReport solve_mpgp(const Operator& A, const Eigen::VectorXd& b, const Separab
   }
   if (!b.allFinite()) throw InputError("solve_mpgp: b has non-finite entries");
   if (!x.allFinite()) throw InputError("solve_mpgp: the initial guess x has non-finite entries");
+}
 
-  const MpgpVariant variant = opt.variant;
-  MpgpReport rep;
-  rep.variant = variant;
-  rep.norm_b = b.norm();
-
-  // Work vectors, allocated once: g = A x - b, p = search direction (also the projected-gradient
-  // direction d of the spectral moves), Ap = A p (also A beta, A phi), phi = free gradient,
-  // beta = chopped gradient.
-  Eigen::VectorXd g(n), p(n), Ap(n), phi(n), beta(n);
-  auto mult = [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) {
-    A(in, out);
-    ++rep.n_products;
-    FRICON_CHECK(out.size() == n,
-                 "operator returned a vector of size " << out.size() << ", expected " << n);
-  };
-  auto steps = [&rep]() {
-    return rep.n_cg + rep.n_expansion + rep.n_proportioning + rep.n_gradient;
-  };
-  // Completes the report; called exactly once, by a return statement.
-  auto finish = [&](Termination t, std::string message) -> MpgpReport {
-    rep.termination = t;
-    rep.message = std::move(message);
-    rep.iterations = steps();
-    rep.seconds = watch.seconds();
-    return std::move(rep);
-  };
-
-  // b = 0: q(x) = x^T A x / 2 >= 0 = q(0) and 0 is feasible, so x = 0.
-  if (rep.norm_b == 0.0) {
-    x.setZero();
-    mult(x, g);
-    g -= b;
-    rep.norm_gp = g.norm();  // every block is at an interior point or a pinned disc: g^P = g
-    rep.rel_gp = rep.norm_gp;
-    rep.objective = 0.0;
-    if (rep.norm_gp == 0.0) {
-      return finish(Termination::Converged, "b = 0: the solution is x = 0");
-    }
-    return finish(Termination::NumericalFailure,
-                  fmt::format("b = 0 but A 0 has norm {}: A is not linear", rep.norm_gp));
+// b = 0: q(x) = x^T A x / 2 >= 0 = q(0) and 0 is feasible, so x = 0, checked by one product.
+void solve_zero_rhs(const Operator& A, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                    MpgpReport& rep) {
+  x.setZero();
+  Eigen::VectorXd g(x.size());
+  A(x, g);
+  ++rep.n_products;
+  FRICON_CHECK(g.size() == x.size(),
+               "operator returned a vector of size " << g.size() << ", expected " << x.size());
+  g -= b;
+  rep.norm_gp = g.norm();  // every block is at an interior point or a pinned disc: g^P = g
+  rep.rel_gp = rep.norm_gp;
+  rep.objective = 0.0;
+  if (rep.norm_gp == 0.0) {
+    rep.termination = Termination::Converged;
+    rep.message = "b = 0: the solution is x = 0";
+  } else {
+    rep.termination = Termination::NumericalFailure;
+    rep.message = fmt::format("b = 0 but A 0 has norm {}: A is not linear", rep.norm_gp);
   }
+}
 
-  // ||A|| and the fixed step length.
+// ||A|| (given, or estimated by power iteration) and alpha_bar = step_factor / ||A||.
+void set_step_length(const Operator& A, Index n, const MpgpOptions& opt, MpgpReport& rep) {
   if (opt.norm_A > 0.0) {
     rep.norm_A_used = opt.norm_A;
   } else {
@@ -472,268 +534,28 @@ MpgpReport solve_mpgp(const Operator& A, const Eigen::VectorXd& b, const Separab
         fmt::format("solve_mpgp: ||A|| = {} ({}); A must be symmetric positive definite (n = {})",
                     rep.norm_A_used, rep.norm_A_estimated ? "power iteration" : "given", n));
   }
-  const double abar = opt.step_factor / rep.norm_A_used;
-  rep.alpha_bar_used = abar;
+  rep.alpha_bar_used = opt.step_factor / rep.norm_A_used;
+}
 
-  // Line 1: start from the projection of the initial guess.
-  c.project(x);
-  const double x_scale =
-      std::max({x.lpNorm<Eigen::Infinity>(), c.max_radius(), rep.norm_b / rep.norm_A_used});
-  const Kernels kern(c, opt.active_tolerance * x_scale, opt.active_tolerance, abar);
-  const double threshold = std::max(opt.rel_tolerance * rep.norm_b, opt.abs_tolerance);
-  const double gamma2 = opt.gamma * opt.gamma;
-  const bool reduced_test = opt.proportioning_test == ProportioningTest::ReducedFree;
-  const bool chopped_cg = opt.proportioning == ProportioningStep::ChoppedGradientCG;
-  // Trial lengths of the spectral moves (BarzilaiBorwein, SpectralProjectedGradient), starting
-  // from alpha_bar. Every such length lies in [1/||A||, 1/lambda_min(A)]; the clamp only guards
-  // against rounding.
-  SpectralLength spectral(abar, 1e-3 / rep.norm_A_used, 1e12 / rep.norm_A_used);
-  // True while g has been updated recursively (g -= a A p) since the last product A x; a variant
-  // other than Paper then recomputes g before it accepts the stopping test.
-  bool recursive = false;
+}  // namespace
 
-  mult(x, g);
-  g -= b;
-  Split s = kern.split(x, g, phi, beta);
-  p = phi;
-
-  auto objective = [&]() { return 0.5 * (x.dot(g) - x.dot(b)); };  // q = x^T (g - b) / 2
-  auto norm_gp = [&]() { return std::sqrt(s.gp2); };
-
-  MpgpIteration it;
-  it.iteration = 0;
-  it.step = 's';
-  it.norm_gp = norm_gp();
-  it.norm_phi = std::sqrt(s.phi2);
-  it.norm_beta = std::sqrt(s.beta2);
-  it.objective = objective();
-  double q_prev = it.objective;
-  if (opt.record_history) rep.history.push_back(it);
-  bool stopped = opt.monitor && !opt.monitor(it);
-
-  auto set_final = [&]() {
-    rep.norm_gp = norm_gp();
-    rep.rel_gp = rep.norm_gp / rep.norm_b;
-    rep.objective = objective();
-  };
-  // Rounding allowance of a comparison of objective values.
-  auto q_tolerance = [&](double q_a, double q_b) {
-    return 1e-12 * std::max({std::abs(q_a), std::abs(q_b), rep.norm_b * x_scale});
-  };
-  // Line 3 and the other stopping tests; returns the final report if the solver stops.
-  auto stop_test = [&]() -> std::optional<MpgpReport> {
-    if (recursive && std::isfinite(s.gp2) && norm_gp() <= threshold) {
-      mult(x, g);  // certify the test with the exact gradient
-      g -= b;
-      s = kern.split(x, g, phi, beta);
-      p = phi;  // restart the CG direction (the free set is the same, phi has changed)
-      q_prev = objective();
-      ++rep.n_refreshes;
-      recursive = false;
-    }
-    if (!std::isfinite(s.gp2) || !std::isfinite(q_prev)) {
-      set_final();
-      return finish(Termination::NumericalFailure,
-                    fmt::format("non-finite gradient or objective after {} iterations", steps()));
-    }
-    const int done = steps();
-    if (norm_gp() <= threshold) {
-      set_final();
-      return finish(Termination::Converged,
-                    fmt::format("||g^P|| = {:.3e} <= {:.3e} after {} iterations", rep.norm_gp,
-                                threshold, done));
-    }
-    if (stopped) {
-      set_final();
-      return finish(Termination::UserStopped,
-                    fmt::format("stopped by the monitor after {} iterations", done));
-    }
-    if (done >= opt.max_iterations) {
-      set_final();
-      return finish(Termination::MaxIterations,
-                    fmt::format("reached max_iterations = {} with ||g^P|| / ||b|| = {:.3e} "
-                                "(target {:.3e})",
-                                opt.max_iterations, rep.rel_gp, threshold / rep.norm_b));
-    }
-    return std::nullopt;
-  };
-  // After a step: the monitor record, the monotonicity count, history and monitor.
-  auto step_done = [&]() {
-    it.iteration = steps();
-    it.norm_gp = norm_gp();
-    it.norm_phi = std::sqrt(s.phi2);
-    it.norm_beta = std::sqrt(s.beta2);
-    it.objective = objective();
-    // With alpha_bar <= 2/||A|| no step increases q; count increases beyond rounding.
-    if (it.objective > q_prev + q_tolerance(q_prev, it.objective)) ++rep.n_objective_increases;
-    q_prev = it.objective;
-    if (opt.record_history) rep.history.push_back(it);
-    if (opt.monitor && !opt.monitor(it)) stopped = true;
-  };
-  // The spectral move from x along the projected direction d = P(x - a v) - x, a the current
-  // spectral length, v = g or phi (v is the gradient restricted to the blocks d may move, so
-  // g^T d = v^T d <= -||d||^2 / a < 0 for d != 0): x := x + t d with t = min(1, -g^T d / d^T A d),
-  // the exact minimiser of q on the segment [x, x + d] (which lies in Omega); 1 product.
-  // Each block of d carries a rounding error of order eps ||x_i|| (a projection puts a point on a
-  // circle only to rounding) and g is large on active blocks (the normal forces), so g^T d can be
-  // trusted only below -eps sum_i ||g_i|| ||x_i|| (times a safety factor). Near the solution it no
-  // longer is; then the move is Paper's fixed-length one, x := P(x - alpha_bar v), monotone without
-  // a line search, with g recomputed (also 1 product; counted in n_fallbacks). Returns the length
-  // of the move along -v (t a or alpha_bar), or a negative value if A is found not positive
-  // definite along d.
-  auto spectral_move = [&](const Eigen::VectorXd& v) -> double {
-    const double a = spectral.length();
-    p = x - a * v;
-    c.project(p);
-    p -= x;
-    const double gd = g.dot(p);
-    if (!(gd <
-          -kRoundingFactor * std::numeric_limits<double>::epsilon() * kern.rounding_scale(x, g))) {
-      x.noalias() -= abar * v;
-      c.project(x);
-      mult(x, g);
-      g -= b;
-      recursive = false;
-      ++rep.n_fallbacks;
-      return abar;
-    }
-    mult(p, Ap);
-    const double dAd = p.dot(Ap);
-    if (!(dAd > 0.0) || !std::isfinite(dAd)) return -1.0;
-    const double t = std::min(1.0, -gd / dAd);
-    x.noalias() += t * p;
-    g.noalias() += t * Ap;
-    c.project(x);  // only removes rounding-level infeasibility (x + t d is a convex combination)
-    recursive = true;
-    spectral.update(p.squaredNorm(), dAd, Ap.squaredNorm());
-    return t * a;
-  };
-
-  if (variant == MpgpVariant::SpectralProjectedGradient) {
-    while (true) {
-      if (auto r = stop_test()) return std::move(*r);
-      const double a = spectral_move(g);
-      ++rep.n_gradient;
-      if (a < 0.0) {
-        set_final();
-        return finish(Termination::NumericalFailure,
-                      "spectral projected gradient step: A is not positive definite along the "
-                      "projected gradient direction");
-      }
-      s = kern.split(x, g, phi, beta);
-      it.step = 'g';
-      it.alpha = a;
-      step_done();
-    }
+MpgpReport solve_mpgp(const Operator& A, const Eigen::VectorXd& b, const SeparableConstraints& c,
+                      const MpgpOptions& opt, Eigen::VectorXd& x) {
+  const Stopwatch watch;
+  check_inputs(A, b, c, opt, x);
+  MpgpReport rep;
+  rep.variant = opt.variant;
+  rep.norm_b = b.norm();
+  if (rep.norm_b == 0.0) {
+    solve_zero_rhs(A, b, x, rep);
+  } else {
+    set_step_length(A, c.size(), opt, rep);
+    c.project(x);  // line 1: start from the projection of the initial guess
+    Mpgp(A, b, c, opt, rep, x).run();
   }
-
-  const bool bb = variant == MpgpVariant::BarzilaiBorwein;
-  while (true) {
-    if (auto r = stop_test()) return std::move(*r);
-
-    // Line 4: proportionality test.
-    const double rhs = gamma2 * (reduced_test ? s.phit_phi : s.phi2);
-    if (s.beta2 <= rhs) {
-      // Lines 5-12.
-      mult(p, Ap);
-      const double pAp = p.dot(Ap);
-      const double a_cg = g.dot(p) / pAp;
-      if (!(pAp > 0.0) || !std::isfinite(pAp) || !(a_cg > 0.0) || !std::isfinite(a_cg)) {
-        ++rep.n_cg;  // the product was spent on this (failed) step
-        set_final();
-        return finish(Termination::NumericalFailure,
-                      fmt::format("CG step: p^T A p = {:.3e}, step {:.3e}; A is not positive "
-                                  "definite along p, or the direction is not a descent direction",
-                                  pAp, a_cg));
-      }
-      const double a_f = kern.max_feasible_step(x, p);
-      if (a_cg <= a_f) {
-        // Lines 7-8: CG step inside the feasible set.
-        if (bb) spectral.update(p.squaredNorm(), pAp, Ap.squaredNorm());
-        x.noalias() -= a_cg * p;
-        g.noalias() -= a_cg * Ap;
-        c.project(x);  // only removes rounding-level infeasibility when a_cg ~ a_f
-        s = kern.split(x, g, phi, beta);
-        const double beta_cg = phi.dot(Ap) / pAp;
-        p = phi - beta_cg * p;
-        ++rep.n_cg;
-        it.step = 'c';
-        it.alpha = a_cg;
-        recursive = variant != MpgpVariant::Paper;
-      } else {
-        // Lines 10-12: to the boundary, then a projected free-gradient move.
-        x.noalias() -= a_f * p;
-        g.noalias() -= a_f * Ap;
-        kern.split(x, g, phi, beta);
-        if (bb) {
-          if (spectral_move(phi) < 0.0) {
-            ++rep.n_expansion;
-            set_final();
-            return finish(Termination::NumericalFailure,
-                          "expansion step: A is not positive definite along the projected "
-                          "free-gradient direction");
-          }
-        } else {
-          x.noalias() -= abar * phi;
-          c.project(x);
-          mult(x, g);
-          g -= b;
-          recursive = false;
-        }
-        s = kern.split(x, g, phi, beta);
-        p = phi;
-        ++rep.n_expansion;
-        it.step = 'e';
-        it.alpha = a_f;
-      }
-    } else {
-      // Line 14: proportioning.
-      if (chopped_cg && !s.beta_on_disc) {
-        // 14(a): exact minimisation along -beta (beta <= 0 on bounds, so x stays feasible).
-        mult(beta, Ap);
-        const double bAb = beta.dot(Ap);
-        const double a = s.beta2 / bAb;  // g^T beta = ||beta||^2
-        if (!(bAb > 0.0) || !std::isfinite(a)) {
-          ++rep.n_proportioning;
-          set_final();
-          return finish(Termination::NumericalFailure,
-                        fmt::format("proportioning step: beta^T A beta = {:.3e}; A is not "
-                                    "positive definite along beta",
-                                    bAb));
-        }
-        if (bb) spectral.update(s.beta2, bAb, Ap.squaredNorm());
-        x.noalias() -= a * beta;
-        g.noalias() -= a * Ap;
-        c.project(x);
-        it.alpha = a;
-        recursive = variant != MpgpVariant::Paper;
-      } else if (bb) {
-        // 14(b) with the spectral length and the exact line search.
-        const double a = spectral_move(g);
-        if (a < 0.0) {
-          ++rep.n_proportioning;
-          set_final();
-          return finish(Termination::NumericalFailure,
-                        "proportioning step: A is not positive definite along the projected "
-                        "gradient direction");
-        }
-        it.alpha = a;
-      } else {
-        // 14(b): projected gradient step of fixed length.
-        x.noalias() -= abar * g;
-        c.project(x);
-        mult(x, g);
-        g -= b;
-        it.alpha = abar;
-        recursive = false;
-      }
-      s = kern.split(x, g, phi, beta);
-      p = phi;  // line 15
-      ++rep.n_proportioning;
-      it.step = 'p';
-    }
-    step_done();
-  }
+  rep.iterations = rep.n_cg + rep.n_expansion + rep.n_proportioning;
+  rep.seconds = watch.seconds();
+  return rep;
 }
 
 }  // namespace fricon::qp

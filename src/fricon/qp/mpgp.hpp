@@ -6,26 +6,29 @@
 // with A symmetric positive definite and given only as a product routine. In fricon A is the dual
 // Hessian B K^-1 B^T and b = B K^-1 f; the driver calls this once per Tresca step, warm-started.
 //
-// Each iteration is one of three steps (method.md 4.2), chosen from the split of the projected
-// gradient g^P into the free gradient phi (free blocks) and the chopped gradient beta (active
-// blocks):
+// Each iteration is one of three steps (docs/theory.md §4.2, [HL09]), chosen from the split of
+// the projected gradient g^P into the free gradient phi (free blocks) and the chopped gradient
+// beta (active blocks) (§4.1):
 //   'c'  conjugate gradient step on the free blocks, if it stays feasible      (1 product)
 //   'e'  expansion: go to the boundary along the CG direction, then take a projected
 //        free-gradient step of fixed length alpha_bar                           (2 products)
-//   'p'  proportioning, when beta dominates the reduced free gradient: a projected gradient
-//        step of length alpha_bar (default), or the MPRGP step along beta        (1 product)
+//   'p'  proportioning, when beta dominates the reduced free gradient: the projected gradient
+//        step x := P(x - alpha_bar g)                                           (1 product)
 // alpha_bar = step_factor / ||A|| with ||A|| given or estimated by power iteration. With
 // step_factor <= 2 no step increases q. Convergence is R-linear in the condition number of A.
 // No preconditioning.
 //
-// MpgpOptions::variant selects opt-in accelerations (MpgpVariant below); the default, Paper, is
-// the algorithm above unchanged. Every variant stops on the same test, ||g^P|| <= max(
-// rel_tolerance ||b||, abs_tolerance) (the others certify it with a recomputed gradient), and
-// counts every product with A in MpgpReport::n_products.
+// MpgpOptions::variant selects the algorithm (MpgpVariant below): Paper is the algorithm above,
+// BarzilaiBorwein (the default) replaces its fixed-length projected-gradient moves by spectral
+// ones (§4.3). Both stop on the same test, ||g^P|| <= max(rel_tolerance ||b||, abs_tolerance)
+// (BarzilaiBorwein certifies it with a recomputed gradient), and count every product with A in
+// MpgpReport::n_products.
 
+#include <array>
 #include <functional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -43,79 +46,77 @@ enum class Termination {
   NumericalFailure,  ///< non-finite values, or A found not positive definite along a direction
   UserStopped,       ///< the monitor returned false
 };
-/// "converged", "max_iterations", "numerical_failure", "user_stopped".
-std::string to_string(Termination t);
 
-/// What to do when x is not proportional (method.md 4.2, line 14).
-enum class ProportioningStep {
-  /// 14(b): x := P(x - alpha_bar g), then recompute g. Valid for every block kind. Default.
-  ProjectedGradient,
-  /// 14(a): exact line search along -beta (MPRGP). Used only when beta vanishes on every Disc
-  /// block (a move along beta on an active circle would leave the disc); otherwise this
-  /// iteration falls back to ProjectedGradient.
-  ChoppedGradientCG,
-};
-/// "projected_gradient", "chopped_gradient_cg".
-std::string to_string(ProportioningStep s);
-/// Inverse of to_string; throws fricon::InputError naming the accepted spellings.
-ProportioningStep proportioning_step_from_string(std::string_view s);
-
-/// The proportionality test (method.md 4.2, line 4): x is proportional iff
-/// ||beta||^2 <= gamma^2 * (right-hand side below).
-enum class ProportioningTest {
-  ReducedFree,  ///< phitilde_{alpha_bar}^T phi (classical MPRGP). Default.
-  Free,         ///< phi^T phi (PERMON); fewer proportioning steps
-};
-/// "reduced_free", "free".
-std::string to_string(ProportioningTest t);
-/// Inverse of to_string; throws fricon::InputError naming the accepted spellings.
-ProportioningTest proportioning_test_from_string(std::string_view s);
-
-/// The algorithm solve_mpgp runs. All variants keep the iterates feasible, stop on the same test
+/// The algorithm solve_mpgp runs. Both variants keep the iterates feasible, stop on the same test
 /// and decrease q monotonically (up to rounding). Measured on the paper's problems
 /// (bench/qp_variants_bench.cpp): BarzilaiBorwein needs 5 to 10 times fewer products than Paper.
-/// PERMON's "opt" expansion length and the projected-CG expansion were measured too and gave no
-/// gain (expansions are rare here: the active circles make proportioning steps dominate).
+/// PERMON's "opt" expansion length, the projected-CG expansion, the MPRGP proportioning step along
+/// beta, the proportionality test with phi^T phi and the spectral projected gradient method
+/// without CG were measured too and gave no gain (expansions are rare here: the active circles
+/// make proportioning steps dominate).
 enum class MpgpVariant {
-  /// The algorithm of method.md 4.2 as reproduced from [HL09], bit for bit (its product counts
-  /// match the paper's n_mult). Default.
+  /// The algorithm of [HL09] (docs/theory.md §4.2): CG, expansion and proportioning steps with the
+  /// fixed length alpha_bar. It reproduces the paper's product counts n_mult (Table 1, `fricon
+  /// paper`); the unit test MpgpRegression.CountsAndIteratesArePinned checks its counts and
+  /// iterates on fixed problems, so that a change of them shows.
   Paper,
   /// MPGP whose projected-gradient moves (the expansion's free-gradient move and the
-  /// proportioning step 14(b)) are spectral: the trial length is a Barzilai-Borwein length
-  /// (adaptive ABBmin rule) of the last step instead of alpha_bar, followed by the exact line
-  /// search of q on the segment to the projected trial point (same product counts as Paper:
-  /// the product with the move replaces the gradient recomputation). Where the line search is
-  /// below the rounding level (near a tight solution) the move is Paper's fixed-length one.
-  /// CG steps as in Paper, so it stays as fast as Paper where CG dominates (few active blocks).
+  /// proportioning step) are spectral (docs/theory.md §4.3): the trial length is a
+  /// Barzilai-Borwein length (adaptive ABBmin rule) of the last step instead of alpha_bar,
+  /// followed by the exact line search of q on the segment to the projected trial point (same
+  /// product counts as Paper: the product with the move replaces the gradient recomputation).
+  /// Where the line search is below the rounding level (near a tight solution) the move is
+  /// Paper's fixed-length one. CG steps as in Paper, so it stays as fast as Paper where CG
+  /// dominates (few active blocks). Default.
   BarzilaiBorwein,
-  /// No CG: the spectral projected gradient method for the whole QP (Birgin-Martinez-Raydan with
-  /// the ABBmin length and the exact, monotone line search on the projected segment):
-  /// d = P(x - a g) - x, x := x + t d with t = min(1, -g^T d / d^T A d); 1 product per step;
-  /// the same rounding-level fallback as BarzilaiBorwein. Slow where CG would dominate.
-  SpectralProjectedGradient,
 };
-/// "paper", "bb", "spg".
-std::string to_string(MpgpVariant v);
-/// Inverse of to_string; throws fricon::InputError naming the accepted spellings.
-MpgpVariant mpgp_variant_from_string(std::string_view s);
+
+}  // namespace fricon::qp
+
+namespace fricon {
+
+/// Spellings of qp::Termination (report.json, logs).
+template <>
+struct EnumNames<qp::Termination> {
+  static constexpr std::string_view what = "termination";
+  static constexpr std::array<std::pair<qp::Termination, std::string_view>, 4> table{{
+      {qp::Termination::Converged, "converged"},
+      {qp::Termination::MaxIterations, "max_iterations"},
+      {qp::Termination::NumericalFailure, "numerical_failure"},
+      {qp::Termination::UserStopped, "user_stopped"},
+  }};
+};
+
+/// Spellings of qp::MpgpVariant ([solver] qp_variant).
+template <>
+struct EnumNames<qp::MpgpVariant> {
+  static constexpr std::string_view what = "solver.qp_variant";
+  static constexpr std::array<std::pair<qp::MpgpVariant, std::string_view>, 2> table{{
+      {qp::MpgpVariant::Paper, "paper"},
+      {qp::MpgpVariant::BarzilaiBorwein, "bb"},
+  }};
+};
+
+}  // namespace fricon
+
+namespace fricon::qp {
 
 /// One completed iteration (or the starting point, step 's'), as passed to the monitor.
 struct MpgpIteration {
   int iteration = 0;     ///< 0 for the starting point, then 1, 2, ...
-  char step = 's';       ///< 's' start, 'c' CG, 'e' expansion, 'p' proportioning,
-                         ///< 'g' spectral projected gradient (variant SpectralProjectedGradient)
+  char step = 's';       ///< 's' start, 'c' CG, 'e' expansion, 'p' proportioning
   double norm_gp = 0;    ///< ||g^P(x)||_2 after the step
   double norm_phi = 0;   ///< ||phi(x)||_2 after the step
   double norm_beta = 0;  ///< ||beta(x)||_2 after the step
-  double alpha = 0;      ///< step length: a_cg ('c'), feasible step a_f ('e'), line-search step of
-                         ///< 14(a) or alpha_bar ('p'); for a spectral move ('g', and 'p' of
-                         ///< BarzilaiBorwein) t times the trial length; 0 for 's'
+  double alpha = 0;      ///< step length: a_cg ('c'), feasible step a_f ('e'), alpha_bar ('p'),
+                         ///< or for a spectral move ('p' of BarzilaiBorwein) t times the trial
+                         ///< length; 0 for 's'
   double objective = 0;  ///< q(x) after the step
 };
 
 struct MpgpOptions {
-  /// The algorithm; Paper (default) is the reference.
-  MpgpVariant variant = MpgpVariant::Paper;
+  /// The algorithm. Default BarzilaiBorwein (the program's default); Paper is the reference.
+  MpgpVariant variant = MpgpVariant::BarzilaiBorwein;
   /// Stop when ||g^P|| <= rel_tolerance * ||b||_2. Default 1e-6 ([HL09]); range >= 0.
   double rel_tolerance = 1e-6;
   /// ... or when ||g^P|| <= abs_tolerance (same unit as b). Default 0 (off); range >= 0.
@@ -134,9 +135,6 @@ struct MpgpOptions {
   /// Power iteration stops when the estimate changes by <= power_tolerance relative.
   /// Default 1e-8; range > 0.
   double power_tolerance = 1e-8;
-  /// Proportioning step and test of the MPGP variants (not used by SpectralProjectedGradient).
-  ProportioningStep proportioning = ProportioningStep::ProjectedGradient;
-  ProportioningTest proportioning_test = ProportioningTest::ReducedFree;
   /// Relative tolerance of the active-set tests: a Disc block is active iff
   /// ||x_i|| >= (1 - active_tolerance) rho_i; a Bound block iff x_i <= active_tolerance * s, with
   /// s a fixed scale of x (the largest of ||P(x_init)||_inf, the largest radius and
@@ -156,22 +154,20 @@ struct MpgpReport {
   Termination termination = Termination::NumericalFailure;
   std::string message;                       ///< one sentence: why the solver stopped
   MpgpVariant variant = MpgpVariant::Paper;  ///< the algorithm that ran
-  /// Steps taken = n_cg + n_expansion + n_proportioning + n_gradient.
+  /// Steps taken = n_cg + n_expansion + n_proportioning.
   int iterations = 0;
   int n_cg = 0;
   int n_expansion = 0;
   int n_proportioning = 0;
-  int n_gradient = 0;  ///< spectral projected-gradient steps (SpectralProjectedGradient only)
-  /// Spectral moves (BarzilaiBorwein, SpectralProjectedGradient) whose line search was below the
-  /// rounding level, replaced by Paper's fixed-length move (no extra product).
+  /// Spectral moves (BarzilaiBorwein) whose line search was below the rounding level, replaced by
+  /// Paper's fixed-length move (no extra product).
   int n_fallbacks = 0;
   /// Gradients recomputed as A x - b (one product each) to certify the stopping test where the
-  /// gradient had been updated recursively (every variant but Paper).
+  /// gradient had been updated recursively (BarzilaiBorwein only).
   int n_refreshes = 0;
   /// Products with A made by the iteration, the initial gradient included. Paper:
-  /// 1 + n_cg + 2 n_expansion + n_proportioning; BarzilaiBorwein adds n_refreshes;
-  /// SpectralProjectedGradient: 1 + n_gradient + n_refreshes. Power-method products are not
-  /// included.
+  /// 1 + n_cg + 2 n_expansion + n_proportioning; BarzilaiBorwein adds n_refreshes. Power-method
+  /// products are not included.
   long n_products = 0;
   long n_power_products = 0;  ///< products spent estimating ||A|| (0 if MpgpOptions::norm_A > 0)
   bool norm_A_estimated = false;  ///< true if norm_A_used comes from the power method
@@ -212,23 +208,3 @@ double estimate_norm(const Operator& A, Index n, int max_iterations, double tole
                      long* n_products = nullptr);
 
 }  // namespace fricon::qp
-
-template <>
-struct fricon::EnumNames<fricon::qp::MpgpVariant> {
-  static constexpr std::string_view what = "solver.qp_variant";
-  static constexpr std::array<std::pair<qp::MpgpVariant, std::string_view>, 2> table{{
-      {qp::MpgpVariant::Paper, "paper"},
-      {qp::MpgpVariant::BarzilaiBorwein, "bb"},
-  }};
-};
-
-template <>
-struct fricon::EnumNames<fricon::qp::Termination> {
-  static constexpr std::string_view what = "qp termination";
-  static constexpr std::array<std::pair<qp::Termination, std::string_view>, 4> table{{
-      {qp::Termination::Converged, "converged"},
-      {qp::Termination::MaxIterations, "max_iterations"},
-      {qp::Termination::NumericalFailure, "numerical_failure"},
-      {qp::Termination::UserStopped, "user_stopped"},
-  }};
-};

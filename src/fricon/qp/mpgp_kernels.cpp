@@ -1,0 +1,127 @@
+#include "fricon/qp/mpgp_kernels.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace fricon::qp::detail {
+
+Split Kernels::split(const Eigen::VectorXd& x, const Eigen::VectorXd& g, Eigen::VectorXd& phi,
+                     Eigen::VectorXd& beta) const {
+  Split s;
+  const double abar = alpha_bar_;
+  for (std::size_t k = 0; k < c_.blocks.size(); ++k) {
+    const Index o = c_.blocks[k].offset;
+    if (c_.blocks[k].kind == BlockKind::Bound) {
+      const double xi = x(o);
+      const double gi = g(o);
+      if (xi <= tol_bound_) {
+        const double bi = std::min(gi, 0.0);
+        phi(o) = 0.0;
+        beta(o) = bi;
+        s.gp2 += bi * bi;
+        s.beta2 += bi * bi;
+      } else {
+        phi(o) = gi;
+        beta(o) = 0.0;
+        s.gp2 += gi * gi;
+        s.phi2 += gi * gi;
+        // (x - max(x - abar g, 0)) / abar
+        const double ti = gi > 0.0 ? std::min(gi, xi / abar) : gi;
+        s.phit_phi += ti * gi;
+      }
+      continue;
+    }
+    const double rho = c_.radius(static_cast<Index>(k));
+    const double x1 = x(o), x2 = x(o + 1);
+    const double g1 = g(o), g2 = g(o + 1);
+    const double nx = norm2(x1, x2);
+    if (rho == 0.0) {  // pinned block
+      phi(o) = phi(o + 1) = beta(o) = beta(o + 1) = 0.0;
+    } else if (nx >= (1.0 - tol_disc_) * rho) {  // active: nx > 0 here
+      const double e1 = x1 / nx, e2 = x2 / nx;   // outward normal
+      const double gn = std::min(e1 * g1 + e2 * g2, 0.0);
+      const double b1 = g1 - gn * e1, b2 = g2 - gn * e2;
+      phi(o) = phi(o + 1) = 0.0;
+      beta(o) = b1;
+      beta(o + 1) = b2;
+      const double bb = b1 * b1 + b2 * b2;
+      s.gp2 += bb;
+      s.beta2 += bb;
+    } else {
+      phi(o) = g1;
+      phi(o + 1) = g2;
+      beta(o) = beta(o + 1) = 0.0;
+      const double gg = g1 * g1 + g2 * g2;
+      s.gp2 += gg;
+      s.phi2 += gg;
+      // (x - P_disc(x - abar g)) / abar
+      const double y1 = x1 - abar * g1, y2 = x2 - abar * g2;
+      const double ny = norm2(y1, y2);
+      if (ny <= rho) {
+        s.phit_phi += gg;
+      } else {
+        const double t1 = (x1 - rho * y1 / ny) / abar;
+        const double t2 = (x2 - rho * y2 / ny) / abar;
+        s.phit_phi += t1 * g1 + t2 * g2;
+      }
+    }
+  }
+  return s;
+}
+
+double Kernels::rounding_scale(const Eigen::VectorXd& x, const Eigen::VectorXd& g) const {
+  double sum = 0.0;
+  for (const Block& blk : c_.blocks) {
+    const Index o = blk.offset;
+    if (blk.kind == BlockKind::Bound) {
+      sum += std::abs(g(o) * x(o));
+    } else {
+      sum += norm2(g(o), g(o + 1)) * norm2(x(o), x(o + 1));
+    }
+  }
+  return sum;
+}
+
+double Kernels::max_feasible_step(const Eigen::VectorXd& x, const Eigen::VectorXd& p) const {
+  double a = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < c_.blocks.size(); ++k) {
+    const Index o = c_.blocks[k].offset;
+    if (c_.blocks[k].kind == BlockKind::Bound) {
+      if (p(o) > 0.0) a = std::min(a, std::max(x(o), 0.0) / p(o));
+      continue;
+    }
+    const double p1 = p(o), p2 = p(o + 1);
+    const double pp = p1 * p1 + p2 * p2;
+    if (pp == 0.0) continue;
+    const double rho = c_.radius(static_cast<Index>(k));
+    const double x1 = x(o), x2 = x(o + 1);
+    const double nx = norm2(x1, x2);
+    const double xp = x1 * p1 + x2 * p2;
+    // Root t >= 0 of ||x - t p||^2 = rho^2: pp t^2 - 2 xp t - slack = 0, with slack =
+    // rho^2 - ||x||^2 clipped at 0 (x may sit outside by rounding). The two algebraically equal
+    // forms avoid cancellation for either sign of xp.
+    const double slack = std::max((rho - nx) * (rho + nx), 0.0);
+    const double sq = std::sqrt(xp * xp + pp * slack);
+    const double t = xp >= 0.0 ? (xp + sq) / pp : (sq > xp ? slack / (sq - xp) : 0.0);
+    a = std::min(a, t);
+  }
+  return a;
+}
+
+void SpectralLength::update(double ss, double sy, double yy) {
+  if (!(ss > 0.0 && sy > 0.0 && yy > 0.0) || !std::isfinite(ss + sy + yy)) return;
+  const double a1 = ss / sy;
+  const double a2 = sy / yy;
+  short_[count_ % kMemory] = a2;
+  ++count_;
+  double a = a1;
+  if (a2 < kTau * a1) {
+    a = a2;
+    for (int k = 0; k < std::min(count_, kMemory); ++k)
+      a = std::min(a, short_[static_cast<std::size_t>(k)]);
+  }
+  if (std::isfinite(a)) length_ = std::clamp(a, lo_, hi_);
+}
+
+}  // namespace fricon::qp::detail
