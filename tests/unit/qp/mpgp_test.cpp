@@ -148,7 +148,7 @@ TEST(MpgpEnums, SpellingsRoundTrip) {
     parse_enum<MpgpVariant>("spg");  // removed
     FAIL();
   } catch (const InputError& e) {
-    EXPECT_STREQ(e.what(), "qp_variant = \"spg\" is not one of \"paper\", \"bb\"");
+    EXPECT_STREQ(e.what(), "solver.qp_variant = \"spg\" is not one of \"paper\", \"bb\"");
   }
 }
 
