@@ -42,7 +42,7 @@ from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection  # noq
 
 DPI = 150
 AXIS_NAMES = "xyz"
-# The paper's law (method.md): F = 0.3 up to t = 1e-5 m, then linear down to 0.2 at 1e-5 + 2/param.
+# The paper's law (docs/theory.md §7.1): F = 0.3 up to t = 1e-5 m, then linear down to 0.2 at 1e-5 + 2/param.
 PAPER_PARAMS = (2.0e4, 6.0e4, 3.0e5)
 PAPER_T0 = 1.0e-5
 STUCK_RTOL = 1.0e-3  # a patch slips when ||lambda_t|| >= (1 - STUCK_RTOL) * radius

@@ -86,7 +86,7 @@ TEST(PaperBrick, SizesIterationsAndPenetrationMatchTable1) {
     EXPECT_EQ(c.n_dual, row.n_d);
     EXPECT_LE(std::abs(c.outer_iterations - row.it), 1);
     EXPECT_NEAR(c.wn_pos_inf, row.wn_pos_inf, 0.1 * row.wn_pos_inf);
-    // Within a factor 1.5 of the paper's count of products with Q (method.md §6.4).
+    // Within a factor 1.5 of the paper's count of products with Q (theory.md §7.5).
     EXPECT_LT(static_cast<double>(c.n_mult), 1.5 * static_cast<double>(row.n_mult));
     EXPECT_GT(static_cast<double>(c.n_mult), static_cast<double>(row.n_mult) / 1.5);
     // Figure maxima of the paper (n = 16) are approached already: max ||lambda_t|| = 0.3 g.

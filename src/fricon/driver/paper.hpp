@@ -1,6 +1,6 @@
 #pragma once
-// driver: the model example of [HL09] (method.md §2.1-2.2) and the paper's Tables 1 and 2
-// (method.md §6.1-6.2), so that `fricon paper` can print our numbers beside theirs.
+// driver: the model example of [HL09] (theory.md §7.1-7.2) and the paper's Tables 1 and 2
+// (theory.md §7.3-7.4), so that `fricon paper` can print our numbers beside theirs.
 
 #include <vector>
 

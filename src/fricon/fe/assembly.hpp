@@ -1,5 +1,5 @@
 #pragma once
-// fe: assembly of the stiffness matrix K and the load vector f over the free dofs (method.md §2.3).
+// fe: assembly of the stiffness matrix K and the load vector f over the free dofs (theory.md §2.1).
 // All integrals are exact for the data they accept (constant or P1 tractions and volume forces).
 
 #include <vector>

@@ -1,6 +1,6 @@
 #pragma once
 // fe: the linear tetrahedron. Gradients of the barycentric (P1) shape functions, the constant
-// strain-displacement matrix and the element stiffness K_e = |T| B^T D B (method.md §2.3).
+// strain-displacement matrix and the element stiffness K_e = |T| B^T D B (theory.md §2.1).
 
 #include "fricon/core/types.hpp"
 #include "fricon/fe/material.hpp"

@@ -1,5 +1,5 @@
 #pragma once
-// mesh: the structured brick of the paper (method.md §2.2): a box cut into nx x ny x nz cubes,
+// mesh: the structured brick of the paper (theory.md §7.2): a box cut into nx x ny x nz cubes,
 // each split into five tetrahedra whose orientation alternates with the parity of the cube so that
 // neighbouring cubes share their face diagonals (the mesh is conforming).
 

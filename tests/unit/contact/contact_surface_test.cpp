@@ -43,7 +43,7 @@ Brick paper_brick(Index n) {
 }  // namespace
 
 TEST(ContactSurface, PaperSizesAndBasis) {
-  // Table 1: n_d = 36, 81, 144 for n = 4, 6, 8; 3n(n+1) contact nodes (method.md §2.4).
+  // Table 1: n_d = 36, 81, 144 for n = 4, 6, 8; 3n(n+1) contact nodes (theory.md §2.2).
   for (Index n : {4, 6, 8}) {
     const Brick b = paper_brick(n);
     EXPECT_EQ(b.B.rows(), 9 * n * n / 4);
@@ -88,7 +88,7 @@ TEST(ContactSurface, BIntegratesTracesExactly) {
       EXPECT_NEAR(Bu(3 * p), -b.patches.area(p), 1e-15);
     }
   }
-  // Node weights of an interior patch: centre 4h^2/3, the 8 others h^2/3 (method.md §2.5).
+  // Node weights of an interior patch: centre 4h^2/3, the 8 others h^2/3 (theory.md §2.4).
   const Real h2 = 0.0625;
   std::vector<Real> weights;
   const SparseMatrix Bt = b.B.transpose();

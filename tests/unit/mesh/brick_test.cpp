@@ -77,7 +77,7 @@ TEST(Brick, BoundaryNormalsPointOutward) {
 }
 
 TEST(Brick, ContactFaceDiagonalsFollowParity) {
-  // method.md §2.2: on z = 0 the square [i,i+1]x[j,j+1] is cut along (i,j)-(i+1,j+1) if i+j is
+  // theory.md §7.2: on z = 0 the square [i,i+1]x[j,j+1] is cut along (i,j)-(i+1,j+1) if i+j is
   // even, else along (i+1,j)-(i,j+1). So nodes with even i+j touch 8 triangles inside the face.
   const BrickSpec spec = paper_brick(4);
   const TetMesh m = make_brick(spec);
