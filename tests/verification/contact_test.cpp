@@ -10,8 +10,10 @@
 #include "fricon/contact/b_matrix.hpp"
 #include "fricon/contact/contact_surface.hpp"
 #include "fricon/contact/radii.hpp"
+#include "fricon/driver/contact_solver.hpp"
 #include "fricon/driver/paper.hpp"
 #include "fricon/driver/run.hpp"
+#include "fricon/dual/dual_operator.hpp"
 
 using namespace fricon;
 using namespace fricon::driver;
@@ -273,8 +275,9 @@ TEST(PaperBrick, BarzilaiBorweinVariantGivesTheSameSolutionWithFewerProducts) {
 TEST(PaperBrick, AnOuterLoopThatDoesNotContractStopsAndSaysSo) {
   // Friction that rises steeply with slip (F from 0 to 3 over 1 micrometre): no slip gives no
   // friction and a large slip, which gives strong friction and little slip, and so on. The
-  // successive approximations cycle between two states; the loop must stop within a few
-  // iterations of the stall, not run to outer_max, and name the cause.
+  // successive approximations cycle; the loop must stop as stalled well before outer_max and
+  // name the cause. (Which iteration it stops at depends on rounding, hence on the CPU's BLAS
+  // kernels and thread count: only what is robust is asserted.)
   Problem p = paper_problem(4, 6e4);
   p.contact->friction.law = contact::FrictionLawKind::Table;
   p.contact->friction.t = {1.0e-5, 1.1e-5};
@@ -282,9 +285,139 @@ TEST(PaperBrick, AnOuterLoopThatDoesNotContractStopsAndSaysSo) {
   p.solver.outer_max = 50;
   const RunResult r = run(p);
   EXPECT_EQ(r.report.status, Status::NotConverged);
-  EXPECT_LE(r.report.contact->outer_iterations, 10);
+  EXPECT_EQ(r.report.contact->termination, outer::Termination::Stalled);
+  EXPECT_LE(r.report.contact->outer_iterations, 25);
   EXPECT_NE(r.report.message.find("do not contract"), std::string::npos) << r.report.message;
   // The paper's law contracts: the same check never fires there (7 iterations at most).
   const RunResult ok = run(paper_problem(4, 6e4));
   EXPECT_EQ(ok.report.status, Status::Converged) << ok.report.message;
+}
+
+namespace {
+
+// A dual operator whose products are off by a relative 1e-3 from B K^-1 B^T (a defect the QP
+// cannot see: it solves its own problem to qp_rtol), with the true displacement recovery.
+class SkewedOperator final : public dual::DualOperator {
+ public:
+  explicit SkewedOperator(const dual::DualInput& input)
+      : DualOperator(input), exact_(dual::make_forward_operator(input)) {}
+  dual::DualOperatorKind kind() const override { return dual::DualOperatorKind::Forward; }
+  void apply(const VectorXd& x, VectorXd& y) const override {
+    exact_->apply(x, y);
+    y *= 1.0 + 1e-3;
+  }
+  void contact_displacement(const VectorXd& lambda, VectorXd& w) const override {
+    exact_->contact_displacement(lambda, w);
+  }
+
+ private:
+  std::unique_ptr<dual::DualOperator> exact_;
+};
+
+struct FactoredBrick {
+  Problem problem = paper_problem(4, 6e4);
+  Model model;
+  contact::ContactDiscretization disc;
+  FactoredBrick() {
+    PhaseTimes times;
+    model = assemble_model(problem, times);
+    disc = discretize_contact(problem, model.mesh, model.dofs);
+    factorize_model(model, {}, times);
+  }
+  dual::DualInput input() const { return {model.factor, disc.B, model.f, disc.dofs, {}}; }
+};
+
+}  // namespace
+
+TEST(Certificate, ARunWhoseFinalKktResidualsExceedTheBoundIsNotConverged) {
+  const FactoredBrick b;
+  PhaseTimes times;
+  const auto exact = dual::make_forward_operator(b.input());
+  const ContactOutcome good = solve_contact(b.problem, b.model, b.disc, *exact, times);
+  ASSERT_TRUE(good.converged) << good.message;
+  EXPECT_EQ(good.report.termination, outer::Termination::Converged);
+  EXPECT_LE(good.report.kkt.max(), good.report.kkt_bound);
+  EXPECT_EQ(good.report.kkt_bound, kCertificateFactor * b.problem.solver.qp_rtol);
+
+  const SkewedOperator skewed(b.input());
+  const ContactOutcome bad = solve_contact(b.problem, b.model, b.disc, skewed, times);
+  EXPECT_FALSE(bad.converged);
+  EXPECT_EQ(bad.report.termination, outer::Termination::CertificateFailed);
+  EXPECT_GT(bad.report.kkt.max(), bad.report.kkt_bound);
+  EXPECT_NE(bad.message.find("certificate"), std::string::npos) << bad.message;
+}
+
+TEST(PaperBrick, MpgpMonotonicityIsReportedPerIterationAndInAll) {
+  const RunResult r = run(paper_problem(4, 6e4));
+  const ContactReport& c = *r.report.contact;
+  int sum = 0;
+  for (const OuterIteration& it : c.history)
+    sum += it.n_objective_increases;
+  EXPECT_EQ(sum, c.n_objective_increases);
+  EXPECT_EQ(c.n_objective_increases, 0);  // alpha_bar = 1.95/||Q||: no step increases q
+}
+
+TEST(Symmetry, AHalfBrickOnARollerReproducesTheFullModelOnItsHalf) {
+  // The paper's brick (n = 4) is symmetric under y -> 1 - y. Its half y < 1/2 with a roller
+  // (u_y = 0) on the cut y = 1/2 is the same discrete problem restricted to symmetric fields:
+  // the same mesh and patches on the half, and the roller meets the contact face along an edge
+  // whose nodes keep their x and z components (they remain contact nodes).
+  Problem full = tight(paper_problem(4, 6e4));
+  full.solver.outer_tol = 1e-9;
+  Problem half = full;
+  half.mesh.size = {3.0, 0.5, 1.0};
+  half.mesh.cells = {12, 2, 4};
+  half.dirichlet.push_back({"y1", {false, true, false}});
+  const RunResult a = run(full), b = run(half);
+  ASSERT_EQ(a.report.status, Status::Converged) << a.report.message;
+  ASSERT_EQ(b.report.status, Status::Converged) << b.report.message;
+  // 13 x 3 surface nodes, the 3 on x = 0 clamped: 36 contact nodes, the roller's included.
+  EXPECT_EQ(b.report.contact->n_contact_nodes, 36);
+  EXPECT_EQ(b.report.contact->n_patches, a.report.contact->n_patches / 2);
+
+  const auto& fa = *a.contact;
+  const auto& fb = *b.contact;
+  const Real scale_lambda = fa.lambda.cwiseAbs().maxCoeff();
+  Index matched = 0;
+  for (Index q = 0; q < fb.patches.size(); ++q)
+    for (Index p = 0; p < fa.patches.size(); ++p) {
+      if ((fa.patches.centroid.col(p) - fb.patches.centroid.col(q)).norm() > 1e-12) continue;
+      ++matched;
+      for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(fb.lambda(3 * q + c), fa.lambda(3 * p + c), 1e-6 * scale_lambda)
+            << "patch " << q << " component " << c;
+    }
+  EXPECT_EQ(matched, fb.patches.size());
+
+  const Real scale_u = a.report.max_displacement;
+  Index nodes = 0;
+  for (Index j = 0; j < b.model.mesh.n_nodes(); ++j)
+    for (Index i = 0; i < a.model.mesh.n_nodes(); ++i) {
+      if ((a.model.mesh.nodes.col(i) - b.model.mesh.nodes.col(j)).norm() > 1e-12) continue;
+      ++nodes;
+      EXPECT_LT((a.displacement.col(i) - b.displacement.col(j)).norm(), 1e-6 * scale_u)
+          << "node " << j;
+    }
+  EXPECT_EQ(nodes, b.model.mesh.n_nodes());
+}
+
+TEST(Symmetry, ARollerOnTheContactFaceFixesTheTangentialComponentOnly) {
+  // u_y = 0 on the whole contact face: the t2 = e2 multipliers act on nothing and stay zero, the
+  // nodes keep their normal and x motion (all 60 remain contact nodes), and the problem is
+  // solved and certified like any other.
+  Problem p = tight(paper_problem(4, 6e4));
+  p.dirichlet.push_back({"z0", {false, true, false}});
+  const RunResult r = run(p);
+  ASSERT_EQ(r.report.status, Status::Converged) << r.report.message;
+  const ContactReport& c = *r.report.contact;
+  EXPECT_EQ(c.n_contact_nodes, 60);
+  EXPECT_EQ(c.n_inactive_multipliers, c.n_patches);
+  for (Index q = 0; q < c.n_patches; ++q)
+    EXPECT_EQ(r.contact->lambda(3 * q + 2), 0.0);
+  EXPECT_LT(c.kkt.max(), 1e-9);
+  for (Index a = 0; a < r.model.mesh.n_nodes(); ++a) {
+    if (r.model.mesh.nodes(2, a) == 0.0) {
+      EXPECT_EQ(r.displacement(1, a), 0.0);
+    }
+  }
 }

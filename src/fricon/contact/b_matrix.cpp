@@ -65,10 +65,25 @@ std::pair<Real, Real> extreme_eigenvalues(const SparseMatrix& A) {
 
 StabilityReport check_stability(const SparseMatrix& B, const std::string& where, Real min_ratio,
                                 Index dense_limit) {
-  // sigma(B)^2 are the eigenvalues of B B^T (n_dual x n_dual).
-  const SparseMatrix BBt = B * B.transpose();
-  Real lmin = 0.0, lmax = 0.0;
+  // A row of B without entries belongs to a multiplier component whose direction Dirichlet
+  // conditions fix on the whole patch (a roller on the contact face): it acts on nothing, its
+  // multiplier stays zero, and it is left out of the check. The other rows must be independent.
   StabilityReport report;
+  const SparseMatrix Bt = B.transpose();  // column-major: the columns of Bt are the rows of B
+  std::vector<Eigen::Triplet<Real, SparseIndex>> select;
+  for (Index r = 0; r < Bt.cols(); ++r) {
+    if (Bt.col(r).nonZeros() == 0) {
+      ++report.n_inactive;
+      continue;
+    }
+    select.emplace_back(static_cast<Index>(select.size()), r, 1.0);
+  }
+  SparseMatrix S(static_cast<Index>(select.size()), B.rows());
+  S.setFromTriplets(select.begin(), select.end());
+  const SparseMatrix active = S * B;
+  // sigma(B)^2 are the eigenvalues of B B^T (n_dual x n_dual).
+  const SparseMatrix BBt = active * active.transpose();
+  Real lmin = 0.0, lmax = 0.0;
   report.estimated = BBt.rows() > dense_limit;
   if (!report.estimated) {
     Eigen::SelfAdjointEigenSolver<MatrixXd> eig(MatrixXd(BBt), Eigen::EigenvaluesOnly);

@@ -22,9 +22,13 @@ SparseMatrix assemble_b(const mesh::TetMesh& mesh, const fe::DofMap& dofs,
 struct StabilityReport {
   Real ratio = 0.0;        ///< sigma_min / sigma_max of B
   bool estimated = false;  ///< true: power and inverse iteration; false: dense eigensolve
+  /// Rows of B without entries (a direction that Dirichlet conditions fix on a whole patch):
+  /// their multipliers act on nothing, stay zero, and are left out of the check.
+  Index n_inactive = 0;
 };
 
-/// Condition (5.1): B^T has full column rank on the contact dofs. Up to `dense_limit` rows the
+/// Condition (5.1): B^T has full column rank on the contact dofs (rows without entries left
+/// out, see StabilityReport::n_inactive). Up to `dense_limit` rows the
 /// eigenvalues of B B^T are computed exactly (dense, O(n_dual^3)); beyond, B B^T (sparse:
 /// neighbouring patches only) is factored by a sparse Cholesky and its extreme eigenvalues
 /// estimated by power and inverse iteration (to about a per cent). Throws NumericalError naming

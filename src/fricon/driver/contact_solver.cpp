@@ -35,6 +35,7 @@ ContactReport describe(const Problem& problem, const contact::ContactDiscretizat
   rep.n_contact_nodes = disc.surface.n_contact_nodes();
   rep.stability_ratio = disc.stability.ratio;
   rep.stability_estimated = disc.stability.estimated;
+  rep.n_inactive_multipliers = disc.stability.n_inactive;
   rep.radius_integration = disc.radius_integration;
   rep.kkt_bound = kCertificateFactor * problem.solver.qp_rtol;
   return rep;
@@ -76,9 +77,8 @@ qp::DualProblem first_dual_problem(const Problem& problem,
 }
 
 // The successive approximations, with the QP counts of every iteration in the report.
-outer::OuterReport successive_approximations(TrescaMap& map, VectorXd& phi,
-                                             const Problem& problem, ContactReport& rep,
-                                             const RunOptions& options) {
+outer::OuterReport successive_approximations(TrescaMap& map, VectorXd& phi, const Problem& problem,
+                                             ContactReport& rep, const RunOptions& options) {
   const auto monitor = [&](const outer::OuterIteration& o) {
     const qp::MpgpReport& q = map.last_qp();
     OuterIteration it;
@@ -147,8 +147,7 @@ void measure(const Model& m, const contact::ContactDiscretization& disc,
   }
   const VectorXd contact_load = -(disc.B.transpose() * lambda);
   out.contact_force = m.dofs.to_nodal(contact_load).rowwise().sum();
-  out.linear_residual =
-      (m.K * out.w - m.f - contact_load).norm() / std::max(m.f.norm(), 1e-300);
+  out.linear_residual = (m.K * out.w - m.f - contact_load).norm() / std::max(m.f.norm(), 1e-300);
 }
 
 // The outcome's status: the loop's termination, unless a converged run fails its certificate.

@@ -50,8 +50,11 @@ struct ContactReport {
   Index n_contact_nodes = 0;         ///< surface nodes whose normal displacement is free
   Real stability_ratio = 0.0;        ///< sigma_min / sigma_max of B (condition (5.1))
   bool stability_estimated = false;  ///< by power/inverse iteration rather than exactly
-  std::string radius_integration;    ///< how the radii were integrated
-  Real norm_Q = 0.0;                 ///< power-method estimate of ||Q|| [m^3/Pa]
+  /// Multiplier components whose direction Dirichlet conditions fix on the whole patch: they act
+  /// on nothing and stay zero (contact::StabilityReport::n_inactive).
+  Index n_inactive_multipliers = 0;
+  std::string radius_integration;  ///< how the radii were integrated
+  Real norm_Q = 0.0;               ///< power-method estimate of ||Q|| [m^3/Pa]
   outer::Termination termination = outer::Termination::IterationLimit;
   int outer_iterations = 0;
   long n_mult = 0;                ///< products with Q over all QPs (the paper's n_mult)

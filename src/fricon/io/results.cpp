@@ -89,6 +89,7 @@ nlohmann::json report_json(const driver::Problem& problem, const driver::RunResu
                     {"n_contact_nodes", c.n_contact_nodes},
                     {"stability_ratio", c.stability_ratio},
                     {"stability_estimated", c.stability_estimated},
+                    {"n_inactive_multipliers", c.n_inactive_multipliers},
                     {"radius_integration", c.radius_integration},
                     {"contraction_ratio", c.contraction_ratio},
                     {"norm_Q", c.norm_Q},

@@ -188,3 +188,44 @@ TEST(Radii, SurfaceL2NormOfLinearFunction) {
     v(k) = b.mesh.nodes(0, b.surface.nodes[static_cast<size_t>(k)]);
   EXPECT_NEAR(surface_l2_norm(b.mesh, b.surface, v), 3.0, 1e-13);
 }
+
+TEST(ContactSurface, ADirichletComponentConstrainsThatComponentOnly) {
+  // A roller on the contact face itself (u_y = 0 on z0): every node keeps its normal (z) and x
+  // components, so every node not on the clamped end is a contact node, B keeps their columns,
+  // and the stability check still passes. Fixing z on z0 instead pins the normal motion: no
+  // contact node is left, which is refused.
+  const Index n = 4;
+  const mesh::TetMesh m = mesh::make_brick({Vec3(3, 1, 1), {3 * n, n, n}});
+  auto dofs_with = [&m](int component_on_z0) {
+    std::vector<bool> fixed(static_cast<size_t>(3 * m.n_nodes()), false);
+    for (Index a : m.nodes_with_tag("x0"))
+      for (int c = 0; c < 3; ++c)
+        fixed[static_cast<size_t>(3 * a + c)] = true;
+    for (Index a : m.nodes_with_tag("z0"))
+      fixed[static_cast<size_t>(3 * a + component_on_z0)] = true;
+    return fe::DofMap(fixed);
+  };
+  const fe::DofMap roller = dofs_with(1);
+  const ContactSurface s = make_contact_surface(m, roller, "z0", "test");
+  EXPECT_EQ(s.n_contact_nodes(), 3 * n * (n + 1));
+  for (size_t k = 0; k < s.nodes.size(); ++k) {
+    EXPECT_TRUE(s.fixed[k][1]);
+    EXPECT_EQ(s.contact_node[k], !(s.fixed[k][0] && s.fixed[k][2]));
+  }
+  const Patches p = chessboard_patches(m, s, "test");
+  const SparseMatrix B = assemble_b(m, roller, s, p);
+  // The t2 = e2 rows lose every column (u_y is fixed on the whole face): only n and t1 remain.
+  for (Index q = 0; q < p.size(); ++q) {
+    EXPECT_GT(B.row(3 * q).norm(), 0.0);
+    EXPECT_GT(B.row(3 * q + 1).norm(), 0.0);
+    EXPECT_EQ(B.row(3 * q + 2).norm(), 0.0);
+  }
+  const fe::DofMap pinned = dofs_with(2);
+  try {
+    make_contact_surface(m, pinned, "z0", "t.toml:3:1");
+    ADD_FAILURE() << "a contact face with its normal motion fixed was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("t.toml:3:1: contact.boundary"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("clamped in the normal direction"), std::string::npos);
+  }
+}
