@@ -1,8 +1,232 @@
 // driver: validate(Problem), the one place where the values of a problem are checked.
+//
+// Every message reads "WHERE: KEY: expected PHRASE, got VALUE", WHERE = problem.where(KEY), and
+// the phrase is the one the TOML reader uses for the same key's type errors, so that a value is
+// described the same way whether the file had the wrong type or the wrong range. The sections
+// are checked in the order of the file (docs/problem-file.md), so the first bad value is named.
+#include <cmath>
+#include <string>
+#include <string_view>
+#include <type_traits>
+
+#include <fmt/format.h>
+
+#include "fricon/core/error.hpp"
 #include "fricon/driver/problem.hpp"
+#include "fricon/fe/material.hpp"
 
 namespace fricon::driver {
 
-void validate(const Problem&) {}
+namespace {
+
+[[noreturn]] void fail(const Problem& p, std::string_view key, std::string_view what) {
+  throw InputError(fmt::format("{}: {}: {}", p.where(key), key, what));
+}
+
+[[noreturn]] void fail_expected(const Problem& p, std::string_view key, std::string_view expected,
+                                std::string_view got) {
+  fail(p, key, fmt::format("expected {}, got {}", expected, got));
+}
+
+/// A real as the reader shows it: a decimal point or an exponent, "nan", "inf", "-inf".
+std::string format_real(Real v) {
+  if (std::isnan(v)) return "nan";
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  std::string s = fmt::format("{}", v);
+  if (s.find_first_of(".e") == std::string::npos) s += ".0";  // show that it is a float
+  return s;
+}
+
+/// A real must be finite, and satisfy its range (`ok`, computed by the caller).
+void check_real(const Problem& p, std::string_view key, Real v, std::string_view expected,
+                bool ok) {
+  if (!std::isfinite(v))
+    fail_expected(p, key, expected, format_real(v) + " (numbers must be finite)");
+  if (!ok) fail_expected(p, key, expected, format_real(v));
+}
+
+void check_int(const Problem& p, std::string_view key, long long v, std::string_view expected,
+               bool ok) {
+  if (!ok) fail_expected(p, key, expected, fmt::format("{}", v));
+}
+
+/// An enum value outside its spelling table (a cast in code); EnumNames<E>::what is the key.
+template <typename E>
+void check_enum(const Problem& p, E v) {
+  if (enum_is_valid(v)) return;
+  fail_expected(
+      p, EnumNames<E>::what, enum_choices<E>(),
+      fmt::format("{} (a value outside the enum)", static_cast<std::underlying_type_t<E>>(v)));
+}
+
+void check_tag(const Problem& p, std::string_view key, const std::string& tag) {
+  if (tag.empty()) fail_expected(p, key, "a non-empty boundary tag", "\"\"");
+}
+
+void check_vec3(const Problem& p, std::string_view key, const Vec3& v, std::string_view expected) {
+  for (int i = 0; i < 3; ++i)
+    check_real(p, fmt::format("{}[{}]", key, i), v[i], expected, true);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The sections.
+
+void validate_mesh(const Problem& p) {
+  const MeshOptions& m = p.mesh;
+  check_enum(p, m.kind);
+  for (std::size_t i = 0; i < 3; ++i)
+    check_real(p, fmt::format("mesh.size[{}]", i), m.size[i], "a positive number [m]",
+               m.size[i] > 0.0);
+  for (std::size_t i = 0; i < 3; ++i)
+    check_int(p, fmt::format("mesh.cells[{}]", i), m.cells[i], "an integer >= 1", m.cells[i] >= 1);
+  // 5 tetrahedra and about 3 dofs per cube: keep every count far from overflow (and from 32-bit
+  // indices in the ordering libraries) instead of failing on allocation later.
+  constexpr double kMaxCells = 1e8;
+  const double total = static_cast<double>(m.cells[0]) * static_cast<double>(m.cells[1]) *
+                       static_cast<double>(m.cells[2]);
+  if (total > kMaxCells)
+    fail(p, "mesh.cells",
+         fmt::format("expected at most {:.0f} cubes in all, got {} x {} x {} = {:.3g}", kMaxCells,
+                     m.cells[0], m.cells[1], m.cells[2], total));
+}
+
+void validate_voigt(const Problem& p) {
+  if (!p.material.voigt)
+    fail_expected(p, "material.voigt",
+                  "a 6x6 Hooke matrix [Pa] (material.model = \"anisotropic\" needs one)", "none");
+  fe::Voigt6 D;
+  for (std::size_t i = 0; i < 6; ++i)
+    for (std::size_t j = 0; j < 6; ++j) {
+      const Real v = (*p.material.voigt)[i][j];
+      check_real(p, fmt::format("material.voigt[{}][{}]", i, j), v, "a number [Pa]", true);
+      D(static_cast<Index>(i), static_cast<Index>(j)) = v;
+    }
+  // Symmetry and ellipticity (docs/theory.md §1).
+  (void)fe::anisotropic(D, fmt::format("{}: material.voigt", p.where("material.voigt")));
+}
+
+void validate_material(const Problem& p) {
+  const MaterialOptions& m = p.material;
+  check_enum(p, m.model);
+  if (m.model == fe::MaterialModel::Anisotropic) {
+    validate_voigt(p);
+    return;
+  }
+  check_real(p, "material.young", m.young, "a positive number [Pa]", m.young > 0.0);
+  check_real(p, "material.poisson", m.poisson, "a number in (-1, 0.5)",
+             m.poisson > -1.0 && m.poisson < 0.5);
+}
+
+void validate_dirichlet(const Problem& p) {
+  for (std::size_t i = 0; i < p.dirichlet.size(); ++i) {
+    const DirichletOptions& d = p.dirichlet[i];
+    check_tag(p, fmt::format("dirichlet[{}].boundary", i), d.boundary);
+    if (!d.components[0] && !d.components[1] && !d.components[2])
+      fail_expected(p, fmt::format("dirichlet[{}].components", i),
+                    "a string of distinct letters from \"xyz\"", "\"\"");
+  }
+}
+
+void validate_traction(const Problem& p) {
+  for (std::size_t i = 0; i < p.traction.size(); ++i) {
+    const TractionOptions& t = p.traction[i];
+    check_tag(p, fmt::format("traction[{}].boundary", i), t.boundary);
+    check_vec3(p, fmt::format("traction[{}].value", i), t.value, "a number [Pa]");
+  }
+}
+
+/// A list of numbers >= 0, at least one ([contact.friction] t and f).
+void check_non_negative_list(const Problem& p, std::string_view key, const std::vector<Real>& v,
+                             std::string_view expected_elem) {
+  if (v.empty()) fail_expected(p, key, "a non-empty array of numbers", "an empty array");
+  for (std::size_t i = 0; i < v.size(); ++i)
+    check_real(p, fmt::format("{}[{}]", key, i), v[i], expected_elem, v[i] >= 0.0);
+}
+
+void validate_table_law(const Problem& p, const FrictionOptions& fr) {
+  check_non_negative_list(p, "contact.friction.t", fr.t, "a number >= 0 [m]");
+  for (std::size_t i = 1; i < fr.t.size(); ++i)
+    if (!(fr.t[i] > fr.t[i - 1]))
+      fail(p, fmt::format("contact.friction.t[{}]", i),
+           fmt::format("expected slips in strictly increasing order, got {} after {}",
+                       format_real(fr.t[i]), format_real(fr.t[i - 1])));
+  check_non_negative_list(p, "contact.friction.f", fr.f, "a number >= 0");
+  if (fr.f.size() != fr.t.size())
+    fail(p, "contact.friction.f",
+         fmt::format("expected as many values as contact.friction.t ({}), got {}", fr.t.size(),
+                     fr.f.size()));
+}
+
+void validate_friction(const Problem& p, const FrictionOptions& fr) {
+  check_enum(p, fr.law);
+  switch (fr.law) {
+    case contact::FrictionLawKind::Paper:
+      check_real(p, "contact.friction.param", fr.param, "a positive number [1/m]", fr.param > 0.0);
+      break;
+    case contact::FrictionLawKind::Constant:
+      check_real(p, "contact.friction.value", fr.value, "a number >= 0", fr.value >= 0.0);
+      break;
+    case contact::FrictionLawKind::Table:
+      validate_table_law(p, fr);
+      break;
+  }
+}
+
+void validate_contact(const Problem& p) {
+  if (!p.contact) return;
+  const ContactOptions& c = *p.contact;
+  check_tag(p, "contact.boundary", c.boundary);
+  check_real(p, "contact.slip_bound", c.slip_bound, "a number >= 0 [Pa]", c.slip_bound >= 0.0);
+  check_enum(p, c.patches);
+  validate_friction(p, c.friction);
+}
+
+void validate_solver(const Problem& p) {
+  const SolverOptions& s = p.solver;
+  check_real(p, "solver.outer_tol", s.outer_tol, "a positive number", s.outer_tol > 0.0);
+  check_int(p, "solver.outer_max", s.outer_max, "an integer >= 1", s.outer_max >= 1);
+  check_real(p, "solver.qp_rtol", s.qp_rtol, "a number in (0, 1)",
+             s.qp_rtol > 0.0 && s.qp_rtol < 1.0);
+  check_int(p, "solver.qp_max", s.qp_max, "an integer >= 1", s.qp_max >= 1);
+  check_enum(p, s.dual_operator);
+  check_enum(p, s.acceleration);
+  check_enum(p, s.qp_variant);
+  check_int(p, "solver.anderson_depth", s.anderson_depth, "an integer in [1, 20]",
+            s.anderson_depth >= 1 && s.anderson_depth <= 20);
+}
+
+void validate_output(const Problem& p) {
+  if (p.output.dir.empty()) fail_expected(p, "output.dir", "a non-empty folder name", "\"\"");
+}
+
+/// The contact face must keep some free dofs: the Dirichlet entries on it may not fix all of
+/// x, y and z.
+void validate_contact_not_clamped(const Problem& p) {
+  if (!p.contact) return;
+  std::array<bool, 3> fixed{false, false, false};
+  for (const auto& d : p.dirichlet)
+    if (d.boundary == p.contact->boundary)
+      for (std::size_t i = 0; i < 3; ++i)
+        fixed[i] = fixed[i] || d.components[i];
+  if (fixed[0] && fixed[1] && fixed[2])
+    fail(p, "contact.boundary",
+         fmt::format("contact and Dirichlet on the same face \"{}\": [[dirichlet]] fixes all of "
+                     "x, y, z there, so no contact node would be left",
+                     p.contact->boundary));
+}
+
+}  // namespace
+
+void validate(const Problem& p) {
+  validate_mesh(p);
+  validate_material(p);
+  check_vec3(p, "volume_force", p.volume_force, "a number [N/m^3]");
+  validate_dirichlet(p);
+  validate_traction(p);
+  validate_contact(p);
+  validate_solver(p);
+  validate_output(p);
+  validate_contact_not_clamped(p);
+}
 
 }  // namespace fricon::driver

@@ -3,16 +3,17 @@
 #include <algorithm>
 #include <cerrno>
 #include <charconv>
-#include <climits>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
 #include <functional>
-#include <initializer_list>
+#include <map>
 #include <optional>
+#include <span>
 #include <sstream>
 #include <unordered_map>
+#include <utility>
 
 #include <fmt/format.h>
 #include <toml++/toml.h>
@@ -25,15 +26,16 @@ namespace fricon::io {
 namespace {
 
 using driver::Problem;
-using namespace std::string_view_literals;
 
 // ---------------------------------------------------------------------------------------------
 // Where a value came from, and how messages are built.
 
-/// The file name, and the nodes that --set put into the document (with the override's text).
+/// The file name, the nodes that --set put into the document (with the override's text), and
+/// where the positions of the keys read are recorded (Problem::positions).
 struct Context {
   std::string file;
   std::unordered_map<const toml::node*, std::string> origins;
+  std::map<std::string, std::string, std::less<>>* positions = nullptr;
 
   /// "file:line:col" of a key (or of the node when the key has no position), "--set K=V" for a
   /// node from an override, or just "file" when toml++ knows no position.
@@ -59,6 +61,13 @@ struct Field {
   const toml::key* key = nullptr;  ///< null for array elements and the root
   std::string path;
 };
+
+/// Records where `f` was given, under its key path, for driver::validate's messages.
+const Field& record(const Context& ctx, const Field& f) {
+  if (ctx.positions != nullptr && !f.path.empty())
+    (*ctx.positions)[f.path] = ctx.where(f.node, f.key);
+  return f;
+}
 
 [[noreturn]] void fail(const Context& ctx, const Field& f, std::string_view what) {
   throw InputError(fmt::format("{}: {}: {}", ctx.where(f.node, f.key), f.path, what));
@@ -106,8 +115,8 @@ std::string join_key(const std::string& path, std::string_view key) {
   return path.empty() ? std::string(key) : fmt::format("{}.{}", path, key);
 }
 
-Field element(const Field& f, const toml::array& a, std::size_t i) {
-  return Field{a.get(i), nullptr, fmt::format("{}[{}]", f.path, i)};
+Field element(const Context& ctx, const Field& f, const toml::array& a, std::size_t i) {
+  return record(ctx, Field{a.get(i), nullptr, fmt::format("{}[{}]", f.path, i)});
 }
 
 std::size_t edit_distance(std::string_view a, std::string_view b) {
@@ -128,28 +137,18 @@ std::size_t edit_distance(std::string_view a, std::string_view b) {
 
 // ---------------------------------------------------------------------------------------------
 // Typed access. `expected` is the phrase of the message "expected <expected>, got <value>"; the
-// same phrase serves the type check and the range check.
+// reader checks only the type (and that an integer fits its C++ type), driver::validate the range,
+// and both use the same phrase for a key.
 
-Real get_real(const Context& ctx, const Field& f, std::string_view expected,
-              const std::function<bool(Real)>& ok = {}) {
-  Real v = 0.0;
-  if (const auto* i = f.node->as_integer()) {
-    v = static_cast<Real>(i->get());
-  } else if (const auto* d = f.node->as_floating_point()) {
-    v = d->get();
-    if (!std::isfinite(v))
-      fail(
-          ctx, f,
-          fmt::format("expected {}, got {} (numbers must be finite)", expected, describe(*f.node)));
-  } else {
-    fail_expected(ctx, f, expected);
-  }
-  if (ok && !ok(v)) fail_expected(ctx, f, expected);
-  return v;
+Real get_real(const Context& ctx, const Field& f, std::string_view expected) {
+  if (const auto* i = f.node->as_integer()) return static_cast<Real>(i->get());
+  if (const auto* d = f.node->as_floating_point()) return d->get();  // nan and inf: validate
+  fail_expected(ctx, f, expected);
 }
 
-std::int64_t get_int(const Context& ctx, const Field& f, std::string_view expected,
-                     std::int64_t min, std::int64_t max) {
+/// An integer that fits in T (the range is validate's: the same phrase serves both).
+template <typename T>
+T get_int(const Context& ctx, const Field& f, std::string_view expected) {
   const auto* i = f.node->as_integer();
   if (i == nullptr) {
     if (f.node->is_floating_point())
@@ -158,14 +157,14 @@ std::int64_t get_int(const Context& ctx, const Field& f, std::string_view expect
                        expected, describe(*f.node)));
     fail_expected(ctx, f, expected);
   }
-  if (i->get() < min || i->get() > max) fail_expected(ctx, f, expected);
-  return i->get();
+  if (!std::in_range<T>(i->get())) fail_expected(ctx, f, expected);
+  return static_cast<T>(i->get());
 }
 
-std::string get_string(const Context& ctx, const Field& f, std::string_view expected,
-                       bool allow_empty) {
+/// A string, possibly empty (validate rejects the empty ones that are not allowed).
+std::string get_string(const Context& ctx, const Field& f, std::string_view expected) {
   const auto* s = f.node->as_string();
-  if (s == nullptr || (!allow_empty && s->get().empty())) fail_expected(ctx, f, expected);
+  if (s == nullptr) fail_expected(ctx, f, expected);
   return s->get();
 }
 
@@ -190,16 +189,15 @@ const toml::array& get_array(const Context& ctx, const Field& f, std::string_vie
   return *a;
 }
 
-/// An array of exactly N numbers, each satisfying `ok`.
+/// An array of exactly N numbers.
 template <std::size_t N>
-std::array<Real, N> get_reals(const Context& ctx, const Field& f, std::string_view expected_elem,
-                              const std::function<bool(Real)>& ok = {}) {
+std::array<Real, N> get_reals(const Context& ctx, const Field& f, std::string_view expected_elem) {
   const auto& a = get_array(ctx, f, fmt::format("an array of {} numbers", N));
   if (a.size() != N)
     fail(ctx, f, fmt::format("expected an array of {} numbers, got {} element(s)", N, a.size()));
   std::array<Real, N> out{};
   for (std::size_t i = 0; i < N; ++i)
-    out[i] = get_real(ctx, element(f, a, i), expected_elem, ok);
+    out[i] = get_real(ctx, element(ctx, f, a, i), expected_elem);
   return out;
 }
 
@@ -208,23 +206,23 @@ Vec3 get_vec3(const Context& ctx, const Field& f, std::string_view expected_elem
   return Vec3(v[0], v[1], v[2]);
 }
 
-/// An array of at least one number, each satisfying `ok`.
-std::vector<Real> get_real_list(const Context& ctx, const Field& f, std::string_view expected_elem,
-                                const std::function<bool(Real)>& ok = {}) {
+/// An array of numbers (validate requires at least one).
+std::vector<Real> get_real_list(const Context& ctx, const Field& f,
+                                std::string_view expected_elem) {
   const auto& a = get_array(ctx, f, "a non-empty array of numbers");
-  if (a.empty()) fail_expected(ctx, f, "a non-empty array of numbers");
   std::vector<Real> out(a.size());
   for (std::size_t i = 0; i < a.size(); ++i)
-    out[i] = get_real(ctx, element(f, a, i), expected_elem, ok);
+    out[i] = get_real(ctx, element(ctx, f, a, i), expected_elem);
   return out;
 }
 
 /// A table of the document with the keys it allows; unknown keys are rejected on construction.
+/// Every key that find() finds is recorded in Problem::positions.
 class TableReader {
  public:
   TableReader(const Context& ctx, const Field& self, std::string_view expected,
-              std::initializer_list<std::string_view> allowed)
-      : ctx_(ctx), self_(self), allowed_(allowed) {
+              std::vector<std::string_view> allowed)
+      : ctx_(ctx), self_(self), allowed_(std::move(allowed)) {
     table_ = self.node->as_table();
     if (table_ == nullptr) fail_expected(ctx, self, expected);
     reject_unknown_keys();
@@ -235,7 +233,7 @@ class TableReader {
   std::optional<Field> find(std::string_view key) const {
     const auto it = table_->find(key);
     if (it == table_->end()) return std::nullopt;
-    return Field{&it->second, &it->first, join_key(self_.path, key)};
+    return record(ctx_, Field{&it->second, &it->first, join_key(self_.path, key)});
   }
 
   Field require(std::string_view key, std::string_view why = {}) const {
@@ -297,75 +295,86 @@ class TableReader {
 };
 
 // ---------------------------------------------------------------------------------------------
-// The sections.
+// The sections. Only types and shapes are checked here; driver::validate checks the values.
 
-const auto positive = [](Real v) { return v > 0.0; };
-const auto non_negative = [](Real v) { return v >= 0.0; };
+/// Every parameter of every choice of E (a selector: friction law, material model), in the order
+/// of its spelling table, each once.
+template <typename E, typename ParamsOf>
+std::vector<std::string_view> all_parameters(ParamsOf params_of) {
+  std::vector<std::string_view> out;
+  for (const auto& entry : EnumNames<E>::table)
+    for (const auto key : params_of(entry.first))
+      if (std::find(out.begin(), out.end(), key) == out.end()) out.push_back(key);
+  return out;
+}
+
+/// The keys of a table that holds a selector: the selector, then every parameter.
+std::vector<std::string_view> with_selector(std::string_view selector,
+                                            std::vector<std::string_view> params) {
+  params.insert(params.begin(), selector);
+  return params;
+}
+
+/// The first of `params` (in their order) that the table holds but the choice does not `use`.
+std::optional<Field> find_unused(const TableReader& t, const std::vector<std::string_view>& params,
+                                 std::span<const std::string_view> used) {
+  for (const auto key : params) {
+    if (std::find(used.begin(), used.end(), key) != used.end()) continue;
+    if (auto k = t.find(key)) return k;
+  }
+  return std::nullopt;
+}
 
 void read_mesh(const Context& ctx, const Field& f, driver::MeshOptions& m) {
   const TableReader t(ctx, f, "a table [mesh]", {"kind", "size", "cells"});
   if (auto k = t.find("kind")) m.kind = get_enum<driver::MeshKind>(ctx, *k);
-  if (auto k = t.find("size")) m.size = get_reals<3>(ctx, *k, "a positive number [m]", positive);
+  if (auto k = t.find("size")) m.size = get_reals<3>(ctx, *k, "a positive number [m]");
   if (auto k = t.find("cells")) {
     const auto& a = get_array(ctx, *k, "an array of 3 integers");
     if (a.size() != 3)
       fail(ctx, *k, fmt::format("expected an array of 3 integers, got {} element(s)", a.size()));
     for (std::size_t i = 0; i < 3; ++i)
-      m.cells[i] = static_cast<Index>(
-          get_int(ctx, element(*k, a, i), "an integer >= 1", 1, std::int64_t{1} << 31));
-    // 5 tetrahedra and about 3 dofs per cube: keep every count far from overflow (and from
-    // 32-bit indices in the ordering libraries) instead of failing on allocation later.
-    constexpr double kMaxCells = 1e8;
-    const double total = static_cast<double>(m.cells[0]) * static_cast<double>(m.cells[1]) *
-                         static_cast<double>(m.cells[2]);
-    if (total > kMaxCells)
-      fail(ctx, *k,
-           fmt::format("expected at most {:.0f} cubes in all, got {} x {} x {} = {:.3g}", kMaxCells,
-                       m.cells[0], m.cells[1], m.cells[2], total));
+      m.cells[i] = get_int<Index>(ctx, element(ctx, *k, a, i), "an integer >= 1");
   }
 }
 
+/// What to do instead, for a key of [material] that `model` does not use.
+std::string_view material_hint(fe::MaterialModel model) {
+  return model == fe::MaterialModel::Isotropic
+             ? "set material.model = \"anisotropic\" to give a Hooke matrix"
+             : "the Hooke matrix is material.voigt";
+}
+
 void read_material(const Context& ctx, const Field& f, driver::MaterialOptions& m) {
-  const TableReader t(ctx, f, "a table [material]", {"model", "young", "poisson", "voigt"});
+  static const auto params = all_parameters<fe::MaterialModel>(fe::material_parameters);
+  const TableReader t(ctx, f, "a table [material]", with_selector("model", params));
   if (auto k = t.find("model")) m.model = get_enum<fe::MaterialModel>(ctx, *k);
+  if (auto k = find_unused(t, params, fe::material_parameters(m.model)))
+    fail(ctx, *k,
+         fmt::format("not used by model \"{}\" ({})", enum_name(m.model), material_hint(m.model)));
   if (m.model == fe::MaterialModel::Isotropic) {
-    if (auto k = t.find("voigt"))
-      fail(ctx, *k,
-           "not used by model \"isotropic\" (set material.model = \"anisotropic\" to give a "
-           "Hooke matrix)");
-    if (auto k = t.find("young")) m.young = get_real(ctx, *k, "a positive number [Pa]", positive);
-    if (auto k = t.find("poisson"))
-      m.poisson =
-          get_real(ctx, *k, "a number in (-1, 0.5)", [](Real v) { return v > -1.0 && v < 0.5; });
+    if (auto k = t.find("young")) m.young = get_real(ctx, *k, "a positive number [Pa]");
+    if (auto k = t.find("poisson")) m.poisson = get_real(ctx, *k, "a number in (-1, 0.5)");
     m.voigt.reset();
     return;
   }
   // anisotropic: the 6x6 Voigt matrix replaces young and poisson.
-  for (const char* unused : {"young", "poisson"})
-    if (auto k = t.find(unused))
-      fail(ctx, *k, "not used by model \"anisotropic\" (the Hooke matrix is material.voigt)");
   const Field k = t.require("voigt", "material.model = \"anisotropic\" needs a 6x6 Hooke matrix");
   const auto& rows = get_array(ctx, k, "an array of 6 rows of 6 numbers [Pa]");
   if (rows.size() != 6)
     fail(ctx, k, fmt::format("expected 6 rows of 6 numbers [Pa], got {} row(s)", rows.size()));
   std::array<std::array<Real, 6>, 6> D{};
-  fe::Voigt6 Dm;
-  for (std::size_t i = 0; i < 6; ++i) {
-    D[i] = get_reals<6>(ctx, element(k, rows, i), "a number [Pa]");
-    for (std::size_t j = 0; j < 6; ++j)
-      Dm(static_cast<Index>(i), static_cast<Index>(j)) = D[i][j];
-  }
-  // Symmetry and ellipticity (method.md §1), checked early so that the message points here.
-  (void)fe::anisotropic(Dm, fmt::format("{}: {}", ctx.where(k.node, k.key), k.path));
+  for (std::size_t i = 0; i < 6; ++i)
+    D[i] = get_reals<6>(ctx, element(ctx, k, rows, i), "a number [Pa]");
   m.voigt = D;
 }
 
 driver::DirichletOptions read_dirichlet(const Context& ctx, const Field& f) {
   const TableReader t(ctx, f, "a table", {"boundary", "components"});
   driver::DirichletOptions d;
-  d.boundary = get_string(ctx, t.require("boundary"), "a non-empty boundary tag", false);
+  d.boundary = get_string(ctx, t.require("boundary"), "a non-empty boundary tag");
   if (auto k = t.find("components")) {
-    const std::string s = get_string(ctx, *k, "a string of distinct letters from \"xyz\"", false);
+    const std::string s = get_string(ctx, *k, "a string of distinct letters from \"xyz\"");
     d.components = {false, false, false};
     for (const char c : s) {
       const auto pos = std::string_view("xyz").find(c);
@@ -380,7 +389,7 @@ driver::DirichletOptions read_dirichlet(const Context& ctx, const Field& f) {
 driver::TractionOptions read_traction(const Context& ctx, const Field& f) {
   const TableReader t(ctx, f, "a table", {"boundary", "value"});
   driver::TractionOptions tr;
-  tr.boundary = get_string(ctx, t.require("boundary"), "a non-empty boundary tag", false);
+  tr.boundary = get_string(ctx, t.require("boundary"), "a non-empty boundary tag");
   tr.value = get_vec3(ctx, t.require("value"), "a number [Pa]");
   return tr;
 }
@@ -393,7 +402,7 @@ std::vector<T> read_table_array(const Context& ctx, const Field& f, std::string_
   const auto& a = get_array(ctx, f, expected);
   std::vector<T> out;
   for (std::size_t i = 0; i < a.size(); ++i) {
-    const Field e = element(f, a, i);
+    const Field e = element(ctx, f, a, i);
     if (!e.node->is_table()) fail_expected(ctx, e, fmt::format("a table (write [[{}]])", name));
     out.push_back(read_one(ctx, e));
   }
@@ -401,49 +410,39 @@ std::vector<T> read_table_array(const Context& ctx, const Field& f, std::string_
 }
 
 void read_friction(const Context& ctx, const Field& f, driver::FrictionOptions& fr) {
-  const TableReader t(ctx, f, "a table [contact.friction]", {"law", "param", "value", "t", "f"});
+  static const auto params =
+      all_parameters<contact::FrictionLawKind>(contact::friction_law_parameters);
+  const TableReader t(ctx, f, "a table [contact.friction]", with_selector("law", params));
   if (auto k = t.find("law")) fr.law = get_enum<contact::FrictionLawKind>(ctx, *k);
   const auto used = contact::friction_law_parameters(fr.law);
-  for (const auto key : {"param"sv, "value"sv, "t"sv, "f"sv}) {
-    if (std::find(used.begin(), used.end(), key) != used.end()) continue;
-    if (auto k = t.find(key)) {
-      std::string takes;
-      for (const auto u : used)
-        takes += fmt::format("{}{}", takes.empty() ? "" : ", ", u);
-      fail(ctx, *k, fmt::format("not used by law \"{}\" (it takes: {})", enum_name(fr.law), takes));
-    }
+  if (auto k = find_unused(t, params, used)) {
+    std::string takes;
+    for (const auto u : used)
+      takes += fmt::format("{}{}", takes.empty() ? "" : ", ", u);
+    fail(ctx, *k, fmt::format("not used by law \"{}\" (it takes: {})", enum_name(fr.law), takes));
   }
-  if (fr.law == contact::FrictionLawKind::Paper) {
-    if (auto k = t.find("param")) fr.param = get_real(ctx, *k, "a positive number [1/m]", positive);
-  } else if (fr.law == contact::FrictionLawKind::Constant) {
-    if (auto k = t.find("value")) fr.value = get_real(ctx, *k, "a number >= 0", non_negative);
-  } else {
-    const Field kt = t.require("t", "law \"table\" needs slips t [m] and coefficients f");
-    const Field kf = t.require("f", "law \"table\" needs slips t [m] and coefficients f");
-    fr.t = get_real_list(ctx, kt, "a number >= 0 [m]", non_negative);
-    const auto& at = *kt.node->as_array();
-    for (std::size_t i = 1; i < fr.t.size(); ++i)
-      if (!(fr.t[i] > fr.t[i - 1]))
-        fail(ctx, element(kt, at, i),
-             fmt::format("expected slips in strictly increasing order, got {} after {}",
-                         describe(*at.get(i)), describe(*at.get(i - 1))));
-    fr.f = get_real_list(ctx, kf, "a number >= 0", non_negative);
-    if (fr.f.size() != fr.t.size())
-      fail(ctx, kf,
-           fmt::format("expected as many values as {} ({}), got {}", kt.path, fr.t.size(),
-                       fr.f.size()));
+  switch (fr.law) {
+    case contact::FrictionLawKind::Paper:
+      if (auto k = t.find("param")) fr.param = get_real(ctx, *k, "a positive number [1/m]");
+      break;
+    case contact::FrictionLawKind::Constant:
+      if (auto k = t.find("value")) fr.value = get_real(ctx, *k, "a number >= 0");
+      break;
+    case contact::FrictionLawKind::Table: {
+      const Field kt = t.require("t", "law \"table\" needs slips t [m] and coefficients f");
+      const Field kf = t.require("f", "law \"table\" needs slips t [m] and coefficients f");
+      fr.t = get_real_list(ctx, kt, "a number >= 0 [m]");
+      fr.f = get_real_list(ctx, kf, "a number >= 0");
+      break;
+    }
   }
 }
 
-void read_contact(const Context& ctx, const Field& f, driver::ContactOptions& c,
-                  std::optional<Field>& boundary_field) {
+void read_contact(const Context& ctx, const Field& f, driver::ContactOptions& c) {
   const TableReader t(ctx, f, "a table [contact]",
                       {"boundary", "slip_bound", "patches", "friction"});
-  boundary_field = t.find("boundary");
-  if (boundary_field)
-    c.boundary = get_string(ctx, *boundary_field, "a non-empty boundary tag", false);
-  if (auto k = t.find("slip_bound"))
-    c.slip_bound = get_real(ctx, *k, "a number >= 0 [Pa]", non_negative);
+  if (auto k = t.find("boundary")) c.boundary = get_string(ctx, *k, "a non-empty boundary tag");
+  if (auto k = t.find("slip_bound")) c.slip_bound = get_real(ctx, *k, "a number >= 0 [Pa]");
   if (auto k = t.find("patches")) c.patches = get_enum<contact::PatchKind>(ctx, *k);
   if (auto k = t.find("friction")) read_friction(ctx, *k, c.friction);
 }
@@ -452,33 +451,31 @@ void read_solver(const Context& ctx, const Field& f, driver::SolverOptions& s) {
   const TableReader t(ctx, f, "a table [solver]",
                       {"outer_tol", "outer_max", "qp_rtol", "qp_max", "warm_start", "dual_operator",
                        "acceleration", "anderson_depth", "qp_variant"});
-  if (auto k = t.find("outer_tol")) s.outer_tol = get_real(ctx, *k, "a positive number", positive);
-  if (auto k = t.find("outer_max"))
-    s.outer_max = static_cast<int>(get_int(ctx, *k, "an integer >= 1", 1, INT_MAX));
-  if (auto k = t.find("qp_rtol"))
-    s.qp_rtol = get_real(ctx, *k, "a number in (0, 1)", [](Real v) { return v > 0.0 && v < 1.0; });
-  if (auto k = t.find("qp_max"))
-    s.qp_max = static_cast<int>(get_int(ctx, *k, "an integer >= 1", 1, INT_MAX));
+  if (auto k = t.find("outer_tol")) s.outer_tol = get_real(ctx, *k, "a positive number");
+  if (auto k = t.find("outer_max")) s.outer_max = get_int<int>(ctx, *k, "an integer >= 1");
+  if (auto k = t.find("qp_rtol")) s.qp_rtol = get_real(ctx, *k, "a number in (0, 1)");
+  if (auto k = t.find("qp_max")) s.qp_max = get_int<int>(ctx, *k, "an integer >= 1");
   if (auto k = t.find("warm_start")) s.warm_start = get_bool(ctx, *k);
   if (auto k = t.find("dual_operator")) s.dual_operator = get_enum<dual::DualOperatorKind>(ctx, *k);
   if (auto k = t.find("acceleration")) s.acceleration = get_enum<outer::Acceleration>(ctx, *k);
   if (auto k = t.find("qp_variant")) s.qp_variant = get_enum<qp::MpgpVariant>(ctx, *k);
   if (auto k = t.find("anderson_depth"))
-    s.anderson_depth = static_cast<int>(get_int(ctx, *k, "an integer in [1, 20]", 1, 20));
+    s.anderson_depth = get_int<int>(ctx, *k, "an integer in [1, 20]");
 }
 
 void read_output(const Context& ctx, const Field& f, driver::OutputOptions& o) {
   const TableReader t(ctx, f, "a table [output]", {"dir"});
-  if (auto k = t.find("dir")) o.dir = get_string(ctx, *k, "a non-empty folder name", false);
+  if (auto k = t.find("dir")) o.dir = get_string(ctx, *k, "a non-empty folder name");
 }
 
-Problem convert(const Context& ctx, const toml::table& root) {
-  Problem p;
+/// The document -> p, recording the position of every key read in p.positions.
+void convert(Context& ctx, const toml::table& root, Problem& p) {
   p.source = ctx.file;
+  ctx.positions = &p.positions;
   const TableReader t(ctx, Field{&root, nullptr, ""}, "a table",
                       {"title", "mesh", "material", "volume_force", "dirichlet", "traction",
                        "contact", "solver", "output"});
-  if (auto k = t.find("title")) p.title = get_string(ctx, *k, "a string", true);
+  if (auto k = t.find("title")) p.title = get_string(ctx, *k, "a string");
   read_mesh(ctx, t.require("mesh", "the [mesh] table is required"), p.mesh);
   read_material(ctx, t.require("material", "the [material] table is required"), p.material);
   if (auto k = t.find("volume_force")) p.volume_force = get_vec3(ctx, *k, "a number [N/m^3]");
@@ -486,30 +483,10 @@ Problem convert(const Context& ctx, const toml::table& root) {
     p.dirichlet = read_table_array<driver::DirichletOptions>(ctx, *k, "dirichlet", read_dirichlet);
   if (auto k = t.find("traction"))
     p.traction = read_table_array<driver::TractionOptions>(ctx, *k, "traction", read_traction);
-  std::optional<Field> contact_boundary;
-  std::optional<Field> contact_field = t.find("contact");
-  if (contact_field) read_contact(ctx, *contact_field, p.contact.emplace(), contact_boundary);
+  if (auto k = t.find("contact")) read_contact(ctx, *k, p.contact.emplace());
   if (auto k = t.find("solver")) read_solver(ctx, *k, p.solver);
   if (auto k = t.find("output")) read_output(ctx, *k, p.output);
-
-  // Consistency that needs no mesh: the contact face must keep some free dofs.
-  if (p.contact) {
-    std::array<bool, 3> fixed{false, false, false};
-    for (const auto& d : p.dirichlet)
-      if (d.boundary == p.contact->boundary)
-        for (int i = 0; i < 3; ++i)
-          fixed[i] = fixed[i] || d.components[i];
-    if (fixed[0] && fixed[1] && fixed[2]) {
-      const Field at = contact_boundary
-                           ? *contact_boundary
-                           : Field{contact_field->node, contact_field->key, "contact.boundary"};
-      fail(ctx, at,
-           fmt::format("contact and Dirichlet on the same face \"{}\": [[dirichlet]] fixes all "
-                       "of x, y, z there, so no contact node would be left",
-                       p.contact->boundary));
-    }
-  }
-  return p;
+  ctx.positions = nullptr;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -584,16 +561,29 @@ toml::table parse_override_value(const std::string& text, std::string_view value
   }
 }
 
-/// Keys whose value selects which other keys of the same table are used.
+/// A key whose value selects which other keys of the same table are used (friction law,
+/// material model): its key path and, for each spelling, the parameters that choice takes.
 struct Selector {
   std::string_view key;
-  std::vector<std::pair<std::string_view, std::vector<std::string_view>>> params;
+  std::vector<std::pair<std::string_view, std::span<const std::string_view>>> params;
 };
-const std::vector<Selector> kSelectors = {
-    {"contact.friction.law",
-     {{"paper", {"param"}}, {"constant", {"value"}}, {"table", {"t", "f"}}}},
-    {"material.model", {{"isotropic", {"young", "poisson"}}, {"anisotropic", {"voigt"}}}},
-};
+
+/// The selector of enum E, whose EnumNames<E>::what is the key path.
+template <typename E, typename ParamsOf>
+Selector selector_of(ParamsOf params_of) {
+  Selector s{EnumNames<E>::what, {}};
+  for (const auto& [value, name] : EnumNames<E>::table)
+    s.params.emplace_back(name, params_of(value));
+  return s;
+}
+
+const std::vector<Selector>& selectors() {
+  static const std::vector<Selector> all = {
+      selector_of<contact::FrictionLawKind>(contact::friction_law_parameters),
+      selector_of<fe::MaterialModel>(fe::material_parameters),
+  };
+  return all;
+}
 
 void for_each_node(const toml::node& n, const std::function<void(const toml::node&)>& fn) {
   fn(n);
@@ -685,7 +675,7 @@ void apply_override(Context& ctx, toml::table& root, const std::string& text) {
   const auto* choice = placed->as_string();
   auto* table = cur->as_table();
   if (choice == nullptr || table == nullptr) return;
-  for (const auto& sel : kSelectors) {
+  for (const auto& sel : selectors()) {
     if (prefix(path.size()) != sel.key) continue;
     for (const auto& [name, used] : sel.params) {
       if (name == choice->get()) continue;
@@ -766,7 +756,10 @@ driver::Problem parse_problem(std::string_view text, const std::string& source_n
   }
   for (const auto& o : overrides)
     apply_override(ctx, root, o);
-  return convert(ctx, root);
+  Problem problem;
+  convert(ctx, root, problem);
+  driver::validate(problem);
+  return problem;
 }
 
 driver::Problem read_problem(const std::string& path, const std::vector<std::string>& overrides) {

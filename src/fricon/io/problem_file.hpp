@@ -1,10 +1,13 @@
 #pragma once
 // io: the TOML problem file (docs/problem-file.md) -> driver::Problem, and back to JSON.
 //
-// The reader rejects unknown keys, wrong types, non-finite numbers and values out of range with a
-// fricon::InputError whose message starts with where the value came from and the full key path:
-//   paper.toml:7:1: material.young: expected a positive number [Pa], got -1
-//   --set material.young=-1: material.young: expected a positive number [Pa], got -1
+// The reader checks what is particular to the file: TOML syntax, types, array lengths, unknown
+// keys (with a "did you mean" hint), required keys, keys that the chosen friction law or material
+// model does not use, and --set. It records where every key was given (Problem::positions) and
+// leaves the values to driver::validate, which it calls last. Every message starts with where the
+// value came from and the full key path:
+//   paper.toml:7:1: material.young: expected a positive number [Pa], got -1.0
+//   --set material.young=-1: material.young: expected a positive number [Pa], got -1.0
 // Boundary tags are not checked against the mesh here (the mesh does not exist yet).
 
 #include <string>
@@ -17,12 +20,13 @@
 
 namespace fricon::io {
 
-/// Reads and validates the problem file at `path`. `overrides` are "KEY=VALUE" strings (the
-/// command line's --set): KEY is a dotted key path, where an integer component indexes an array
-/// of tables ("traction.1.value", 0-based; "traction[1].value" is accepted too); VALUE is a TOML
-/// value ("[24,8,8]", "2e11", "\"constant\"") or a bare word taken as a string ("constant").
-/// Overrides are applied to the parsed document before validation, in order, so an overridden
-/// key is checked exactly like a key in the file. Throws InputError.
+/// Reads the problem file at `path` and validates the Problem (driver::validate). `overrides` are
+/// "KEY=VALUE" strings (the command line's --set): KEY is a dotted key path, where an integer
+/// component indexes an array of tables ("traction.1.value", 0-based; "traction[1].value" is
+/// accepted too); VALUE is a TOML value ("[24,8,8]", "2e11", "\"constant\"") or a bare word taken
+/// as a string ("constant"). Overrides are applied to the parsed document before it is read, in
+/// order, so an overridden key is checked exactly like a key in the file; its position is "--set
+/// KEY=VALUE". Throws InputError.
 driver::Problem read_problem(const std::string& path,
                              const std::vector<std::string>& overrides = {});
 

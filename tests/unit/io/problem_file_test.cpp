@@ -3,6 +3,8 @@
 #include "fricon/io/problem_file.hpp"
 
 #include <cstdint>
+#include <functional>
+#include <map>
 #include <sstream>
 #include <string>
 #include <type_traits>
@@ -259,7 +261,7 @@ TEST(ProblemFileOverrides, CreatesMissingTables) {
 TEST(ProblemFileOverrides, AreValidatedAndNamed) {
   EXPECT_THAT(error_of("[mesh]\n[material]\n", {"material.young=-1"}),
               HasSubstr("--set material.young=-1: material.young: expected a positive number "
-                        "[Pa], got -1"));
+                        "[Pa], got -1.0"));
   EXPECT_THAT(error_of("[mesh]\n[material]\n", {"mesh.cells=[24,8,0]"}),
               HasSubstr("--set mesh.cells=[24,8,0]: mesh.cells[2]: expected an integer >= 1"));
   EXPECT_THAT(error_of("[mesh]\n[material]\n", {"material.yung=2e11"}),
@@ -360,7 +362,7 @@ std::vector<ErrorCase> error_cases() {
        {"t.toml:2:", "mesh.cells[1]: expected an integer >= 1, got 0"}},
       {"YoungNegative",
        "[mesh]\n[material]\nyoung = -1\n",
-       {"t.toml:3:1: material.young: expected a positive number [Pa], got -1"}},
+       {"t.toml:3:1: material.young: expected a positive number [Pa], got -1.0"}},
       {"YoungWrongType",
        "[mesh]\n[material]\nyoung = \"steel\"\n",
        {"t.toml:3:1: material.young: expected a positive number [Pa], got \"steel\""}},
@@ -531,6 +533,111 @@ TEST(ProblemFile, MissingFile) {
   } catch (const InputError& e) {
     EXPECT_THAT(e.what(), HasSubstr("/nonexistent/problem.toml: cannot open"));
   }
+}
+
+// ------------------------------------------------------------------------------------------
+// Positions: where each key was given, for driver::validate's messages.
+
+const std::string kPositioned = R"(title = "t"
+[mesh]
+size = [3.0, 1.0, 1.0]
+[material]
+young = 2e11
+[[dirichlet]]
+boundary = "x0"
+[contact]
+boundary = "z0"
+[contact.friction]
+law = "table"
+t = [0, 1e-5, 2e-5]
+f = [0.3, 0.2, 0.1]
+)";
+
+/// The message of the InputError that driver::validate throws, or "" when it does not throw.
+std::string validate_error(const driver::Problem& p) {
+  try {
+    driver::validate(p);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ProblemFilePositions, RecordsEveryKeyReadAndItsTables) {
+  const auto p = parse_problem(kPositioned, "t.toml");
+  const std::map<std::string, std::string, std::less<>> expected = {
+      {"title", "t.toml:1:1"},
+      {"mesh", "t.toml:2:2"},
+      {"mesh.size", "t.toml:3:1"},
+      {"mesh.size[0]", "t.toml:3:9"},
+      {"mesh.size[1]", "t.toml:3:14"},
+      {"mesh.size[2]", "t.toml:3:19"},
+      {"material", "t.toml:4:2"},
+      {"material.young", "t.toml:5:1"},
+      {"dirichlet", "t.toml:6:3"},
+      {"dirichlet[0]", "t.toml:6:1"},
+      {"dirichlet[0].boundary", "t.toml:7:1"},
+      {"contact", "t.toml:8:2"},
+      {"contact.boundary", "t.toml:9:1"},
+      {"contact.friction", "t.toml:10:10"},
+      {"contact.friction.law", "t.toml:11:1"},
+      {"contact.friction.t", "t.toml:12:1"},
+      {"contact.friction.t[0]", "t.toml:12:6"},
+      {"contact.friction.t[1]", "t.toml:12:9"},
+      {"contact.friction.t[2]", "t.toml:12:15"},
+      {"contact.friction.f", "t.toml:13:1"},
+      {"contact.friction.f[0]", "t.toml:13:6"},
+      {"contact.friction.f[1]", "t.toml:13:11"},
+      {"contact.friction.f[2]", "t.toml:13:16"},
+  };
+  EXPECT_EQ(p.positions, expected);
+}
+
+TEST(ProblemFilePositions, ProblemModifiedInCodeNamesTheFilePosition) {
+  auto p = parse_problem(kPositioned, "t.toml");
+  ASSERT_EQ(validate_error(p), "");
+  // A key of the file: its own position.
+  p.material.young = -1.0;
+  EXPECT_EQ(validate_error(p),
+            "t.toml:5:1: material.young: expected a positive number [Pa], got -1.0");
+  p.material.young = 2e11;
+  p.contact->friction.t[2] = 1e-6;
+  EXPECT_THAT(validate_error(p), HasSubstr("t.toml:12:15: contact.friction.t[2]: expected slips "
+                                           "in strictly increasing order, got 1e-06 after 1e-05"));
+  p.contact->friction.t[2] = 2e-5;
+  // A key that the file leaves out: the position of its table.
+  p.material.poisson = 0.7;
+  EXPECT_THAT(validate_error(p), HasSubstr("t.toml:4:2: material.poisson: "));
+  p.material.poisson = 0.3;
+  p.dirichlet.push_back({"", {true, true, true}});
+  EXPECT_THAT(validate_error(p), HasSubstr("t.toml:6:3: dirichlet[1].boundary: "));
+  p.dirichlet.back().boundary = "z0";
+  EXPECT_THAT(validate_error(p), HasSubstr("t.toml:9:1: contact.boundary: contact and Dirichlet"));
+  p.dirichlet.pop_back();
+  // A table that the file lacks: the file.
+  p.solver.qp_max = 0;
+  EXPECT_EQ(validate_error(p), "t.toml: solver.qp_max: expected an integer >= 1, got 0");
+}
+
+TEST(ProblemFilePositions, SetValuesAreNamedBySet) {
+  auto p = read_problem(kPaper, {"material.young=2e11", "mesh.cells=[24,8,8]",
+                                 "dirichlet.1.boundary=y0", "dirichlet.1.components=z"});
+  EXPECT_EQ(p.positions.at("material.young"), "--set material.young=2e11");
+  EXPECT_EQ(p.positions.at("mesh.cells[1]"), "--set mesh.cells=[24,8,8]");
+  EXPECT_EQ(p.positions.at("dirichlet[1]"), "--set dirichlet.1.boundary=y0");
+  EXPECT_EQ(p.positions.at("dirichlet[1].components"), "--set dirichlet.1.components=z");
+  EXPECT_THAT(p.positions.at("material.poisson"), HasSubstr(kPaper + ":"));  // from the file
+  p.material.young = 0.0;
+  EXPECT_EQ(validate_error(p),
+            "--set material.young=2e11: material.young: expected a positive "
+            "number [Pa], got 0.0");
+  p.material.young = 2e11;
+  p.mesh.cells[1] = -8;
+  EXPECT_THAT(validate_error(p), HasSubstr("--set mesh.cells=[24,8,8]: mesh.cells[1]: "));
+  p.mesh.cells[1] = 8;
+  p.dirichlet[1].components = {false, false, false};
+  EXPECT_THAT(validate_error(p),
+              HasSubstr("--set dirichlet.1.components=z: dirichlet[1].components: "));
 }
 
 // ------------------------------------------------------------------------------------------
