@@ -1,7 +1,9 @@
 # fricon: the two commands of the README, and a few more for developers.
 #   make demo    install what is missing, build (Release), solve the paper's brick
-#   make test    install what is missing, build (Release), run the whole CTest suite, then the
-#                unit tests again under AddressSanitizer + UndefinedBehaviorSanitizer
+#   make test    install what is missing, build (Release), run the whole CTest suite with the
+#                BLAS's default threads, the numerical tests again with one BLAS thread (results
+#                must not depend on rounding), then the unit tests and a fast subset of the
+#                command-line tests under AddressSanitizer + UndefinedBehaviorSanitizer
 #   make bench   build and run the benchmarks (outside the tests)
 #   make format  clang-format every C++ file
 BUILD     ?= build
@@ -27,13 +29,15 @@ test: test-release test-sanitize
 
 test-release: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(CTEST_JOBS)
+	OPENBLAS_NUM_THREADS=1 ctest --test-dir $(BUILD) --output-on-failure -j $(CTEST_JOBS) \
+	  -L "verification|regression" -E "regression.signals"
 
 test-sanitize: deps
 	cmake -S . -B $(SAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-g -O1" \
 	  -DFRICON_SANITIZE=ON -DFRICON_BUILD_BENCH=OFF -DFRICON_WERROR=$(WERROR)
 	cmake --build $(SAN_BUILD)
 	ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
-	  ctest --test-dir $(SAN_BUILD) -L "unit|leak" --output-on-failure -j $(CTEST_JOBS)
+	  ctest --test-dir $(SAN_BUILD) -L "unit|leak|sanitize" --output-on-failure -j $(CTEST_JOBS)
 
 # BENCH_LARGE=1 adds n = 24, 32, 48 to the contact benchmark (minutes, several GiB).
 bench: build
