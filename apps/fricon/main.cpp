@@ -294,80 +294,130 @@ int paper(const PaperOptions& o) {
   return kConverged;
 }
 
+// Everything the command line sets, and which subcommand it chose.
+struct CommandLine {
+  int threads = 0;
+  std::string file;
+  SolveOptions solve;
+  bool quiet = false, verbose = false;
+  std::string plot_dir, plot_out;
+  PaperOptions paper;
+  CLI::App* solve_cmd = nullptr;
+  CLI::App* check_cmd = nullptr;
+  CLI::App* plot_cmd = nullptr;
+  CLI::App* paper_cmd = nullptr;
+};
+
+template <typename E>
+std::vector<std::string> enum_names() {
+  std::vector<std::string> names;
+  for (const auto& entry : fricon::EnumNames<E>::table)
+    names.emplace_back(entry.second);
+  return names;
+}
+
+void define_solve(CLI::App& app, CommandLine& cl) {
+  cl.solve_cmd = app.add_subcommand(
+      "solve",
+      "Solve the problem of a TOML file and write its results.\n"
+      "Progress goes to stderr (phases, one line per outer iteration), the summary to stdout.\n"
+      "Results: report.json, solution.vtu, contact.vtu, solution.pvd, contact_nodes.csv,\n"
+      "patches.csv in the results folder (see README).");
+  auto* cmd = cl.solve_cmd;
+  cmd->add_option("problem", cl.file, "Problem file (TOML), see docs/problem-file.md")->required();
+  cmd->add_option("--out,-o", cl.solve.out, "Results folder (default: the file's output.dir)");
+  cmd->add_option("--set", cl.solve.sets,
+                  "Override a key of the file: KEY=VALUE with a TOML value, e.g.\n"
+                  "--set mesh.cells=[24,8,8] --set contact.friction.param=2e4; repeatable;\n"
+                  "recorded in report.json")
+      ->allow_extra_args(false);
+  cmd->add_option("--dump-dual", cl.solve.dump_dual,
+                  "Also write the dual QP of the first outer iteration to this file\n"
+                  "(format: docs/dual-format.md)");
+  cmd->add_flag("--quiet,-q", cl.quiet, "Print nothing but errors");
+  cmd->add_flag("--plot", cl.solve.plot, "Also render the figures (as `fricon plot`)");
+  cmd->add_flag("--verbose,-v", cl.verbose, "Also print every step of the inner QP solver");
+}
+
+void define_check(CLI::App& app, CommandLine& cl) {
+  cl.check_cmd =
+      app.add_subcommand("check", "Validate a problem file without solving; print its sizes");
+  cl.check_cmd->add_option("problem", cl.file, "Problem file (TOML)")->required();
+  cl.check_cmd
+      ->add_option("--set", cl.solve.sets, "Override a key of the file: KEY=VALUE, repeatable")
+      ->allow_extra_args(false);
+}
+
+void define_plot(CLI::App& app, CommandLine& cl) {
+  cl.plot_cmd = app.add_subcommand(
+      "plot",
+      "Render PNG figures of a results folder like the paper's: convergence history, friction\n"
+      "law, contact-surface maps of -w_n, lambda_n, ||w_t||, ||lambda_t||, F on the surface,\n"
+      "friction circles and arrows, and the deformed body (matplotlib, Debian's python3)");
+  cl.plot_cmd->add_option("dir", cl.plot_dir, "Results folder written by `fricon solve`")
+      ->required();
+  cl.plot_cmd->add_option("--out,-o", cl.plot_out, "Folder for the figures (default: DIR/plots)");
+}
+
+void define_paper(CLI::App& app, CommandLine& cl) {
+  cl.paper_cmd = app.add_subcommand(
+      "paper", "Reproduce Tables 1 and 2 of the paper: our numbers beside the published ones");
+  auto* cmd = cl.paper_cmd;
+  cmd->add_option("--max-n", cl.paper.max_n, "Largest mesh parameter n to run (4..16)")
+      ->check(CLI::Range(4, 16));
+  cmd->add_option("--table", cl.paper.table, "Which table: 1, 2 or both")
+      ->check(CLI::IsMember({"1", "2", "both"}));
+  cmd->add_option("--dual-operator", cl.paper.dual_operator,
+                  "How Q = B K^-1 B^T is applied: implicit (the paper's way), forward, schur, "
+                  "auto (docs/theory.md §3.3)")
+      ->check(CLI::IsMember(enum_names<fricon::dual::DualOperatorKind>()));
+  cmd->add_option("--qp-rtol", cl.paper.qp_rtol, "QP tolerance (paper: 1e-6)")
+      ->check(CLI::PositiveNumber);
+}
+
+// The BLAS threads: --threads, else OPENBLAS_NUM_THREADS as OpenBLAS read it, else the cores the
+// machine's load leaves free.
+void set_blas_threads(int threads) {
+  if (threads > 0) {
+    fricon::linalg::set_threads(threads);
+  } else if (std::getenv("OPENBLAS_NUM_THREADS") == nullptr) {
+    fricon::linalg::set_threads(fricon::linalg::threads_for_load());
+  }
+}
+
+int dispatch(CommandLine& cl, int argc, char** argv) {
+  set_blas_threads(cl.threads);
+  cl.solve.verbosity = cl.quiet     ? Verbosity::Quiet
+                       : cl.verbose ? Verbosity::Verbose
+                                    : Verbosity::Normal;
+  if (*cl.solve_cmd) return solve(cl.file, cl.solve, join_command_line(argc, argv));
+  if (*cl.check_cmd) return check(cl.file, cl.solve.sets);
+  if (*cl.paper_cmd) return paper(cl.paper);
+  if (*cl.plot_cmd) return plot(cl.plot_dir, cl.plot_out);
+  return kInternalError;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  // @sect: the command line.
   CLI::App app{
       "fricon: 3D contact of elastic bodies with Tresca friction and a solution-dependent "
       "coefficient of friction (P1 finite elements, dual MPGP, successive approximations).\n"
       "Exit codes: 0 converged, 1 bad input, 2 not converged, 3 internal error."};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("fricon ") + FRICON_VERSION);
-  int threads = 0;
-  app.add_option("--threads", threads,
+  CommandLine cl;
+  app.add_option("--threads", cl.threads,
                  "Threads of the BLAS (factorization, forming Q). Default: OPENBLAS_NUM_THREADS\n"
                  "if set, else the cores that other runnable processes leave free (1 on a busy\n"
                  "machine, where spinning BLAS threads would be several times slower)")
       ->check(CLI::Range(1, 1024));
   app.fallthrough();
-
-  std::string file;
-  SolveOptions solve_opt;
-  bool quiet = false, verbose = false;
-  auto* solve_cmd = app.add_subcommand(
-      "solve",
-      "Solve the problem of a TOML file and write its results.\n"
-      "Progress goes to stderr (phases, one line per outer iteration), the summary to stdout.\n"
-      "Results: report.json, solution.vtu, contact.vtu, solution.pvd, contact_nodes.csv,\n"
-      "patches.csv in the results folder (see README).");
-  solve_cmd->add_option("problem", file, "Problem file (TOML), see docs/problem-file.md")
-      ->required();
-  solve_cmd->add_option("--out,-o", solve_opt.out,
-                        "Results folder (default: the file's output.dir)");
-  solve_cmd
-      ->add_option("--set", solve_opt.sets,
-                   "Override a key of the file: KEY=VALUE with a TOML value, e.g.\n"
-                   "--set mesh.cells=[24,8,8] --set contact.friction.param=2e4; repeatable;\n"
-                   "recorded in report.json")
-      ->allow_extra_args(false);
-  solve_cmd->add_option("--dump-dual", solve_opt.dump_dual,
-                        "Also write the dual QP of the first outer iteration to this file\n"
-                        "(format: docs/dual-format.md)");
-  solve_cmd->add_flag("--quiet,-q", quiet, "Print nothing but errors");
-  solve_cmd->add_flag("--plot", solve_opt.plot, "Also render the figures (as `fricon plot`)");
-  solve_cmd->add_flag("--verbose,-v", verbose, "Also print every step of the inner QP solver");
-
-  auto* check_cmd =
-      app.add_subcommand("check", "Validate a problem file without solving; print its sizes");
-  check_cmd->add_option("problem", file, "Problem file (TOML)")->required();
-  check_cmd
-      ->add_option("--set", solve_opt.sets, "Override a key of the file: KEY=VALUE, repeatable")
-      ->allow_extra_args(false);
-
-  std::string plot_dir, plot_out;
-  auto* plot_cmd = app.add_subcommand(
-      "plot",
-      "Render PNG figures of a results folder like the paper's: convergence history, friction\n"
-      "law, contact-surface maps of -w_n, lambda_n, ||w_t||, ||lambda_t||, F on the surface,\n"
-      "friction circles and arrows, and the deformed body (matplotlib, Debian's python3)");
-  plot_cmd->add_option("dir", plot_dir, "Results folder written by `fricon solve`")->required();
-  plot_cmd->add_option("--out,-o", plot_out, "Folder for the figures (default: DIR/plots)");
-
-  PaperOptions paper_opt;
-  auto* paper_cmd = app.add_subcommand(
-      "paper", "Reproduce Tables 1 and 2 of the paper: our numbers beside the published ones");
-  paper_cmd->add_option("--max-n", paper_opt.max_n, "Largest mesh parameter n to run (4..16)")
-      ->check(CLI::Range(4, 16));
-  paper_cmd->add_option("--table", paper_opt.table, "Which table: 1, 2 or both")
-      ->check(CLI::IsMember({"1", "2", "both"}));
-  paper_cmd
-      ->add_option(
-          "--dual-operator", paper_opt.dual_operator,
-          "How Q = B K^-1 B^T is applied: implicit (the paper's way), forward, schur, auto")
-      ->check(CLI::IsMember({"auto", "implicit", "schur", "forward"}));
-  paper_cmd->add_option("--qp-rtol", paper_opt.qp_rtol, "QP tolerance (paper: 1e-6)")
-      ->check(CLI::PositiveNumber);
-
+  define_solve(app, cl);
+  define_check(app, cl);
+  define_plot(app, cl);
+  define_paper(app, cl);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -375,19 +425,9 @@ int main(int argc, char** argv) {
     return code == 0 ? 0 : kBadInput;
   }
 
+  // @sect: the run, and its outcome as an exit code.
   try {
-    if (threads > 0) {
-      fricon::linalg::set_threads(threads);
-    } else if (std::getenv("OPENBLAS_NUM_THREADS") == nullptr) {
-      fricon::linalg::set_threads(fricon::linalg::threads_for_load());
-    }
-    solve_opt.verbosity = quiet     ? Verbosity::Quiet
-                          : verbose ? Verbosity::Verbose
-                                    : Verbosity::Normal;
-    if (*solve_cmd) return solve(file, solve_opt, join_command_line(argc, argv));
-    if (*check_cmd) return check(file, solve_opt.sets);
-    if (*paper_cmd) return paper(paper_opt);
-    if (*plot_cmd) return plot(plot_dir, plot_out);
+    return dispatch(cl, argc, argv);
   } catch (const fricon::Interrupted& e) {
     std::cerr << "fricon: " << e.what() << " (no iterate to write yet)\n";
     return kNotConverged;
@@ -401,5 +441,4 @@ int main(int argc, char** argv) {
     std::cerr << "fricon: internal error: " << e.what() << "\n";
     return kInternalError;
   }
-  return kInternalError;
 }

@@ -14,6 +14,55 @@ namespace {
 nlohmann::json vec3(const Vec3& v) {
   return nlohmann::json::array({v(0), v(1), v(2)});
 }
+// The contact part of the report: counts, the paper's measures, the certificate and the outer
+// history.
+void add_contact_report(const driver::ContactReport& c, nlohmann::json& j) {
+  j["n_dual"] = c.n_dual;
+  j["outer_iterations"] = c.outer_iterations;
+  j["n_mult"] = c.n_mult;
+  j["qp_iterations"] = c.qp_iterations;
+  j["n_kinv"] = c.n_kinv;
+  j["err_history"] = c.err_history;
+  j["wn_pos_l2"] = c.wn_pos_l2;
+  j["wn_pos_inf"] = c.wn_pos_inf;
+  j["max_neg_wn"] = c.max_neg_wn;
+  j["max_wt"] = c.max_wt;
+  j["max_lambda_n"] = c.max_lambda_n;
+  j["max_lambda_t"] = c.max_lambda_t;
+  j["total_normal_force"] = c.total_normal_force;
+  j["kkt"] = {{"feasibility", c.kkt.feasibility},
+              {"stationarity", c.kkt.stationarity},
+              {"complementarity", c.kkt.complementarity},
+              {"max", c.kkt.max()},
+              {"bound", c.kkt_bound}};
+  j["termination"] = enum_name(c.termination);
+  j["n_objective_increases"] = c.n_objective_increases;
+  nlohmann::json history = nlohmann::json::array();
+  for (const auto& it : c.history)
+    history.push_back({{"k", it.k},
+                       {"err", it.err},
+                       {"qp_iterations", it.qp_iterations},
+                       {"qp_products", it.qp_products},
+                       {"qp_rel_gp", it.qp_rel_gp},
+                       {"qp_termination", enum_name(it.qp_termination)},
+                       {"n_objective_increases", it.n_objective_increases},
+                       {"seconds", it.seconds}});
+  j["contact"] = {{"boundary", c.boundary},
+                  {"friction_law", c.friction_law},
+                  {"dual_operator", enum_name(c.dual_operator)},
+                  {"n_patches", c.n_patches},
+                  {"n_surface_nodes", c.n_surface_nodes},
+                  {"n_contact_nodes", c.n_contact_nodes},
+                  {"stability_ratio", c.stability_ratio},
+                  {"stability_estimated", c.stability_estimated},
+                  {"n_inactive_multipliers", c.n_inactive_multipliers},
+                  {"radius_integration", c.radius_integration},
+                  {"contraction_ratio", c.contraction_ratio},
+                  {"norm_Q", c.norm_Q},
+                  {"fixed_point_residual", c.fixed_point_residual},
+                  {"history", history}};
+}
+
 }  // namespace
 
 nlohmann::json report_json(const driver::Problem& problem, const driver::RunResult& result,
@@ -49,53 +98,7 @@ nlohmann::json report_json(const driver::Problem& problem, const driver::RunResu
   j["equilibrium_residual"] = r.equilibrium_residual;
   j["linear_residual"] = r.linear_residual;
   j["max_von_mises"] = result.von_mises.size() ? result.von_mises.maxCoeff() : 0.0;
-  if (r.contact) {
-    const driver::ContactReport& c = *r.contact;
-    j["n_dual"] = c.n_dual;
-    j["outer_iterations"] = c.outer_iterations;
-    j["n_mult"] = c.n_mult;
-    j["qp_iterations"] = c.qp_iterations;
-    j["n_kinv"] = c.n_kinv;
-    j["err_history"] = c.err_history;
-    j["wn_pos_l2"] = c.wn_pos_l2;
-    j["wn_pos_inf"] = c.wn_pos_inf;
-    j["max_neg_wn"] = c.max_neg_wn;
-    j["max_wt"] = c.max_wt;
-    j["max_lambda_n"] = c.max_lambda_n;
-    j["max_lambda_t"] = c.max_lambda_t;
-    j["total_normal_force"] = c.total_normal_force;
-    j["kkt"] = {{"feasibility", c.kkt.feasibility},
-                {"stationarity", c.kkt.stationarity},
-                {"complementarity", c.kkt.complementarity},
-                {"max", c.kkt.max()},
-                {"bound", c.kkt_bound}};
-    j["termination"] = enum_name(c.termination);
-    j["n_objective_increases"] = c.n_objective_increases;
-    nlohmann::json history = nlohmann::json::array();
-    for (const auto& it : c.history)
-      history.push_back({{"k", it.k},
-                         {"err", it.err},
-                         {"qp_iterations", it.qp_iterations},
-                         {"qp_products", it.qp_products},
-                         {"qp_rel_gp", it.qp_rel_gp},
-                         {"qp_termination", enum_name(it.qp_termination)},
-                         {"n_objective_increases", it.n_objective_increases},
-                         {"seconds", it.seconds}});
-    j["contact"] = {{"boundary", c.boundary},
-                    {"friction_law", c.friction_law},
-                    {"dual_operator", enum_name(c.dual_operator)},
-                    {"n_patches", c.n_patches},
-                    {"n_surface_nodes", c.n_surface_nodes},
-                    {"n_contact_nodes", c.n_contact_nodes},
-                    {"stability_ratio", c.stability_ratio},
-                    {"stability_estimated", c.stability_estimated},
-                    {"n_inactive_multipliers", c.n_inactive_multipliers},
-                    {"radius_integration", c.radius_integration},
-                    {"contraction_ratio", c.contraction_ratio},
-                    {"norm_Q", c.norm_Q},
-                    {"fixed_point_residual", c.fixed_point_residual},
-                    {"history", history}};
-  }
+  if (r.contact) add_contact_report(*r.contact, j);
   j["problem"] = to_json(problem);
   return j;
 }
@@ -113,11 +116,84 @@ std::filesystem::path result_path(const std::filesystem::path& dir, const std::s
   return dir / (base + (converged ? "" : kNotConverged) + extension);
 }
 
+namespace {
+
+// The body: displacement per node, stress and von Mises per tetrahedron.
+VtuGrid body_grid(const driver::RunResult& result) {
+  VtuGrid body;
+  body.points = result.model.mesh.nodes;
+  body.cells = result.model.mesh.tets;
+  body.point_data.push_back({"displacement", result.displacement});
+  body.cell_data.push_back({"stress", result.stress});
+  body.cell_data.push_back({"von_mises", result.von_mises.transpose()});
+  return body;
+}
+
+// contact_nodes.csv: per surface node w_n, w_t1, w_t2, phi, F (and coordinates).
+void write_contact_nodes(const std::filesystem::path& path, const mesh::TetMesh& mesh,
+                         const driver::ContactFields& c) {
+  write_atomically(path, [&](std::ostream& out) {
+    out << "x,y,z,w_n,w_t1,w_t2,phi,F\n";
+    for (Index k = 0; k < c.surface.n_nodes(); ++k) {
+      const auto x = mesh.nodes.col(c.surface.nodes[static_cast<size_t>(k)]);
+      const Real phi = std::hypot(c.wt1(k), c.wt2(k));
+      out << fmt::format("{},{},{},{},{},{},{},{}\n", x(0), x(1), x(2), c.wn(k), c.wt1(k), c.wt2(k),
+                         phi, c.F(k));
+    }
+  });
+}
+
+// patches.csv: per patch its centroid, area, multipliers and radius.
+void write_patches(const std::filesystem::path& path, const driver::ContactFields& c) {
+  write_atomically(path, [&](std::ostream& out) {
+    out << "x,y,area,lambda_n,lambda_t1,lambda_t2,radius\n";
+    for (Index p = 0; p < c.patches.size(); ++p)
+      out << fmt::format("{},{},{},{},{},{},{}\n", c.patches.centroid(0, p),
+                         c.patches.centroid(1, p), c.patches.area(p), c.lambda(3 * p),
+                         c.lambda(3 * p + 1), c.lambda(3 * p + 2), c.radius(p));
+  });
+}
+
+// The contact surface as triangles: nodal w and slip, per-triangle multipliers of its patch.
+VtuGrid contact_grid(const mesh::TetMesh& mesh, const driver::ContactFields& c) {
+  const auto& s = c.surface;
+  VtuGrid surface;
+  surface.points.resize(3, s.n_nodes());
+  for (Index k = 0; k < s.n_nodes(); ++k)
+    surface.points.col(k) = mesh.nodes.col(s.nodes[static_cast<size_t>(k)]);
+  surface.cells = s.face_nodes;
+  MatrixXd w(3, s.n_nodes()), scalars(4, s.n_nodes());
+  for (Index k = 0; k < s.n_nodes(); ++k) {
+    w.col(k) = c.wn(k) * s.n + c.wt1(k) * s.t1 + c.wt2(k) * s.t2;
+    scalars.col(k) << c.wn(k), std::hypot(c.wt1(k), c.wt2(k)), c.phi(k), c.F(k);
+  }
+  surface.point_data = {{"displacement", w},
+                        {"w_n", scalars.row(0)},
+                        {"norm_w_t", scalars.row(1)},
+                        {"phi", scalars.row(2)},
+                        {"F", scalars.row(3)}};
+  const Index nf = s.face_nodes.cols();
+  MatrixXd lambda_t(3, nf), per_face(4, nf);
+  for (Index p = 0; p < c.patches.size(); ++p)
+    for (Index k : c.patches.faces[static_cast<size_t>(p)]) {
+      lambda_t.col(k) = c.lambda(3 * p + 1) * s.t1 + c.lambda(3 * p + 2) * s.t2;
+      per_face.col(k) << c.lambda(3 * p), c.lambda.segment<2>(3 * p + 1).norm(), c.radius(p),
+          static_cast<Real>(p);
+    }
+  surface.cell_data = {{"lambda_n", per_face.row(0)},
+                       {"lambda_t", lambda_t},
+                       {"norm_lambda_t", per_face.row(1)},
+                       {"radius", per_face.row(2)},
+                       {"patch", per_face.row(3)}};
+  return surface;
+}
+
+}  // namespace
+
 std::vector<std::filesystem::path> write_results(const std::filesystem::path& dir,
                                                  const driver::Problem& problem,
                                                  const driver::RunResult& result,
                                                  const RunContext& context) {
-  std::vector<std::filesystem::path> written;
   const bool converged = result.report.status == driver::Status::Converged;
   // Results of an earlier run in the same folder, converged or not, would contradict this one.
   for (const auto& [base, ext] : kResultFiles)
@@ -125,85 +201,25 @@ std::vector<std::filesystem::path> write_results(const std::filesystem::path& di
       std::error_code ec;
       std::filesystem::remove(result_path(dir, base, ext, c), ec);
     }
+  std::vector<std::filesystem::path> written;
   auto path = [&](const std::string& base, const std::string& ext) {
-    return result_path(dir, base, ext, converged);
+    written.push_back(result_path(dir, base, ext, converged));
+    return written.back();
   };
-  const auto& mesh = result.model.mesh;
-
-  VtuGrid body;
-  body.points = mesh.nodes;
-  body.cells = mesh.tets;
-  body.point_data.push_back({"displacement", result.displacement});
-  body.cell_data.push_back({"stress", result.stress});
-  body.cell_data.push_back({"von_mises", result.von_mises.transpose()});
-  write_vtu(path("solution", ".vtu"), body);
-  written.push_back(path("solution", ".vtu"));
-
-  std::vector<std::string> parts{path("solution", ".vtu").filename().string()};
+  std::vector<std::string> parts;
+  write_vtu(path("solution", ".vtu"), body_grid(result));
+  parts.push_back(written.back().filename().string());
   if (result.contact) {
-    const driver::ContactFields& c = *result.contact;
-    const auto& s = c.surface;
-    const Index np = c.patches.size();
-    // Per surface node: w_n, w_t1, w_t2, phi, F (and coordinates).
-    write_atomically(path("contact_nodes", ".csv"), [&](std::ostream& out) {
-      out << "x,y,z,w_n,w_t1,w_t2,phi,F\n";
-      for (Index k = 0; k < s.n_nodes(); ++k) {
-        const auto x = mesh.nodes.col(s.nodes[static_cast<size_t>(k)]);
-        const Real phi = std::hypot(c.wt1(k), c.wt2(k));
-        out << fmt::format("{},{},{},{},{},{},{},{}\n", x(0), x(1), x(2), c.wn(k), c.wt1(k),
-                           c.wt2(k), phi, c.F(k));
-      }
-    });
-    written.push_back(path("contact_nodes", ".csv"));
-    write_atomically(path("patches", ".csv"), [&](std::ostream& out) {
-      out << "x,y,area,lambda_n,lambda_t1,lambda_t2,radius\n";
-      for (Index p = 0; p < np; ++p)
-        out << fmt::format("{},{},{},{},{},{},{}\n", c.patches.centroid(0, p),
-                           c.patches.centroid(1, p), c.patches.area(p), c.lambda(3 * p),
-                           c.lambda(3 * p + 1), c.lambda(3 * p + 2), c.radius(p));
-    });
-    written.push_back(path("patches", ".csv"));
-
-    // The contact surface as triangles: nodal w and slip, per-triangle multipliers of its patch.
-    VtuGrid surface;
-    surface.points.resize(3, s.n_nodes());
-    for (Index k = 0; k < s.n_nodes(); ++k)
-      surface.points.col(k) = mesh.nodes.col(s.nodes[static_cast<size_t>(k)]);
-    surface.cells = s.face_nodes;
-    MatrixXd w(3, s.n_nodes()), scalars(4, s.n_nodes());
-    for (Index k = 0; k < s.n_nodes(); ++k) {
-      w.col(k) = c.wn(k) * s.n + c.wt1(k) * s.t1 + c.wt2(k) * s.t2;
-      scalars.col(k) << c.wn(k), std::hypot(c.wt1(k), c.wt2(k)), c.phi(k), c.F(k);
-    }
-    surface.point_data = {{"displacement", w},
-                          {"w_n", scalars.row(0)},
-                          {"norm_w_t", scalars.row(1)},
-                          {"phi", scalars.row(2)},
-                          {"F", scalars.row(3)}};
-    const Index nf = s.face_nodes.cols();
-    MatrixXd lambda_t(3, nf), per_face(4, nf);
-    for (Index p = 0; p < np; ++p)
-      for (Index k : c.patches.faces[static_cast<size_t>(p)]) {
-        lambda_t.col(k) = c.lambda(3 * p + 1) * s.t1 + c.lambda(3 * p + 2) * s.t2;
-        per_face.col(k) << c.lambda(3 * p), c.lambda.segment<2>(3 * p + 1).norm(), c.radius(p),
-            static_cast<Real>(p);
-      }
-    surface.cell_data = {{"lambda_n", per_face.row(0)},
-                         {"lambda_t", lambda_t},
-                         {"norm_lambda_t", per_face.row(1)},
-                         {"radius", per_face.row(2)},
-                         {"patch", per_face.row(3)}};
-    write_vtu(path("contact", ".vtu"), surface);
-    written.push_back(path("contact", ".vtu"));
-    parts.push_back(path("contact", ".vtu").filename().string());
+    write_contact_nodes(path("contact_nodes", ".csv"), result.model.mesh, *result.contact);
+    write_patches(path("patches", ".csv"), *result.contact);
+    write_vtu(path("contact", ".vtu"), contact_grid(result.model.mesh, *result.contact));
+    parts.push_back(written.back().filename().string());
   }
   write_pvd(path("solution", ".pvd"), parts);
-  written.push_back(path("solution", ".pvd"));
-
+  // Last: a folder with a report is complete.
   const nlohmann::json report = report_json(problem, result, context);
   write_atomically(path("report", ".json"),
                    [&](std::ostream& out) { out << report.dump(2) << '\n'; });
-  written.push_back(path("report", ".json"));
   return written;
 }
 

@@ -147,6 +147,79 @@ std::vector<SuiteSparse_long> compressed_nested_dissection(const Pattern& a, cho
   return perm;
 }
 
+// K as CHOLMOD reads it (a view: no copy), symmetric with its lower triangle used.
+cholmod_sparse cholmod_view(const SparseMatrix& K) {
+  cholmod_sparse A{};
+  A.nrow = A.ncol = static_cast<size_t>(K.rows());
+  A.nzmax = static_cast<size_t>(K.nonZeros());
+  A.p = const_cast<SparseIndex*>(K.outerIndexPtr());
+  A.i = const_cast<SparseIndex*>(K.innerIndexPtr());
+  A.x = const_cast<Real*>(K.valuePtr());
+  A.stype = -1;
+  A.itype = CHOLMOD_LONG;
+  A.xtype = CHOLMOD_REAL;
+  A.dtype = CHOLMOD_DOUBLE;
+  A.sorted = 1;
+  A.packed = 1;
+  return A;
+}
+
+// The fill-reducing ordering given to CHOLMOD: nested dissection of the compressed graph of K
+// (it did fewer flops and took less time than CHOLMOD's default, AMD then METIS on the scalar
+// graph, when compared on the paper's brick). With `last`, the other dofs are ordered so on
+// their own block K11 and the constrained dofs follow; CAMD with constraint sets was measured at
+// twice the fill on the paper's brick.
+std::vector<SuiteSparse_long> fill_reducing_order(const SparseMatrix& K,
+                                                  const std::vector<Index>& last,
+                                                  cholmod_common* c) {
+  const Index n = K.rows();
+  if (last.empty())
+    return compressed_nested_dissection({n, K.outerIndexPtr(), K.innerIndexPtr()}, c);
+  std::vector<bool> is_last(static_cast<size_t>(n), false);
+  for (Index k : last) {
+    FRICON_CHECK(k >= 0 && k < n, "constrained dof " << k << " out of range " << n);
+    is_last[static_cast<size_t>(k)] = true;
+  }
+  std::vector<SuiteSparse_long> first, position(static_cast<size_t>(n), -1);
+  for (Index k = 0; k < n; ++k)
+    if (!is_last[static_cast<size_t>(k)]) {
+      position[static_cast<size_t>(k)] = static_cast<SuiteSparse_long>(first.size());
+      first.push_back(k);
+    }
+  std::vector<SuiteSparse_long> perm;
+  perm.reserve(static_cast<size_t>(n));
+  if (!first.empty()) {
+    // The pattern of K11 in compressed columns (both triangles, as stored in K).
+    std::vector<SuiteSparse_long> p11{0}, i11;
+    for (SuiteSparse_long j : first) {
+      for (SparseIndex q = K.outerIndexPtr()[j]; q < K.outerIndexPtr()[j + 1]; ++q) {
+        const SuiteSparse_long r = position[static_cast<size_t>(K.innerIndexPtr()[q])];
+        if (r >= 0) i11.push_back(r);
+      }
+      p11.push_back(static_cast<SuiteSparse_long>(i11.size()));
+    }
+    for (SuiteSparse_long k : compressed_nested_dissection(
+             {static_cast<SuiteSparse_long>(first.size()), p11.data(), i11.data()}, c))
+      perm.push_back(first[static_cast<size_t>(k)]);
+  }
+  perm.insert(perm.end(), last.begin(), last.end());
+  return perm;
+}
+
+// The dofs of the trailing block in pivot order; postordering keeps the constrained dofs last
+// (they are the root chain), which is checked.
+std::vector<Index> trailing_dofs(const cholmod_factor* L, const std::vector<Index>& last) {
+  const auto* P = static_cast<const SuiteSparse_long*>(L->Perm);
+  const Index n = static_cast<Index>(L->n), m = static_cast<Index>(last.size());
+  std::vector<Index> trailing(P + (n - m), P + n);
+  std::vector<Index> sorted_trailing = trailing, sorted_last = last;
+  std::sort(sorted_trailing.begin(), sorted_trailing.end());
+  std::sort(sorted_last.begin(), sorted_last.end());
+  FRICON_CHECK(sorted_trailing == sorted_last,
+               "the constrained ordering did not put the " << m << " dofs last");
+  return trailing;
+}
+
 }  // namespace
 
 void CholeskyFactor::factorize(const SparseMatrix& K) {
@@ -162,79 +235,22 @@ void CholeskyFactor::factorize(const SparseMatrix& K, const std::vector<Index>& 
   info_ = CholeskyInfo{};
   info_.n = K.rows();
   info_.nnz_K = K.nonZeros();
+  cholmod_sparse A = cholmod_view(K);
 
-  cholmod_sparse A{};
-  A.nrow = A.ncol = static_cast<size_t>(K.rows());
-  A.nzmax = static_cast<size_t>(K.nonZeros());
-  A.p = const_cast<SparseIndex*>(K.outerIndexPtr());
-  A.i = const_cast<SparseIndex*>(K.innerIndexPtr());
-  A.x = const_cast<Real*>(K.valuePtr());
-  A.stype = -1;  // symmetric, lower triangle used
-  A.itype = CHOLMOD_LONG;
-  A.xtype = CHOLMOD_REAL;
-  A.dtype = CHOLMOD_DOUBLE;
-  A.sorted = 1;
-  A.packed = 1;
-
-  // The fill-reducing ordering, given to CHOLMOD: nested dissection of the compressed graph of
-  // K (it did fewer flops and took less time than CHOLMOD's default, AMD then METIS on the scalar
-  // graph, when compared on the paper's brick). With `last`, the other dofs are ordered so on
-  // their own block K11 and the constrained dofs follow; CAMD with constraint sets was measured
-  // at twice the fill on the paper's brick.
-  const Index n = info_.n;
-  std::vector<SuiteSparse_long> perm;
-  if (last.empty()) {
-    perm = compressed_nested_dissection({n, K.outerIndexPtr(), K.innerIndexPtr()}, c);
-  } else {
-    std::vector<bool> is_last(static_cast<size_t>(n), false);
-    for (Index k : last) {
-      FRICON_CHECK(k >= 0 && k < n, "constrained dof " << k << " out of range " << n);
-      is_last[static_cast<size_t>(k)] = true;
-    }
-    std::vector<SuiteSparse_long> first, position(static_cast<size_t>(n), -1);
-    for (Index k = 0; k < n; ++k)
-      if (!is_last[static_cast<size_t>(k)]) {
-        position[static_cast<size_t>(k)] = static_cast<SuiteSparse_long>(first.size());
-        first.push_back(k);
-      }
-    perm.reserve(static_cast<size_t>(n));
-    if (!first.empty()) {
-      // The pattern of K11 in compressed columns (both triangles, as stored in K).
-      std::vector<SuiteSparse_long> p11{0}, i11;
-      for (SuiteSparse_long j : first) {
-        for (SparseIndex q = K.outerIndexPtr()[j]; q < K.outerIndexPtr()[j + 1]; ++q) {
-          const SuiteSparse_long r = position[static_cast<size_t>(K.innerIndexPtr()[q])];
-          if (r >= 0) i11.push_back(r);
-        }
-        p11.push_back(static_cast<SuiteSparse_long>(i11.size()));
-      }
-      for (SuiteSparse_long k : compressed_nested_dissection(
-               {static_cast<SuiteSparse_long>(first.size()), p11.data(), i11.data()}, c))
-        perm.push_back(first[static_cast<size_t>(k)]);
-    }
-    perm.insert(perm.end(), last.begin(), last.end());
-  }
+  // @sect: symbolic analysis with the given ordering.
+  std::vector<SuiteSparse_long> perm = fill_reducing_order(K, last, c);
   c->nmethods = 1;
   c->method[0].ordering = CHOLMOD_GIVEN;
   c->postorder = 1;
   impl_->L = cholmod_l_analyze_p(&A, perm.data(), nullptr, 0, c);
   c->nmethods = 0;
-  trailing_order_.clear();
-  if (impl_->L && !last.empty()) {
-    // Postordering keeps the constrained dofs last (they are the root chain); checked.
-    const auto* P = static_cast<const SuiteSparse_long*>(impl_->L->Perm);
-    const Index m = static_cast<Index>(last.size());
-    trailing_order_.assign(P + (n - m), P + n);
-    std::vector<Index> sorted_trailing = trailing_order_, sorted_last = last;
-    std::sort(sorted_trailing.begin(), sorted_trailing.end());
-    std::sort(sorted_last.begin(), sorted_last.end());
-    FRICON_CHECK(sorted_trailing == sorted_last,
-                 "the constrained ordering did not put the " << m << " dofs last");
-  }
   if (!impl_->L || c->status < CHOLMOD_OK)
     throw NumericalError(
         fmt::format("Cholesky analysis of K failed (CHOLMOD status {}, n = {}, nnz = {})",
                     c->status, info_.n, info_.nnz_K));
+  trailing_order_ = last.empty() ? std::vector<Index>{} : trailing_dofs(impl_->L, last);
+
+  // @sect: numerical factorization, and the checks that K was positive definite.
   cholmod_l_factorize(&A, impl_->L, c);
   if (c->status == CHOLMOD_NOT_POSDEF)
     throw NumericalError(fmt::format(
