@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 
 #include "fricon/core/error.hpp"
+#include "fricon/core/format.hpp"
 #include "fricon/driver/problem.hpp"
 #include "fricon/fe/material.hpp"
 
@@ -26,15 +27,6 @@ namespace {
 [[noreturn]] void fail_expected(const Problem& p, std::string_view key, std::string_view expected,
                                 std::string_view got) {
   fail(p, key, fmt::format("expected {}, got {}", expected, got));
-}
-
-/// A real as the reader shows it: a decimal point or an exponent, "nan", "inf", "-inf".
-std::string format_real(Real v) {
-  if (std::isnan(v)) return "nan";
-  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  std::string s = fmt::format("{}", v);
-  if (s.find_first_of(".e") == std::string::npos) s += ".0";  // show that it is a float
-  return s;
 }
 
 /// A real must be finite, and satisfy its range (`ok`, computed by the caller).

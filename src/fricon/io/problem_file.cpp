@@ -19,6 +19,7 @@
 #include <toml++/toml.h>
 
 #include "fricon/core/error.hpp"
+#include "fricon/core/format.hpp"
 #include "fricon/fe/material.hpp"
 
 namespace fricon::io {
@@ -71,14 +72,6 @@ const Field& record(const Context& ctx, const Field& f) {
 
 [[noreturn]] void fail(const Context& ctx, const Field& f, std::string_view what) {
   throw InputError(fmt::format("{}: {}: {}", ctx.where(f.node, f.key), f.path, what));
-}
-
-std::string format_real(double v) {
-  if (std::isnan(v)) return "nan";
-  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  std::string s = fmt::format("{}", v);
-  if (s.find_first_of(".e") == std::string::npos) s += ".0";  // show that it is a float
-  return s;
 }
 
 /// The value of a node as the user would recognise it, for "got ..." in messages.
