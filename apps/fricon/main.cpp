@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -244,6 +245,21 @@ struct PaperOptions {
 };
 
 // Prints one table of the paper with our values beside theirs ("ours / paper").
+// The largest relative deviation from the paper of one column, and the row where it is.
+struct Deviation {
+  double largest = 0.0;
+  std::string where;
+  void add(double ours, double theirs, const fricon::driver::PaperRow& row) {
+    const double d = std::abs(ours - theirs) / std::abs(theirs);
+    if (d >= largest) {
+      largest = d;
+      where = fmt::format("n = {}, param = {:g}", row.n, row.param);
+    }
+  }
+};
+
+// Prints one table of the paper with our values beside theirs ("ours / paper"), and the largest
+// deviations of n_mult and ||w_hn^+||_inf.
 bool print_paper_table(const std::string& title, const std::vector<fricon::driver::PaperRow>& rows,
                        const PaperOptions& o) {
   fmt::print("\n{}\n\n", title);
@@ -252,6 +268,7 @@ bool print_paper_table(const std::string& title, const std::vector<fricon::drive
       "max(-w_n) | max lambda_n | max ||w_t|| | max ||lambda_t|| | KKT max |\n");
   fmt::print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   bool ok = true;
+  Deviation n_mult, wn_inf;
   for (const auto& row : rows) {
     if (row.n > o.max_n) continue;
     fricon::driver::Problem problem = fricon::driver::paper_problem(row.n, row.param);
@@ -263,6 +280,8 @@ bool print_paper_table(const std::string& title, const std::vector<fricon::drive
     const bool sizes_equal = r.report.n_primal == row.n_p && c.n_dual == row.n_d;
     const bool converged = r.report.status == fricon::driver::Status::Converged;
     ok = ok && sizes_equal && converged;
+    n_mult.add(static_cast<double>(c.n_mult), static_cast<double>(row.n_mult), row);
+    wn_inf.add(c.wn_pos_inf, row.wn_pos_inf, row);
     fmt::print(
         "| {} | {:g} | {} / {} | {} / {} | {}{} / {} | {} / {} | {:.3f} / {:g} | {:.1e} / {:.1e} | "
         "{:.2e} / {:.1e} | {:.2e} | {:.3e} | {:.3e} | {:.3e} | {:.1e} |\n",
@@ -272,6 +291,10 @@ bool print_paper_table(const std::string& title, const std::vector<fricon::drive
         c.max_wt, c.max_lambda_t, c.kkt.max());
     std::fflush(stdout);
   }
+  fmt::print(
+      "\nLargest deviations from the paper: n_mult {:.1f} % ({}), ||w_hn^+||_inf {:.1f} % ({}; "
+      "the paper prints two digits).\n",
+      100 * n_mult.largest, n_mult.where, 100 * wn_inf.largest, wn_inf.where);
   return ok;
 }
 

@@ -34,6 +34,15 @@ assert report["status"] == "converged"
 assert report["n_primal"] == 900 and report["n_dual"] == 36
 assert report["err_history"][-1] <= report["problem"]["solver"]["outer_tol"]
 assert len(report["err_history"]) == report["outer_iterations"]
+# The certificate: the final KKT residuals within the stated bound, 100 x qp_rtol.
+assert report["termination"] == "converged", report["termination"]
+assert report["kkt"]["bound"] == 100 * report["problem"]["solver"]["qp_rtol"]
+assert report["kkt"]["max"] <= report["kkt"]["bound"], report["kkt"]
+assert report["kkt"]["max"] == max(report["kkt"][k] for k in
+                                   ("feasibility", "stationarity", "complementarity"))
+# MPGP's monotonicity: reported per QP and in all, 0 with alpha_bar = 1.95 / ||Q||.
+history = report["contact"]["history"]
+assert report["n_objective_increases"] == sum(h["n_objective_increases"] for h in history) == 0
 for k in ["feasibility", "stationarity", "complementarity"]:
     assert report["kkt"][k] < 1e-5, (k, report["kkt"][k])
 
