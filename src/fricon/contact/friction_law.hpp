@@ -62,12 +62,7 @@ std::unique_ptr<FrictionLaw> table_law(std::vector<Real> t, std::vector<Real> f)
 
 }  // namespace fricon::contact
 
-template <>
-struct fricon::EnumNames<fricon::contact::FrictionLawKind> {
-  static constexpr std::string_view what = "contact.friction.law";
-  static constexpr std::array<std::pair<contact::FrictionLawKind, std::string_view>, 3> table{{
-      {contact::FrictionLawKind::Paper, "paper"},
-      {contact::FrictionLawKind::Constant, "constant"},
-      {contact::FrictionLawKind::Table, "table"},
-  }};
-};
+FRICON_ENUM_NAMES(fricon::contact::FrictionLawKind, "contact.friction.law",
+                  {contact::FrictionLawKind::Paper, "paper"},
+                  {contact::FrictionLawKind::Constant, "constant"},
+                  {contact::FrictionLawKind::Table, "table"});

@@ -45,10 +45,5 @@ Patches chessboard_patches(const mesh::TetMesh& mesh, const ContactSurface& surf
 
 }  // namespace fricon::contact
 
-template <>
-struct fricon::EnumNames<fricon::contact::PatchKind> {
-  static constexpr std::string_view what = "contact.patches";
-  static constexpr std::array<std::pair<contact::PatchKind, std::string_view>, 1> table{{
-      {contact::PatchKind::Chessboard, "chessboard"},
-  }};
-};
+FRICON_ENUM_NAMES(fricon::contact::PatchKind, "contact.patches",
+                  {contact::PatchKind::Chessboard, "chessboard"});

@@ -4,13 +4,12 @@
 // Each enum that a user can name (in a problem file, on the command line, in a report) declares
 // its spellings in one specialisation of EnumNames, next to the enum:
 //
-//   enum class Acceleration { None, Anderson };
-//   template <>
-//   struct EnumNames<outer::Acceleration> {
-//     static constexpr std::string_view what = "acceleration";
-//     static constexpr std::array<std::pair<outer::Acceleration, std::string_view>, 2> table{{
-//         {outer::Acceleration::None, "none"}, {outer::Acceleration::Anderson, "anderson"}}};
-//   };
+//   enum class Acceleration { None, Anderson };   // in namespace fricon::outer
+//   FRICON_ENUM_NAMES(fricon::outer::Acceleration, "solver.acceleration",
+//                     {fricon::outer::Acceleration::None, "none"},
+//                     {fricon::outer::Acceleration::Anderson, "anderson"});
+//
+// at namespace scope, after the enum (it specialises fricon::EnumNames<E>, below),
 //
 // and every reader, writer and message goes through the functions below, so that the TOML
 // reader, --set, the JSON report, the logs and the Python module spell a choice the same way.
@@ -27,6 +26,10 @@
 #include "fricon/core/error.hpp"
 
 namespace fricon {
+
+/// The table of spellings of an enum with N values.
+template <typename E, std::size_t N>
+using EnumTable = std::array<std::pair<E, std::string_view>, N>;
 
 /// Specialised once per user-visible enum (see the file comment); the primary template is
 /// undefined so that an enum without spellings does not compile where one is needed.
@@ -77,3 +80,12 @@ constexpr bool enum_is_valid(E value) {
 }
 
 }  // namespace fricon
+
+/// Declares the spellings of enum E (a fully qualified name): `what` names the choice in messages
+/// (its key path, e.g. "solver.acceleration"), then one {E::Value, "spelling"} per value.
+#define FRICON_ENUM_NAMES(E, WHAT, ...)                                                         \
+  template <>                                                                                   \
+  struct fricon::EnumNames<E> {                                                                 \
+    static constexpr std::string_view what = WHAT;                                              \
+    static constexpr auto table = std::to_array<std::pair<E, std::string_view>>({__VA_ARGS__}); \
+  }

@@ -126,10 +126,4 @@ void validate(const Problem& problem);
 
 }  // namespace fricon::driver
 
-template <>
-struct fricon::EnumNames<fricon::driver::MeshKind> {
-  static constexpr std::string_view what = "mesh.kind";
-  static constexpr std::array<std::pair<driver::MeshKind, std::string_view>, 1> table{{
-      {driver::MeshKind::Brick, "brick"},
-  }};
-};
+FRICON_ENUM_NAMES(fricon::driver::MeshKind, "mesh.kind", {driver::MeshKind::Brick, "brick"});

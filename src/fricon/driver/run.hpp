@@ -56,11 +56,5 @@ RunResult run(const Problem& problem, const RunOptions& options = {});
 
 }  // namespace fricon::driver
 
-template <>
-struct fricon::EnumNames<fricon::driver::Status> {
-  static constexpr std::string_view what = "status";
-  static constexpr std::array<std::pair<driver::Status, std::string_view>, 2> table{{
-      {driver::Status::Converged, "converged"},
-      {driver::Status::NotConverged, "not_converged"},
-  }};
-};
+FRICON_ENUM_NAMES(fricon::driver::Status, "status", {driver::Status::Converged, "converged"},
+                  {driver::Status::NotConverged, "not_converged"});

@@ -24,13 +24,8 @@ enum class DualOperatorKind {
 
 }  // namespace fricon::dual
 
-template <>
-struct fricon::EnumNames<fricon::dual::DualOperatorKind> {
-  static constexpr std::string_view what = "solver.dual_operator";
-  static constexpr std::array<std::pair<dual::DualOperatorKind, std::string_view>, 4> table{{
-      {dual::DualOperatorKind::Auto, "auto"},
-      {dual::DualOperatorKind::Implicit, "implicit"},
-      {dual::DualOperatorKind::Forward, "forward"},
-      {dual::DualOperatorKind::Schur, "schur"},
-  }};
-};
+FRICON_ENUM_NAMES(fricon::dual::DualOperatorKind, "solver.dual_operator",
+                  {dual::DualOperatorKind::Auto, "auto"},
+                  {dual::DualOperatorKind::Implicit, "implicit"},
+                  {dual::DualOperatorKind::Forward, "forward"},
+                  {dual::DualOperatorKind::Schur, "schur"});

@@ -52,11 +52,6 @@ HookeTensor to_tensor(const Material& m);
 
 }  // namespace fricon::fe
 
-template <>
-struct fricon::EnumNames<fricon::fe::MaterialModel> {
-  static constexpr std::string_view what = "material.model";
-  static constexpr std::array<std::pair<fe::MaterialModel, std::string_view>, 2> table{{
-      {fe::MaterialModel::Isotropic, "isotropic"},
-      {fe::MaterialModel::Anisotropic, "anisotropic"},
-  }};
-};
+FRICON_ENUM_NAMES(fricon::fe::MaterialModel, "material.model",
+                  {fe::MaterialModel::Isotropic, "isotropic"},
+                  {fe::MaterialModel::Anisotropic, "anisotropic"});

@@ -16,11 +16,5 @@ enum class Acceleration {
 
 }  // namespace fricon::outer
 
-template <>
-struct fricon::EnumNames<fricon::outer::Acceleration> {
-  static constexpr std::string_view what = "solver.acceleration";
-  static constexpr std::array<std::pair<outer::Acceleration, std::string_view>, 2> table{{
-      {outer::Acceleration::None, "none"},
-      {outer::Acceleration::Anderson, "anderson"},
-  }};
-};
+FRICON_ENUM_NAMES(fricon::outer::Acceleration, "solver.acceleration",
+                  {outer::Acceleration::None, "none"}, {outer::Acceleration::Anderson, "anderson"});

@@ -119,15 +119,10 @@ bool stalled(const std::vector<Real>& err, size_t window);
 
 }  // namespace fricon::outer
 
-template <>
-struct fricon::EnumNames<fricon::outer::Termination> {
-  static constexpr std::string_view what = "outer termination";
-  static constexpr std::array<std::pair<outer::Termination, std::string_view>, 6> table{{
-      {outer::Termination::Converged, "converged"},
-      {outer::Termination::IterationLimit, "iteration_limit"},
-      {outer::Termination::Stalled, "stalled"},
-      {outer::Termination::QpFailed, "qp_failed"},
-      {outer::Termination::Interrupted, "interrupted"},
-      {outer::Termination::CertificateFailed, "certificate_failed"},
-  }};
-};
+FRICON_ENUM_NAMES(fricon::outer::Termination, "outer termination",
+                  {outer::Termination::Converged, "converged"},
+                  {outer::Termination::IterationLimit, "iteration_limit"},
+                  {outer::Termination::Stalled, "stalled"},
+                  {outer::Termination::QpFailed, "qp_failed"},
+                  {outer::Termination::Interrupted, "interrupted"},
+                  {outer::Termination::CertificateFailed, "certificate_failed"});

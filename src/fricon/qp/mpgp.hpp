@@ -73,31 +73,13 @@ enum class MpgpVariant {
 
 }  // namespace fricon::qp
 
-namespace fricon {
+FRICON_ENUM_NAMES(fricon::qp::Termination, "termination", {qp::Termination::Converged, "converged"},
+                  {qp::Termination::MaxIterations, "max_iterations"},
+                  {qp::Termination::NumericalFailure, "numerical_failure"},
+                  {qp::Termination::UserStopped, "user_stopped"});
 
-/// Spellings of qp::Termination (report.json, logs).
-template <>
-struct EnumNames<qp::Termination> {
-  static constexpr std::string_view what = "termination";
-  static constexpr std::array<std::pair<qp::Termination, std::string_view>, 4> table{{
-      {qp::Termination::Converged, "converged"},
-      {qp::Termination::MaxIterations, "max_iterations"},
-      {qp::Termination::NumericalFailure, "numerical_failure"},
-      {qp::Termination::UserStopped, "user_stopped"},
-  }};
-};
-
-/// Spellings of qp::MpgpVariant ([solver] qp_variant).
-template <>
-struct EnumNames<qp::MpgpVariant> {
-  static constexpr std::string_view what = "solver.qp_variant";
-  static constexpr std::array<std::pair<qp::MpgpVariant, std::string_view>, 2> table{{
-      {qp::MpgpVariant::Paper, "paper"},
-      {qp::MpgpVariant::BarzilaiBorwein, "bb"},
-  }};
-};
-
-}  // namespace fricon
+FRICON_ENUM_NAMES(fricon::qp::MpgpVariant, "solver.qp_variant", {qp::MpgpVariant::Paper, "paper"},
+                  {qp::MpgpVariant::BarzilaiBorwein, "bb"});
 
 namespace fricon::qp {
 
