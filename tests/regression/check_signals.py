@@ -84,6 +84,13 @@ def nothing_to_save():
     # signal lands in the factorization of a 135,000-unknown stiffness matrix.
     busy = [subprocess.Popen([sys.executable, "-c", "while True: pass"]) for _ in range(2)]
     try:
+        # With the cores taken, the BLAS runs on one thread (no spinning workers).
+        time.sleep(0.5)
+        small = out / "busy-threads"
+        subprocess.run([exe, "solve", paper, "--out", str(small), "--quiet"], check=True)
+        threads = json.loads((small / "report.json").read_text())["factor"]["blas_threads"]
+        if threads != 1 and "OPENBLAS_NUM_THREADS" not in os.environ:
+            failures.append(f"with both cores busy the BLAS got {threads} threads, expected 1")
         outdir = out / "factorize"
         proc = start(["--set", "mesh.cells=[72,24,24]"], outdir)
         if wait_for_line(proc, "factorize", 120) is None:

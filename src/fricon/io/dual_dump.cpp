@@ -217,7 +217,7 @@ void write_dual(const std::filesystem::path& path, const qp::DualProblem& d) {
   fmt::format_to(out, "{}\n", kDualMagic);
   fmt::format_to(out,
                  "# minimise 1/2 l^T Q l - l^T h over l = (l_n, l_t1, l_t2) per patch,\n"
-                 "# l_n >= 0 and ||(l_t1, l_t2)|| <= radius; Q [m/Pa], h [m^3], radius [Pa], "
+                 "# l_n >= 0 and ||(l_t1, l_t2)|| <= radius; Q [m^3/Pa], h [m^3], radius [Pa], "
                  "area [m^2], l [Pa].\n"
                  "# Layout and the FCLIB/Siconos mapping (W = Q, q = -h): docs/dual-format.md\n");
   fmt::format_to(out, "source {}\n", escape(d.source));

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <charconv>
+#include <chrono>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <string>
@@ -50,18 +52,50 @@ int threads() {
   return openblas_get_num_threads();
 }
 
-int threads_for_load() {
-  const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-  // /proc/loadavg: "0.52 0.58 0.59 3/312 4711"; the fourth field is runnable/total tasks, and
-  // the runnable ones include this process.
+namespace {
+// The runnable tasks of the machine now, from the fourth field of /proc/loadavg
+// ("0.52 0.58 0.59 3/312 4711": runnable/total); -1 if unreadable.
+int runnable_tasks() {
   std::ifstream in("/proc/loadavg");
   double avg1 = 0, avg5 = 0, avg15 = 0;
   std::string tasks;
-  if (!(in >> avg1 >> avg5 >> avg15 >> tasks)) return cores;
-  int runnable = 1;
+  if (!(in >> avg1 >> avg5 >> avg15 >> tasks)) return -1;
+  int runnable = 0;
   const auto [end, ec] = std::from_chars(tasks.data(), tasks.data() + tasks.size(), runnable);
-  if (ec != std::errc{}) return cores;
-  return std::clamp(cores - std::max(0, runnable - 1), 1, cores);
+  return ec == std::errc{} ? runnable : -1;
+}
+
+// The threads of this process that are runnable now (state R in /proc/self/task/*/stat): this
+// one and OpenBLAS's workers, which spin for a while after they start.
+int own_runnable_threads() {
+  int n = 0;
+  std::error_code ec;
+  for (const auto& task : std::filesystem::directory_iterator("/proc/self/task", ec)) {
+    std::ifstream in(task.path() / "stat");
+    std::string line;
+    if (!std::getline(in, line)) continue;
+    const auto close = line.rfind(')');  // "pid (comm) S ...": the state follows the name
+    if (close != std::string::npos && close + 2 < line.size() && line[close + 2] == 'R') ++n;
+  }
+  return std::max(n, 1);
+}
+
+// Samples of the count of other runnable tasks, the smallest kept: a kernel thread or a shell
+// that is runnable for an instant must not count as a busy core.
+constexpr int kLoadSamples = 5;
+constexpr auto kLoadSampleInterval = std::chrono::milliseconds(2);
+}  // namespace
+
+int threads_for_load() {
+  const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  int others = cores;
+  for (int k = 0; k < kLoadSamples && others > 0; ++k) {
+    if (k > 0) std::this_thread::sleep_for(kLoadSampleInterval);
+    const int runnable = runnable_tasks();
+    if (runnable < 0) return cores;
+    others = std::min(others, std::max(0, runnable - own_runnable_threads()));
+  }
+  return std::clamp(cores - others, 1, cores);
 }
 
 void solve_lower(ConstBlockRef L, BlockRef X, bool transpose) {

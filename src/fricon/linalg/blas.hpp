@@ -20,8 +20,9 @@ void set_threads(int n);
 /// The number of threads the BLAS uses.
 int threads();
 
-/// Threads for the machine's present load: the cores not taken by other runnable tasks (from the
-/// instantaneous count in /proc/loadavg), at least 1 and at most the number of cores. On a busy
+/// Threads for the machine's present load: the cores not taken by other processes' runnable tasks
+/// (the instantaneous count of /proc/loadavg less this process's runnable threads, the smallest
+/// of a few samples 2 ms apart), at least 1 and at most the number of cores. On a busy
 /// machine this is 1, where spinning BLAS threads would steal time from the working one.
 int threads_for_load();
 
