@@ -282,7 +282,8 @@ int main(int argc, char** argv) {
         "QP variants (qp::MpgpVariant) on the dual problem of the paper's brick, param 6e4.\n"
         "Single QP: first outer iteration (all radii 6e6 Pa), from l = 0, stop at ||g^P|| <= tol "
         "||h||; time = median of {} runs; kkt = max relative KKT residual of the result;\n"
-        "x prod, x time = ratio to the variant paper (the reference; bb is the default of fricon solve).\n\n",
+        "x prod, x time = ratio to the variant paper (the reference; bb is the default of fricon "
+        "solve).\n\n",
         s.reps);
     fmt::print("{:<10} {:>5} {:>8} {:<14} {:>7} {:>8} {:>9} {:>9} {:>7} {:>7}  {}\n", "problem",
                "n_d", "tol", "variant", "iters", "products", "time[ms]", "kkt", "x prod", "x time",
