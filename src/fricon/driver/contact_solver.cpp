@@ -81,15 +81,14 @@ outer::OuterReport successive_approximations(TrescaMap& map, VectorXd& phi, cons
                                              ContactReport& rep, const RunOptions& options) {
   const auto monitor = [&](const outer::OuterIteration& o) {
     const qp::MpgpReport& q = map.last_qp();
-    OuterIteration it;
-    it.k = o.k;
-    it.err = o.err;
-    it.qp_iterations = q.iterations;
-    it.qp_products = q.n_products;
-    it.qp_rel_gp = q.rel_gp;
-    it.qp_termination = q.termination;
-    it.n_objective_increases = q.n_objective_increases;
-    it.seconds = o.seconds;
+    const OuterIteration it{.k = o.k,
+                            .err = o.err,
+                            .qp_iterations = q.iterations,
+                            .qp_products = q.n_products,
+                            .qp_rel_gp = q.rel_gp,
+                            .qp_termination = q.termination,
+                            .n_objective_increases = q.n_objective_increases,
+                            .seconds = o.seconds};
     rep.n_mult += q.n_products;
     rep.qp_iterations += q.iterations;
     rep.n_objective_increases += q.n_objective_increases;

@@ -14,22 +14,23 @@ namespace {
 nlohmann::json vec3(const Vec3& v) {
   return nlohmann::json::array({v(0), v(1), v(2)});
 }
+
 // The contact part of the report: counts, the paper's measures, the certificate and the outer
 // history.
 void add_contact_report(const driver::ContactReport& c, nlohmann::json& j) {
-  j["n_dual"] = c.n_dual;
-  j["outer_iterations"] = c.outer_iterations;
-  j["n_mult"] = c.n_mult;
-  j["qp_iterations"] = c.qp_iterations;
-  j["n_kinv"] = c.n_kinv;
-  j["err_history"] = c.err_history;
-  j["wn_pos_l2"] = c.wn_pos_l2;
-  j["wn_pos_inf"] = c.wn_pos_inf;
-  j["max_neg_wn"] = c.max_neg_wn;
-  j["max_wt"] = c.max_wt;
-  j["max_lambda_n"] = c.max_lambda_n;
-  j["max_lambda_t"] = c.max_lambda_t;
-  j["total_normal_force"] = c.total_normal_force;
+  j.update({{"n_dual", c.n_dual},
+            {"outer_iterations", c.outer_iterations},
+            {"n_mult", c.n_mult},
+            {"qp_iterations", c.qp_iterations},
+            {"n_kinv", c.n_kinv},
+            {"err_history", c.err_history},
+            {"wn_pos_l2", c.wn_pos_l2},
+            {"wn_pos_inf", c.wn_pos_inf},
+            {"max_neg_wn", c.max_neg_wn},
+            {"max_wt", c.max_wt},
+            {"max_lambda_n", c.max_lambda_n},
+            {"max_lambda_t", c.max_lambda_t},
+            {"total_normal_force", c.total_normal_force}});
   j["kkt"] = {{"feasibility", c.kkt.feasibility},
               {"stationarity", c.kkt.stationarity},
               {"complementarity", c.kkt.complementarity},
