@@ -184,7 +184,8 @@ RunResult run_outer(const Case& k, qp::MpgpVariant v) {
   const fricon::bench::PaperDual& o = *k.outer;
   const auto& so = o.problem.solver;
   fricon::PhaseTimes times;
-  fricon::driver::TrescaMap map(o.model.mesh, o.model.dofs, o.disc, *o.Q, *o.law,
+  const auto bounds = fricon::driver::make_slip_bounds(o.problem, o.model.mesh, o.disc, *o.law);
+  fricon::driver::TrescaMap map(o.model.dofs, o.disc, *o.Q, *bounds, *o.law,
                                 options(k, v, so.qp_rtol), so.warm_start, times);
   RunResult res;
   VectorXd phi = VectorXd::Zero(o.disc.surface.n_nodes());

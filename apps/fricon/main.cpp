@@ -47,8 +47,10 @@ void print_summary(const fricon::driver::RunResult& result, const std::filesyste
   fmt::print("  factor        nnz(L) = {:.0f}, ordering {}\n", r.factor.nnz_L, r.factor.ordering);
   if (r.contact) {
     const auto& c = *r.contact;
-    fmt::print("  contact       '{}': {} patches, n_dual = {}, {} contact nodes, friction {}\n",
-               c.boundary, c.n_patches, c.n_dual, c.n_contact_nodes, c.friction_law);
+    fmt::print(
+        "  contact       '{}': {} patches, n_dual = {}, {} contact nodes, {} friction {}\n",
+        c.boundary, c.n_patches, c.n_dual, c.n_contact_nodes, fricon::enum_name(c.model),
+        c.friction_law);
     fmt::print("  outer loop    {} iterations ({}), err(k):", c.outer_iterations,
                fricon::enum_name(c.termination));
     for (double e : c.err_history)
@@ -62,6 +64,12 @@ void print_summary(const fricon::driver::RunResult& result, const std::filesyste
         c.kkt.feasibility, c.kkt.stationarity, c.kkt.complementarity, c.kkt.max(),
         c.kkt.max() <= c.kkt_bound ? "<=" : ">", c.kkt_bound,
         c.kkt.max() <= c.kkt_bound ? "passed" : "FAILED");
+    if (c.model == fricon::contact::FrictionModel::Coulomb)
+      fmt::print("  Coulomb       natural-map residual {:.1e} {} {:.1e}, certificate {}\n",
+                 c.coulomb_residual, c.coulomb_residual <= c.coulomb_bound ? "<=" : ">",
+                 c.coulomb_bound, c.coulomb_residual <= c.coulomb_bound ? "passed" : "FAILED");
+    fmt::print("  patches       {} stick, {} slip, {} separated\n", c.n_stick, c.n_slip,
+               c.n_separated);
     if (c.n_objective_increases > 0)
       fmt::print("  monotonicity  {} QP steps increased the objective (expected 0)\n",
                  c.n_objective_increases);

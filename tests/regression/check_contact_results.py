@@ -47,13 +47,24 @@ for k in ["feasibility", "stationarity", "complementarity"]:
     assert report["kkt"][k] < 1e-5, (k, report["kkt"][k])
 
 def read_csv(path, header):
+    """The numeric columns of a CSV whose header starts with `header`."""
     with open(path) as f:
         rows = list(csv.reader(f))
-    assert rows[0] == header, rows[0]
-    return np.array(rows[1:], dtype=float)
+    assert rows[0][:len(header)] == header, rows[0]
+    return np.array([r[:len(header)] for r in rows[1:]], dtype=float), rows
 
-P = read_csv(out / "patches.csv", ["x", "y", "area", "lambda_n", "lambda_t1", "lambda_t2", "radius"])
-assert P.shape == (12, 7)
+P, rows = read_csv(out / "patches.csv",
+                   ["x", "y", "area", "lambda_n", "lambda_t1", "lambda_t2", "radius", "F", "ratio"])
+assert P.shape == (12, 9)
+# The state column: slip exactly where ||lambda_t|| reaches the radius (to 1e-6), else stick.
+assert rows[0][9] == "state"
+for p, row in zip(P, rows[1:]):
+    on_circle = np.hypot(p[4], p[5]) >= (1 - 1e-6) * p[6]
+    assert row[9] == ("slip" if on_circle else "stick"), (row, p)
+    if p[3] > 0:
+        assert abs(p[8] - np.hypot(p[4], p[5]) / p[3]) <= 1e-12 * p[8], p
+    else:  # Tresca friction without contact pressure (lift-off)
+        assert p[8] == (np.inf if np.hypot(p[4], p[5]) > 0 else 0), p
 assert np.all(P[:, 3] >= 0)
 lt = np.hypot(P[:, 4], P[:, 5])
 assert np.all(lt <= P[:, 6] * (1 + 1e-12)), "a friction multiplier exceeds its slip bound"
@@ -62,7 +73,7 @@ assert abs((P[:, 2] * P[:, 3]).sum() - report["total_normal_force"]) <= 1e-9 * r
 assert abs(P[:, 3].max() - report["max_lambda_n"]) <= 1e-9 * report["max_lambda_n"]
 assert abs(lt.max() - report["max_lambda_t"]) <= 1e-9 * report["max_lambda_t"]
 
-N = read_csv(out / "contact_nodes.csv", ["x", "y", "z", "w_n", "w_t1", "w_t2", "phi", "F"])
+N, _ = read_csv(out / "contact_nodes.csv", ["x", "y", "z", "w_n", "w_t1", "w_t2", "phi", "F"])
 assert N.shape == (13 * 5, 8)
 assert np.all(N[:, 2] == 0.0)
 assert np.allclose(N[:, 6], np.hypot(N[:, 4], N[:, 5]), rtol=1e-12, atol=0)

@@ -31,7 +31,8 @@ def solve(name):
 
 def patches(folder):
     with open(folder / "patches.csv") as f:
-        return [{k: float(v) for k, v in row.items()} for row in csv.DictReader(f)]
+        return [{k: (v if k == "state" else float(v)) for k, v in row.items()}
+                for row in csv.DictReader(f)]
 
 
 names = sorted(p.stem for p in examples.glob("*.toml"))
@@ -54,6 +55,18 @@ for p in patches(folder):
 for name in ["paper-brick", "paper-brick-param2e4", "paper-brick-param3e5"]:
     _, report = reports[name]
     assert report["n_primal"] == 900 and report["n_dual"] == 36, name
+
+# Coulomb: every patch inside its friction cone with the coefficient F_R of the result, on it where
+# it slips, and the report's own Coulomb certificate within its bound.
+folder, report = reports["coulomb-brick"]
+assert report["model"] == "coulomb" and report["state_blocks"] == ["phi", "lambda_n"], report
+assert report["coulomb"]["residual"] <= report["coulomb"]["bound"], report["coulomb"]
+assert all(len(b) == 2 for b in report["block_err_history"])
+for p in patches(folder):
+    lt = (p["lambda_t1"] ** 2 + p["lambda_t2"] ** 2) ** 0.5
+    assert p["lambda_n"] >= 0 and lt <= p["F"] * p["lambda_n"] * (1 + 1e-3) + 1e-6, p
+    if p["state"] == "slip":
+        assert abs(lt - p["F"] * p["lambda_n"]) <= 1e-3 * p["F"] * p["lambda_n"], p
 
 study = out / "study"
 r = subprocess.run(["bash", str(examples / "parameter-study.sh"), exe, str(study)],

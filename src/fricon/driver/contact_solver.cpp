@@ -8,6 +8,7 @@
 #include "fricon/contact/radii.hpp"
 #include "fricon/core/error.hpp"
 #include "fricon/driver/tresca_map.hpp"
+#include "fricon/qp/friction_cone.hpp"
 
 namespace fricon::driver {
 
@@ -18,14 +19,26 @@ constexpr int kPowerIterations = 200;
 constexpr Real kPowerTolerance = 1e-10;
 // The recovery on the contact dofs must agree with the full solve to this relative accuracy.
 constexpr Real kRecoveryTolerance = 1e-8;
+// A patch slips when ||lambda_t|| is this close to its radius (relative), and is separated when
+// lambda_n is below this fraction of the largest lambda_n (or zero).
+constexpr Real kSlipTolerance = 1e-6;
+constexpr Real kSeparationTolerance = 1e-12;
 
 bool stop_requested(const RunOptions& o) {
   return o.stop_requested && o.stop_requested->load();
 }
 
+Index state_size(const TrescaMap& map) {
+  Index n = 0;
+  for (const auto& block : map.layout())
+    n += block.size;
+  return n;
+}
+
 ContactReport describe(const Problem& problem, const contact::ContactDiscretization& disc,
                        const dual::DualOperator& Q, const contact::FrictionLaw& law) {
   ContactReport rep;
+  rep.model = problem.contact->model;
   rep.boundary = problem.contact->boundary;
   rep.friction_law = law.describe();
   rep.dual_operator = Q.kind();
@@ -38,6 +51,8 @@ ContactReport describe(const Problem& problem, const contact::ContactDiscretizat
   rep.n_inactive_multipliers = disc.stability.n_inactive;
   rep.radius_integration = disc.radius_integration;
   rep.kkt_bound = kCertificateFactor * problem.solver.qp_rtol;
+  rep.coulomb_bound = kCoulombCertificateFactor *
+                      std::max(problem.solver.outer_tol, problem.solver.qp_rtol);
   return rep;
 }
 
@@ -70,7 +85,7 @@ qp::DualProblem first_dual_problem(const Problem& problem,
   qp::DualProblem d;
   d.Q = Q.to_dense();
   d.h = Q.h();
-  d.radius = map.radii(VectorXd::Zero(disc.surface.n_nodes()));
+  d.radius = map.radii(1, VectorXd::Zero(state_size(map)));
   d.patch_area = disc.patches.area;
   d.source = problem.source;
   return d;
@@ -102,6 +117,9 @@ outer::OuterReport successive_approximations(TrescaMap& map, VectorXd& phi, cons
   rep.err_history = o.err_history;
   rep.contraction_ratio = o.contraction_ratio;
   rep.fixed_point_residual = o.fixed_point_residual;
+  rep.block_history = o.block_history;
+  for (const auto& b : map.layout())
+    rep.state_blocks.push_back(b.name);
   return o;
 }
 
@@ -109,7 +127,7 @@ outer::OuterReport successive_approximations(TrescaMap& map, VectorXd& phi, cons
 // the recovery on the contact dofs, and the KKT residuals of the final QP with the gradient
 // through that solve: Q lambda = B K^-1 B^T lambda = B (u0 - w) (theory.md §5.5).
 VectorXd certify(const contact::ContactDiscretization& disc, const dual::DualOperator& Q,
-                 const TrescaMap& map, ContactReport& rep) {
+                 const TrescaMap& map, ContactReport& rep, VectorXd& g) {
   const VectorXd w = Q.displacement(map.lambda());
   const VectorXd& w_c = map.w();
   for (Index dof : disc.dofs)
@@ -117,7 +135,7 @@ VectorXd certify(const contact::ContactDiscretization& disc, const dual::DualOpe
                  "the recovery of the contact displacement (dof "
                      << dof << ": " << w_c(dof) << ") disagrees with the full solve (" << w(dof)
                      << ")");
-  const VectorXd g = disc.B * (Q.u0() - w) - Q.h();
+  g = disc.B * (Q.u0() - w) - Q.h();
   const qp::KktScales scales = qp::default_kkt_scales(map.lambda(), Q.h(), map.constraints());
   rep.kkt = qp::kkt_residuals(map.lambda(), g, map.constraints(), scales.x, scales.g);
   return w;
@@ -149,11 +167,45 @@ void measure(const Model& m, const contact::ContactDiscretization& disc,
   out.linear_residual = (m.K * out.w - m.f - contact_load).norm() / std::max(m.f.norm(), 1e-300);
 }
 
-// The outcome's status: the loop's termination, unless a converged run fails its certificate.
+// Per patch: the mean coefficient F_R of the result and whether it sticks, slips or is separated
+// (against the radius its last QP had).
+void classify_patches(const contact::SlipBounds& bounds, const VectorXd& radius,
+                      ContactOutcome& out) {
+  ContactFields& f = out.fields;
+  ContactReport& rep = out.report;
+  f.coefficient = bounds.mean_coefficients(out.fields.wt1.binaryExpr(
+      out.fields.wt2, [](Real a, Real b) { return std::hypot(a, b); }));
+  const Real scale_n = std::max(rep.max_lambda_n, 0.0);
+  f.state.resize(static_cast<size_t>(rep.n_patches));
+  for (Index p = 0; p < rep.n_patches; ++p) {
+    const Real ln = f.lambda(3 * p), lt = f.lambda.segment<2>(3 * p + 1).norm();
+    PatchState state = PatchState::Stick;
+    if (ln <= kSeparationTolerance * scale_n && lt <= kSlipTolerance * radius(p))
+      state = PatchState::Separated;
+    else if (radius(p) > 0.0 && lt >= (1.0 - kSlipTolerance) * radius(p))
+      state = PatchState::Slip;
+    f.state[static_cast<size_t>(p)] = state;
+    rep.n_separated += state == PatchState::Separated ? 1 : 0;
+    rep.n_stick += state == PatchState::Stick ? 1 : 0;
+    rep.n_slip += state == PatchState::Slip ? 1 : 0;
+  }
+}
+
+// The outcome's status: the loop's termination, unless a converged run fails its certificate
+// (the final QP's KKT residuals, and for Coulomb the residual of the Coulomb problem).
 void conclude(const outer::OuterReport& loop, ContactOutcome& out) {
   ContactReport& rep = out.report;
   out.converged = loop.converged();
   out.message = loop.message;
+  if (out.converged && rep.model == contact::FrictionModel::Coulomb &&
+      !(rep.coulomb_residual <= rep.coulomb_bound)) {
+    rep.termination = outer::Termination::CertificateFailed;
+    out.converged = false;
+    out.message = fmt::format(
+        "the certificate of the Coulomb solution failed: its natural-map residual {:.3e} "
+        "exceeds {:g} x max(outer_tol, qp_rtol) = {:.1e}",
+        rep.coulomb_residual, kCoulombCertificateFactor, rep.coulomb_bound);
+  }
   if (out.converged && !(rep.kkt.max() <= rep.kkt_bound)) {
     rep.termination = outer::Termination::CertificateFailed;
     out.converged = false;
@@ -166,6 +218,19 @@ void conclude(const outer::OuterReport& loop, ContactOutcome& out) {
 }
 
 }  // namespace
+
+std::unique_ptr<contact::SlipBounds> make_slip_bounds(const Problem& problem,
+                                                      const mesh::TetMesh& mesh,
+                                                      const contact::ContactDiscretization& disc,
+                                                      const contact::FrictionLaw& law) {
+  switch (problem.contact->model) {
+    case contact::FrictionModel::Tresca:
+      return contact::make_tresca_bounds(mesh, disc, law);
+    case contact::FrictionModel::Coulomb:
+      return contact::make_coulomb_bounds(mesh, disc, law, problem.contact->start_slip_bound);
+  }
+  throw Error("make_slip_bounds: invalid friction model");
+}
 
 outer::OuterOptions outer_options(const SolverOptions& so) {
   outer::OuterOptions o;
@@ -185,36 +250,43 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m,
   out.report = describe(problem, disc, Q, *law);
   ContactReport& rep = out.report;
 
-  // @sect: ||Q|| for the QP's fixed step length, then the map Psi on the nodal slips.
+  // @sect: ||Q|| for the QP's fixed step length, then the map Psi on the state.
   {
     ScopedPhase phase(times, "dual");
     rep.norm_Q = estimate_norm_Q(Q, options);
   }
-  TrescaMap map(m.mesh, m.dofs, disc, Q, *law, qp_options(problem.solver, rep.norm_Q, options),
+  const auto bounds = make_slip_bounds(problem, m.mesh, disc, *law);
+  TrescaMap map(m.dofs, disc, Q, *bounds, *law, qp_options(problem.solver, rep.norm_Q, options),
                 problem.solver.warm_start, times);
   if (options.keep_first_dual) out.first_dual = first_dual_problem(problem, disc, Q, map);
 
-  // @sect: successive approximations (theory.md §5), from phi^0 = 0.
-  VectorXd phi = VectorXd::Zero(disc.surface.n_nodes());
-  const outer::OuterReport loop = successive_approximations(map, phi, problem, rep, options);
+  // @sect: successive approximations (theory.md §5), from the zero state (phi = 0, and for
+  // Coulomb lambda_n = 0: the first step is then the frictionless problem).
+  VectorXd state = VectorXd::Zero(state_size(map));
+  const outer::OuterReport loop = successive_approximations(map, state, problem, rep, options);
 
   // @sect: the displacement of the whole body, once, and the certificate of the last iterate.
+  VectorXd g;
   {
     ScopedPhase phase(times, "recovery");
-    out.w = certify(disc, Q, map, rep);
+    out.w = certify(disc, Q, map, rep, g);
   }
   {
     ScopedPhase phase(times, "postprocess");
+    out.fields.lambda = map.lambda();
+    out.fields.radius = map.radius();
     measure(m, disc, *law, map.lambda(), out);
+    classify_patches(*bounds, map.radius(), out);
+    if (bounds->uses_pressure())
+      rep.coulomb_residual =
+          qp::coulomb_residual(map.lambda(), g, out.fields.coefficient, 1.0 / rep.norm_Q);
   }
   conclude(loop, out);
   rep.n_kinv = Q.n_kinv();
   out.fields.surface = disc.surface;
   out.fields.patches = disc.patches;
   out.fields.slip_bound = disc.slip_bound;
-  out.fields.lambda = map.lambda();
-  out.fields.radius = map.radius();
-  out.fields.phi = phi;
+  out.fields.phi = map.slips(state);
   return out;
 }
 

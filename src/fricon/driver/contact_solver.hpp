@@ -8,11 +8,13 @@
 
 #include <atomic>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "fricon/contact/discretization.hpp"
+#include "fricon/contact/slip_bounds.hpp"
 #include "fricon/core/timer.hpp"
 #include "fricon/driver/model.hpp"
 #include "fricon/driver/problem.hpp"
@@ -27,6 +29,17 @@ namespace fricon::driver {
 /// A run whose final KKT residuals exceed this multiple of qp_rtol is not converged
 /// (theory.md §5.5): the QP's own stopping test would put them below about qp_rtol.
 inline constexpr Real kCertificateFactor = 100.0;
+/// A Coulomb run whose natural-map residual exceeds this multiple of max(outer_tol, qp_rtol) is
+/// not converged (theory.md §5.6): the radii of the last QP lag the pressures it returns by
+/// about outer_tol.
+inline constexpr Real kCoulombCertificateFactor = 10.0;
+
+/// How a patch ends up (patches.csv, contact.vtu).
+enum class PatchState {
+  Separated,  ///< no contact pressure (lambda_n = 0)
+  Stick,      ///< ||lambda_t|| below the radius
+  Slip,       ///< ||lambda_t|| on the radius
+};
 
 /// One outer iteration (a Tresca problem with a frozen coefficient).
 struct OuterIteration {
@@ -41,6 +54,7 @@ struct OuterIteration {
 };
 
 struct ContactReport {
+  contact::FrictionModel model = contact::FrictionModel::Tresca;
   std::string boundary;
   std::string friction_law;
   dual::DualOperatorKind dual_operator = dual::DualOperatorKind::Auto;  ///< the one used
@@ -74,6 +88,14 @@ struct ContactReport {
   /// Of the last QP, with g = Q lambda - h through a fresh solve with K (the certificate).
   qp::KktResiduals kkt;
   Real kkt_bound = 0.0;  ///< kCertificateFactor * qp_rtol: the certificate's bound on kkt.max()
+  /// Coulomb only: the natural-map residual of the Coulomb problem at the result
+  /// (qp::coulomb_residual, with mu_R from the returned slips), and its bound.
+  Real coulomb_residual = 0.0;
+  Real coulomb_bound = 0.0;
+  /// Per outer iteration, the relative change of each block of the state (phi; lambda_n).
+  std::vector<std::vector<Real>> block_history;
+  std::vector<std::string> state_blocks;  ///< the names of those blocks
+  Index n_stick = 0, n_slip = 0, n_separated = 0;  ///< patches in each PatchState
   /// ||Psi(phi) - phi|| / ||phi|| at the returned phi (the last err(k)).
   Real fixed_point_residual = 0.0;
   /// Observed contraction factor of the successive approximations (outer::OuterReport).
@@ -90,6 +112,8 @@ struct ContactFields {
   VectorXd wn, wt1, wt2;  ///< components of the displacement w per surface node [m]
   VectorXd F;             ///< F(||w_t||) per surface node
   VectorXd slip_bound;    ///< g per surface node [Pa]
+  VectorXd coefficient;   ///< per patch: F_R = (1/|R|) int_R F(||w_t||) dS of the result
+  std::vector<PatchState> state;  ///< per patch
 };
 
 /// How a run reports progress and what it keeps besides the solution.
@@ -127,7 +151,17 @@ ContactOutcome solve_contact(const Problem& problem, const Model& model,
                              const dual::DualOperator& Q, PhaseTimes& times,
                              const RunOptions& options = {});
 
+/// The slip bounds of the problem's friction model on the discretization.
+std::unique_ptr<contact::SlipBounds> make_slip_bounds(const Problem& problem,
+                                                      const mesh::TetMesh& mesh,
+                                                      const contact::ContactDiscretization& disc,
+                                                      const contact::FrictionLaw& law);
+
 /// The outer loop's options from the problem's [solver] section.
 outer::OuterOptions outer_options(const SolverOptions& solver);
 
 }  // namespace fricon::driver
+
+FRICON_ENUM_NAMES(fricon::driver::PatchState, "patch state",
+                  {driver::PatchState::Separated, "separated"}, {driver::PatchState::Stick, "stick"},
+                  {driver::PatchState::Slip, "slip"});

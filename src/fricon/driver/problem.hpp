@@ -15,6 +15,7 @@
 
 #include "fricon/contact/friction_law.hpp"
 #include "fricon/contact/patches.hpp"
+#include "fricon/contact/slip_bounds.hpp"
 #include "fricon/core/enum_names.hpp"
 #include "fricon/core/types.hpp"
 #include "fricon/dual/dual_operator_kind.hpp"
@@ -65,7 +66,12 @@ using FrictionOptions = contact::FrictionLawSpec;
 /// [contact]: frictional contact of a tagged boundary with a rigid half-space (no initial gap).
 struct ContactOptions {
   std::string boundary = "z0";  ///< [contact.boundary] tag of the contact surface (planar)
-  Real slip_bound = 2.0e7;      ///< [contact.slip_bound] g [Pa], >= 0
+  /// [contact.model] Tresca (slip bound F g) or Coulomb (slip bound F times the pressure).
+  contact::FrictionModel model = contact::FrictionModel::Tresca;
+  Real slip_bound = 2.0e7;  ///< [contact.slip_bound] g [Pa], >= 0 (Tresca only)
+  /// [contact.start_slip_bound] g0 [Pa], >= 0 (Coulomb only): start the successive
+  /// approximations from the Tresca solution with g = g0 instead of the frictionless one.
+  std::optional<Real> start_slip_bound;
   /// [contact.patches] partition of the contact surface for the multipliers.
   contact::PatchKind patches = contact::PatchKind::Chessboard;
   FrictionOptions friction;  ///< [contact.friction]

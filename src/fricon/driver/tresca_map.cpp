@@ -2,18 +2,17 @@
 
 #include <fmt/format.h>
 
-#include "fricon/contact/radii.hpp"
 
 namespace fricon::driver {
 
-TrescaMap::TrescaMap(const mesh::TetMesh& mesh, const fe::DofMap& dofs,
-                     const contact::ContactDiscretization& discretization,
-                     const dual::DualOperator& Q, const contact::FrictionLaw& law,
-                     const qp::MpgpOptions& qp, bool warm_start, PhaseTimes& times)
-    : mesh_(mesh),
-      dofs_(dofs),
+TrescaMap::TrescaMap(const fe::DofMap& dofs, const contact::ContactDiscretization& discretization,
+                     const dual::DualOperator& Q, const contact::SlipBounds& bounds,
+                     const contact::FrictionLaw& law, const qp::MpgpOptions& qp,
+                     bool warm_start, PhaseTimes& times)
+    : dofs_(dofs),
       disc_(discretization),
       Q_(Q),
+      bounds_(bounds),
       law_(law),
       qp_(qp),
       warm_start_(warm_start),
@@ -23,16 +22,25 @@ TrescaMap::TrescaMap(const mesh::TetMesh& mesh, const fe::DofMap& dofs,
       lambda_(VectorXd::Zero(discretization.n_dual())) {}
 
 std::vector<outer::StateBlock> TrescaMap::layout() const {
-  return {{"phi", disc_.surface.n_nodes()}};
+  std::vector<outer::StateBlock> blocks{{"phi", disc_.surface.n_nodes()}};
+  if (bounds_.uses_pressure()) blocks.push_back({"lambda_n", disc_.n_patches()});
+  return blocks;
 }
 
-VectorXd TrescaMap::radii(const VectorXd& phi) const {
-  return contact::patch_radii(mesh_, disc_.surface, disc_.patches, law_, phi, disc_.slip_bound);
+VectorXd TrescaMap::slips(const VectorXd& state) const {
+  return state.head(disc_.surface.n_nodes());
 }
 
-outer::StepResult TrescaMap::apply(int k, const VectorXd& phi, VectorXd& image) {
-  // @sect: the Tresca problem with the coefficient frozen at phi, in its dual form.
-  radius_ = radii(phi);
+VectorXd TrescaMap::radii(int k, const VectorXd& state) const {
+  const VectorXd lambda_n = bounds_.uses_pressure()
+                                ? VectorXd(state.tail(disc_.n_patches()))
+                                : VectorXd::Zero(disc_.n_patches());
+  return bounds_.radii(k, slips(state), lambda_n);
+}
+
+outer::StepResult TrescaMap::apply(int k, const VectorXd& state, VectorXd& image) {
+  // @sect: the Tresca problem with the slip bounds frozen at the state, in its dual form.
+  radius_ = radii(k, state);
   constraints_.set_disc_radii(radius_);
   if (!warm_start_) lambda_.setZero();
   {
@@ -44,7 +52,13 @@ outer::StepResult TrescaMap::apply(int k, const VectorXd& phi, VectorXd& image) 
     ScopedPhase phase(times_, "recovery");
     Q_.contact_displacement(lambda_, w_);
   }
-  image = contact::surface_displacement(disc_.surface, dofs_, w_).slip();
+  // @sect: the new state: the slips, and for Coulomb the new pressures.
+  const VectorXd phi = contact::surface_displacement(disc_.surface, dofs_, w_).slip();
+  image.resize(state.size());
+  image.head(phi.size()) = phi;
+  if (bounds_.uses_pressure())
+    for (Index p = 0; p < disc_.n_patches(); ++p)
+      image(phi.size() + p) = lambda_(3 * p);
 
   switch (last_qp_.termination) {
     case qp::Termination::Converged:

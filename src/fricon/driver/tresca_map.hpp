@@ -1,19 +1,20 @@
 #pragma once
-// driver: the map Psi of the paper's successive approximations (theory.md §5.1), on the nodal
-// slips phi of the contact surface: radii from phi (contact/radii.hpp), the dual QP with those
-// radii by MPGP warm-started from the previous multipliers (qp/mpgp.hpp), the displacement on the
-// contact dofs (dual/dual_operator.hpp), and phi = ||w_t|| at the surface nodes. The outer loop
-// (outer/outer_loop.hpp) iterates it.
+// driver: the map Psi of the successive approximations (theory.md §5.1, §5.6): one Tresca step.
+// From the state (the nodal slips phi, and for Coulomb the patch pressures lambda_n): the radii
+// by the model's slip bounds (contact/slip_bounds.hpp), the dual QP with those radii by MPGP
+// warm-started from the previous multipliers (qp/mpgp.hpp), the displacement on the contact dofs
+// (dual/dual_operator.hpp), and the new state: phi = ||w_t|| at the surface nodes (and the new
+// lambda_n). The outer loop (outer/outer_loop.hpp) iterates it.
 
 #include <string>
 #include <vector>
 
 #include "fricon/contact/discretization.hpp"
 #include "fricon/contact/friction_law.hpp"
+#include "fricon/contact/slip_bounds.hpp"
 #include "fricon/core/timer.hpp"
 #include "fricon/dual/dual_operator.hpp"
 #include "fricon/fe/dof_map.hpp"
-#include "fricon/mesh/tet_mesh.hpp"
 #include "fricon/outer/outer_loop.hpp"
 #include "fricon/qp/constraints.hpp"
 #include "fricon/qp/mpgp.hpp"
@@ -25,17 +26,20 @@ class TrescaMap final : public outer::FixedPointMap {
   /// Every reference must outlive the map. `qp` carries the QP's tolerance, limit, variant,
   /// ||Q|| and monitor; `warm_start` false starts every QP from zero. Phases "qp" and
   /// "recovery" are timed into `times`.
-  TrescaMap(const mesh::TetMesh& mesh, const fe::DofMap& dofs,
-            const contact::ContactDiscretization& discretization, const dual::DualOperator& Q,
+  TrescaMap(const fe::DofMap& dofs, const contact::ContactDiscretization& discretization,
+            const dual::DualOperator& Q, const contact::SlipBounds& bounds,
             const contact::FrictionLaw& law, const qp::MpgpOptions& qp, bool warm_start,
             PhaseTimes& times);
 
+  /// {"phi": surface nodes}, and for Coulomb {"lambda_n": patches} after it.
   std::vector<outer::StateBlock> layout() const override;
-  outer::StepResult apply(int k, const VectorXd& phi, VectorXd& image) override;
+  outer::StepResult apply(int k, const VectorXd& state, VectorXd& image) override;
   std::string stall_hint() const override;
 
-  /// The radii [Pa] for nodal slips phi [m] (those of the first QP for phi = 0).
-  VectorXd radii(const VectorXd& phi) const;
+  /// The radii [Pa] at iteration k for a state (those of the first QP for the zero state).
+  VectorXd radii(int k, const VectorXd& state) const;
+  /// The slips phi [m] of a state (its first block).
+  VectorXd slips(const VectorXd& state) const;
 
   // The state after the last application.
   const VectorXd& lambda() const { return lambda_; }  ///< multipliers [Pa], (n, t1, t2) per patch
@@ -46,10 +50,10 @@ class TrescaMap final : public outer::FixedPointMap {
   const qp::SeparableConstraints& constraints() const { return constraints_; }
 
  private:
-  const mesh::TetMesh& mesh_;
   const fe::DofMap& dofs_;
   const contact::ContactDiscretization& disc_;
   const dual::DualOperator& Q_;
+  const contact::SlipBounds& bounds_;
   const contact::FrictionLaw& law_;
   qp::MpgpOptions qp_;
   bool warm_start_;

@@ -168,7 +168,15 @@ void validate_contact(const Problem& p) {
   if (!p.contact) return;
   const ContactOptions& c = *p.contact;
   check_tag(p, "contact.boundary", c.boundary);
+  check_enum(p, c.model);
   check_real(p, "contact.slip_bound", c.slip_bound, "a number >= 0 [Pa]", c.slip_bound >= 0.0);
+  if (c.start_slip_bound) {
+    check_real(p, "contact.start_slip_bound", *c.start_slip_bound, "a number >= 0 [Pa]",
+               *c.start_slip_bound >= 0.0);
+    if (c.model != contact::FrictionModel::Coulomb)
+      fail(p, "contact.start_slip_bound",
+           "only used by model \"coulomb\" (the Tresca problem it starts from)");
+  }
   check_enum(p, c.patches);
   validate_friction(p, c.friction);
 }

@@ -432,10 +432,22 @@ void read_friction(const Context& ctx, const Field& f, driver::FrictionOptions& 
 }
 
 void read_contact(const Context& ctx, const Field& f, driver::ContactOptions& c) {
-  const TableReader t(ctx, f, "a table [contact]",
-                      {"boundary", "slip_bound", "patches", "friction"});
+  static const auto params =
+      all_parameters<contact::FrictionModel>(contact::friction_model_parameters);
+  std::vector<std::string_view> keys = with_selector("model", params);
+  keys.insert(keys.end(), {"boundary", "patches", "friction"});
+  const TableReader t(ctx, f, "a table [contact]", keys);
+  if (auto k = t.find("model")) c.model = get_enum<contact::FrictionModel>(ctx, *k);
+  if (auto k = find_unused(t, params, contact::friction_model_parameters(c.model)))
+    fail(ctx, *k,
+         c.model == contact::FrictionModel::Coulomb
+             ? "not used by model \"coulomb\": its slip bound is F times the contact pressure "
+               "of each patch (start_slip_bound sets the Tresca problem it starts from)"
+             : "only used by model \"coulomb\" (the Tresca problem it starts from)");
   if (auto k = t.find("boundary")) c.boundary = get_string(ctx, *k, "a non-empty boundary tag");
   if (auto k = t.find("slip_bound")) c.slip_bound = get_real(ctx, *k, "a number >= 0 [Pa]");
+  if (auto k = t.find("start_slip_bound"))
+    c.start_slip_bound = get_real(ctx, *k, "a number >= 0 [Pa]");
   if (auto k = t.find("patches")) c.patches = get_enum<contact::PatchKind>(ctx, *k);
   if (auto k = t.find("friction")) read_friction(ctx, *k, c.friction);
 }
@@ -574,6 +586,7 @@ const std::vector<Selector>& selectors() {
   static const std::vector<Selector> all = {
       selector_of<contact::FrictionLawKind>(contact::friction_law_parameters),
       selector_of<fe::MaterialModel>(fe::material_parameters),
+      selector_of<contact::FrictionModel>(contact::friction_model_parameters),
   };
   return all;
 }
@@ -800,9 +813,11 @@ nlohmann::json to_json(const driver::Problem& p) {
       fr["f"] = c.friction.f;
     }
     j["contact"] = {{"boundary", c.boundary},
-                    {"slip_bound", c.slip_bound},
+                    {"model", enum_name(c.model)},
                     {"patches", enum_name(c.patches)},
                     {"friction", fr}};
+    if (c.model == contact::FrictionModel::Tresca) j["contact"]["slip_bound"] = c.slip_bound;
+    if (c.start_slip_bound) j["contact"]["start_slip_bound"] = *c.start_slip_bound;
   }
   const auto& s = p.solver;
   j["solver"] = {{"outer_tol", s.outer_tol},

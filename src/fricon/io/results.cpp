@@ -1,6 +1,7 @@
 #include "fricon/io/results.hpp"
 
 #include <cmath>
+#include <limits>
 
 #include <fmt/format.h>
 
@@ -38,6 +39,12 @@ void add_contact_report(const driver::ContactReport& c, nlohmann::json& j) {
               {"bound", c.kkt_bound}};
   j["termination"] = enum_name(c.termination);
   j["n_objective_increases"] = c.n_objective_increases;
+  j["model"] = enum_name(c.model);
+  if (c.model == contact::FrictionModel::Coulomb)
+    j["coulomb"] = {{"residual", c.coulomb_residual}, {"bound", c.coulomb_bound}};
+  j["patch_states"] = {{"stick", c.n_stick}, {"slip", c.n_slip}, {"separated", c.n_separated}};
+  j["state_blocks"] = c.state_blocks;
+  j["block_err_history"] = c.block_history;
   nlohmann::json history = nlohmann::json::array();
   for (const auto& it : c.history)
     history.push_back({{"k", it.k},
@@ -147,11 +154,19 @@ void write_contact_nodes(const std::filesystem::path& path, const mesh::TetMesh&
 // patches.csv: per patch its centroid, area, multipliers and radius.
 void write_patches(const std::filesystem::path& path, const driver::ContactFields& c) {
   write_atomically(path, [&](std::ostream& out) {
-    out << "x,y,area,lambda_n,lambda_t1,lambda_t2,radius\n";
-    for (Index p = 0; p < c.patches.size(); ++p)
-      out << fmt::format("{},{},{},{},{},{},{}\n", c.patches.centroid(0, p),
+    out << "x,y,area,lambda_n,lambda_t1,lambda_t2,radius,F,ratio,state\n";
+    for (Index p = 0; p < c.patches.size(); ++p) {
+      const Real lt = c.lambda.segment<2>(3 * p + 1).norm();
+      // ||lambda_t|| / lambda_n; infinite where Tresca friction acts without contact pressure.
+      const Real ratio = c.lambda(3 * p) > 0.0 ? lt / c.lambda(3 * p)
+                         : lt > 0.0           ? std::numeric_limits<Real>::infinity()
+                                              : 0.0;
+      out << fmt::format("{},{},{},{},{},{},{},{},{},{}\n", c.patches.centroid(0, p),
                          c.patches.centroid(1, p), c.patches.area(p), c.lambda(3 * p),
-                         c.lambda(3 * p + 1), c.lambda(3 * p + 2), c.radius(p));
+                         c.lambda(3 * p + 1), c.lambda(3 * p + 2), c.radius(p),
+                         c.coefficient(p), ratio,
+                         enum_name(c.state[static_cast<size_t>(p)]));
+    }
   });
 }
 
@@ -174,18 +189,21 @@ VtuGrid contact_grid(const mesh::TetMesh& mesh, const driver::ContactFields& c) 
                         {"phi", scalars.row(2)},
                         {"F", scalars.row(3)}};
   const Index nf = s.face_nodes.cols();
-  MatrixXd lambda_t(3, nf), per_face(4, nf);
+  MatrixXd lambda_t(3, nf), per_face(6, nf);
   for (Index p = 0; p < c.patches.size(); ++p)
     for (Index k : c.patches.faces[static_cast<size_t>(p)]) {
       lambda_t.col(k) = c.lambda(3 * p + 1) * s.t1 + c.lambda(3 * p + 2) * s.t2;
       per_face.col(k) << c.lambda(3 * p), c.lambda.segment<2>(3 * p + 1).norm(), c.radius(p),
-          static_cast<Real>(p);
+          static_cast<Real>(p), c.coefficient(p),
+          static_cast<Real>(c.state[static_cast<size_t>(p)]);
     }
   surface.cell_data = {{"lambda_n", per_face.row(0)},
                        {"lambda_t", lambda_t},
                        {"norm_lambda_t", per_face.row(1)},
                        {"radius", per_face.row(2)},
-                       {"patch", per_face.row(3)}};
+                       {"patch", per_face.row(3)},
+                       {"F_patch", per_face.row(4)},
+                       {"state", per_face.row(5)}};
   return surface;
 }
 

@@ -1,0 +1,38 @@
+// contact: Coulomb's slip bounds, rho_R = lambda_n(R) (1/|R|) int_R F(phi_h) dS: the paper's
+// (5.3) with g replaced by the patch's own contact pressure (theory.md §5.6).
+#include "fricon/contact/radii.hpp"
+#include "fricon/contact/slip_bounds.hpp"
+
+namespace fricon::contact {
+
+namespace {
+
+class CoulombBounds final : public SlipBounds {
+ public:
+  CoulombBounds(const mesh::TetMesh& mesh, const ContactDiscretization& disc,
+                const FrictionLaw& F, std::optional<Real> start_slip_bound)
+      : SlipBounds(mesh, disc, F), start_(start_slip_bound) {}
+  FrictionModel model() const override { return FrictionModel::Coulomb; }
+  bool uses_pressure() const override { return true; }
+
+  VectorXd radii(int k, const VectorXd& phi, const VectorXd& lambda_n) const override {
+    const VectorXd F_R = mean_coefficients(phi);
+    if (k == 1 && start_) return *start_ * F_R;  // the Tresca problem with g = g0
+    // A negative normal multiplier is infeasible; it can only come from a stopped QP.
+    return F_R.cwiseProduct(lambda_n.cwiseMax(0.0));
+  }
+
+ private:
+  std::optional<Real> start_;
+};
+
+}  // namespace
+
+std::unique_ptr<SlipBounds> make_coulomb_bounds(const mesh::TetMesh& mesh,
+                                                const ContactDiscretization& disc,
+                                                const FrictionLaw& F,
+                                                std::optional<Real> start_slip_bound) {
+  return std::make_unique<CoulombBounds>(mesh, disc, F, start_slip_bound);
+}
+
+}  // namespace fricon::contact

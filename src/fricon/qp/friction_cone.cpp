@@ -1,0 +1,33 @@
+#include "fricon/qp/friction_cone.hpp"
+
+#include <cmath>
+
+#include "fricon/core/error.hpp"
+
+namespace fricon::qp {
+
+Vec3 project_friction_cone(const Vec3& x, Real mu) {
+  const Real n = x(0);
+  const Real t = std::hypot(x(1), x(2));
+  if (t <= mu * n) return x;                         // inside
+  if (mu * t <= -n) return Vec3::Zero();             // inside the polar cone
+  const Real s = (n + mu * t) / (1.0 + mu * mu);     // the normal part of the projection
+  return Vec3(s, mu * s * x(1) / t, mu * s * x(2) / t);
+}
+
+Real coulomb_residual(const VectorXd& l, const VectorXd& g, const VectorXd& mu, Real alpha) {
+  FRICON_CHECK(l.size() == 3 * mu.size() && g.size() == l.size(),
+               "coulomb_residual: " << l.size() << " multipliers, " << g.size()
+                                    << " gradients, " << mu.size() << " coefficients");
+  Real sum = 0.0;
+  for (Index p = 0; p < mu.size(); ++p) {
+    const Vec3 lp = l.segment<3>(3 * p);
+    Vec3 u = g.segment<3>(3 * p);
+    u(0) += mu(p) * std::hypot(u(1), u(2));  // De Saxce's modified velocity
+    sum += (lp - project_friction_cone(lp - alpha * u, mu(p))).squaredNorm();
+  }
+  const Real norm_l = l.norm();
+  return std::sqrt(sum) / (norm_l > 0.0 ? norm_l : 1.0);
+}
+
+}  // namespace fricon::qp
