@@ -47,10 +47,9 @@ void print_summary(const fricon::driver::RunResult& result, const std::filesyste
   fmt::print("  factor        nnz(L) = {:.0f}, ordering {}\n", r.factor.nnz_L, r.factor.ordering);
   if (r.contact) {
     const auto& c = *r.contact;
-    fmt::print(
-        "  contact       '{}': {} patches, n_dual = {}, {} contact nodes, {} friction {}\n",
-        c.boundary, c.n_patches, c.n_dual, c.n_contact_nodes, fricon::enum_name(c.model),
-        c.friction_law);
+    fmt::print("  contact       '{}': {} patches, n_dual = {}, {} contact nodes, {} friction {}\n",
+               c.boundary, c.n_patches, c.n_dual, c.n_contact_nodes, fricon::enum_name(c.model),
+               c.friction_law);
     fmt::print("  outer loop    {} iterations ({}), err(k):", c.outer_iterations,
                fricon::enum_name(c.termination));
     for (double e : c.err_history)

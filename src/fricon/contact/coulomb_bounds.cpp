@@ -9,8 +9,8 @@ namespace {
 
 class CoulombBounds final : public SlipBounds {
  public:
-  CoulombBounds(const mesh::TetMesh& mesh, const ContactDiscretization& disc,
-                const FrictionLaw& F, std::optional<Real> start_slip_bound)
+  CoulombBounds(const mesh::TetMesh& mesh, const ContactDiscretization& disc, const FrictionLaw& F,
+                std::optional<Real> start_slip_bound)
       : SlipBounds(mesh, disc, F), start_(start_slip_bound) {}
   FrictionModel model() const override { return FrictionModel::Coulomb; }
   bool uses_pressure() const override { return true; }

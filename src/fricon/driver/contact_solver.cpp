@@ -51,8 +51,8 @@ ContactReport describe(const Problem& problem, const contact::ContactDiscretizat
   rep.n_inactive_multipliers = disc.stability.n_inactive;
   rep.radius_integration = disc.radius_integration;
   rep.kkt_bound = kCertificateFactor * problem.solver.qp_rtol;
-  rep.coulomb_bound = kCoulombCertificateFactor *
-                      std::max(problem.solver.outer_tol, problem.solver.qp_rtol);
+  rep.coulomb_bound =
+      kCoulombCertificateFactor * std::max(problem.solver.outer_tol, problem.solver.qp_rtol);
   return rep;
 }
 
@@ -173,8 +173,8 @@ void classify_patches(const contact::SlipBounds& bounds, const VectorXd& radius,
                       ContactOutcome& out) {
   ContactFields& f = out.fields;
   ContactReport& rep = out.report;
-  f.coefficient = bounds.mean_coefficients(out.fields.wt1.binaryExpr(
-      out.fields.wt2, [](Real a, Real b) { return std::hypot(a, b); }));
+  f.coefficient = bounds.mean_coefficients(
+      out.fields.wt1.binaryExpr(out.fields.wt2, [](Real a, Real b) { return std::hypot(a, b); }));
   const Real scale_n = std::max(rep.max_lambda_n, 0.0);
   f.state.resize(static_cast<size_t>(rep.n_patches));
   for (Index p = 0; p < rep.n_patches; ++p) {

@@ -94,7 +94,7 @@ struct ContactReport {
   Real coulomb_bound = 0.0;
   /// Per outer iteration, the relative change of each block of the state (phi; lambda_n).
   std::vector<std::vector<Real>> block_history;
-  std::vector<std::string> state_blocks;  ///< the names of those blocks
+  std::vector<std::string> state_blocks;           ///< the names of those blocks
   Index n_stick = 0, n_slip = 0, n_separated = 0;  ///< patches in each PatchState
   /// ||Psi(phi) - phi|| / ||phi|| at the returned phi (the last err(k)).
   Real fixed_point_residual = 0.0;
@@ -106,13 +106,13 @@ struct ContactReport {
 struct ContactFields {
   contact::ContactSurface surface;
   contact::Patches patches;
-  VectorXd lambda;        ///< multipliers (lambda_n, lambda_t1, lambda_t2) per patch [Pa]
-  VectorXd radius;        ///< slip bounds rho_p used by the last QP [Pa]
-  VectorXd phi;           ///< phi per surface node used for the last radii [m]
-  VectorXd wn, wt1, wt2;  ///< components of the displacement w per surface node [m]
-  VectorXd F;             ///< F(||w_t||) per surface node
-  VectorXd slip_bound;    ///< g per surface node [Pa]
-  VectorXd coefficient;   ///< per patch: F_R = (1/|R|) int_R F(||w_t||) dS of the result
+  VectorXd lambda;                ///< multipliers (lambda_n, lambda_t1, lambda_t2) per patch [Pa]
+  VectorXd radius;                ///< slip bounds rho_p used by the last QP [Pa]
+  VectorXd phi;                   ///< phi per surface node used for the last radii [m]
+  VectorXd wn, wt1, wt2;          ///< components of the displacement w per surface node [m]
+  VectorXd F;                     ///< F(||w_t||) per surface node
+  VectorXd slip_bound;            ///< g per surface node [Pa]
+  VectorXd coefficient;           ///< per patch: F_R = (1/|R|) int_R F(||w_t||) dS of the result
   std::vector<PatchState> state;  ///< per patch
 };
 
@@ -163,5 +163,5 @@ outer::OuterOptions outer_options(const SolverOptions& solver);
 }  // namespace fricon::driver
 
 FRICON_ENUM_NAMES(fricon::driver::PatchState, "patch state",
-                  {driver::PatchState::Separated, "separated"}, {driver::PatchState::Stick, "stick"},
-                  {driver::PatchState::Slip, "slip"});
+                  {driver::PatchState::Separated, "separated"},
+                  {driver::PatchState::Stick, "stick"}, {driver::PatchState::Slip, "slip"});

@@ -2,13 +2,12 @@
 
 #include <fmt/format.h>
 
-
 namespace fricon::driver {
 
 TrescaMap::TrescaMap(const fe::DofMap& dofs, const contact::ContactDiscretization& discretization,
                      const dual::DualOperator& Q, const contact::SlipBounds& bounds,
-                     const contact::FrictionLaw& law, const qp::MpgpOptions& qp,
-                     bool warm_start, PhaseTimes& times)
+                     const contact::FrictionLaw& law, const qp::MpgpOptions& qp, bool warm_start,
+                     PhaseTimes& times)
     : dofs_(dofs),
       disc_(discretization),
       Q_(Q),
@@ -32,9 +31,8 @@ VectorXd TrescaMap::slips(const VectorXd& state) const {
 }
 
 VectorXd TrescaMap::radii(int k, const VectorXd& state) const {
-  const VectorXd lambda_n = bounds_.uses_pressure()
-                                ? VectorXd(state.tail(disc_.n_patches()))
-                                : VectorXd::Zero(disc_.n_patches());
+  const VectorXd lambda_n = bounds_.uses_pressure() ? VectorXd(state.tail(disc_.n_patches()))
+                                                    : VectorXd::Zero(disc_.n_patches());
   return bounds_.radii(k, slips(state), lambda_n);
 }
 

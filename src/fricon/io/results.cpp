@@ -159,13 +159,12 @@ void write_patches(const std::filesystem::path& path, const driver::ContactField
       const Real lt = c.lambda.segment<2>(3 * p + 1).norm();
       // ||lambda_t|| / lambda_n; infinite where Tresca friction acts without contact pressure.
       const Real ratio = c.lambda(3 * p) > 0.0 ? lt / c.lambda(3 * p)
-                         : lt > 0.0           ? std::numeric_limits<Real>::infinity()
-                                              : 0.0;
+                         : lt > 0.0            ? std::numeric_limits<Real>::infinity()
+                                               : 0.0;
       out << fmt::format("{},{},{},{},{},{},{},{},{},{}\n", c.patches.centroid(0, p),
                          c.patches.centroid(1, p), c.patches.area(p), c.lambda(3 * p),
-                         c.lambda(3 * p + 1), c.lambda(3 * p + 2), c.radius(p),
-                         c.coefficient(p), ratio,
-                         enum_name(c.state[static_cast<size_t>(p)]));
+                         c.lambda(3 * p + 1), c.lambda(3 * p + 2), c.radius(p), c.coefficient(p),
+                         ratio, enum_name(c.state[static_cast<size_t>(p)]));
     }
   });
 }
@@ -197,12 +196,9 @@ VtuGrid contact_grid(const mesh::TetMesh& mesh, const driver::ContactFields& c) 
           static_cast<Real>(p), c.coefficient(p),
           static_cast<Real>(c.state[static_cast<size_t>(p)]);
     }
-  surface.cell_data = {{"lambda_n", per_face.row(0)},
-                       {"lambda_t", lambda_t},
-                       {"norm_lambda_t", per_face.row(1)},
-                       {"radius", per_face.row(2)},
-                       {"patch", per_face.row(3)},
-                       {"F_patch", per_face.row(4)},
+  surface.cell_data = {{"lambda_n", per_face.row(0)},      {"lambda_t", lambda_t},
+                       {"norm_lambda_t", per_face.row(1)}, {"radius", per_face.row(2)},
+                       {"patch", per_face.row(3)},         {"F_patch", per_face.row(4)},
                        {"state", per_face.row(5)}};
   return surface;
 }

@@ -9,16 +9,16 @@ namespace fricon::qp {
 Vec3 project_friction_cone(const Vec3& x, Real mu) {
   const Real n = x(0);
   const Real t = std::hypot(x(1), x(2));
-  if (t <= mu * n) return x;                         // inside
-  if (mu * t <= -n) return Vec3::Zero();             // inside the polar cone
-  const Real s = (n + mu * t) / (1.0 + mu * mu);     // the normal part of the projection
+  if (t <= mu * n) return x;                      // inside
+  if (mu * t <= -n) return Vec3::Zero();          // inside the polar cone
+  const Real s = (n + mu * t) / (1.0 + mu * mu);  // the normal part of the projection
   return Vec3(s, mu * s * x(1) / t, mu * s * x(2) / t);
 }
 
 Real coulomb_residual(const VectorXd& l, const VectorXd& g, const VectorXd& mu, Real alpha) {
   FRICON_CHECK(l.size() == 3 * mu.size() && g.size() == l.size(),
-               "coulomb_residual: " << l.size() << " multipliers, " << g.size()
-                                    << " gradients, " << mu.size() << " coefficients");
+               "coulomb_residual: " << l.size() << " multipliers, " << g.size() << " gradients, "
+                                    << mu.size() << " coefficients");
   Real sum = 0.0;
   for (Index p = 0; p < mu.size(); ++p) {
     const Vec3 lp = l.segment<3>(3 * p);
