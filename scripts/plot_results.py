@@ -105,27 +105,30 @@ def load_contact(results):
         "norm_lambda_t": cell_field(mesh, "norm_lambda_t"),
         "patch": patch,
     }
+    state = cell_field(mesh, "state") if "state" in mesh.cell_data else None
     surface["patches"] = patch_table(tri, patch, cell_field(mesh, "radius"),
-                                     cell_field(mesh, "lambda_t")[:, axes])
+                                     cell_field(mesh, "lambda_t")[:, axes], state)
     surface["patch_edges"] = patch_boundary_segments(tri, patch)
     return surface
 
 
-def patch_table(tri, patch, radius, lambda_t_plane):
-    """Per patch (id >= 0): area-weighted centroid, area, slip bound and lambda_t in the plane."""
+def patch_table(tri, patch, radius, lambda_t_plane, state=None):
+    """Per patch (id >= 0): area-weighted centroid, area, slip bound, lambda_t in the plane and,
+    when contact.vtu has it, the state fricon gives it (0 separated, 1 stick, 2 slip)."""
     xy = np.column_stack([tri.x, tri.y])
     corners = xy[tri.triangles]
     e1, e2 = corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0]
     area = 0.5 * np.abs(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0])
     centre = corners.mean(axis=1)
     ids = np.unique(patch[patch >= 0])
-    table = {"centre": [], "area": [], "radius": [], "lambda_t": []}
+    table = {"centre": [], "area": [], "radius": [], "lambda_t": [], "state": []}
     for p in ids:
         sel = patch == p
         table["centre"].append((area[sel, None] * centre[sel]).sum(axis=0) / area[sel].sum())
         table["area"].append(area[sel].sum())
         table["radius"].append(radius[sel][0])
         table["lambda_t"].append(lambda_t_plane[sel][0])
+        table["state"].append(int(state[sel][0]) if state is not None else -1)
     return {k: np.array(v) for k, v in table.items()}
 
 
@@ -378,13 +381,17 @@ def plot_friction_circles(report, surface):
     P = surface["patches"]
     radius, lt, centre = P["radius"], P["lambda_t"], P["centre"]
     norm_lt = np.hypot(lt[:, 0], lt[:, 1])
-    slipping = norm_lt >= (1.0 - STUCK_RTOL) * radius
+    if (P["state"] >= 0).all():  # the states fricon wrote (contact.vtu "state")
+        slipping, separated = P["state"] == 2, P["state"] == 0
+    else:
+        slipping = norm_lt >= (1.0 - STUCK_RTOL) * radius
+        separated = np.zeros_like(slipping)
     side = np.sqrt(P["area"].min())
     scale = 0.45 * side / radius.max() if radius.max() > 0 else 0.0  # m on the plot per Pa
     tri = surface["tri"]
     fig, ax = plt.subplots(figsize=(12.0, 5.0), layout="constrained")
     draw_patch_edges(ax, surface, color="0.6", lw=0.6, alpha=1.0)
-    colors = np.where(slipping, "C3", "C0")
+    colors = np.where(separated, "0.5", np.where(slipping, "C3", "C0"))
     ax.add_collection(PatchCollection([Circle(c, r * scale) for c, r in zip(centre, radius)],
                                       facecolors="none", edgecolors=colors, linewidths=1.2))
     q = ax.quiver(centre[:, 0], centre[:, 1], lt[:, 0] * scale, lt[:, 1] * scale, color=colors,
@@ -396,10 +403,14 @@ def plot_friction_circles(report, surface):
     pad = 0.02 * max(tri.x.ptp(), tri.y.ptp())
     ax.set_xlim(tri.x.min() - pad, tri.x.max() + pad)
     ax.set_ylim(tri.y.min() - pad, tri.y.max() + pad)
+    rtol = 1e-6 if (P["state"] >= 0).all() else STUCK_RTOL  # fricon's test, or this script's
     ax.plot([], [], "-", color="C3", label=f"slipping: $\\Vert \\lambda_t\\Vert$ = radius "
-            f"(within {STUCK_RTOL:g} rel.), {slipping.sum()} patches")
+            f"(within {rtol:g} rel.), {slipping.sum()} patches")
     ax.plot([], [], "-", color="C0", label=f"sticking: $\\Vert \\lambda_t\\Vert$ < radius, "
-            f"{(~slipping).sum()} patches")
+            f"{(~slipping & ~separated).sum()} patches")
+    if separated.any():
+        ax.plot([], [], "-", color="0.5", label=f"separated: $\\lambda_n$ = 0, "
+                f"{separated.sum()} patches")
     ax.legend(loc="upper left", bbox_to_anchor=(0.0, -0.14), ncol=2, fontsize=9, frameon=False)
     if radius.max() > 0:
         ref = nice_round_down(radius.max())
@@ -411,8 +422,11 @@ def plot_friction_circles(report, surface):
         scale_note = "the slip bound is 0 on every patch (no friction): nothing to draw"
         ax.text(0.5, 0.5, "slip bound 0 on every patch:\nno friction, $\\lambda_t$ = 0",
                 transform=ax.transAxes, ha="center", va="center", fontsize=12, color="0.3")
+    coulomb = report.get("model") == "coulomb"
+    bound = (r"$\lambda_n(R)\,\frac{1}{|R|}\int_R F(\Vert w_t\Vert)\,dS$" if coulomb
+             else r"$\frac{1}{|R|}\int_R F(\Vert w_t\Vert)\,g\,dS$")
     ax.set_title(r"Friction multiplier $\lambda_t$ (arrows) against the slip bound "
-                 r"$\frac{1}{|R|}\int_R F(\Vert w_t\Vert)\,g\,dS$ (circle radius) per patch R"
+                 + bound + r" (circle radius) per patch R"
                  f"\n{scale_note}; max radius {sci(radius.max())} Pa, "
                  f"max $\\Vert \\lambda_t\\Vert$ {sci(norm_lt.max())} Pa"
                  f"\n{run_label(report)}", fontsize=9)
