@@ -235,6 +235,21 @@ TEST(ProblemFileOverrides, FrictionLawSwitchDropsTheFileParameters) {
   }
 }
 
+TEST(ProblemFileOverrides, CoulombFromTheCommandLineDropsTheFileSlipBound) {
+  // The file gives slip_bound (Tresca's); --set contact.model=coulomb makes it meaningless and
+  // drops it, but a slip bound given on the command line with it is an error that says why.
+  const auto p = read_problem(kPaper, {"contact.model=coulomb"});
+  EXPECT_EQ(p.contact->model, contact::FrictionModel::Coulomb);
+  EXPECT_FALSE(p.contact->start_slip_bound.has_value());
+  try {
+    (void)read_problem(kPaper, {"contact.model=coulomb", "contact.slip_bound=1e7"});
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("--set contact.slip_bound=1e7: contact.slip_bound: not used "
+                                    "by model \"coulomb\""));
+  }
+}
+
 TEST(ProblemFileOverrides, ArrayOfTablesByIndex) {
   const auto p = read_problem(kPaper, {"traction.1.value=[0,0,-1e7]", "traction[0].boundary=y1",
                                        "dirichlet.0.components=z"});
@@ -710,6 +725,7 @@ TEST(ProblemFileJson, RoundTripThroughToml) {
       {"contact.friction.law=table", "contact.friction.t=[0, 1e-5]",
        "contact.friction.f=[0.3, 0.1]", "volume_force=[0, 0, -7.85e4]", "title=\"x y\""},
       {"contact.friction.law=constant", "solver.dual_operator=schur", "mesh.size=[1.5, 0.5, 2]"},
+      {"contact.model=coulomb", "contact.start_slip_bound=1e7"},
   };
   for (const auto& overrides : variants) {
     const auto p = read_problem(kPaper, overrides);
