@@ -27,3 +27,19 @@ endif()
 if(FRICON_BUILD_BENCH)
   find_package(benchmark REQUIRED)
 endif()
+
+# Siconos numerics (Debian: libsiconos-numerics-dev), the peer code that bench/siconos_compare and
+# the Siconos verification tests compare with. Optional: without it they are not built.
+find_library(SICONOS_NUMERICS siconos_numerics)
+find_path(SICONOS_NUMERICS_INCLUDE_DIR fc3d_Solvers.h PATH_SUFFIXES siconos/numerics)
+find_path(SICONOS_INCLUDE_DIR SiconosConfig.h PATH_SUFFIXES siconos)
+if(SICONOS_NUMERICS AND SICONOS_NUMERICS_INCLUDE_DIR AND SICONOS_INCLUDE_DIR)
+  message(STATUS "Siconos numerics found (${SICONOS_NUMERICS})")
+  add_library(fricon_siconos INTERFACE)
+  target_include_directories(fricon_siconos SYSTEM INTERFACE ${SICONOS_NUMERICS_INCLUDE_DIR}
+                                                             ${SICONOS_INCLUDE_DIR})
+  target_link_libraries(fricon_siconos INTERFACE ${SICONOS_NUMERICS})
+else()
+  message(STATUS "Siconos numerics not found (libsiconos-numerics-dev): the comparisons with it "
+                 "are not built")
+endif()
