@@ -8,6 +8,7 @@
 //   build/bench/contact_bench --operator implicit 8
 //   build/bench/contact_bench --qp-variant paper 16   the paper's MPGP (default: fricon's default)
 //   build/bench/contact_bench --repeat 5 16           fastest of 5 (default 3 up to n = 16, else 1)
+//   build/bench/contact_bench --model coulomb         Coulomb friction (the paper's coefficient)
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -34,11 +35,13 @@ struct Row {
 
 // One linear solve and one full run, alternated `repeat` times; the fastest of each is kept
 // (the machine's noise only ever adds time).
-Row measure(long n, const std::string& mode, const std::string& variant, int repeat) {
+Row measure(long n, const std::string& mode, const std::string& variant, const std::string& model,
+            int repeat) {
   using namespace fricon;
   Row r;
   r.n = n;
   driver::Problem p = driver::paper_problem(n, 6e4);
+  p.contact->model = parse_enum<contact::FrictionModel>(model);
   p.solver.dual_operator = parse_enum<dual::DualOperatorKind>(mode);
   p.solver.qp_variant = parse_enum<qp::MpgpVariant>(variant);
   for (int k = 0; k < repeat; ++k) {
@@ -81,6 +84,7 @@ int main(int argc, char** argv) {
   std::vector<long> sizes;
   std::string mode = "auto";
   std::string variant(fricon::enum_name(fricon::driver::SolverOptions{}.qp_variant));
+  std::string model = "tresca";
   int repeat = 0;  // 0: 3 up to n = 16, 1 beyond
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--operator") == 0 && i + 1 < argc) {
@@ -89,14 +93,17 @@ int main(int argc, char** argv) {
       repeat = std::atoi(argv[++i]);
     } else if (std::strcmp(argv[i], "--qp-variant") == 0 && i + 1 < argc) {
       variant = argv[++i];
+    } else if (std::strcmp(argv[i], "--model") == 0 && i + 1 < argc) {
+      model = argv[++i];
     } else {
       sizes.push_back(std::atol(argv[i]));
     }
   }
   if (sizes.empty()) sizes = {4, 6, 8, 10, 12, 14, 16};
   fmt::print(
-      "Paper brick, param = 6e4: the full frictional run against one linear solve of the same "
-      "mesh\n");
+      "Paper brick, param = 6e4, {} friction: the full frictional run against one linear solve "
+      "of the same mesh\n",
+      model);
   fmt::print(
       "(linear = assembly + factorization + one solve; ratio = total / linear; times in s, the\n"
       "fastest of 3 alternated repetitions up to n = 16, of one beyond, unless --repeat R)\n\n");
@@ -108,7 +115,7 @@ int main(int argc, char** argv) {
   int code = 0;
   for (long n : sizes) {
     const auto row = fricon::bench::run_in_child(
-        [&] { return measure(n, mode, variant, repeat > 0 ? repeat : (n <= 16 ? 3 : 1)); });
+        [&] { return measure(n, mode, variant, model, repeat > 0 ? repeat : (n <= 16 ? 3 : 1)); });
     if (!row) {
       fmt::print("| {} | failed (out of memory or killed) |\n", n);
       code = 3;
