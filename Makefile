@@ -39,9 +39,11 @@ test-sanitize: deps
 	ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
 	  ctest --test-dir $(SAN_BUILD) -L "unit|leak|sanitize" --output-on-failure -j $(CTEST_JOBS)
 
-# BENCH_LARGE=1 adds n = 24, 32, 48 to the contact benchmark (minutes, several GiB).
+# BENCH_LARGE=1 adds n = 24, 32, 48 to the contact benchmark (minutes, several GiB); the Coulomb
+# runs at those sizes: build/bench/contact_bench --model coulomb 24 32 48 (10 min, 14 GiB).
 bench: build
 	@for b in $(BUILD)/bench/*_bench; do echo "== $$b"; $$b || exit 1; done
+	@echo "== $(BUILD)/bench/contact_bench --model coulomb"; $(BUILD)/bench/contact_bench --model coulomb
 	@if [ -n "$(BENCH_LARGE)" ]; then $(BUILD)/bench/contact_bench 24 32 48; fi
 	@if [ -x $(BUILD)/bench/siconos_compare ]; then echo "== siconos_compare"; $(BUILD)/bench/siconos_compare; fi
 
