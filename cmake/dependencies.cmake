@@ -20,6 +20,11 @@ target_link_libraries(fricon_cholmod INTERFACE ${CHOLMOD_LIBRARY} ${AMD_LIBRARY}
                       ${COLAMD_LIBRARY} ${CCOLAMD_LIBRARY} ${SUITESPARSE_CONFIG_LIBRARY}
                       ${OPENBLAS_LIBRARY})
 
+# FCLIB (Debian: libfclib-dev, with HDF5): the problems of other codes (`fricon dual solve`).
+# Its config file clears CMAKE_CXX_STANDARD: restore ours.
+find_package(fclib 3 REQUIRED CONFIG)
+set(CMAKE_CXX_STANDARD 20)
+
 find_package(Threads REQUIRED)
 if(FRICON_BUILD_TESTS)
   find_package(GTest REQUIRED)

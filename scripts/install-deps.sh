@@ -10,6 +10,8 @@ packages=(
   libeigen3-dev libsuitesparse-dev libopenblas-dev
   # input/output and command line
   libtomlplusplus-dev libcli11-dev nlohmann-json3-dev libfmt-dev
+  # the problems of other codes: FCLIB (HDF5)
+  libfclib-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
   # reading results back (tests) and plots: Debian's Python packages for /usr/bin/python3

@@ -21,9 +21,12 @@
 #include <CLI/CLI.hpp>
 
 #include "fricon/core/error.hpp"
+#include "fricon/driver/local_solve.hpp"
 #include "fricon/driver/paper.hpp"
 #include "fricon/driver/run.hpp"
 #include "fricon/io/dual_dump.hpp"
+#include "fricon/io/fclib_file.hpp"
+#include "fricon/io/local_problem_file.hpp"
 #include "fricon/io/problem_file.hpp"
 #include "fricon/io/results.hpp"
 #include "fricon/linalg/blas.hpp"
@@ -324,6 +327,43 @@ int paper(const PaperOptions& o) {
   return kConverged;
 }
 
+struct DualSolveOptions {
+  std::string file, out;
+  double tol = 1e-8;
+  std::string variant = "bb";
+};
+
+// `fricon dual solve FILE`: a local frictional contact problem of another code (FCLIB, or
+// fricon's own dual dump) solved by fricon's QP and outer loop, certified by its natural-map
+// residual and FCLIB's merit. Exit 0 solved, 2 not solved (with the reason).
+int dual_solve(const DualSolveOptions& o) {
+  const fricon::qp::LocalProblem p = fricon::io::read_local_problem(o.file);
+  fricon::driver::LocalSolveOptions so;
+  so.residual_tol = o.tol;
+  so.variant = fricon::parse_enum<fricon::qp::MpgpVariant>(o.variant);
+  const fricon::driver::LocalSolution s = fricon::driver::solve_local(p, so);
+  fmt::print("fricon dual solve: {}\n", o.file);
+  fmt::print("  problem     {}, {} contacts (m = {}), nnz(W) = {}, ||W|| = {:.3e}\n",
+             p.is_coulomb() ? "Coulomb" : "Tresca", p.n_contacts(), p.q.size(), p.W.nonZeros(),
+             s.norm_W);
+  fmt::print("  iterations  {} outer ({}), {} QP iterations, {} products with W\n",
+             s.outer_iterations, fricon::enum_name(s.termination), s.qp_iterations, s.n_products);
+  fmt::print("  residual    natural map {:.2e} (tolerance {:.1e})", s.residual, o.tol);
+  if (p.is_coulomb()) fmt::print(", FCLIB merit {:.2e}", fricon::io::fclib_merit(p, s.r, s.u));
+  fmt::print("\n");
+  if (p.reference_r && p.reference_r->norm() > 0)
+    fmt::print("  reference   ||r - r_file|| / ||r_file|| = {:.2e}\n",
+               (s.r - *p.reference_r).norm() / p.reference_r->norm());
+  fmt::print("  time        {:.3f} s\n", s.seconds);
+  if (!o.out.empty() && s.solved) fricon::io::write_fclib_solution(o.out, p, s.r, s.u);
+  if (!s.solved) {
+    std::cerr << "fricon: NOT SOLVED: " << s.reason << "\n";
+    return kNotConverged;
+  }
+  fmt::print("  solved\n");
+  return kConverged;
+}
+
 // Everything the command line sets, and which subcommand it chose.
 struct CommandLine {
   int threads = 0;
@@ -332,6 +372,8 @@ struct CommandLine {
   bool quiet = false, verbose = false;
   std::string plot_dir, plot_out;
   PaperOptions paper;
+  DualSolveOptions dual;
+  CLI::App* dual_solve_cmd = nullptr;
   CLI::App* solve_cmd = nullptr;
   CLI::App* check_cmd = nullptr;
   CLI::App* plot_cmd = nullptr;
@@ -405,6 +447,25 @@ void define_paper(CLI::App& app, CommandLine& cl) {
       ->check(CLI::PositiveNumber);
 }
 
+void define_dual(CLI::App& app, CommandLine& cl) {
+  auto* dual =
+      app.add_subcommand("dual", "Frictional contact problems of other codes in local (dual) form");
+  dual->require_subcommand(1);
+  cl.dual_solve_cmd = dual->add_subcommand(
+      "solve",
+      "Solve a local problem: an FCLIB file (HDF5: local, or global reduced to local form) or a\n"
+      "fricon dual file (docs/dual-format.md). Coulomb by successive approximations over Tresca\n"
+      "QPs, Tresca by one QP; prints the iterations, the time, the natural-map residual and\n"
+      "FCLIB's merit. Exit 0 solved, 2 not solved (the reason is printed)");
+  auto* cmd = cl.dual_solve_cmd;
+  cmd->add_option("file", cl.dual.file, "Problem file")->required();
+  cmd->add_option("--out,-o", cl.dual.out, "Write the problem and its solution as an FCLIB file");
+  cmd->add_option("--tol", cl.dual.tol, "Solved when the natural-map residual is below this")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--qp-variant", cl.dual.variant, "MPGP variant: bb (default) or paper")
+      ->check(CLI::IsMember(enum_names<fricon::qp::MpgpVariant>()));
+}
+
 // The BLAS threads: --threads, else OPENBLAS_NUM_THREADS as OpenBLAS read it, else the cores the
 // machine's load leaves free.
 void set_blas_threads(int threads) {
@@ -424,6 +485,7 @@ int dispatch(CommandLine& cl, int argc, char** argv) {
   if (*cl.check_cmd) return check(cl.file, cl.solve.sets);
   if (*cl.paper_cmd) return paper(cl.paper);
   if (*cl.plot_cmd) return plot(cl.plot_dir, cl.plot_out);
+  if (*cl.dual_solve_cmd) return dual_solve(cl.dual);
   return kInternalError;
 }
 
@@ -448,6 +510,7 @@ int main(int argc, char** argv) {
   define_check(app, cl);
   define_plot(app, cl);
   define_paper(app, cl);
+  define_dual(app, cl);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

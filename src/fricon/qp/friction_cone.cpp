@@ -30,4 +30,21 @@ Real coulomb_residual(const VectorXd& l, const VectorXd& g, const VectorXd& mu, 
   return std::sqrt(sum) / (norm_l > 0.0 ? norm_l : 1.0);
 }
 
+Real tresca_residual(const VectorXd& l, const VectorXd& g, const VectorXd& threshold, Real alpha) {
+  FRICON_CHECK(l.size() == 3 * threshold.size() && g.size() == l.size(),
+               "tresca_residual: " << l.size() << " multipliers, " << g.size() << " gradients, "
+                                   << threshold.size() << " thresholds");
+  Real sum = 0.0;
+  for (Index p = 0; p < threshold.size(); ++p) {
+    const Vec3 lp = l.segment<3>(3 * p);
+    Vec3 y = lp - alpha * g.segment<3>(3 * p);
+    y(0) = std::max(y(0), 0.0);
+    const Real t = std::hypot(y(1), y(2));
+    if (t > threshold(p)) y.tail<2>() *= threshold(p) / t;
+    sum += (lp - y).squaredNorm();
+  }
+  const Real norm_l = l.norm();
+  return std::sqrt(sum) / (norm_l > 0.0 ? norm_l : 1.0);
+}
+
 }  // namespace fricon::qp

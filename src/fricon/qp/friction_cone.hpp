@@ -21,4 +21,8 @@ Vec3 project_friction_cone(const Vec3& x, Real mu);
 /// of the Coulomb problem, for any alpha > 0.
 Real coulomb_residual(const VectorXd& l, const VectorXd& g, const VectorXd& mu, Real alpha);
 
+/// The natural-map residual of the Tresca problem, ||l - P_C(l - alpha g)|| / ||l|| with C the
+/// product of {l_n >= 0} and the discs ||l_t|| <= threshold (absolute when l = 0).
+Real tresca_residual(const VectorXd& l, const VectorXd& g, const VectorXd& threshold, Real alpha);
+
 }  // namespace fricon::qp

@@ -1,0 +1,140 @@
+#include "fricon/driver/local_solve.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "fricon/core/error.hpp"
+#include "fricon/core/timer.hpp"
+#include "fricon/qp/constraints.hpp"
+#include "fricon/qp/friction_cone.hpp"
+
+namespace fricon::driver {
+
+namespace {
+
+// Power iteration for ||W||, as for the dual Hessian of fricon's own problems.
+constexpr int kPowerIterations = 200;
+constexpr Real kPowerTolerance = 1e-10;
+
+void check_problem(const qp::LocalProblem& p) {
+  const Index m = p.q.size();
+  if (m == 0 || m % 3 != 0 || p.W.rows() != m || p.W.cols() != m)
+    throw InputError(
+        fmt::format("{}: a local problem needs W of m x m and q of m = 3 n_contacts "
+                    "entries (W is {} x {}, q has {})",
+                    p.source, p.W.rows(), p.W.cols(), m));
+  const Index nc = m / 3;
+  if (p.is_coulomb() == (p.threshold.size() > 0))
+    throw InputError(
+        fmt::format("{}: give either coefficients of friction (Coulomb) or "
+                    "thresholds (Tresca), one per contact",
+                    p.source));
+  const VectorXd& per_contact = p.is_coulomb() ? p.mu : p.threshold;
+  if (per_contact.size() != nc)
+    throw InputError(fmt::format("{}: {} contacts but {} {}", p.source, nc, per_contact.size(),
+                                 p.is_coulomb() ? "coefficients of friction" : "thresholds"));
+  if (!p.q.allFinite() || !per_contact.allFinite() || (per_contact.array() < 0.0).any())
+    throw InputError(
+        fmt::format("{}: q, mu and thresholds must be finite, mu and thresholds >= 0", p.source));
+}
+
+// Coulomb by successive approximations on the normal reactions: the radii of step k are
+// mu_R r_n^(k-1)(R), the first step the frictionless problem (theory.md §5.6).
+class LocalCoulombMap final : public outer::FixedPointMap {
+ public:
+  LocalCoulombMap(const qp::LocalProblem& p, const qp::Operator& W, const qp::MpgpOptions& o,
+                  LocalSolution& s)
+      : p_(p), W_(W), o_(o), s_(s), c_(qp::SeparableConstraints::contact_layout(p.n_contacts())) {}
+  std::vector<outer::StateBlock> layout() const override { return {{"r_n", p_.n_contacts()}}; }
+  outer::StepResult apply(int k, const VectorXd& r_n, VectorXd& image) override {
+    c_.set_disc_radii(p_.mu.cwiseProduct(r_n.cwiseMax(0.0)));
+    const qp::MpgpReport q = qp::solve_mpgp(W_, -p_.q, c_, o_, s_.r);
+    s_.qp_iterations += q.iterations;
+    s_.n_products += q.n_products;
+    image.resize(p_.n_contacts());
+    for (Index i = 0; i < p_.n_contacts(); ++i)
+      image(i) = s_.r(3 * i);
+    if (q.termination == qp::Termination::Converged) return {};
+    return {outer::StepStatus::Failed,
+            fmt::format("the QP of step {} did not converge: {}", k, q.message)};
+  }
+  std::string stall_hint() const override {
+    return "large coefficients of friction may make the Coulomb problem have several solutions";
+  }
+
+ private:
+  const qp::LocalProblem& p_;
+  const qp::Operator& W_;
+  qp::MpgpOptions o_;
+  LocalSolution& s_;
+  qp::SeparableConstraints c_;
+};
+
+// One Tresca QP with the given thresholds.
+void solve_tresca(const qp::LocalProblem& p, const qp::Operator& W, const qp::MpgpOptions& o,
+                  LocalSolution& s) {
+  auto c = qp::SeparableConstraints::contact_layout(p.n_contacts());
+  c.set_disc_radii(p.threshold);
+  const qp::MpgpReport q = qp::solve_mpgp(W, -p.q, c, o, s.r);
+  s.qp_iterations = q.iterations;
+  s.n_products = q.n_products;
+  s.outer_iterations = 1;
+  s.termination = q.termination == qp::Termination::Converged ? outer::Termination::Converged
+                                                              : outer::Termination::QpFailed;
+  if (s.termination != outer::Termination::Converged)
+    s.reason = fmt::format("the QP did not converge: {}", q.message);
+}
+
+void solve_coulomb(const qp::LocalProblem& p, const qp::Operator& W, const qp::MpgpOptions& o,
+                   const LocalSolveOptions& options, LocalSolution& s) {
+  LocalCoulombMap map(p, W, o, s);
+  outer::OuterOptions oo;
+  oo.tol = options.outer_tol;
+  oo.max_iterations = options.outer_max;
+  VectorXd r_n = VectorXd::Zero(p.n_contacts());
+  const outer::OuterReport rep = outer::iterate(map, r_n, oo);
+  s.outer_iterations = rep.iterations;
+  s.termination = rep.termination;
+  if (!rep.converged()) s.reason = rep.message;
+}
+
+}  // namespace
+
+LocalSolution solve_local(const qp::LocalProblem& p, const LocalSolveOptions& options) {
+  const Stopwatch watch;
+  check_problem(p);
+  LocalSolution s;
+  const qp::Operator W = [&p](const VectorXd& x, VectorXd& y) { y = p.W * x; };
+  s.norm_W = qp::estimate_norm(W, p.q.size(), kPowerIterations, kPowerTolerance);
+  s.r = VectorXd::Zero(p.q.size());
+  if (!(s.norm_W > 0.0)) {
+    s.reason = "W is zero";
+    return s;
+  }
+  qp::MpgpOptions o;
+  o.variant = options.variant;
+  o.rel_tolerance = options.qp_rtol;
+  o.max_iterations = options.qp_max;
+  o.norm_A = s.norm_W;
+  if (p.is_coulomb()) {
+    solve_coulomb(p, W, o, options, s);
+  } else {
+    solve_tresca(p, W, o, s);
+  }
+  // @sect: the certificate, whatever the iterations said.
+  s.u = p.W * s.r + p.q;
+  const Real alpha = 1.0 / s.norm_W;
+  s.residual = p.is_coulomb() ? qp::coulomb_residual(s.r, s.u, p.mu, alpha)
+                              : qp::tresca_residual(s.r, s.u, p.threshold, alpha);
+  s.solved = s.termination == outer::Termination::Converged && s.residual <= options.residual_tol;
+  if (s.termination == outer::Termination::Converged && !s.solved) {
+    s.termination = outer::Termination::CertificateFailed;
+    s.reason = fmt::format("the natural-map residual {:.2e} of the answer exceeds {:.1e}",
+                           s.residual, options.residual_tol);
+  }
+  s.seconds = watch.seconds();
+  return s;
+}
+
+}  // namespace fricon::driver
