@@ -340,7 +340,12 @@ int dual_solve(const DualSolveOptions& o) {
   const fricon::qp::LocalProblem p = fricon::io::read_local_problem(o.file);
   fricon::driver::LocalSolveOptions so;
   so.residual_tol = o.tol;
+  so.merit_tol = o.tol;
   so.variant = fricon::parse_enum<fricon::qp::MpgpVariant>(o.variant);
+  if (p.is_coulomb())
+    so.merit = [&p](const fricon::VectorXd& r, const fricon::VectorXd& u) {
+      return fricon::io::fclib_merit(p, r, u);
+    };
   const fricon::driver::LocalSolution s = fricon::driver::solve_local(p, so);
   fmt::print("fricon dual solve: {}\n", o.file);
   fmt::print("  problem     {}, {} contacts (m = {}), nnz(W) = {}, ||W|| = {:.3e}\n",
@@ -348,9 +353,9 @@ int dual_solve(const DualSolveOptions& o) {
              s.norm_W);
   fmt::print("  iterations  {} outer ({}), {} QP iterations, {} products with W\n",
              s.outer_iterations, fricon::enum_name(s.termination), s.qp_iterations, s.n_products);
-  fmt::print("  residual    natural map {:.2e} (tolerance {:.1e})", s.residual, o.tol);
-  if (p.is_coulomb()) fmt::print(", FCLIB merit {:.2e}", fricon::io::fclib_merit(p, s.r, s.u));
-  fmt::print("\n");
+  fmt::print("  residual    natural map {:.2e}", s.residual);
+  if (p.is_coulomb()) fmt::print(", FCLIB merit {:.2e}", s.merit);
+  fmt::print(" (tolerance {:.1e}; {} refinements)\n", o.tol, s.refinements);
   if (p.reference_r && p.reference_r->norm() > 0)
     fmt::print("  reference   ||r - r_file|| / ||r_file|| = {:.2e}\n",
                (s.r - *p.reference_r).norm() / p.reference_r->norm());

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include <fmt/format.h>
+#include <Eigen/Eigenvalues>
 
 #include "fricon/core/error.hpp"
 #include "fricon/core/timer.hpp"
@@ -16,6 +17,12 @@ namespace {
 // Power iteration for ||W||, as for the dual Hessian of fricon's own problems.
 constexpr int kPowerIterations = 200;
 constexpr Real kPowerTolerance = 1e-10;
+// A refinement divides the QP and outer tolerances by this.
+constexpr Real kRefinementFactor = 1e-2;
+// A failed solve looks at W's spectrum (dense, up to this size): below kSingularRatio of the
+// largest eigenvalue, the smallest counts as zero.
+constexpr Index kDenseEigenLimit = 3000;
+constexpr Real kSingularRatio = 1e-12;
 
 void check_problem(const qp::LocalProblem& p) {
   const Index m = p.q.size();
@@ -77,9 +84,9 @@ void solve_tresca(const qp::LocalProblem& p, const qp::Operator& W, const qp::Mp
   auto c = qp::SeparableConstraints::contact_layout(p.n_contacts());
   c.set_disc_radii(p.threshold);
   const qp::MpgpReport q = qp::solve_mpgp(W, -p.q, c, o, s.r);
-  s.qp_iterations = q.iterations;
-  s.n_products = q.n_products;
-  s.outer_iterations = 1;
+  s.qp_iterations += q.iterations;
+  s.n_products += q.n_products;
+  s.outer_iterations += 1;
   s.termination = q.termination == qp::Termination::Converged ? outer::Termination::Converged
                                                               : outer::Termination::QpFailed;
   if (s.termination != outer::Termination::Converged)
@@ -87,16 +94,59 @@ void solve_tresca(const qp::LocalProblem& p, const qp::Operator& W, const qp::Mp
 }
 
 void solve_coulomb(const qp::LocalProblem& p, const qp::Operator& W, const qp::MpgpOptions& o,
-                   const LocalSolveOptions& options, LocalSolution& s) {
+                   Real outer_tol, int outer_max, LocalSolution& s) {
   LocalCoulombMap map(p, W, o, s);
   outer::OuterOptions oo;
-  oo.tol = options.outer_tol;
-  oo.max_iterations = options.outer_max;
-  VectorXd r_n = VectorXd::Zero(p.n_contacts());
+  oo.tol = outer_tol;
+  oo.max_iterations = outer_max;
+  VectorXd r_n(p.n_contacts());  // warm start from the reactions s.r holds
+  for (Index i = 0; i < p.n_contacts(); ++i)
+    r_n(i) = s.r(3 * i);
   const outer::OuterReport rep = outer::iterate(map, r_n, oo);
-  s.outer_iterations = rep.iterations;
+  s.outer_iterations += rep.iterations;
   s.termination = rep.termination;
   if (!rep.converged()) s.reason = rep.message;
+}
+
+// A failed solve on a W that is singular (rigid bodies: W only positive semidefinite) or, by
+// rounding in the code that wrote it, indefinite says so: the reactions are then not unique and
+// MPGP's rate, which rests on W's smallest eigenvalue, is lost.
+void explain_singular(const qp::LocalProblem& p, LocalSolution& s) {
+  if (p.q.size() > kDenseEigenLimit) return;
+  const Eigen::SelfAdjointEigenSolver<MatrixXd> eig(MatrixXd(p.W), Eigen::EigenvaluesOnly);
+  const Real ratio = eig.eigenvalues().minCoeff() / eig.eigenvalues().maxCoeff();
+  if (ratio < -kSingularRatio) {
+    s.reason += fmt::format(
+        "; W is not positive semidefinite (lambda_min/lambda_max = {:.1e}): the QP is not "
+        "convex, outside what MPGP solves",
+        ratio);
+  } else if (ratio < kSingularRatio) {
+    s.reason += fmt::format(
+        "; W is singular (lambda_min/lambda_max = {:.1e}): only positive semidefinite, so the "
+        "reactions are not unique and MPGP loses its rate",
+        ratio);
+  }
+}
+
+// One attempt at the given tolerances, from the reactions s.r holds; then the certificate.
+void attempt(const qp::LocalProblem& p, const qp::Operator& W, const LocalSolveOptions& options,
+             Real qp_rtol, Real outer_tol, LocalSolution& s) {
+  qp::MpgpOptions o;
+  o.variant = options.variant;
+  o.rel_tolerance = qp_rtol;
+  o.max_iterations = options.qp_max;
+  o.norm_A = s.norm_W;
+  s.reason.clear();
+  if (p.is_coulomb()) {
+    solve_coulomb(p, W, o, outer_tol, options.outer_max, s);
+  } else {
+    solve_tresca(p, W, o, s);
+  }
+  s.u = p.W * s.r + p.q;
+  const Real alpha = 1.0 / s.norm_W;
+  s.residual = p.is_coulomb() ? qp::coulomb_residual(s.r, s.u, p.mu, alpha)
+                              : qp::tresca_residual(s.r, s.u, p.threshold, alpha);
+  s.merit = options.merit ? options.merit(s.r, s.u) : 0.0;
 }
 
 }  // namespace
@@ -112,27 +162,28 @@ LocalSolution solve_local(const qp::LocalProblem& p, const LocalSolveOptions& op
     s.reason = "W is zero";
     return s;
   }
-  qp::MpgpOptions o;
-  o.variant = options.variant;
-  o.rel_tolerance = options.qp_rtol;
-  o.max_iterations = options.qp_max;
-  o.norm_A = s.norm_W;
-  if (p.is_coulomb()) {
-    solve_coulomb(p, W, o, options, s);
-  } else {
-    solve_tresca(p, W, o, s);
+  // @sect: solve, and refine while another code's merit is not yet met.
+  Real qp_rtol = options.qp_rtol, outer_tol = options.outer_tol;
+  attempt(p, W, options, qp_rtol, outer_tol, s);
+  while (s.termination == outer::Termination::Converged &&
+         (s.merit > options.merit_tol || s.residual > options.residual_tol) &&
+         s.refinements < options.refinements) {
+    qp_rtol *= kRefinementFactor;
+    outer_tol *= kRefinementFactor;
+    ++s.refinements;
+    attempt(p, W, options, qp_rtol, outer_tol, s);
   }
   // @sect: the certificate, whatever the iterations said.
-  s.u = p.W * s.r + p.q;
-  const Real alpha = 1.0 / s.norm_W;
-  s.residual = p.is_coulomb() ? qp::coulomb_residual(s.r, s.u, p.mu, alpha)
-                              : qp::tresca_residual(s.r, s.u, p.threshold, alpha);
-  s.solved = s.termination == outer::Termination::Converged && s.residual <= options.residual_tol;
-  if (s.termination == outer::Termination::Converged && !s.solved) {
+  const bool certified = s.residual <= options.residual_tol && s.merit <= options.merit_tol;
+  s.solved = s.termination == outer::Termination::Converged && certified;
+  if (s.termination == outer::Termination::Converged && !certified) {
     s.termination = outer::Termination::CertificateFailed;
-    s.reason = fmt::format("the natural-map residual {:.2e} of the answer exceeds {:.1e}",
-                           s.residual, options.residual_tol);
+    s.reason = fmt::format(
+        "the answer's natural-map residual {:.2e} (tolerance {:.1e}) or merit {:.2e} (tolerance "
+        "{:.1e}) is too large after {} refinements",
+        s.residual, options.residual_tol, s.merit, options.merit_tol, s.refinements);
   }
+  if (!s.solved) explain_singular(p, s);
   s.seconds = watch.seconds();
   return s;
 }

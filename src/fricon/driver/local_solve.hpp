@@ -6,6 +6,7 @@
 // not reach its tolerance says why (the QP did not converge, e.g. because W is singular; the
 // successive approximations do not contract), never returns a half answer as solved.
 
+#include <functional>
 #include <string>
 
 #include "fricon/outer/outer_loop.hpp"
@@ -20,8 +21,14 @@ struct LocalSolveOptions {
   Real outer_tol = 1e-10;  ///< Coulomb: relative change of the normal reactions
   int outer_max = 200;
   qp::MpgpVariant variant = qp::MpgpVariant::BarzilaiBorwein;
-  /// The answer counts as solved when its natural-map residual (relative) is at most this.
+  /// The answer counts as solved when its natural-map residual (relative) is at most this...
   Real residual_tol = 1e-8;
+  /// ... and, if given, another code's merit function of (r, u) too (e.g. FCLIB's): at most
+  /// merit_tol. While it is above, the solve is refined (QP and outer tolerances divided by 100,
+  /// warm-started) up to `refinements` times.
+  std::function<Real(const VectorXd& r, const VectorXd& u)> merit;
+  Real merit_tol = 1e-8;
+  int refinements = 2;
 };
 
 struct LocalSolution {
@@ -31,6 +38,8 @@ struct LocalSolution {
   int outer_iterations = 0;
   long qp_iterations = 0, n_products = 0;
   Real residual = 0.0;  ///< natural-map residual, relative (qp::coulomb_residual)
+  Real merit = 0.0;     ///< LocalSolveOptions::merit of the answer (0 without one)
+  int refinements = 0;  ///< re-solves with tighter tolerances that were needed
   Real norm_W = 0.0;    ///< power-method estimate
   double seconds = 0.0;
   outer::Termination termination = outer::Termination::Converged;

@@ -34,8 +34,8 @@ SparseMatrix to_sparse(const fclib_matrix& a) {
   if (a.nz >= 0) {
     for (int k = 0; k < a.nz; ++k) {
       if (a.i[k] < 0 || a.i[k] >= a.m || a.p[k] < 0 || a.p[k] >= a.n)
-        throw InputError(fmt::format("FCLIB matrix {} x {}: entry {} at ({}, {}) out of range",
-                                     a.m, a.n, k, a.i[k], a.p[k]));
+        throw InputError(fmt::format("FCLIB matrix {} x {}: entry {} at ({}, {}) out of range", a.m,
+                                     a.n, k, a.i[k], a.p[k]));
       t.emplace_back(a.i[k], a.p[k], a.x[k]);
     }
   } else {

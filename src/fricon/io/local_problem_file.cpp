@@ -10,6 +10,7 @@
 #include "fricon/core/error.hpp"
 #include "fricon/io/dual_dump.hpp"
 #include "fricon/io/fclib_file.hpp"
+#include "fricon/io/siconos_dat.hpp"
 
 namespace fricon::io {
 
@@ -31,8 +32,12 @@ qp::LocalProblem read_local_problem(const std::filesystem::path& path) {
     p.source = path.string();
     return p;
   }
+  // Siconos' text format starts with the dimension (3) and the number of contacts.
+  if (first.find_first_not_of(" \t\r0123456789") == std::string::npos && !first.empty())
+    return read_siconos_dat(path);
   throw InputError(fmt::format(
-      "{}: unknown format: fricon reads FCLIB files (HDF5) and its own dual files (\"{}\")",
+      "{}: unknown format: fricon reads FCLIB files (HDF5), Siconos .dat files and its own dual "
+      "files (\"{}\")",
       path.string(), kDualMagic));
 }
 

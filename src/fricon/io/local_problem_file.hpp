@@ -1,7 +1,8 @@
 #pragma once
 // io: a local frictional contact problem from a file of any format fricon reads, told apart by
-// its first bytes: FCLIB (HDF5: local, or global reduced to local; fclib_file.hpp) or fricon's
-// own dual dump ("# fricon dual v1": a Tresca problem, dual_dump.hpp).
+// its first bytes: FCLIB (HDF5: local, or global reduced to local; fclib_file.hpp), Siconos' text
+// format (.dat; siconos_dat.hpp) or fricon's own dual dump ("# fricon dual v1": a Tresca problem,
+// dual_dump.hpp).
 
 #include <filesystem>
 
