@@ -46,6 +46,7 @@ bench: build
 	@echo "== $(BUILD)/bench/contact_bench --model coulomb"; $(BUILD)/bench/contact_bench --model coulomb
 	@if [ -n "$(BENCH_LARGE)" ]; then $(BUILD)/bench/contact_bench 24 32 48; fi
 	@if [ -x $(BUILD)/bench/siconos_compare ]; then echo "== siconos_compare"; $(BUILD)/bench/siconos_compare; fi
+	@if [ -x $(BUILD)/bench/fclib_compare ]; then echo "== fclib_compare"; $(BUILD)/bench/fclib_compare; fi
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.hpp')

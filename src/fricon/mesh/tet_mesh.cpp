@@ -14,6 +14,12 @@ int TetMesh::find_tag(const std::string& name) const {
   return it == tag_names.end() ? -1 : static_cast<int>(it - tag_names.begin());
 }
 
+int TetMesh::find_region(const std::string& name) const {
+  if (region_names.empty()) return name == "body" ? 0 : -1;
+  auto it = std::find(region_names.begin(), region_names.end(), name);
+  return it == region_names.end() ? -1 : static_cast<int>(it - region_names.begin());
+}
+
 std::vector<Index> TetMesh::faces_with_tag(const std::string& name) const {
   std::vector<Index> result;
   const int tag = find_tag(name);

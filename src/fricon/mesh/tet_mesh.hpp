@@ -1,9 +1,11 @@
 #pragma once
 // mesh: the tetrahedral mesh every later stage reads (first stage of the data flow).
 //
-// A TetMesh holds node coordinates, positively oriented tetrahedra, and the boundary triangles,
-// each carrying a named boundary tag ("x0", "z1", or a physical group name of a mesh file).
-// It knows nothing of finite elements or contact.
+// A TetMesh holds node coordinates, positively oriented tetrahedra (each in a named region), and
+// tagged boundary triangles: each carries a named boundary tag ("x0", "z1", or a physical group
+// name of a mesh file) and the elementary entity it was meshed on (a Gmsh surface; on the
+// generator's brick, the chessboard square of a bottom face). A triangle in several tags is listed
+// once per tag. It knows nothing of finite elements or contact.
 
 #include <array>
 #include <string>
@@ -25,6 +27,13 @@ struct TetMesh {
   std::vector<int> face_tag;
   /// Names of the boundary tags.
   std::vector<std::string> tag_names;
+  /// Elementary entity of each boundary triangle (a Gmsh surface tag), or -1 where there is
+  /// none; `[contact] patches = "mesh"` makes each entity of the contact tag one patch.
+  std::vector<int> face_entity;
+  /// Region of each tetrahedron, an index into region_names; empty means one region, "body".
+  std::vector<int> tet_region;
+  /// Names of the regions (Gmsh physical groups of dimension 3).
+  std::vector<std::string> region_names;
 
   Index n_nodes() const { return nodes.cols(); }
   Index n_tets() const { return tets.cols(); }
@@ -38,6 +47,12 @@ struct TetMesh {
   std::vector<Index> nodes_with_tag(const std::string& name) const;
   /// Comma-separated list of the tag names, for error messages.
   std::string tag_list() const;
+  /// Region index of tetrahedron t (0 when the mesh has one region).
+  int region(Index t) const { return tet_region.empty() ? 0 : tet_region[static_cast<size_t>(t)]; }
+  /// Number of regions (1 when tet_region is empty).
+  int n_regions() const { return region_names.empty() ? 1 : static_cast<int>(region_names.size()); }
+  /// Index of the region called `name`, or -1.
+  int find_region(const std::string& name) const;
 };
 
 /// Signed volume [m^3] of the tetrahedron (a, b, c, d): det[b-a, c-a, d-a] / 6.
