@@ -16,6 +16,13 @@
 
 namespace fricon::contact {
 
+/// A rigid plane obstacle: the points x with (x - point) . normal = 0; `normal` is its unit
+/// normal pointing out of the obstacle, towards the body.
+struct Plane {
+  Vec3 point = Vec3::Zero();          ///< [m]
+  Vec3 normal = Vec3(0.0, 0.0, 1.0);  ///< unit
+};
+
 struct ContactSurface {
   std::string tag;
   std::vector<Index> faces;  ///< boundary triangles of the tag (mesh face indices)

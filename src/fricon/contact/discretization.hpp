@@ -4,6 +4,7 @@
 // contact dofs), the outer loop (surface, patches, slip bounds for the radii), the output, the
 // `check` command, the benchmarks and the dual dump.
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,9 +22,16 @@ namespace fricon::contact {
 struct ContactSpec {
   std::string boundary;  ///< tag of the contact surface
   PatchKind patches = PatchKind::Chessboard;
+  /// Target diameter [m] of the patches of PatchKind::Agglomerate; 0: chosen from the mesh.
+  Real patch_size = 0.0;
   Real slip_bound = 0.0;  ///< g [Pa], the same at every surface node
+  /// The rigid plane: a point of it [m] and its unit normal pointing out of the obstacle, towards
+  /// the body. Absent: the plane of a flat contact surface, at zero gap.
+  std::optional<Plane> obstacle;
   std::string where_boundary = "contact.boundary";
   std::string where_patches = "contact.patches";
+  std::string where_patch_size = "contact.patch_size";
+  std::string where_obstacle = "contact.obstacle";
 };
 
 struct ContactDiscretization {
