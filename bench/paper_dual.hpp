@@ -37,8 +37,9 @@ inline std::unique_ptr<PaperDual> paper_dual(Index n) {
   d->model = driver::assemble_model(d->problem, times);
   d->disc = driver::discretize_contact(d->problem, d->model.mesh, d->model.dofs);
   driver::factorize_model(d->model, {}, times);
-  d->Q = dual::make_dual_operator(dual::DualOperatorKind::Forward,
-                                  {d->model.factor, d->disc.B, d->model.f, d->disc.dofs, {}});
+  d->Q = dual::make_dual_operator(
+      dual::DualOperatorKind::Forward,
+      {d->model.factor, d->disc.B, d->model.f, d->disc.dofs, {}, &d->disc.offset});
   d->law = contact::make_friction_law(d->problem.contact->friction);
   d->radius = contact::patch_radii(d->model.mesh, d->disc.surface, d->disc.patches, *d->law,
                                    VectorXd::Zero(d->disc.surface.n_nodes()), d->disc.slip_bound);

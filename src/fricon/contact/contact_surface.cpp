@@ -18,10 +18,15 @@ Index ContactSurface::n_contact_nodes() const {
 namespace {
 // A component with a share of the normal below this (relative) does not move the node along it.
 constexpr Real kNormalShareTolerance = 1e-12;
-}  // namespace
 
-ContactSurface make_contact_surface(const mesh::TetMesh& mesh, const fe::DofMap& dofs,
-                                    const std::string& tag, const std::string& where) {
+// Relative tolerances: a face normal this close to the mean is flat, a node this far below the
+// plane (relative to the surface's extent) is on it.
+constexpr Real kFlatTolerance = 1e-9;
+constexpr Real kGapRoundoff = 1e-12;
+
+/// The surface's triangles and nodes, and each triangle's vertices as positions in `nodes`.
+ContactSurface surface_of_tag(const mesh::TetMesh& mesh, const std::string& tag,
+                              const std::string& where) {
   ContactSurface s;
   s.tag = tag;
   s.faces = mesh.faces_with_tag(tag);
@@ -34,27 +39,53 @@ ContactSurface make_contact_surface(const mesh::TetMesh& mesh, const fe::DofMap&
   for (size_t k = 0; k < s.nodes.size(); ++k)
     position[s.nodes[k]] = static_cast<Index>(k);
   s.face_nodes.resize(3, static_cast<Index>(s.faces.size()));
-  Vec3 normal_sum = Vec3::Zero();
   for (size_t k = 0; k < s.faces.size(); ++k) {
     for (int v = 0; v < 3; ++v)
       s.face_nodes(v, static_cast<Index>(k)) = position[mesh.faces(v, s.faces[k])];
-    const Real a = mesh::face_area(mesh, s.faces[k]);
-    s.area += a;
-    normal_sum += a * mesh::face_normal(mesh, s.faces[k]);
+    s.area += mesh::face_area(mesh, s.faces[k]);
   }
-  s.n = normal_sum.normalized();
+  return s;
+}
+
+/// Every edge of the surface in at most two of its triangles.
+void check_manifold(const mesh::TetMesh& mesh, const ContactSurface& s, const std::string& where) {
+  std::map<std::pair<Index, Index>, int> count;
   for (Index f : s.faces)
-    if ((mesh::face_normal(mesh, f) - s.n).norm() > 1e-9)
+    for (int v = 0; v < 3; ++v) {
+      const Index a = mesh.faces(v, f), b = mesh.faces((v + 1) % 3, f);
+      if (++count[{std::min(a, b), std::max(a, b)}] > 2)
+        throw InputError(fmt::format(
+            "{}: contact.boundary: the surface '{}' is not a manifold: the edge between nodes {} "
+            "({:.6g}, {:.6g}, {:.6g}) and {} ({:.6g}, {:.6g}, {:.6g}) is in three or more of its "
+            "triangles (is a triangle listed twice, or do two bodies touch along an edge?)",
+            where, s.tag, a, mesh.nodes(0, a), mesh.nodes(1, a), mesh.nodes(2, a), b,
+            mesh.nodes(0, b), mesh.nodes(1, b), mesh.nodes(2, b)));
+    }
+}
+
+/// Without an obstacle: the surface's own outward normal, which must be the same on every face.
+Vec3 flat_surface_normal(const mesh::TetMesh& mesh, const ContactSurface& s,
+                         const std::string& where) {
+  Vec3 normal_sum = Vec3::Zero();
+  for (Index f : s.faces)
+    normal_sum += mesh::face_area(mesh, f) * mesh::face_normal(mesh, f);
+  const Vec3 n = normal_sum.normalized();
+  for (Index f : s.faces) {
+    const Vec3 nf = mesh::face_normal(mesh, f);
+    if ((nf - n).norm() > kFlatTolerance)
       throw InputError(fmt::format(
-          "{}: contact.boundary: the surface '{}' is not planar (face {} has normal ({:.3g}, "
-          "{:.3g}, "
-          "{:.3g}), the mean normal is ({:.3g}, {:.3g}, {:.3g})); contact with a rigid half-space "
-          "needs a flat surface",
-          where, tag, f, mesh::face_normal(mesh, f)(0), mesh::face_normal(mesh, f)(1),
-          mesh::face_normal(mesh, f)(2), s.n(0), s.n(1), s.n(2)));
-  const Vec3 e = std::abs(s.n(0)) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
-  s.t1 = (e - e.dot(s.n) * s.n).normalized();
-  s.t2 = s.t1.cross(s.n);
+          "{}: contact.boundary: the surface '{}' is not flat (face {} has normal ({:.3g}, "
+          "{:.3g}, {:.3g}), the mean normal is ({:.3g}, {:.3g}, {:.3g})); a curved contact surface "
+          "needs the plane it may touch: [contact] obstacle = {{ kind = \"plane\", point = [x, y, "
+          "z], normal = [nx, ny, nz] }}",
+          where, s.tag, f, nf(0), nf(1), nf(2), n(0), n(1), n(2)));
+  }
+  return n;
+}
+
+/// Which components Dirichlet conditions fix at each surface node, and which nodes can move
+/// along n (the contact nodes).
+void mark_fixed_components(const fe::DofMap& dofs, ContactSurface& s, const std::string& where) {
   s.fixed.resize(s.nodes.size());
   s.contact_node.resize(s.nodes.size());
   for (size_t k = 0; k < s.nodes.size(); ++k) {
@@ -70,8 +101,43 @@ ContactSurface make_contact_surface(const mesh::TetMesh& mesh, const fe::DofMap&
     throw InputError(
         fmt::format("{}: contact.boundary: every node of '{}' is clamped in the normal direction "
                     "by Dirichlet conditions, so none can touch the foundation",
-                    where, tag));
+                    where, s.tag));
+}
+
+}  // namespace
+
+ContactSurface make_contact_surface(const mesh::TetMesh& mesh, const fe::DofMap& dofs,
+                                    const std::string& tag, const std::string& where,
+                                    const std::optional<Plane>& obstacle) {
+  ContactSurface s = surface_of_tag(mesh, tag, where);
+  check_manifold(mesh, s, where);
+  s.n = obstacle ? Vec3(-obstacle->normal.normalized()) : flat_surface_normal(mesh, s, where);
+  const Vec3 e = std::abs(s.n(0)) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
+  s.t1 = (e - e.dot(s.n) * s.n).normalized();
+  s.t2 = s.t1.cross(s.n);
+  mark_fixed_components(dofs, s, where);
   return s;
+}
+
+VectorXd initial_gap(const mesh::TetMesh& mesh, const ContactSurface& surface,
+                     const Plane& obstacle, const std::string& where) {
+  const Vec3 normal = obstacle.normal.normalized();
+  VectorXd gap(surface.n_nodes());
+  Real extent = 0.0;
+  for (Index a : surface.nodes)
+    extent = std::max(extent, (mesh.nodes.col(a) - mesh.nodes.col(surface.nodes[0])).norm());
+  for (Index k = 0; k < surface.n_nodes(); ++k) {
+    const Index a = surface.nodes[static_cast<size_t>(k)];
+    gap(k) = (mesh.nodes.col(a) - obstacle.point).dot(normal);
+    if (gap(k) < -kGapRoundoff * extent)
+      throw InputError(fmt::format(
+          "{}: contact.obstacle: node {} of '{}' at ({:.6g}, {:.6g}, {:.6g}) is inside the "
+          "obstacle (gap {:.6g} m < 0): the body must start on or above the plane (check point "
+          "and the direction of normal, which points out of the obstacle towards the body)",
+          where, a, surface.tag, mesh.nodes(0, a), mesh.nodes(1, a), mesh.nodes(2, a), gap(k)));
+    gap(k) = std::max(gap(k), 0.0);
+  }
+  return gap;
 }
 
 VectorXd SurfaceDisplacement::slip() const {
@@ -86,7 +152,7 @@ SurfaceDisplacement surface_displacement(const ContactSurface& s, const fe::DofM
   d.wt1.resize(n);
   d.wt2.resize(n);
   for (Index k = 0; k < n; ++k) {
-    Vec3 u = Vec3::Zero();
+    Vec3 u = s.prescribed.size() > 0 ? Vec3(s.prescribed.col(k)) : Vec3::Zero();
     for (int c = 0; c < 3; ++c) {
       const Index dof = dofs.dof(s.nodes[static_cast<size_t>(k)], c);
       if (dof >= 0) u(c) = w(dof);

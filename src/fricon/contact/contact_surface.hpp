@@ -1,12 +1,15 @@
 #pragma once
-// contact: the contact surface, the tagged planar boundary that rests on the rigid half-space
-// (theory.md §2.2): its triangles and nodes, which displacement components Dirichlet conditions
-// fix there, and the local orthonormal basis (n, t1, t2) with n the outward normal of the body.
+// contact: the contact surface, the tagged boundary that may touch the rigid plane (theory.md
+// §2.2): its triangles and nodes, which displacement components Dirichlet conditions fix there,
+// and the orthonormal basis (n, t1, t2) of the plane, n = -(the obstacle's normal), the direction
+// in which the body would penetrate it. The surface may be curved or in pieces; without an
+// obstacle it must be flat and the plane is its own, at zero gap (the paper's setting).
 // The other pieces of the contact discretization build on it: patches.hpp (the multiplier
 // partition), b_matrix.hpp (B and its stability), radii.hpp (slip bounds), and
 // discretization.hpp, which assembles them into one value.
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,21 +39,34 @@ struct ContactSurface {
   std::vector<bool> contact_node;
   /// Per surface node: position in `nodes` of each vertex of each face (3 x faces.size()).
   Eigen::Matrix<Index, 3, Eigen::Dynamic> face_nodes;
-  Vec3 n = Vec3::Zero();   ///< outward unit normal of the body (the surface is planar)
+  /// Unit normal of the contact: -(the obstacle's normal); without an obstacle the outward normal
+  /// of the (flat) surface.
+  Vec3 n = Vec3::Zero();
   Vec3 t1 = Vec3::Zero();  ///< first tangent (e1 projected on the plane, or e2 if n is near e1)
   Vec3 t2 = Vec3::Zero();  ///< second tangent, t1 x n (e2 on the brick's bottom, as in the paper)
   Real area = 0.0;         ///< [m^2]
+  /// Per surface node: the prescribed displacement [m] of its fixed components (zero elsewhere;
+  /// 3 x n_nodes, or empty when nothing is prescribed).
+  Eigen::Matrix<Real, 3, Eigen::Dynamic> prescribed;
 
   Index n_nodes() const { return static_cast<Index>(nodes.size()); }
   /// Number of contact nodes (see contact_node).
   Index n_contact_nodes() const;
 };
 
-/// The contact surface of boundary `tag`. Throws InputError naming `where` (the position of the
-/// contact.boundary key) if the tag does not exist, the surface is not planar (a rigid
-/// half-space needs a flat contact face), or no node of it can move along the normal.
+/// The contact surface of boundary `tag` against `obstacle` (absent: the plane of the surface
+/// itself). Throws InputError naming `where` (the position of the contact.boundary key) if the
+/// tag does not exist, the surface is not a manifold (an edge in three or more of its
+/// triangles), it is not flat while no obstacle is given, or no node of it can move along n.
 ContactSurface make_contact_surface(const mesh::TetMesh& mesh, const fe::DofMap& dofs,
-                                    const std::string& tag, const std::string& where);
+                                    const std::string& tag, const std::string& where,
+                                    const std::optional<Plane>& obstacle = std::nullopt);
+
+/// The initial gap [m] of every surface node to the obstacle, (x - point) . normal. Throws
+/// InputError naming `where` (the position of contact.obstacle) and the first node below the
+/// plane (a negative gap: the body starts inside the obstacle).
+VectorXd initial_gap(const mesh::TetMesh& mesh, const ContactSurface& surface,
+                     const Plane& obstacle, const std::string& where);
 
 /// The displacement w on the surface in the local basis, per surface node [m].
 struct SurfaceDisplacement {
@@ -60,7 +76,7 @@ struct SurfaceDisplacement {
 };
 
 /// The components of w (a vector over the free dofs, or over the contact dofs with the rest
-/// unread) at the surface nodes.
+/// unread) at the surface nodes, the prescribed displacements of the fixed components included.
 SurfaceDisplacement surface_displacement(const ContactSurface& surface, const fe::DofMap& dofs,
                                          const VectorXd& w);
 

@@ -28,6 +28,9 @@ struct ContactSpec {
   /// The rigid plane: a point of it [m] and its unit normal pointing out of the obstacle, towards
   /// the body. Absent: the plane of a flat contact surface, at zero gap.
   std::optional<Plane> obstacle;
+  /// The prescribed displacement [m] of every mesh node (3 x n_nodes, zero where nothing is
+  /// prescribed), or empty when nothing is.
+  Eigen::Matrix<Real, 3, Eigen::Dynamic> prescribed;
   std::string where_boundary = "contact.boundary";
   std::string where_patches = "contact.patches";
   std::string where_patch_size = "contact.patch_size";
@@ -39,9 +42,13 @@ struct ContactDiscretization {
   Patches patches;
   SparseMatrix B;       ///< n_dual x n_free [m^2], rows (n, t1, t2) per patch (b_matrix.hpp)
   VectorXd slip_bound;  ///< g per surface node [Pa]
-  /// Initial gap per surface node [m]: distance to the obstacle along the normal (0 here: the
-  /// body rests on the foundation).
+  /// Initial gap per surface node [m]: its distance to the obstacle plane (0 without an
+  /// obstacle: the body rests on its own plane).
   VectorXd gap;
+  /// c per multiplier row [m^3], the constant part of the constraints (theory.md §2.4): normal
+  /// row int_R (gap - u_p.n) dS, tangential rows -int_R u_p.t dS, with u_p the prescribed
+  /// displacement of fixed components; zero for the paper's problem. The dual's h = B K^-1 f - c.
+  VectorXd offset;
   /// The free dofs of the surface nodes, node by node: the only columns B touches.
   std::vector<Index> dofs;
   StabilityReport stability;       ///< condition (5.1), checked

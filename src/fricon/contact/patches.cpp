@@ -11,6 +11,9 @@ Patches make_patches(PatchKind kind, const mesh::TetMesh& mesh, const ContactSur
   switch (kind) {
     case PatchKind::Chessboard:
       return chessboard_patches(mesh, surface, where);
+    case PatchKind::Mesh:
+    case PatchKind::Agglomerate:
+      break;
   }
   throw InputError(
       fmt::format("{}: contact.patches: invalid partition kind {}", where, static_cast<int>(kind)));

@@ -21,6 +21,10 @@ namespace fricon::contact {
 enum class PatchKind {
   /// The paper's: 2 x 2 squares of the structured grid of a rectangular surface.
   Chessboard,
+  /// Each elementary entity of the contact tag in the mesh file is one patch.
+  Mesh,
+  /// Built by fricon from the surface triangles.
+  Agglomerate,
 };
 
 /// Patch p is the list of surface-face positions (indices into ContactSurface::faces).
@@ -46,4 +50,6 @@ Patches chessboard_patches(const mesh::TetMesh& mesh, const ContactSurface& surf
 }  // namespace fricon::contact
 
 FRICON_ENUM_NAMES(fricon::contact::PatchKind, "contact.patches",
-                  {contact::PatchKind::Chessboard, "chessboard"});
+                  {contact::PatchKind::Chessboard, "chessboard"},
+                  {contact::PatchKind::Mesh, "mesh"},
+                  {contact::PatchKind::Agglomerate, "agglomerate"});

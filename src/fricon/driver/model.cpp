@@ -21,17 +21,29 @@ std::vector<Index> tagged_faces(const mesh::TetMesh& mesh, const Problem& proble
   return faces;
 }
 
-fe::Material make_material(const Problem& problem) {
-  const std::string where = problem.where("material") + ": material";
-  if (problem.material.model == fe::MaterialModel::Anisotropic) {
-    FRICON_CHECK(problem.material.voigt.has_value(), "anisotropic material without voigt matrix");
+fe::Material make_material(const Problem& problem, const MaterialOptions& m,
+                           const std::string& key) {
+  const std::string where = problem.where(key) + ": " + key;
+  if (m.model == fe::MaterialModel::Anisotropic) {
+    FRICON_CHECK(m.voigt.has_value(), "anisotropic material without voigt matrix");
     fe::Voigt6 D;
     for (int i = 0; i < 6; ++i)
       for (int j = 0; j < 6; ++j)
-        D(i, j) = (*problem.material.voigt)[i][j];
+        D(i, j) = (*m.voigt)[i][j];
     return fe::anisotropic(D, where);
   }
-  return fe::isotropic(problem.material.young, problem.material.poisson, where);
+  return fe::isotropic(m.young, m.poisson, where);
+}
+
+std::string region_name(const mesh::TetMesh& mesh, int r) {
+  return mesh.region_names.empty() ? "body" : mesh.region_names[static_cast<size_t>(r)];
+}
+
+std::string region_list(const mesh::TetMesh& mesh) {
+  std::string s;
+  for (int r = 0; r < mesh.n_regions(); ++r)
+    s += fmt::format("{}\"{}\"", r == 0 ? "" : ", ", region_name(mesh, r));
+  return s;
 }
 
 // Loads on all 3 n_nodes components (fixed ones included), for totals and reactions.
@@ -67,6 +79,12 @@ void check_rigid_motions(const Problem& problem, const mesh::TetMesh& mesh,
           : fmt::format(" (no {} component is fixed anywhere)", check.loose_axes)));
 }
 
+// K_free,fixed times the prescribed displacements [N]: moved to the right-hand side.
+VectorXd prescribed_load(const Model& model) {
+  if (model.prescribed.isZero(0.0)) return VectorXd::Zero(model.dofs.n_free());
+  return model.dofs.from_nodal(fe::internal_forces(model.mesh, model.materials, model.prescribed));
+}
+
 }  // namespace
 
 fe::DofMap make_dofs(const Problem& problem, const mesh::TetMesh& mesh) {
@@ -89,6 +107,55 @@ fe::DofMap make_dofs(const Problem& problem, const mesh::TetMesh& mesh) {
   return dofs;
 }
 
+std::vector<fe::Material> make_materials(const Problem& problem, const mesh::TetMesh& mesh) {
+  if (problem.materials.empty()) return {make_material(problem, problem.material, "material")};
+  for (size_t i = 0; i < problem.materials.size(); ++i) {
+    const std::string key = fmt::format("material[{}].region", i);
+    if (mesh.find_region(problem.materials[i].region) < 0)
+      throw InputError(fmt::format("{}: {}: the mesh has no region \"{}\" (its regions: {})",
+                                   problem.where(key), key, problem.materials[i].region,
+                                   region_list(mesh)));
+  }
+  std::vector<fe::Material> materials;
+  for (int r = 0; r < mesh.n_regions(); ++r) {
+    const std::string name = region_name(mesh, r);
+    const auto it = std::find_if(problem.materials.begin(), problem.materials.end(),
+                                 [&](const MaterialOptions& m) { return m.region == name; });
+    if (it == problem.materials.end())
+      throw InputError(fmt::format(
+          "{}: material: region \"{}\" of the mesh has no [[material]] (give one per region: {})",
+          problem.where("material"), name, region_list(mesh)));
+    materials.push_back(
+        make_material(problem, *it, fmt::format("material[{}]", it - problem.materials.begin())));
+  }
+  return materials;
+}
+
+fe::NodalField make_prescribed(const Problem& problem, const mesh::TetMesh& mesh) {
+  fe::NodalField u = fe::NodalField::Zero(3, mesh.n_nodes());
+  // Which [[dirichlet]] entry set each component, to name both of two that disagree.
+  std::vector<int> set_by(static_cast<size_t>(3 * mesh.n_nodes()), -1);
+  for (size_t i = 0; i < problem.dirichlet.size(); ++i) {
+    const auto& d = problem.dirichlet[i];
+    for (Index a : mesh.nodes_with_tag(d.boundary))
+      for (int c = 0; c < 3; ++c) {
+        if (!d.components[c]) continue;
+        int& owner = set_by[static_cast<size_t>(3 * a + c)];
+        if (owner >= 0 && u(c, a) != d.value(c))
+          throw InputError(
+              fmt::format("{}: dirichlet[{}].value: node {} (at {:.6g}, {:.6g}, {:.6g}) is also on "
+                          "dirichlet[{}].boundary = \"{}\", which prescribes {} = {} there, not {}",
+                          problem.where(fmt::format("dirichlet[{}].value", i)), i, a,
+                          mesh.nodes(0, a), mesh.nodes(1, a), mesh.nodes(2, a), owner,
+                          problem.dirichlet[static_cast<size_t>(owner)].boundary, "xyz"[c], u(c, a),
+                          d.value(c)));
+        owner = static_cast<int>(i);
+        u(c, a) = d.value(c);
+      }
+  }
+  return u;
+}
+
 mesh::TetMesh make_mesh(const Problem& problem) {
   mesh::BrickSpec spec;
   spec.size = Vec3(problem.mesh.size[0], problem.mesh.size[1], problem.mesh.size[2]);
@@ -108,14 +175,15 @@ Model assemble_model(const Problem& problem, PhaseTimes& times,
   {
     ScopedPhase phase(times, "mesh");
     model.mesh = make_mesh(problem);
-    model.material = make_material(problem);
+    model.materials = make_materials(problem, model.mesh);
   }
   if (on_phase_start) on_phase_start("assembly");
   {
     ScopedPhase phase(times, "assembly");
     model.dofs = make_dofs(problem, model.mesh);
-    model.K = fe::assemble_stiffness(model.mesh, model.material, model.dofs);
-    model.f = full_load(problem, model.mesh, model.dofs);
+    model.K = fe::assemble_stiffness(model.mesh, model.materials, model.dofs);
+    model.prescribed = make_prescribed(problem, model.mesh);
+    model.f = full_load(problem, model.mesh, model.dofs) - prescribed_load(model);
   }
   return model;
 }
@@ -135,8 +203,14 @@ contact::ContactDiscretization discretize_contact(const Problem& problem, const 
   spec.boundary = c.boundary;
   spec.patches = c.patches;
   spec.slip_bound = c.slip_bound;
+  if (c.patch_size) spec.patch_size = *c.patch_size;
+  if (c.obstacle)
+    spec.obstacle = contact::Plane{c.obstacle->point, c.obstacle->normal.normalized()};
+  spec.prescribed = make_prescribed(problem, mesh);
   spec.where_boundary = problem.where("contact.boundary");
   spec.where_patches = problem.where("contact.patches");
+  spec.where_patch_size = problem.where("contact.patch_size");
+  spec.where_obstacle = problem.where("contact.obstacle");
   return contact::discretize_contact(mesh, dofs, spec);
 }
 
@@ -154,7 +228,7 @@ Vec3 applied_force_total(const Problem& problem, const mesh::TetMesh& mesh) {
 Vec3 reaction_total(const Model& model, const Problem& problem, const fe::NodalField& u) {
   const fe::DofMap all(model.mesh.n_nodes());
   const fe::NodalField load = all.to_nodal(full_load(problem, model.mesh, all));
-  const fe::NodalField internal = fe::internal_forces(model.mesh, model.material, u);
+  const fe::NodalField internal = fe::internal_forces(model.mesh, model.materials, u);
   Vec3 r = Vec3::Zero();
   for (Index a = 0; a < model.mesh.n_nodes(); ++a)
     for (int c = 0; c < 3; ++c)

@@ -21,10 +21,16 @@ namespace fricon::driver {
 
 struct Model {
   mesh::TetMesh mesh;
-  fe::Material material;
+  /// The material of each region of the mesh (fe::Materials), or one for the whole body.
+  std::vector<fe::Material> materials;
   fe::DofMap dofs{0};
-  SparseMatrix K;                 ///< stiffness over the free dofs [N/m]
-  VectorXd f;                     ///< load vector over the free dofs [N]
+  /// The prescribed displacement [m] at every node (3 x n_nodes): the [[dirichlet]] values at
+  /// fixed components, zero elsewhere. The displacement of a solve is dofs.to_nodal(u) + this.
+  fe::NodalField prescribed;
+  SparseMatrix K;  ///< stiffness over the free dofs [N/m]
+  /// Load vector over the free dofs [N]: the applied loads minus K_free,fixed times the prescribed
+  /// displacements.
+  VectorXd f;
   linalg::CholeskyFactor factor;  ///< Cholesky factor of K
 };
 
@@ -34,6 +40,15 @@ mesh::TetMesh make_mesh(const Problem& problem);
 /// The dofs left free by the problem's Dirichlet conditions. Throws InputError when a boundary
 /// tag does not exist on the mesh or nothing is left free.
 fe::DofMap make_dofs(const Problem& problem, const mesh::TetMesh& mesh);
+
+/// The prescribed displacements of the problem's [[dirichlet]] values (see Model::prescribed).
+/// Throws InputError when two entries give one component of a node different values.
+fe::NodalField make_prescribed(const Problem& problem, const mesh::TetMesh& mesh);
+
+/// The material of each region of the mesh: [material] everywhere, or [[material]] by region.
+/// Throws InputError (with the key's position) when a region of the mesh has no material or a
+/// [[material]] names a region the mesh does not have.
+std::vector<fe::Material> make_materials(const Problem& problem, const mesh::TetMesh& mesh);
 
 /// Called with each phase's name ("mesh", "assembly", "factorize", ...) as it starts.
 using PhaseCallback = std::function<void(const std::string& phase)>;

@@ -2,6 +2,18 @@
 
 namespace fricon::driver {
 
+std::span<const std::string_view> mesh_parameters(MeshKind kind) {
+  static constexpr std::string_view kBrick[] = {"size", "cells"};
+  static constexpr std::string_view kGmsh[] = {"file", "size_factor"};
+  switch (kind) {
+    case MeshKind::Brick:
+      return kBrick;
+    case MeshKind::Gmsh:
+      return kGmsh;
+  }
+  return {};
+}
+
 std::string Problem::where(std::string_view key) const {
   // "traction[1].value[2]" -> "traction[1].value" -> "traction[1]" -> "traction".
   while (!key.empty()) {

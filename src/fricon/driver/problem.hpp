@@ -9,6 +9,7 @@
 #include <functional>
 #include <map>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -28,18 +29,30 @@ namespace fricon::driver {
 /// Where the mesh comes from ([mesh] kind).
 enum class MeshKind {
   Brick,  ///< the structured box generator (the paper's mesh)
+  Gmsh,   ///< a Gmsh file: a mesh (.msh, MSH 2.2 or 4.1) or a geometry meshed on the fly (.geo)
 };
+
+/// The keys of [mesh] that `kind` uses (besides kind).
+std::span<const std::string_view> mesh_parameters(MeshKind kind);
 
 /// [mesh]
 struct MeshOptions {
   MeshKind kind = MeshKind::Brick;          ///< [mesh.kind]
-  std::array<Real, 3> size{3.0, 1.0, 1.0};  ///< [mesh.size] box edge lengths [m], > 0
-  /// [mesh.cells] cubes per direction, >= 1 each, at most 1e8 in all
+  std::array<Real, 3> size{3.0, 1.0, 1.0};  ///< [mesh.size] box edge lengths [m], > 0 (brick)
+  /// [mesh.cells] cubes per direction, >= 1 each, at most 1e8 in all (brick)
   std::array<Index, 3> cells{12, 4, 4};
+  /// [mesh.file] the Gmsh file (gmsh); the reader resolves a relative path against the problem
+  /// file's folder, so this is the path as the program opens it.
+  std::string file;
+  /// [mesh.size_factor] Gmsh's Mesh.MeshSizeFactor for a .geo file, > 0 (gmsh, optional).
+  std::optional<Real> size_factor;
 };
 
-/// [material]
+/// [material], or one table of [[material]]
 struct MaterialOptions {
+  /// [material.region] with [[material]]: the region (a Gmsh physical volume's name) this
+  /// material fills; empty for the one [material] table, which fills the whole body.
+  std::string region;
   fe::MaterialModel model = fe::MaterialModel::Isotropic;  ///< [material.model]
   Real young = 21.19e10;  ///< [material.young] Young's modulus [Pa], > 0 (isotropic)
   Real poisson = 0.277;   ///< [material.poisson] Poisson's ratio, in (-1, 0.5) (isotropic)
@@ -48,10 +61,13 @@ struct MaterialOptions {
   std::optional<std::array<std::array<Real, 6>, 6>> voigt;
 };
 
-/// [[dirichlet]]: zero displacement of some components on a tagged boundary.
+/// [[dirichlet]]: prescribed displacement of some components on a tagged boundary.
 struct DirichletOptions {
   std::string boundary;                              ///< [dirichlet.boundary] boundary tag
   std::array<bool, 3> components{true, true, true};  ///< [dirichlet.components] subset of "xyz"
+  /// [dirichlet.value] the displacement [m] of the fixed components (the others must be 0),
+  /// finite; default zero (a clamp). Nodes in several [[dirichlet]] sets must get one value.
+  Vec3 value = Vec3::Zero();
 };
 
 /// [[traction]]: constant surface traction on a tagged boundary.
@@ -63,9 +79,26 @@ struct TractionOptions {
 /// [contact.friction]: the coefficient of friction F(t), t = ||u_t|| [m].
 using FrictionOptions = contact::FrictionLawSpec;
 
-/// [contact]: frictional contact of a tagged boundary with a rigid half-space (no initial gap).
+/// The kind of rigid obstacle ([contact.obstacle] kind).
+enum class ObstacleKind {
+  Plane,  ///< a rigid plane (half-space)
+};
+
+/// [contact.obstacle]: the rigid body the contact surface may touch.
+struct ObstacleOptions {
+  ObstacleKind kind = ObstacleKind::Plane;  ///< [contact.obstacle.kind]
+  Vec3 point = Vec3::Zero();                ///< [contact.obstacle.point] a point of the plane [m]
+  /// [contact.obstacle.normal] the plane's normal, pointing out of the obstacle towards the body;
+  /// non-zero (it is normalized).
+  Vec3 normal = Vec3(0.0, 0.0, 1.0);
+};
+
+/// [contact]: frictional contact of a tagged boundary with a rigid obstacle.
 struct ContactOptions {
-  std::string boundary = "z0";  ///< [contact.boundary] tag of the contact surface (planar)
+  std::string boundary = "z0";  ///< [contact.boundary] tag of the contact surface
+  /// [contact.obstacle] the rigid plane; absent: the plane of a flat contact surface, at zero gap
+  /// (the paper's setting).
+  std::optional<ObstacleOptions> obstacle;
   /// [contact.model] Tresca (slip bound F g) or Coulomb (slip bound F times the pressure).
   contact::FrictionModel model = contact::FrictionModel::Tresca;
   Real slip_bound = 2.0e7;  ///< [contact.slip_bound] g [Pa], >= 0 (Tresca only)
@@ -74,6 +107,9 @@ struct ContactOptions {
   std::optional<Real> start_slip_bound;
   /// [contact.patches] partition of the contact surface for the multipliers.
   contact::PatchKind patches = contact::PatchKind::Chessboard;
+  /// [contact.patch_size] target patch diameter [m] of patches = "agglomerate", > 0; absent:
+  /// chosen from the mesh (the stars of an independent set of vertices).
+  std::optional<Real> patch_size;
   FrictionOptions friction;  ///< [contact.friction]
 };
 
@@ -111,7 +147,10 @@ struct Problem {
 
   std::string title;  ///< [title] free text, optional
   MeshOptions mesh;
+  /// [material] the material of the whole body, used when `materials` is empty.
   MaterialOptions material;
+  /// [[material]] one material per region (each with its region), replacing `material`.
+  std::vector<MaterialOptions> materials;
   Vec3 volume_force = Vec3::Zero();  ///< [volume_force] body force [N/m^3], finite
   std::vector<DirichletOptions> dirichlet;
   std::vector<TractionOptions> traction;
@@ -132,4 +171,7 @@ void validate(const Problem& problem);
 
 }  // namespace fricon::driver
 
-FRICON_ENUM_NAMES(fricon::driver::MeshKind, "mesh.kind", {driver::MeshKind::Brick, "brick"});
+FRICON_ENUM_NAMES(fricon::driver::MeshKind, "mesh.kind", {driver::MeshKind::Brick, "brick"},
+                  {driver::MeshKind::Gmsh, "gmsh"});
+FRICON_ENUM_NAMES(fricon::driver::ObstacleKind, "contact.obstacle.kind",
+                  {driver::ObstacleKind::Plane, "plane"});

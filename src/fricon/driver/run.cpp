@@ -28,10 +28,15 @@ VectorXd solve_with_contact(const Problem& problem, const contact::ContactDiscre
   std::unique_ptr<dual::DualOperator> Q;
   {
     ScopedPhase phase(rep.times, "dual");
-    const dual::DualInput input{m.factor, disc.B, m.f, disc.dofs, [&options] {
+    const dual::DualInput input{m.factor,
+                                disc.B,
+                                m.f,
+                                disc.dofs,
+                                [&options] {
                                   if (stop_requested(options))
                                     throw Interrupted("interrupted while forming Q");
-                                }};
+                                },
+                                &disc.offset};
     Q = dual::make_dual_operator(problem.solver.dual_operator, input);
   }
   phase_start(options, "outer loop");
@@ -60,15 +65,19 @@ void postprocess(const Problem& problem, const VectorXd& u, RunResult& r) {
   RunReport& rep = r.report;
   const Model& m = r.model;
   ScopedPhase phase(rep.times, "postprocess");
-  r.displacement = m.dofs.to_nodal(u);
+  r.displacement = m.dofs.to_nodal(u) + m.prescribed;
   rep.max_displacement = r.displacement.colwise().norm().maxCoeff();
-  fe::StressField s = fe::compute_stresses(m.mesh, m.material, r.displacement);
+  fe::StressField s = fe::compute_stresses(m.mesh, m.materials, r.displacement);
   r.stress = std::move(s.stress);
   r.von_mises = std::move(s.von_mises);
   rep.applied_force = applied_force_total(problem, m.mesh);
   rep.reaction_force = reaction_total(m, problem, r.displacement);
-  rep.equilibrium_residual = (rep.applied_force + rep.contact_force + rep.reaction_force).norm() /
-                             std::max(rep.applied_force.norm(), 1e-300);
+  // Relative to the largest of the three: a body pressed by a prescribed displacement has no
+  // applied load.
+  const Real scale = std::max(
+      {rep.applied_force.norm(), rep.contact_force.norm(), rep.reaction_force.norm(), 1e-300});
+  rep.equilibrium_residual =
+      (rep.applied_force + rep.contact_force + rep.reaction_force).norm() / scale;
 }
 
 }  // namespace

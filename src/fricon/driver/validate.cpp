@@ -63,9 +63,8 @@ void check_vec3(const Problem& p, std::string_view key, const Vec3& v, std::stri
 // ---------------------------------------------------------------------------------------------
 // The sections.
 
-void validate_mesh(const Problem& p) {
+void validate_brick(const Problem& p) {
   const MeshOptions& m = p.mesh;
-  check_enum(p, m.kind);
   for (std::size_t i = 0; i < 3; ++i)
     check_real(p, fmt::format("mesh.size[{}]", i), m.size[i], "a positive number [m]",
                m.size[i] > 0.0);
@@ -82,31 +81,71 @@ void validate_mesh(const Problem& p) {
                      m.cells[0], m.cells[1], m.cells[2], total));
 }
 
-void validate_voigt(const Problem& p) {
-  if (!p.material.voigt)
-    fail_expected(p, "material.voigt",
+void validate_gmsh(const Problem& p) {
+  const MeshOptions& m = p.mesh;
+  if (m.file.empty())
+    fail_expected(p, "mesh.file", "a Gmsh file name (.msh or .geo)", "\"\" (mesh.kind = \"gmsh\")");
+  if (m.size_factor)
+    check_real(p, "mesh.size_factor", *m.size_factor, "a positive number", *m.size_factor > 0.0);
+}
+
+void validate_mesh(const Problem& p) {
+  check_enum(p, p.mesh.kind);
+  switch (p.mesh.kind) {
+    case MeshKind::Brick:
+      validate_brick(p);
+      break;
+    case MeshKind::Gmsh:
+      validate_gmsh(p);
+      break;
+  }
+}
+
+void validate_voigt(const Problem& p, const std::string& key, const MaterialOptions& m) {
+  if (!m.voigt)
+    fail_expected(p, key + ".voigt",
                   "a 6x6 Hooke matrix [Pa] (material.model = \"anisotropic\" needs one)", "none");
   fe::Voigt6 D;
   for (std::size_t i = 0; i < 6; ++i)
     for (std::size_t j = 0; j < 6; ++j) {
-      const Real v = (*p.material.voigt)[i][j];
-      check_real(p, fmt::format("material.voigt[{}][{}]", i, j), v, "a number [Pa]", true);
+      const Real v = (*m.voigt)[i][j];
+      check_real(p, fmt::format("{}.voigt[{}][{}]", key, i, j), v, "a number [Pa]", true);
       D(static_cast<Index>(i), static_cast<Index>(j)) = v;
     }
   // Symmetry and ellipticity (docs/theory.md §1).
-  (void)fe::anisotropic(D, fmt::format("{}: material.voigt", p.where("material.voigt")));
+  (void)fe::anisotropic(D, fmt::format("{}: {}.voigt", p.where(key + ".voigt"), key));
 }
 
-void validate_material(const Problem& p) {
-  const MaterialOptions& m = p.material;
+/// One material; `key` is "material" or "material[i]".
+void validate_one_material(const Problem& p, const std::string& key, const MaterialOptions& m) {
   check_enum(p, m.model);
   if (m.model == fe::MaterialModel::Anisotropic) {
-    validate_voigt(p);
+    validate_voigt(p, key, m);
     return;
   }
-  check_real(p, "material.young", m.young, "a positive number [Pa]", m.young > 0.0);
-  check_real(p, "material.poisson", m.poisson, "a number in (-1, 0.5)",
+  check_real(p, key + ".young", m.young, "a positive number [Pa]", m.young > 0.0);
+  check_real(p, key + ".poisson", m.poisson, "a number in (-1, 0.5)",
              m.poisson > -1.0 && m.poisson < 0.5);
+}
+
+/// [material], or [[material]] with one distinct region each (that the regions exist is checked
+/// against the mesh, driver/model.cpp).
+void validate_material(const Problem& p) {
+  if (p.materials.empty()) {
+    validate_one_material(p, "material", p.material);
+    return;
+  }
+  for (std::size_t i = 0; i < p.materials.size(); ++i) {
+    const std::string key = fmt::format("material[{}]", i);
+    const MaterialOptions& m = p.materials[i];
+    if (m.region.empty())
+      fail_expected(p, key + ".region", "a region name (a physical volume of the mesh)", "\"\"");
+    for (std::size_t j = 0; j < i; ++j)
+      if (p.materials[j].region == m.region)
+        fail(p, key + ".region",
+             fmt::format("region \"{}\" already has a material (material[{}])", m.region, j));
+    validate_one_material(p, key, m);
+  }
 }
 
 void validate_dirichlet(const Problem& p) {
@@ -116,6 +155,14 @@ void validate_dirichlet(const Problem& p) {
     if (!d.components[0] && !d.components[1] && !d.components[2])
       fail_expected(p, fmt::format("dirichlet[{}].components", i),
                     "a string of distinct letters from \"xyz\"", "\"\"");
+    const std::string value = fmt::format("dirichlet[{}].value", i);
+    check_vec3(p, value, d.value, "a number [m]");
+    for (std::size_t c = 0; c < 3; ++c)
+      if (!d.components[c] && d.value[static_cast<Index>(c)] != 0.0)
+        fail(p, fmt::format("{}[{}]", value, c),
+             fmt::format("a value for component {} that dirichlet[{}].components does not fix "
+                         "(it would be ignored): add \"{}\" to components or set it to 0",
+                         "xyz"[c], i, "xyz"[c]));
   }
 }
 
@@ -164,6 +211,16 @@ void validate_friction(const Problem& p, const FrictionOptions& fr) {
   }
 }
 
+void validate_obstacle(const Problem& p, const ObstacleOptions& o) {
+  check_enum(p, o.kind);
+  check_vec3(p, "contact.obstacle.point", o.point, "a number [m]");
+  check_vec3(p, "contact.obstacle.normal", o.normal, "a number");
+  if (!(o.normal.norm() > 0.0))
+    fail(p, "contact.obstacle.normal",
+         "expected a non-zero vector (the plane's normal, pointing towards the body), got [0, 0, "
+         "0]");
+}
+
 void validate_contact(const Problem& p) {
   if (!p.contact) return;
   const ContactOptions& c = *p.contact;
@@ -178,6 +235,15 @@ void validate_contact(const Problem& p) {
            "only used by model \"coulomb\" (the Tresca problem it starts from)");
   }
   check_enum(p, c.patches);
+  if (c.patch_size) {
+    check_real(p, "contact.patch_size", *c.patch_size, "a positive number [m]",
+               *c.patch_size > 0.0);
+    if (c.patches != contact::PatchKind::Agglomerate)
+      fail(p, "contact.patch_size",
+           fmt::format("only used by patches = \"agglomerate\" (patches is \"{}\")",
+                       enum_name(c.patches)));
+  }
+  if (c.obstacle) validate_obstacle(p, *c.obstacle);
   validate_friction(p, c.friction);
 }
 

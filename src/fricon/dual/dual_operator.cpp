@@ -35,6 +35,7 @@ DualOperator::DualOperator(const DualInput& input) : in_(input) {
   u0_ = in_.factor.solve(in_.f);
   ++n_kinv_;
   h_ = in_.B * u0_;
+  if (in_.offset != nullptr) h_ -= *in_.offset;
 }
 
 VectorXd DualOperator::displacement(const VectorXd& lambda) const {

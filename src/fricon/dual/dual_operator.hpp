@@ -44,6 +44,9 @@ struct DualInput {
   const std::vector<Index>& contact_dofs;  ///< the free dofs of the contact surface's nodes
   /// Called while Q is being formed (it may throw fricon::Interrupted to stop); optional.
   std::function<void()> poll;
+  /// c [m^3], the constant part of the constraints B w <= c (normal rows: the initial gap; see
+  /// contact::ContactDiscretization::offset), so that h = B K^-1 f - c; null: zero.
+  const VectorXd* offset = nullptr;
 };
 
 class DualOperator {
@@ -55,7 +58,7 @@ class DualOperator {
   virtual DualOperatorKind kind() const = 0;
   /// n_dual, the number of multipliers.
   Index size() const { return h_.size(); }
-  /// h = B K^-1 f [m^3].
+  /// h = B K^-1 f - c [m^3] (c = DualInput::offset).
   const VectorXd& h() const { return h_; }
   /// u0 = K^-1 f over the free dofs [m].
   const VectorXd& u0() const { return u0_; }

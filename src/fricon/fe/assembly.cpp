@@ -47,7 +47,7 @@ NodeGraph node_graph(const mesh::TetMesh& mesh) {
 
 }  // namespace
 
-SparseMatrix assemble_stiffness(const mesh::TetMesh& mesh, const Material& material,
+SparseMatrix assemble_stiffness(const mesh::TetMesh& mesh, Materials materials,
                                 const DofMap& dofs) {
   const NodeGraph graph = node_graph(mesh);
   const Index n = dofs.n_free();
@@ -87,7 +87,8 @@ SparseMatrix assemble_stiffness(const mesh::TetMesh& mesh, const Material& mater
   const SparseIndex* rows = K.innerIndexPtr();
   Real* values = K.valuePtr();
   for (Index t = 0; t < mesh.n_tets(); ++t) {
-    const ElementMatrix Ke = element_stiffness(tet_vertices(mesh, t), material);
+    const ElementMatrix Ke =
+        element_stiffness(tet_vertices(mesh, t), material_of(materials, mesh, t));
     Index local_dof[12];
     for (int a = 0; a < 4; ++a)
       for (int c = 0; c < 3; ++c)
@@ -169,14 +170,14 @@ void add_volume_force_p1(const mesh::TetMesh& mesh, const DofMap& dofs, const No
   }
 }
 
-NodalField internal_forces(const mesh::TetMesh& mesh, const Material& material,
-                           const NodalField& u) {
+NodalField internal_forces(const mesh::TetMesh& mesh, Materials materials, const NodalField& u) {
   NodalField r = NodalField::Zero(3, mesh.n_nodes());
   for (Index t = 0; t < mesh.n_tets(); ++t) {
     Eigen::Matrix<Real, 12, 1> ue;
     for (int a = 0; a < 4; ++a)
       ue.segment<3>(3 * a) = u.col(mesh.tets(a, t));
-    const Eigen::Matrix<Real, 12, 1> re = element_stiffness(tet_vertices(mesh, t), material) * ue;
+    const Eigen::Matrix<Real, 12, 1> re =
+        element_stiffness(tet_vertices(mesh, t), material_of(materials, mesh, t)) * ue;
     for (int a = 0; a < 4; ++a)
       r.col(mesh.tets(a, t)) += re.segment<3>(3 * a);
   }

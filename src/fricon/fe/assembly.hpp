@@ -16,8 +16,12 @@ using NodalField = Eigen::Matrix<Real, 3, Eigen::Dynamic>;
 /// Stiffness matrix K [N/m] over the free dofs of `dofs`: symmetric, both triangles stored, with
 /// the sparsity of the node graph (every pair of nodes sharing a tetrahedron). Positive definite
 /// when the Dirichlet conditions remove the rigid motions.
-SparseMatrix assemble_stiffness(const mesh::TetMesh& mesh, const Material& material,
-                                const DofMap& dofs);
+SparseMatrix assemble_stiffness(const mesh::TetMesh& mesh, Materials materials, const DofMap& dofs);
+/// One material everywhere.
+inline SparseMatrix assemble_stiffness(const mesh::TetMesh& mesh, const Material& material,
+                                       const DofMap& dofs) {
+  return assemble_stiffness(mesh, Materials(&material, 1), dofs);
+}
 
 /// Adds the load of a constant surface traction p [Pa] on the boundary triangles `faces` to f [N]:
 /// each vertex of triangle T receives |T|/3 p (exact for P1 test functions).
@@ -39,8 +43,7 @@ void add_volume_force_p1(const mesh::TetMesh& mesh, const DofMap& dofs, const No
 
 /// Nodal forces [N] of the stiffness on all 3 n_nodes components (fixed ones included): the
 /// internal force K_full u for a displacement field given at the nodes. Used for reactions.
-NodalField internal_forces(const mesh::TetMesh& mesh, const Material& material,
-                           const NodalField& u);
+NodalField internal_forces(const mesh::TetMesh& mesh, Materials materials, const NodalField& u);
 
 /// Vertices of tetrahedron t as columns.
 Eigen::Matrix<Real, 3, 4> tet_vertices(const mesh::TetMesh& mesh, Index t);

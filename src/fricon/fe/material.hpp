@@ -13,6 +13,7 @@
 
 #include "fricon/core/enum_names.hpp"
 #include "fricon/core/types.hpp"
+#include "fricon/mesh/tet_mesh.hpp"
 
 namespace fricon::fe {
 
@@ -49,6 +50,15 @@ Material from_tensor(const HookeTensor& C, const std::string& where = "material"
 
 /// The full tensor of a material (inverse of from_tensor).
 HookeTensor to_tensor(const Material& m);
+
+/// The materials of a body, one per region of its mesh (TetMesh::region): tetrahedron t is made
+/// of materials[region(t)], or of materials[0] everywhere when there is only one.
+using Materials = std::span<const Material>;
+
+/// The material of tetrahedron t (see Materials).
+inline const Material& material_of(Materials materials, const mesh::TetMesh& mesh, Index t) {
+  return materials.size() == 1 ? materials[0] : materials[static_cast<size_t>(mesh.region(t))];
+}
 
 }  // namespace fricon::fe
 

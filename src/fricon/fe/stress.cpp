@@ -14,8 +14,7 @@ Real von_mises(const Eigen::Matrix<Real, 6, 1>& s) {
 }
 }  // namespace
 
-StressField compute_stresses(const mesh::TetMesh& mesh, const Material& material,
-                             const NodalField& u) {
+StressField compute_stresses(const mesh::TetMesh& mesh, Materials materials, const NodalField& u) {
   StressField out;
   out.stress.resize(6, mesh.n_tets());
   out.von_mises.resize(mesh.n_tets());
@@ -24,7 +23,8 @@ StressField compute_stresses(const mesh::TetMesh& mesh, const Material& material
     Eigen::Matrix<Real, 12, 1> ue;
     for (int a = 0; a < 4; ++a)
       ue.segment<3>(3 * a) = u.col(mesh.tets(a, t));
-    const Eigen::Matrix<Real, 6, 1> s = material.D * (strain_matrix(g.grad) * ue);
+    const Eigen::Matrix<Real, 6, 1> s =
+        material_of(materials, mesh, t).D * (strain_matrix(g.grad) * ue);
     out.stress.col(t) = s;
     out.von_mises(t) = von_mises(s);
   }

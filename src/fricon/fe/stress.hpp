@@ -16,7 +16,6 @@ struct StressField {
 
 /// sigma = D eps(u) on every tetrahedron, and its von Mises equivalent, for a nodal displacement
 /// u (3 x n_nodes) [m].
-StressField compute_stresses(const mesh::TetMesh& mesh, const Material& material,
-                             const NodalField& u);
+StressField compute_stresses(const mesh::TetMesh& mesh, Materials materials, const NodalField& u);
 
 }  // namespace fricon::fe

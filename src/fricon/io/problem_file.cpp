@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <map>
@@ -318,9 +319,23 @@ std::optional<Field> find_unused(const TableReader& t, const std::vector<std::st
   return std::nullopt;
 }
 
+/// `file` as the program opens it: a relative path is taken from the problem file's folder.
+std::string beside_problem_file(const Context& ctx, const std::string& file) {
+  const std::filesystem::path path(file);
+  if (path.is_absolute()) return file;
+  const std::filesystem::path folder = std::filesystem::path(ctx.file).parent_path();
+  return (folder / path).lexically_normal().string();
+}
+
 void read_mesh(const Context& ctx, const Field& f, driver::MeshOptions& m) {
-  const TableReader t(ctx, f, "a table [mesh]", {"kind", "size", "cells"});
+  static const auto params = all_parameters<driver::MeshKind>(driver::mesh_parameters);
+  const TableReader t(ctx, f, "a table [mesh]", with_selector("kind", params));
   if (auto k = t.find("kind")) m.kind = get_enum<driver::MeshKind>(ctx, *k);
+  if (auto k = find_unused(t, params, driver::mesh_parameters(m.kind)))
+    fail(ctx, *k,
+         m.kind == driver::MeshKind::Brick
+             ? "not used by kind \"brick\" (set mesh.kind = \"gmsh\" to read a Gmsh file)"
+             : "not used by kind \"gmsh\" (the mesh comes from mesh.file)");
   if (auto k = t.find("size")) m.size = get_reals<3>(ctx, *k, "a positive number [m]");
   if (auto k = t.find("cells")) {
     const auto& a = get_array(ctx, *k, "an array of 3 integers");
@@ -329,6 +344,11 @@ void read_mesh(const Context& ctx, const Field& f, driver::MeshOptions& m) {
     for (std::size_t i = 0; i < 3; ++i)
       m.cells[i] = get_int<Index>(ctx, element(ctx, *k, a, i), "an integer >= 1");
   }
+  if (m.kind == driver::MeshKind::Gmsh) {
+    const Field k = t.require("file", "mesh.kind = \"gmsh\" reads a .msh or .geo file");
+    m.file = beside_problem_file(ctx, get_string(ctx, k, "a Gmsh file name (.msh or .geo)"));
+  }
+  if (auto k = t.find("size_factor")) m.size_factor = get_real(ctx, *k, "a positive number");
 }
 
 /// What to do instead, for a key of [material] that `model` does not use.
@@ -338,9 +358,15 @@ std::string_view material_hint(fe::MaterialModel model) {
              : "the Hooke matrix is material.voigt";
 }
 
-void read_material(const Context& ctx, const Field& f, driver::MaterialOptions& m) {
+void read_material(const Context& ctx, const Field& f, driver::MaterialOptions& m,
+                   bool in_array = false) {
   static const auto params = all_parameters<fe::MaterialModel>(fe::material_parameters);
-  const TableReader t(ctx, f, "a table [material]", with_selector("model", params));
+  std::vector<std::string_view> keys = with_selector("model", params);
+  if (in_array) keys.push_back("region");
+  const TableReader t(ctx, f, in_array ? "a table" : "a table [material]", keys);
+  if (in_array)
+    m.region = get_string(ctx, t.require("region", "each [[material]] fills one region"),
+                          "a region name (a physical volume of the mesh)");
   if (auto k = t.find("model")) m.model = get_enum<fe::MaterialModel>(ctx, *k);
   if (auto k = find_unused(t, params, fe::material_parameters(m.model)))
     fail(ctx, *k,
@@ -363,7 +389,7 @@ void read_material(const Context& ctx, const Field& f, driver::MaterialOptions& 
 }
 
 driver::DirichletOptions read_dirichlet(const Context& ctx, const Field& f) {
-  const TableReader t(ctx, f, "a table", {"boundary", "components"});
+  const TableReader t(ctx, f, "a table", {"boundary", "components", "value"});
   driver::DirichletOptions d;
   d.boundary = get_string(ctx, t.require("boundary"), "a non-empty boundary tag");
   if (auto k = t.find("components")) {
@@ -376,6 +402,7 @@ driver::DirichletOptions read_dirichlet(const Context& ctx, const Field& f) {
       d.components[pos] = true;
     }
   }
+  if (auto k = t.find("value")) d.value = get_vec3(ctx, *k, "a number [m]");
   return d;
 }
 
@@ -431,11 +458,20 @@ void read_friction(const Context& ctx, const Field& f, driver::FrictionOptions& 
   }
 }
 
+void read_obstacle(const Context& ctx, const Field& f, driver::ObstacleOptions& o) {
+  const TableReader t(ctx, f,
+                      "a table { kind = \"plane\", point = [x, y, z], normal = [nx, ny, nz] }",
+                      {"kind", "point", "normal"});
+  if (auto k = t.find("kind")) o.kind = get_enum<driver::ObstacleKind>(ctx, *k);
+  o.point = get_vec3(ctx, t.require("point", "a point of the plane [m]"), "a number [m]");
+  o.normal = get_vec3(ctx, t.require("normal", "the plane's normal, towards the body"), "a number");
+}
+
 void read_contact(const Context& ctx, const Field& f, driver::ContactOptions& c) {
   static const auto params =
       all_parameters<contact::FrictionModel>(contact::friction_model_parameters);
   std::vector<std::string_view> keys = with_selector("model", params);
-  keys.insert(keys.end(), {"boundary", "patches", "friction"});
+  keys.insert(keys.end(), {"boundary", "obstacle", "patches", "patch_size", "friction"});
   const TableReader t(ctx, f, "a table [contact]", keys);
   if (auto k = t.find("model")) c.model = get_enum<contact::FrictionModel>(ctx, *k);
   if (auto k = find_unused(t, params, contact::friction_model_parameters(c.model)))
@@ -448,7 +484,9 @@ void read_contact(const Context& ctx, const Field& f, driver::ContactOptions& c)
   if (auto k = t.find("slip_bound")) c.slip_bound = get_real(ctx, *k, "a number >= 0 [Pa]");
   if (auto k = t.find("start_slip_bound"))
     c.start_slip_bound = get_real(ctx, *k, "a number >= 0 [Pa]");
+  if (auto k = t.find("obstacle")) read_obstacle(ctx, *k, c.obstacle.emplace());
   if (auto k = t.find("patches")) c.patches = get_enum<contact::PatchKind>(ctx, *k);
+  if (auto k = t.find("patch_size")) c.patch_size = get_real(ctx, *k, "a positive number [m]");
   if (auto k = t.find("friction")) read_friction(ctx, *k, c.friction);
 }
 
@@ -473,6 +511,21 @@ void read_output(const Context& ctx, const Field& f, driver::OutputOptions& o) {
   if (auto k = t.find("dir")) o.dir = get_string(ctx, *k, "a non-empty folder name");
 }
 
+/// [material] (one material everywhere) or [[material]] (one per region).
+void read_materials(const Context& ctx, const Field& f, Problem& p) {
+  if (!f.node->is_array()) {
+    read_material(ctx, f, p.material);
+    return;
+  }
+  const auto& a = get_array(ctx, f, "a table [material] or an array of tables [[material]]");
+  if (a.empty()) fail_expected(ctx, f, "at least one [[material]] table");
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const Field e = element(ctx, f, a, i);
+    if (!e.node->is_table()) fail_expected(ctx, e, "a table (write [[material]])");
+    read_material(ctx, e, p.materials.emplace_back(), true);
+  }
+}
+
 /// The document -> p, recording the position of every key read in p.positions.
 void convert(Context& ctx, const toml::table& root, Problem& p) {
   p.source = ctx.file;
@@ -482,7 +535,8 @@ void convert(Context& ctx, const toml::table& root, Problem& p) {
                        "contact", "solver", "output"});
   if (auto k = t.find("title")) p.title = get_string(ctx, *k, "a string");
   read_mesh(ctx, t.require("mesh", "the [mesh] table is required"), p.mesh);
-  read_material(ctx, t.require("material", "the [material] table is required"), p.material);
+  read_materials(
+      ctx, t.require("material", "a [material] table (or [[material]] per region) is required"), p);
   if (auto k = t.find("volume_force")) p.volume_force = get_vec3(ctx, *k, "a number [N/m^3]");
   if (auto k = t.find("dirichlet"))
     p.dirichlet = read_table_array<driver::DirichletOptions>(ctx, *k, "dirichlet", read_dirichlet);
@@ -587,6 +641,7 @@ const std::vector<Selector>& selectors() {
       selector_of<contact::FrictionLawKind>(contact::friction_law_parameters),
       selector_of<fe::MaterialModel>(fe::material_parameters),
       selector_of<contact::FrictionModel>(contact::friction_model_parameters),
+      selector_of<driver::MeshKind>(driver::mesh_parameters),
   };
   return all;
 }
@@ -736,6 +791,19 @@ nlohmann::json vec_json(const Vec3& v) {
   return nlohmann::json::array({v[0], v[1], v[2]});
 }
 
+nlohmann::json material_json(const driver::MaterialOptions& m) {
+  nlohmann::json j;
+  if (!m.region.empty()) j["region"] = m.region;
+  j["model"] = enum_name(m.model);
+  if (m.model == fe::MaterialModel::Anisotropic) {
+    if (m.voigt) j["voigt"] = *m.voigt;
+  } else {
+    j["young"] = m.young;
+    j["poisson"] = m.poisson;
+  }
+  return j;
+}
+
 }  // namespace
 
 driver::Problem parse_problem(std::string_view text, const std::string& source_name,
@@ -783,14 +851,20 @@ nlohmann::json to_json(const driver::Problem& p) {
   using nlohmann::json;
   json j;
   j["title"] = p.title;
-  j["mesh"] = {{"kind", enum_name(p.mesh.kind)}, {"size", p.mesh.size}, {"cells", p.mesh.cells}};
-  json& mat = j["material"];
-  mat["model"] = enum_name(p.material.model);
-  if (p.material.model == fe::MaterialModel::Anisotropic) {
-    if (p.material.voigt) mat["voigt"] = *p.material.voigt;
+  j["mesh"] = {{"kind", enum_name(p.mesh.kind)}};
+  if (p.mesh.kind == driver::MeshKind::Brick) {
+    j["mesh"]["size"] = p.mesh.size;
+    j["mesh"]["cells"] = p.mesh.cells;
   } else {
-    mat["young"] = p.material.young;
-    mat["poisson"] = p.material.poisson;
+    j["mesh"]["file"] = p.mesh.file;
+    if (p.mesh.size_factor) j["mesh"]["size_factor"] = *p.mesh.size_factor;
+  }
+  if (p.materials.empty()) {
+    j["material"] = material_json(p.material);
+  } else {
+    j["material"] = json::array();
+    for (const auto& m : p.materials)
+      j["material"].push_back(material_json(m));
   }
   j["volume_force"] = vec_json(p.volume_force);
   j["dirichlet"] = json::array();
@@ -798,7 +872,8 @@ nlohmann::json to_json(const driver::Problem& p) {
     std::string comps;
     for (int i = 0; i < 3; ++i)
       if (d.components[i]) comps += "xyz"[i];
-    j["dirichlet"].push_back({{"boundary", d.boundary}, {"components", comps}});
+    j["dirichlet"].push_back(
+        {{"boundary", d.boundary}, {"components", comps}, {"value", vec_json(d.value)}});
   }
   j["traction"] = json::array();
   for (const auto& t : p.traction)
@@ -818,6 +893,11 @@ nlohmann::json to_json(const driver::Problem& p) {
                     {"friction", fr}};
     if (c.model == contact::FrictionModel::Tresca) j["contact"]["slip_bound"] = c.slip_bound;
     if (c.start_slip_bound) j["contact"]["start_slip_bound"] = *c.start_slip_bound;
+    if (c.patch_size) j["contact"]["patch_size"] = *c.patch_size;
+    if (c.obstacle)
+      j["contact"]["obstacle"] = {{"kind", enum_name(c.obstacle->kind)},
+                                  {"point", vec_json(c.obstacle->point)},
+                                  {"normal", vec_json(c.obstacle->normal)}};
   }
   const auto& s = p.solver;
   j["solver"] = {{"outer_tol", s.outer_tol},
