@@ -352,15 +352,22 @@ void read_tagged_faces(const std::string& source, const GmshNodes& nodes,
   for (const auto& [group, name] : physical_groups(2)) {
     const int tag = static_cast<int>(mesh.tag_names.size());
     mesh.tag_names.push_back(name);
+    // MSH 2.2 repeats an element once per physical group it is in: keep one copy per group.
+    std::set<std::array<Index, 3>> in_group;
     for (int entity : entities_of_group(2, group)) {
       require_element_type(source, 2, entity, kGmshTriangle, kHowToGetLinearTriangles);
       std::vector<std::size_t> element_tags, node_tags;
       gmsh::model::mesh::getElementsByType(kGmshTriangle, element_tags, node_tags, entity);
-      for (std::size_t node : node_tags)
-        corners.push_back(nodes.index_of.at(node));
-      element_of_face.insert(element_of_face.end(), element_tags.begin(), element_tags.end());
-      mesh.face_tag.insert(mesh.face_tag.end(), element_tags.size(), tag);
-      mesh.face_entity.insert(mesh.face_entity.end(), element_tags.size(), entity);
+      for (size_t e = 0; e < element_tags.size(); ++e) {
+        std::array<Index, 3> triangle{};
+        for (size_t v = 0; v < kNodesPerTriangle; ++v)
+          triangle[v] = nodes.index_of.at(node_tags[kNodesPerTriangle * e + v]);
+        if (!in_group.insert(sorted_key(triangle[0], triangle[1], triangle[2])).second) continue;
+        corners.insert(corners.end(), triangle.begin(), triangle.end());
+        element_of_face.push_back(element_tags[e]);
+        mesh.face_tag.push_back(tag);
+        mesh.face_entity.push_back(entity);
+      }
     }
   }
   mesh.faces.resize(kNodesPerTriangle, static_cast<Index>(element_of_face.size()));

@@ -164,6 +164,36 @@ TEST(GmshFile, RegionsRoundTrip) {
   }
 }
 
+TEST(GmshFile, TriangleInTwoTagsRoundTrips) {
+  // The bottom's triangles also in a tag "contact", on the same entities; and faces of no entity.
+  TetMesh m = make_brick(BrickSpec{Vec3(2.0, 1.0, 1.0), {4, 2, 2}});
+  const std::vector<Index> bottom = m.faces_with_tag("z0");
+  const Index n = m.n_faces();
+  m.faces.conservativeResize(3, n + static_cast<Index>(bottom.size()));
+  m.tag_names.push_back("contact");
+  for (size_t i = 0; i < bottom.size(); ++i) {
+    m.faces.col(n + static_cast<Index>(i)) = m.faces.col(bottom[i]);
+    m.face_tag.push_back(static_cast<int>(m.tag_names.size()) - 1);
+    m.face_entity.push_back(m.face_entity[bottom[i]]);
+  }
+  for (Index f : m.faces_with_tag("x0"))
+    m.face_entity[f] = -1;
+  for (int version : {kMsh41, kMsh22}) {
+    const fs::path file = test_dir() / ("two_tags" + std::to_string(version) + ".msh");
+    write_gmsh(file, m, version);
+    const TetMesh back = read_gmsh(file);
+    EXPECT_EQ(back.n_faces(), m.n_faces()) << version;
+    EXPECT_EQ(faces_by_tag(back), faces_by_tag(m)) << version;
+    // The same grouping into entities (the -1 faces get a new entity of their own).
+    std::set<std::set<Key3>> groups, groups_back;
+    for (const auto& [e, faces] : faces_by_entity(m))
+      groups.insert(faces);
+    for (const auto& [e, faces] : faces_by_entity(back))
+      groups_back.insert(faces);
+    EXPECT_EQ(groups_back, groups) << version;
+  }
+}
+
 TEST(GmshFile, WriteRefusesBadVersionAndName) {
   const TetMesh m = make_brick(BrickSpec{Vec3(1, 1, 1), {1, 1, 1}});
   expect_input_error([&] { write_gmsh(test_dir() / "v3.msh", m, 30); }, {"v3.msh", "30"});
