@@ -20,6 +20,14 @@ target_link_libraries(fricon_cholmod INTERFACE ${CHOLMOD_LIBRARY} ${AMD_LIBRARY}
                       ${COLAMD_LIBRARY} ${CCOLAMD_LIBRARY} ${SUITESPARSE_CONFIG_LIBRARY}
                       ${OPENBLAS_LIBRARY})
 
+# Gmsh 4.x (Debian: libgmsh-dev) ships no CMake config either: its C++ API reads and writes the MSH
+# files and meshes .geo files (src/fricon/mesh/gmsh_file.cpp).
+find_path(GMSH_INCLUDE_DIR gmsh.h REQUIRED)
+find_library(GMSH_LIBRARY gmsh REQUIRED)
+add_library(fricon_gmsh INTERFACE)
+target_include_directories(fricon_gmsh SYSTEM INTERFACE ${GMSH_INCLUDE_DIR})
+target_link_libraries(fricon_gmsh INTERFACE ${GMSH_LIBRARY})
+
 # FCLIB (Debian: libfclib-dev, with HDF5): the problems of other codes (`fricon dual solve`).
 # Its config file clears CMAKE_CXX_STANDARD: restore ours.
 find_package(fclib 3 REQUIRED CONFIG)

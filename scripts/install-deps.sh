@@ -12,6 +12,8 @@ packages=(
   libtomlplusplus-dev libcli11-dev nlohmann-json3-dev libfmt-dev
   # the problems of other codes: FCLIB (HDF5)
   libfclib-dev
+  # meshes of other tools: the Gmsh C++ API (MSH files, .geo meshed on the fly)
+  libgmsh-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
   # reading results back (tests) and plots: Debian's Python packages for /usr/bin/python3

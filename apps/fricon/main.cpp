@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,8 @@
 #include "fricon/io/problem_file.hpp"
 #include "fricon/io/results.hpp"
 #include "fricon/linalg/blas.hpp"
+#include "fricon/mesh/brick.hpp"
+#include "fricon/mesh/gmsh_file.hpp"
 
 namespace {
 
@@ -369,6 +372,60 @@ int dual_solve(const DualSolveOptions& o) {
   return kConverged;
 }
 
+struct MeshOptions {
+  std::vector<double> size{3.0, 1.0, 1.0};
+  std::vector<fricon::Index> cells{12, 4, 4};
+  std::string out, file;
+  int msh_version = fricon::mesh::kMsh41;
+  bool binary = false;
+  double size_factor = 0.0;  // 0: not given
+};
+
+// `fricon mesh brick`: the structured brick of the paper (theory.md §7.2) as a Gmsh file.
+int mesh_brick(const MeshOptions& o) {
+  const fricon::mesh::BrickSpec spec{fricon::Vec3(o.size[0], o.size[1], o.size[2]),
+                                     {o.cells[0], o.cells[1], o.cells[2]}};
+  const fricon::mesh::TetMesh mesh = fricon::mesh::make_brick(spec);
+  fricon::mesh::write_gmsh(o.out, mesh, o.msh_version, o.binary);
+  fmt::print("{}: {} nodes, {} tetrahedra, {} boundary triangles (MSH {} {})\n", o.out,
+             mesh.n_nodes(), mesh.n_tets(), mesh.n_faces(),
+             o.msh_version == fricon::mesh::kMsh41 ? "4.1" : "2.2", o.binary ? "binary" : "ASCII");
+  return kConverged;
+}
+
+// `fricon mesh info FILE`: the sizes of a Gmsh mesh as fricon reads it.
+int mesh_info(const MeshOptions& o) {
+  const fricon::mesh::TetMesh mesh = o.size_factor > 0
+                                         ? fricon::mesh::read_gmsh(o.file, o.size_factor)
+                                         : fricon::mesh::read_gmsh(o.file);
+  fmt::print("{}: {} nodes, {} tetrahedra, {} boundary triangles\n", o.file, mesh.n_nodes(),
+             mesh.n_tets(), mesh.n_faces());
+  std::vector<fricon::Index> tets_in(static_cast<size_t>(mesh.n_regions()), 0);
+  std::vector<double> volume_of(tets_in.size(), 0.0);
+  for (fricon::Index t = 0; t < mesh.n_tets(); ++t) {
+    ++tets_in[static_cast<size_t>(mesh.region(t))];
+    volume_of[static_cast<size_t>(mesh.region(t))] += fricon::mesh::tet_volume(mesh, t);
+  }
+  fmt::print("  regions\n");
+  for (int r = 0; r < mesh.n_regions(); ++r)
+    fmt::print("    {:<16} {:>10} tetrahedra, volume {:.6e} m^3\n",
+               mesh.region_names.empty() ? "body" : mesh.region_names[static_cast<size_t>(r)],
+               tets_in[static_cast<size_t>(r)], volume_of[static_cast<size_t>(r)]);
+  fmt::print("  boundary tags\n");
+  for (const auto& tag : mesh.tag_names) {
+    const std::vector<fricon::Index> faces = mesh.faces_with_tag(tag);
+    double area = 0.0;
+    std::set<int> entities;
+    for (fricon::Index f : faces) {
+      area += fricon::mesh::face_area(mesh, f);
+      if (!mesh.face_entity.empty()) entities.insert(mesh.face_entity[static_cast<size_t>(f)]);
+    }
+    fmt::print("    {:<16} {:>10} triangles, area {:.6e} m^2, {} entities\n", tag, faces.size(),
+               area, entities.size());
+  }
+  return kConverged;
+}
+
 // Everything the command line sets, and which subcommand it chose.
 struct CommandLine {
   int threads = 0;
@@ -378,7 +435,10 @@ struct CommandLine {
   std::string plot_dir, plot_out;
   PaperOptions paper;
   DualSolveOptions dual;
+  MeshOptions mesh;
   CLI::App* dual_solve_cmd = nullptr;
+  CLI::App* mesh_brick_cmd = nullptr;
+  CLI::App* mesh_info_cmd = nullptr;
   CLI::App* solve_cmd = nullptr;
   CLI::App* check_cmd = nullptr;
   CLI::App* plot_cmd = nullptr;
@@ -471,6 +531,37 @@ void define_dual(CLI::App& app, CommandLine& cl) {
       ->check(CLI::IsMember(enum_names<fricon::qp::MpgpVariant>()));
 }
 
+void define_mesh(CLI::App& app, CommandLine& cl) {
+  auto* mesh = app.add_subcommand("mesh", "Meshes as Gmsh files (MSH 2.2 and 4.1, .geo)");
+  mesh->require_subcommand(1);
+  cl.mesh_brick_cmd = mesh->add_subcommand(
+      "brick",
+      "Write the structured brick of the paper (5 tetrahedra per cell; boundary tags x0 ... z1,\n"
+      "each side's 2 x 2-cell blocks one Gmsh surface) as a Gmsh file");
+  auto* brick = cl.mesh_brick_cmd;
+  brick->add_option("--size", cl.mesh.size, "Edge lengths [m]: X,Y,Z")
+      ->delimiter(',')
+      ->expected(3)
+      ->check(CLI::PositiveNumber);
+  brick->add_option("--cells", cl.mesh.cells, "Cells per direction: NX,NY,NZ")
+      ->delimiter(',')
+      ->expected(3)
+      ->check(CLI::Range(fricon::Index{1}, fricon::Index{100000}));
+  brick->add_option("--out,-o", cl.mesh.out, "Output file (.msh)")->required();
+  brick->add_option("--msh-version", cl.mesh.msh_version, "MSH format version: 41 or 22")
+      ->check(CLI::IsMember({fricon::mesh::kMsh41, fricon::mesh::kMsh22}));
+  brick->add_flag("--binary", cl.mesh.binary, "Write a binary MSH file");
+  cl.mesh_info_cmd = mesh->add_subcommand(
+      "info",
+      "Read a Gmsh file (.msh, or .geo meshed on the fly) as fricon does and print its nodes,\n"
+      "tetrahedra, regions (tetrahedra, volume) and boundary tags (triangles, area, entities)");
+  cl.mesh_info_cmd->add_option("file", cl.mesh.file, "Mesh file (.msh or .geo)")->required();
+  cl.mesh_info_cmd
+      ->add_option("--size-factor", cl.mesh.size_factor,
+                   "Mesh.MeshSizeFactor for a .geo file (smaller: finer)")
+      ->check(CLI::PositiveNumber);
+}
+
 // The BLAS threads: --threads, else OPENBLAS_NUM_THREADS as OpenBLAS read it, else the cores the
 // machine's load leaves free.
 void set_blas_threads(int threads) {
@@ -491,6 +582,8 @@ int dispatch(CommandLine& cl, int argc, char** argv) {
   if (*cl.paper_cmd) return paper(cl.paper);
   if (*cl.plot_cmd) return plot(cl.plot_dir, cl.plot_out);
   if (*cl.dual_solve_cmd) return dual_solve(cl.dual);
+  if (*cl.mesh_brick_cmd) return mesh_brick(cl.mesh);
+  if (*cl.mesh_info_cmd) return mesh_info(cl.mesh);
   return kInternalError;
 }
 
@@ -516,6 +609,7 @@ int main(int argc, char** argv) {
   define_plot(app, cl);
   define_paper(app, cl);
   define_dual(app, cl);
+  define_mesh(app, cl);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,11 +1,54 @@
 #include "fricon/mesh/brick.hpp"
 
-#include <fmt/format.h>
+#include <algorithm>
 #include <cmath>
+
+#include <fmt/format.h>
 
 #include "fricon/core/error.hpp"
 
 namespace fricon::mesh {
+
+namespace {
+
+// Each side of the box is cut into blocks of kBlockCells x kBlockCells grid cells, each block one
+// face entity (the paper's chessboard of patches, theory.md §7.2).
+constexpr Index kBlockCells = 2;
+
+Index blocks_along(Index cells) {
+  return (cells + kBlockCells - 1) / kBlockCells;
+}
+
+// Entity numbers: 1, 2, ... block by block, side by side in the order x0, x1, y0, y1, z0, z1.
+void assign_block_entities(const BrickSpec& spec, TetMesh& mesh) {
+  std::array<int, 6> first_entity{};
+  int next = 1;
+  for (int side = 0; side < 6; ++side) {
+    const int d = side / 2;
+    first_entity[side] = next;
+    next += static_cast<int>(blocks_along(spec.cells[(d + 1) % 3]) *
+                             blocks_along(spec.cells[(d + 2) % 3]));
+  }
+  mesh.face_entity.assign(static_cast<size_t>(mesh.n_faces()), -1);
+  for (Index f = 0; f < mesh.n_faces(); ++f) {
+    const int side = mesh.face_tag[f];
+    const int d = side / 2;
+    const Vec3 centroid = (mesh.nodes.col(mesh.faces(0, f)) + mesh.nodes.col(mesh.faces(1, f)) +
+                           mesh.nodes.col(mesh.faces(2, f))) /
+                          3.0;
+    auto block = [&](int axis) {
+      const Real h = spec.size[axis] / static_cast<Real>(spec.cells[axis]);
+      const Index cell = std::clamp(static_cast<Index>(std::floor(centroid[axis] / h)), Index{0},
+                                    spec.cells[axis] - 1);
+      return cell / kBlockCells;
+    };
+    const int p = (d + 1) % 3, q = (d + 2) % 3;
+    mesh.face_entity[f] =
+        first_entity[side] + static_cast<int>(block(p) + blocks_along(spec.cells[p]) * block(q));
+  }
+}
+
+}  // namespace
 
 TetMesh make_brick(const BrickSpec& spec) {
   for (int d = 0; d < 3; ++d) {
@@ -78,6 +121,7 @@ TetMesh make_brick(const BrickSpec& spec) {
     }
     FRICON_CHECK(mesh.face_tag[f] >= 0, "brick boundary face " << f << " lies on no side");
   }
+  assign_block_entities(spec, mesh);
   return mesh;
 }
 

@@ -74,6 +74,20 @@ Vec3 face_normal(const TetMesh& mesh, Index f) {
   return face_cross(mesh, f).normalized();
 }
 
+namespace {
+// tet_region is empty or gives each tetrahedron a valid index into region_names.
+void check_regions(const TetMesh& mesh, const std::string& source) {
+  if (mesh.tet_region.empty()) return;
+  if (mesh.tet_region.size() != static_cast<size_t>(mesh.n_tets()))
+    throw InputError(fmt::format("{}: {} tetrahedra but {} tetrahedron regions", source,
+                                 mesh.n_tets(), mesh.tet_region.size()));
+  for (Index t = 0; t < mesh.n_tets(); ++t)
+    if (mesh.tet_region[t] < 0 || mesh.tet_region[t] >= static_cast<int>(mesh.region_names.size()))
+      throw InputError(fmt::format("{}: tetrahedron {} has region {} of {}", source, t,
+                                   mesh.tet_region[t], mesh.region_names.size()));
+}
+}  // namespace
+
 void check_mesh(const TetMesh& mesh, const std::string& source, Real relative_tolerance) {
   if (mesh.n_nodes() == 0 || mesh.n_tets() == 0)
     throw InputError(fmt::format("{}: the mesh is empty ({} nodes, {} tetrahedra)", source,
@@ -103,6 +117,10 @@ void check_mesh(const TetMesh& mesh, const std::string& source, Real relative_to
   if (mesh.face_tag.size() != static_cast<size_t>(mesh.n_faces()))
     throw InputError(fmt::format("{}: {} boundary faces but {} face tags", source, mesh.n_faces(),
                                  mesh.face_tag.size()));
+  if (!mesh.face_entity.empty() && mesh.face_entity.size() != static_cast<size_t>(mesh.n_faces()))
+    throw InputError(fmt::format("{}: {} boundary faces but {} face entities", source,
+                                 mesh.n_faces(), mesh.face_entity.size()));
+  check_regions(mesh, source);
   for (Index f = 0; f < mesh.n_faces(); ++f) {
     for (int v = 0; v < 3; ++v)
       if (mesh.faces(v, f) < 0 || mesh.faces(v, f) >= n)

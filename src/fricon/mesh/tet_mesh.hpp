@@ -69,7 +69,8 @@ Vec3 face_normal(const TetMesh& mesh, Index f);
 
 /// Checks that the mesh is usable: non-empty, node indices in range, finite coordinates, every
 /// tetrahedron with volume > relative_tolerance * (its longest edge)^3, boundary faces with
-/// positive area and valid tags. Throws InputError naming the first offending entity and
+/// positive area and valid tags, face_entity empty or one per face, tet_region empty or one valid
+/// region per tetrahedron. Throws InputError naming the first offending entity and
 /// `source` (a file name or "brick generator").
 void check_mesh(const TetMesh& mesh, const std::string& source, Real relative_tolerance = 1e-12);
 

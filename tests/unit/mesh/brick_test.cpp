@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <map>
+#include <set>
 
 #include "fricon/core/error.hpp"
 #include "fricon/mesh/brick.hpp"
@@ -89,6 +90,48 @@ TEST(Brick, ContactFaceDiagonalsFollowParity) {
     for (Index i = 1; i < spec.cells[0]; ++i)
       EXPECT_EQ(triangles_at[brick_node(spec, i, j, 0)], (i + j) % 2 == 0 ? 8 : 4)
           << "node (" << i << "," << j << ")";
+}
+
+TEST(Brick, EachSideIsAChessboardOfTwoByTwoBlocks) {
+  // Even counts: each block of a side is 2 x 2 cells, i.e. 8 triangles of area 4 cell faces.
+  const BrickSpec spec{Vec3(3.0, 1.0, 2.0), {6, 2, 4}};
+  const TetMesh m = make_brick(spec);
+  ASSERT_EQ(m.face_entity.size(), static_cast<size_t>(m.n_faces()));
+  const std::array<Real, 3> h{3.0 / 6, 1.0 / 2, 2.0 / 4};
+  std::map<int, Real> area_of;
+  std::map<int, std::set<int>> entities_of_tag;
+  for (Index f = 0; f < m.n_faces(); ++f) {
+    area_of[m.face_entity[f]] += face_area(m, f);
+    entities_of_tag[m.face_tag[f]].insert(m.face_entity[f]);
+  }
+  for (int side = 0; side < 6; ++side) {
+    const int d = side / 2, p = (d + 1) % 3, q = (d + 2) % 3;
+    EXPECT_EQ(static_cast<Index>(entities_of_tag[side].size()),
+              (spec.cells[p] / 2) * (spec.cells[q] / 2))
+        << m.tag_names[side];
+    for (int e : entities_of_tag[side])
+      EXPECT_NEAR(area_of[e], 4 * h[p] * h[q], 1e-13) << m.tag_names[side] << " entity " << e;
+  }
+  // Numbered 1, 2, ... with no entity on two sides.
+  EXPECT_EQ(area_of.begin()->first, 1);
+  EXPECT_EQ(area_of.rbegin()->first, static_cast<int>(area_of.size()));
+}
+
+TEST(Brick, OddCellCountsEndWithNarrowBlocks) {
+  const BrickSpec spec{Vec3(1, 1, 1), {3, 5, 2}};
+  const TetMesh m = make_brick(spec);
+  std::map<int, std::set<int>> entities_of_tag;
+  std::map<int, int> tag_of_entity;
+  for (Index f = 0; f < m.n_faces(); ++f) {
+    entities_of_tag[m.face_tag[f]].insert(m.face_entity[f]);
+    const auto [it, inserted] = tag_of_entity.emplace(m.face_entity[f], m.face_tag[f]);
+    EXPECT_EQ(it->second, m.face_tag[f]) << "entity " << m.face_entity[f] << " on two sides";
+  }
+  // Blocks per direction: 3 cells -> 2, 5 -> 3, 2 -> 1.
+  const std::map<std::string, size_t> expected{{"x0", 3}, {"x1", 3}, {"y0", 2},
+                                               {"y1", 2}, {"z0", 6}, {"z1", 6}};
+  for (const auto& [tag, count] : expected)
+    EXPECT_EQ(entities_of_tag[m.find_tag(tag)].size(), count) << tag;
 }
 
 TEST(Brick, RejectsBadSizes) {

@@ -1,0 +1,61 @@
+#pragma once
+// mesh: meshes of Gmsh, read and written through the Gmsh C++ API (libgmsh).
+//
+// A Gmsh model maps onto a TetMesh as follows:
+//   - the 4-node tetrahedra of all volumes are the tetrahedra; a physical group of dimension 3 is
+//     a region (named by its physical name, or "3:<tag>" when it has none);
+//   - a physical group of dimension 2 is a boundary tag (its name, or "2:<tag>"); each of its
+//     3-node triangles is one boundary face with that tag, and the elementary surface it lies on
+//     is the face's entity (so `[contact] patches = "mesh"` makes each surface one patch).
+// Coordinates are taken as they are in the file, in metres.
+//
+// Gmsh keeps global state: these functions initialise and finalise it themselves and must not be
+// called while the caller uses the Gmsh API, nor from two threads at once.
+
+#include <filesystem>
+#include <optional>
+
+#include "fricon/mesh/tet_mesh.hpp"
+
+namespace fricon::mesh {
+
+/// Reads a Gmsh mesh: an MSH file (versions 2.2 and 4.1, ASCII or binary), or a .geo file, which
+/// is meshed in 3D on the fly (after setting Mesh.MeshSizeFactor to `size_factor`, if given;
+/// size_factor > 0 and only for a .geo file).
+///
+/// Returns the mesh with its nodes renumbered 0..n-1 in the order of their Gmsh tags, its
+/// tetrahedra positively oriented, its tagged triangles oriented outward (the right-hand normal
+/// points away from the fourth vertex of the tetrahedron they bound; a triangle between two
+/// tetrahedra is oriented against the first), a triangle in several 2D physical groups listed
+/// once per group, face_entity the Gmsh surface tag of each face, and the regions (tet_region,
+/// region_names) of the 3D physical groups: tetrahedra in none of them form a region "body";
+/// without any 3D physical group tet_region and region_names are empty (one region, "body").
+///
+/// Throws InputError naming the file, and where it applies the Gmsh element or node tag, if the
+/// file does not exist or Gmsh cannot read it (with Gmsh's own message), if it has no volume
+/// element, a volume element other than a 4-node tetrahedron (second order, hexahedra, prisms,
+/// pyramids), a tagged surface element other than a 3-node triangle, an inverted or degenerate
+/// tetrahedron, a node of no tetrahedron, a tagged triangle that is no face of a tetrahedron, or
+/// a face shared by three or more tetrahedra (a non-conforming mesh); and for a size_factor given
+/// with an MSH file or not positive. Finally runs check_mesh.
+TetMesh read_gmsh(const std::filesystem::path& file, std::optional<Real> size_factor = {});
+
+/// MSH format versions write_gmsh can write.
+inline constexpr int kMsh22 = 22;
+inline constexpr int kMsh41 = 41;
+
+/// Writes `mesh` as an MSH file of version `msh_version` (kMsh41 or kMsh22), ASCII or binary.
+/// The file name must end in ".msh". Each region is one discrete volume and a physical group of
+/// dimension 3 (its name, or "body" for a mesh with one unnamed region); each distinct
+/// face_entity value is one discrete surface, with that value as its Gmsh tag where it is
+/// positive (faces with entity -1 get one new surface per tag); each boundary tag with faces is
+/// a physical group of dimension 2. Node i is Gmsh node i+1, so read_gmsh gives back the same
+/// nodes, tetrahedra, tags and face entities. Empty tags are not written (Gmsh cannot store them).
+///
+/// The file is written atomically (a temporary file in the same folder, then renamed); the
+/// folder is created if needed. Throws InputError for a bad version or file name, fricon::Error
+/// naming the file if Gmsh or the file system fails.
+void write_gmsh(const std::filesystem::path& file, const TetMesh& mesh, int msh_version = kMsh41,
+                bool binary = false);
+
+}  // namespace fricon::mesh

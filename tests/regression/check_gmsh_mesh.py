@@ -1,0 +1,62 @@
+"""`fricon mesh brick` writes the paper's brick as a Gmsh file; `fricon mesh info` reads it back.
+
+The counts printed by `mesh info` must be those of the brick: (nx+1)(ny+1)(nz+1) nodes,
+5 nx ny nz tetrahedra, 2 triangles per boundary square, and per side one entity per 2 x 2 block.
+
+Usage: check_gmsh_mesh.py FRICON UNUSED OUTDIR
+"""
+import pathlib
+import re
+import subprocess
+import sys
+
+exe, out = sys.argv[1], pathlib.Path(sys.argv[3])
+out.mkdir(parents=True, exist_ok=True)
+failures = []
+nx, ny, nz = 6, 4, 2
+blocks = {"x": (ny // 2) * (nz // 2), "y": (nz // 2) * (nx // 2), "z": (nx // 2) * (ny // 2)}
+squares = {"x": ny * nz, "y": nz * nx, "z": nx * ny}
+sizes = {"x": 1.0 * 0.5, "y": 0.5 * 3.0, "z": 3.0 * 1.0}  # area of the side normal to each axis
+
+
+def run(args):
+    r = subprocess.run([exe] + args, capture_output=True, text=True)
+    if r.returncode != 0:
+        failures.append(f"{args}: exit {r.returncode}\n{r.stdout}{r.stderr}")
+    return r.stdout
+
+
+for version, binary in (("41", False), ("41", True), ("22", False)):
+    msh = out / f"brick{version}{'b' if binary else ''}.msh"
+    run(["mesh", "brick", "--size", "3,1,0.5", "--cells", f"{nx},{ny},{nz}", "--out", str(msh),
+         "--msh-version", version] + (["--binary"] if binary else []))
+    info = run(["mesh", "info", str(msh)])
+    head = re.search(r"(\d+) nodes, (\d+) tetrahedra, (\d+) boundary triangles", info)
+    if not head:
+        failures.append(f"{msh}: no size line in\n{info}")
+        continue
+    nodes, tets, triangles = map(int, head.groups())
+    if nodes != (nx + 1) * (ny + 1) * (nz + 1) or tets != 5 * nx * ny * nz:
+        failures.append(f"{msh}: {nodes} nodes, {tets} tetrahedra")
+    if triangles != 4 * sum(squares.values()):
+        failures.append(f"{msh}: {triangles} boundary triangles")
+    region = re.search(r"body\s+(\d+) tetrahedra, volume (\S+) m\^3", info)
+    if not region or int(region.group(1)) != tets or abs(float(region.group(2)) - 1.5) > 1e-12:
+        failures.append(f"{msh}: region line wrong in\n{info}")
+    for axis in "xyz":
+        for side in "01":
+            m = re.search(rf"{axis}{side}\s+(\d+) triangles, area (\S+) m\^2, (\d+) entities", info)
+            expected = (2 * squares[axis], sizes[axis], blocks[axis])
+            if not m or (int(m.group(1)), int(m.group(3))) != (expected[0], expected[2]) or abs(
+                    float(m.group(2)) - expected[1]) > 1e-12:
+                failures.append(f"{msh}: tag {axis}{side} expected {expected} in\n{info}")
+
+r = subprocess.run([exe, "mesh", "info", str(out / "missing.msh")], capture_output=True,
+                   text=True)
+if r.returncode != 1 or "missing.msh: no such file" not in r.stderr:
+    failures.append(f"mesh info of a missing file: exit {r.returncode}\n{r.stderr}")
+
+if failures:
+    print("\n".join(failures))
+    sys.exit(1)
+print("fricon mesh brick / mesh info: counts as expected")

@@ -1,0 +1,364 @@
+// Tests of the Gmsh reader and writer: round trips of the brick through every MSH flavour, .geo
+// files meshed on the fly (volumes, areas, outward normals, regions) and the refused meshes.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "fricon/core/error.hpp"
+#include "fricon/mesh/brick.hpp"
+#include "fricon/mesh/gmsh_file.hpp"
+
+using namespace fricon;
+using namespace fricon::mesh;
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path test_dir() {
+  const fs::path dir = fs::temp_directory_path() / "fricon_gmsh_file_test";
+  fs::create_directories(dir);
+  return dir;
+}
+
+fs::path write_file(const std::string& name, const std::string& content) {
+  const fs::path path = test_dir() / name;
+  std::ofstream(path) << content;
+  return path;
+}
+
+// Runs `f`, which must throw InputError whose message contains every one of `parts`.
+void expect_input_error(const std::function<void()>& f, const std::vector<std::string>& parts) {
+  try {
+    f();
+    ADD_FAILURE() << "no InputError thrown";
+  } catch (const InputError& e) {
+    for (const auto& part : parts)
+      EXPECT_NE(std::string(e.what()).find(part), std::string::npos)
+          << "'" << part << "' not in: " << e.what();
+  }
+}
+
+using Key3 = std::array<Index, 3>;
+using Key4 = std::array<Index, 4>;
+
+std::set<Key4> tet_set(const TetMesh& m) {
+  std::set<Key4> s;
+  for (Index t = 0; t < m.n_tets(); ++t) {
+    Key4 k{m.tets(0, t), m.tets(1, t), m.tets(2, t), m.tets(3, t)};
+    std::sort(k.begin(), k.end());
+    s.insert(k);
+  }
+  return s;
+}
+
+Key3 face_key(const TetMesh& m, Index f) {
+  Key3 k{m.faces(0, f), m.faces(1, f), m.faces(2, f)};
+  std::sort(k.begin(), k.end());
+  return k;
+}
+
+// The faces of each tag, by tag name.
+std::map<std::string, std::set<Key3>> faces_by_tag(const TetMesh& m) {
+  std::map<std::string, std::set<Key3>> s;
+  for (Index f = 0; f < m.n_faces(); ++f)
+    s[m.tag_names[m.face_tag[f]]].insert(face_key(m, f));
+  return s;
+}
+
+// The faces of each entity.
+std::map<int, std::set<Key3>> faces_by_entity(const TetMesh& m) {
+  std::map<int, std::set<Key3>> s;
+  for (Index f = 0; f < m.n_faces(); ++f)
+    s[m.face_entity[f]].insert(face_key(m, f));
+  return s;
+}
+
+Real total_volume(const TetMesh& m) {
+  Real v = 0;
+  for (Index t = 0; t < m.n_tets(); ++t)
+    v += tet_volume(m, t);
+  return v;
+}
+
+Real tag_area(const TetMesh& m, const std::string& tag) {
+  Real a = 0;
+  for (Index f : m.faces_with_tag(tag))
+    a += face_area(m, f);
+  return a;
+}
+
+Vec3 tag_area_normal(const TetMesh& m, const std::string& tag) {
+  Vec3 s = Vec3::Zero();
+  for (Index f : m.faces_with_tag(tag))
+    s += face_area(m, f) * face_normal(m, f);
+  return s;
+}
+
+// @sect: round trips.
+
+void expect_round_trip(int version, bool binary, const std::string& name) {
+  const TetMesh brick = make_brick(BrickSpec{Vec3(3.0, 1.0, 1.0), {6, 2, 3}});
+  const fs::path file = test_dir() / name;
+  write_gmsh(file, brick, version, binary);
+  const TetMesh back = read_gmsh(file);
+  ASSERT_EQ(back.n_nodes(), brick.n_nodes());
+  EXPECT_LE((back.nodes - brick.nodes).cwiseAbs().maxCoeff(), 1e-15);
+  EXPECT_EQ(tet_set(back), tet_set(brick));
+  EXPECT_EQ(back.tag_names, brick.tag_names);
+  EXPECT_EQ(faces_by_tag(back), faces_by_tag(brick));
+  EXPECT_EQ(faces_by_entity(back), faces_by_entity(brick));
+  EXPECT_EQ(back.n_regions(), 1);
+  EXPECT_EQ(back.find_region("body"), 0);
+  for (const auto& [tag, n] :
+       std::map<std::string, Vec3>{{"x0", -Vec3::UnitX()}, {"z1", Vec3::UnitZ()}})
+    for (Index f : back.faces_with_tag(tag))
+      EXPECT_NEAR((face_normal(back, f) - n).norm(), 0.0, 1e-14) << tag;
+  for (const auto& entry : fs::directory_iterator(test_dir()))
+    EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos)
+        << "temporary file left behind: " << entry.path();
+}
+
+TEST(GmshFile, BrickRoundTripMsh41Ascii) {
+  expect_round_trip(kMsh41, false, "brick41.msh");
+}
+
+TEST(GmshFile, BrickRoundTripMsh41Binary) {
+  expect_round_trip(kMsh41, true, "brick41b.msh");
+}
+
+TEST(GmshFile, BrickRoundTripMsh22Ascii) {
+  expect_round_trip(kMsh22, false, "brick22.msh");
+}
+
+TEST(GmshFile, RegionsRoundTrip) {
+  TetMesh m = make_brick(BrickSpec{Vec3(2.0, 1.0, 1.0), {2, 1, 1}});
+  m.region_names = {"left", "right"};
+  m.tet_region.resize(static_cast<size_t>(m.n_tets()));
+  for (Index t = 0; t < m.n_tets(); ++t)
+    m.tet_region[t] = m.nodes(0, m.tets(0, t)) + m.nodes(0, m.tets(1, t)) +
+                                  m.nodes(0, m.tets(2, t)) + m.nodes(0, m.tets(3, t)) <
+                              4.0
+                          ? 0
+                          : 1;
+  const fs::path file = test_dir() / "regions.msh";
+  write_gmsh(file, m);
+  const TetMesh back = read_gmsh(file);
+  EXPECT_EQ(back.region_names, m.region_names);
+  std::map<Key4, std::string> region_of;
+  for (Index t = 0; t < m.n_tets(); ++t) {
+    Key4 k{m.tets(0, t), m.tets(1, t), m.tets(2, t), m.tets(3, t)};
+    std::sort(k.begin(), k.end());
+    region_of[k] = m.region_names[m.tet_region[t]];
+  }
+  for (Index t = 0; t < back.n_tets(); ++t) {
+    Key4 k{back.tets(0, t), back.tets(1, t), back.tets(2, t), back.tets(3, t)};
+    std::sort(k.begin(), k.end());
+    EXPECT_EQ(back.region_names[back.region(t)], region_of[k]);
+  }
+}
+
+TEST(GmshFile, TriangleInTwoTagsRoundTrips) {
+  // The bottom's triangles also in a tag "contact", on the same entities; and faces of no entity.
+  TetMesh m = make_brick(BrickSpec{Vec3(2.0, 1.0, 1.0), {4, 2, 2}});
+  const std::vector<Index> bottom = m.faces_with_tag("z0");
+  const Index n = m.n_faces();
+  m.faces.conservativeResize(3, n + static_cast<Index>(bottom.size()));
+  m.tag_names.push_back("contact");
+  for (size_t i = 0; i < bottom.size(); ++i) {
+    m.faces.col(n + static_cast<Index>(i)) = m.faces.col(bottom[i]);
+    m.face_tag.push_back(static_cast<int>(m.tag_names.size()) - 1);
+    m.face_entity.push_back(m.face_entity[bottom[i]]);
+  }
+  for (Index f : m.faces_with_tag("x0"))
+    m.face_entity[f] = -1;
+  for (int version : {kMsh41, kMsh22}) {
+    const fs::path file = test_dir() / ("two_tags" + std::to_string(version) + ".msh");
+    write_gmsh(file, m, version);
+    const TetMesh back = read_gmsh(file);
+    EXPECT_EQ(back.n_faces(), m.n_faces()) << version;
+    EXPECT_EQ(faces_by_tag(back), faces_by_tag(m)) << version;
+    // The same grouping into entities (the -1 faces get a new entity of their own).
+    std::set<std::set<Key3>> groups, groups_back;
+    for (const auto& [e, faces] : faces_by_entity(m))
+      groups.insert(faces);
+    for (const auto& [e, faces] : faces_by_entity(back))
+      groups_back.insert(faces);
+    EXPECT_EQ(groups_back, groups) << version;
+  }
+}
+
+TEST(GmshFile, WriteRefusesBadVersionAndName) {
+  const TetMesh m = make_brick(BrickSpec{Vec3(1, 1, 1), {1, 1, 1}});
+  expect_input_error([&] { write_gmsh(test_dir() / "v3.msh", m, 30); }, {"v3.msh", "30"});
+  expect_input_error([&] { write_gmsh(test_dir() / "mesh.vtk", m); }, {"mesh.vtk", ".msh"});
+}
+
+// @sect: .geo files meshed on the fly.
+
+const char* const kBoxGeo = R"(SetFactory("OpenCASCADE");
+Box(1) = {0,0,0, 2,1,1};
+Mesh.MeshSizeMax = 0.4;
+Physical Volume("solid") = {1};
+Physical Surface("bottom") = {5};
+Physical Surface("top") = {6};
+Physical Surface("all") = {1, 2, 3, 4, 5, 6};
+)";
+
+TEST(GmshFile, GeoBoxIsMeshedWithOutwardFaces) {
+  const TetMesh m = read_gmsh(write_file("box.geo", kBoxGeo));
+  EXPECT_NEAR(total_volume(m), 2.0, 1e-12);
+  EXPECT_EQ(m.region_names, std::vector<std::string>{"solid"});
+  EXPECT_NEAR(tag_area(m, "bottom"), 2.0, 1e-12);
+  EXPECT_NEAR(tag_area(m, "top"), 2.0, 1e-12);
+  EXPECT_NEAR(tag_area(m, "all"), 10.0, 1e-12);
+  EXPECT_NEAR(tag_area_normal(m, "all").norm(), 0.0, 1e-12);
+  for (Index f : m.faces_with_tag("bottom"))
+    EXPECT_NEAR((face_normal(m, f) + Vec3::UnitZ()).norm(), 0.0, 1e-12);
+  // The bottom triangles are in two groups: listed once in each, on the same entity.
+  EXPECT_EQ(static_cast<Index>(m.faces_with_tag("all").size()),
+            m.n_faces() - static_cast<Index>(m.faces_with_tag("bottom").size() +
+                                             m.faces_with_tag("top").size()));
+  std::set<int> bottom_entities;
+  for (Index f : m.faces_with_tag("bottom"))
+    bottom_entities.insert(m.face_entity[f]);
+  EXPECT_EQ(bottom_entities, std::set<int>{5});
+  std::set<int> all_entities;
+  for (Index f : m.faces_with_tag("all"))
+    all_entities.insert(m.face_entity[f]);
+  EXPECT_EQ(all_entities.size(), 6u);
+}
+
+TEST(GmshFile, SizeFactorRefines) {
+  const fs::path geo = write_file("box_factor.geo", kBoxGeo);
+  EXPECT_GT(read_gmsh(geo, 0.5).n_tets(), read_gmsh(geo, 1.0).n_tets());
+}
+
+TEST(GmshFile, SizeFactorOnlyForGeo) {
+  const fs::path file = test_dir() / "factor.msh";
+  write_gmsh(file, make_brick(BrickSpec{Vec3(1, 1, 1), {1, 1, 1}}));
+  expect_input_error([&] { read_gmsh(file, 0.5); }, {"factor.msh", ".geo"});
+}
+
+TEST(GmshFile, SphereVolumeConverges) {
+  const fs::path geo = write_file("sphere.geo", R"(SetFactory("OpenCASCADE");
+Sphere(1) = {0,0,0,1};
+Mesh.MeshSizeMax = 0.5;
+)");
+  const Real exact = 4.0 / 3.0 * M_PI;
+  const Real coarse = std::abs(total_volume(read_gmsh(geo, 1.0)) - exact);
+  const Real fine = std::abs(total_volume(read_gmsh(geo, 0.5)) - exact);
+  EXPECT_LT(fine, coarse);
+  EXPECT_LT(fine / exact, 0.05);
+}
+
+TEST(GmshFile, TwoPhysicalVolumesAreTwoRegions) {
+  const TetMesh m = read_gmsh(write_file("two.geo", R"(SetFactory("OpenCASCADE");
+Box(1) = {0,0,0, 1,1,1};
+Box(2) = {1,0,0, 1,1,1};
+Coherence;
+Mesh.MeshSizeMax = 0.5;
+Physical Volume("left") = {1};
+Physical Volume(7) = {2};
+)"));
+  ASSERT_EQ(m.n_regions(), 2);
+  EXPECT_EQ(m.region_names, (std::vector<std::string>{"left", "3:7"}));
+  std::vector<Real> volume(2, 0.0);
+  for (Index t = 0; t < m.n_tets(); ++t)
+    volume[m.region(t)] += tet_volume(m, t);
+  EXPECT_NEAR(volume[0], 1.0, 1e-12);
+  EXPECT_NEAR(volume[1], 1.0, 1e-12);
+}
+
+// @sect: refused meshes.
+
+TEST(GmshFile, RefusesSecondOrder) {
+  const fs::path geo = write_file("order2.geo", R"(SetFactory("OpenCASCADE");
+Box(1) = {0,0,0, 1,1,1};
+Mesh.MeshSizeMax = 1;
+Mesh.ElementOrder = 2;
+)");
+  expect_input_error([&] { read_gmsh(geo); },
+                     {"order2.geo", "Tetrahedron 10", "Mesh.ElementOrder = 1"});
+}
+
+const char* const kHexMsh = R"($MeshFormat
+2.2 0 8
+$EndMeshFormat
+$Nodes
+8
+1 0 0 0
+2 1 0 0
+3 1 1 0
+4 0 1 0
+5 0 0 1
+6 1 0 1
+7 1 1 1
+8 0 1 1
+$EndNodes
+$Elements
+1
+3 5 2 0 1 1 2 3 4 5 6 7 8
+$EndElements
+)";
+
+TEST(GmshFile, RefusesHexahedra) {
+  expect_input_error([&] { read_gmsh(write_file("hex.msh", kHexMsh)); },
+                     {"hex.msh", "Hexahedron", "Recombine"});
+}
+
+// One tetrahedron (Gmsh element 7) on nodes 1-4, then `extra` nodes and elements.
+std::string one_tet_msh(const std::string& tet_nodes, const std::string& extra_nodes = "",
+                        int n_extra_nodes = 0, const std::string& extra_elements = "",
+                        int n_extra_elements = 0) {
+  return "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n1\n2 3 \"contact\"\n"
+         "$EndPhysicalNames\n$Nodes\n" +
+         std::to_string(4 + n_extra_nodes) + "\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n" +
+         extra_nodes + "$EndNodes\n$Elements\n" + std::to_string(1 + n_extra_elements) +
+         "\n7 4 2 0 1 " + tet_nodes + "\n" + extra_elements + "$EndElements\n";
+}
+
+TEST(GmshFile, AcceptsTheHandWrittenTetrahedron) {
+  const TetMesh m = read_gmsh(write_file("tet.msh", one_tet_msh("1 2 3 4")));
+  EXPECT_EQ(m.n_tets(), 1);
+  EXPECT_NEAR(total_volume(m), 1.0 / 6.0, 1e-15);
+}
+
+TEST(GmshFile, RefusesInvertedTetrahedron) {
+  expect_input_error([&] { read_gmsh(write_file("inverted.msh", one_tet_msh("1 3 2 4"))); },
+                     {"inverted.msh", "inverted", "Gmsh element 7"});
+}
+
+TEST(GmshFile, RefusesNodeOfNoTetrahedron) {
+  // Gmsh node 15 carries only a point element (Gmsh type 15): it belongs to no tetrahedron.
+  const std::string msh = one_tet_msh("1 2 3 4", "15 5 5 5\n", 1, "9 15 2 0 3 15\n", 1);
+  expect_input_error([&] { read_gmsh(write_file("unused.msh", msh)); },
+                     {"unused.msh", "Gmsh node 15"});
+}
+
+TEST(GmshFile, RefusesTaggedTriangleThatIsNoTetFace) {
+  // A second tetrahedron (2 3 4 5) and the triangle 1 2 5 (Gmsh element 20) on neither.
+  const std::string msh =
+      one_tet_msh("1 2 3 4", "5 1 1 1\n", 1, "8 4 2 0 1 2 3 4 5\n20 2 2 3 5 1 2 5\n", 2);
+  expect_input_error([&] { read_gmsh(write_file("loose.msh", msh)); },
+                     {"loose.msh", "Gmsh element 20", "contact"});
+}
+
+TEST(GmshFile, RefusesMissingFile) {
+  expect_input_error([&] { read_gmsh(test_dir() / "nowhere.msh"); },
+                     {"nowhere.msh", "no such file"});
+}
+
+TEST(GmshFile, RefusesGarbage) {
+  expect_input_error(
+      [&] { read_gmsh(write_file("garbage.msh", "this is not a mesh\n1 2 3\n$Nodes\nx\n")); },
+      {"garbage.msh"});
+}
+
+}  // namespace
