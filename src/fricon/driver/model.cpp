@@ -7,6 +7,7 @@
 #include "fricon/core/error.hpp"
 #include "fricon/fe/rigid_motions.hpp"
 #include "fricon/mesh/brick.hpp"
+#include "fricon/mesh/gmsh_file.hpp"
 
 namespace fricon::driver {
 
@@ -156,7 +157,9 @@ fe::NodalField make_prescribed(const Problem& problem, const mesh::TetMesh& mesh
   return u;
 }
 
-mesh::TetMesh make_mesh(const Problem& problem) {
+namespace {
+
+mesh::TetMesh make_brick_mesh(const Problem& problem) {
   mesh::BrickSpec spec;
   spec.size = Vec3(problem.mesh.size[0], problem.mesh.size[1], problem.mesh.size[2]);
   spec.cells = problem.mesh.cells;
@@ -166,6 +169,29 @@ mesh::TetMesh make_mesh(const Problem& problem) {
                                   problem.where("mesh"), spec.size(0), spec.size(1), spec.size(2),
                                   spec.cells[0], spec.cells[1], spec.cells[2]));
   return m;
+}
+
+/// The Gmsh file's mesh; its errors (which name the mesh file and element) are prefixed with the
+/// position of mesh.file.
+mesh::TetMesh read_gmsh_mesh(const Problem& problem) {
+  try {
+    return mesh::read_gmsh(problem.mesh.file, problem.mesh.size_factor);
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("{}: mesh.file: {}", problem.where("mesh.file"), e.what()));
+  }
+}
+
+}  // namespace
+
+mesh::TetMesh make_mesh(const Problem& problem) {
+  switch (problem.mesh.kind) {
+    case MeshKind::Brick:
+      return make_brick_mesh(problem);
+    case MeshKind::Gmsh:
+      return read_gmsh_mesh(problem);
+  }
+  FRICON_CHECK(false, "make_mesh: invalid mesh kind");
+  return {};
 }
 
 Model assemble_model(const Problem& problem, PhaseTimes& times,
