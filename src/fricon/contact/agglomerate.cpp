@@ -17,6 +17,9 @@ namespace fricon::contact {
 namespace {
 
 constexpr Index kUnassigned = -1;
+// Seeds at least this fraction of the target patch diameter apart: the grown cells are then
+// about the target across (on a grid of seeds of spacing s a cell's diameter is s sqrt(2)).
+constexpr Real kSeedSeparationPerDiameter = 0.7071067811865476;  // 1/sqrt(2)
 
 // The triangulation of the surface by surface-node and surface-face positions.
 struct SurfaceTopology {
@@ -221,7 +224,8 @@ Patches agglomerate_patches(const mesh::TetMesh& mesh, const ContactSurface& sur
   FRICON_CHECK(patch_size >= 0.0 && std::isfinite(patch_size),
                where << ": agglomerate patch size " << patch_size << " m is not >= 0");
   const SurfaceTopology topology = surface_topology(surface);
-  const std::vector<Index> seeds = choose_seeds(mesh, surface, topology, patch_size);
+  const std::vector<Index> seeds =
+      choose_seeds(mesh, surface, topology, kSeedSeparationPerDiameter * patch_size);
   Growth g = seed_stars(mesh, surface, topology, seeds);
   for (;;) {
     grow_across_edges(mesh, surface, topology, g);
