@@ -60,17 +60,19 @@ Patches entity_patches(const mesh::TetMesh& mesh, const ContactSurface& surface,
 
 /// fricon's partition of any triangulated surface (agglomerate.cpp), deterministic:
 ///  1. seeds: a greedy independent set of surface vertices (no two joined by a surface edge),
-///     taken in the order interior vertices first, then by (t2, t1) coordinates lexicographically;
-///     with patch_size > 0 a seed must moreover be at least patch_size [m] (Euclidean) from every
-///     earlier seed;
+///     tried in the order: fewest components fixed by Dirichlet conditions, interior before
+///     boundary vertices, then by (t2, t1) coordinates lexicographically; with patch_size > 0 a
+///     seed must moreover be at least patch_size / sqrt(2) [m] (Euclidean) from every earlier one;
 ///  2. each seed's star (its triangles) is a patch;
-///  3. the other triangles are grown into the patches across edges, each joining the patch of
-///     nearest centroid among the patches it touches, nearest first (a triangle that no growth
-///     across edges reaches joins a patch it shares a vertex with, else starts one).
+///  3. the other triangles are grown into the patches across edges, nearest first, each joining
+///     the patch next to it whose star centroid is nearest to its own centroid (a triangle that
+///     no growth across edges reaches joins the nearest patch it shares a vertex with, else
+///     starts one: only then is a patch not edge-connected).
 /// On a structured grid with an even number of squares each way and patch_size = 0 the seeds are
 /// the nodes of odd grid indices and the result is the chessboard (in another order). Patches are
-/// edge-connected on a manifold surface; with patch_size > 0 their diameter is about patch_size.
-/// Expects patch_size >= 0 (finite); `where` names the key in messages.
+/// edge-connected on an edge-connected manifold surface; with patch_size > 0 their mean diameter
+/// is about patch_size (never below the finest partition's, that of the stars). Expects
+/// patch_size >= 0 (finite); `where` names the key in messages.
 Patches agglomerate_patches(const mesh::TetMesh& mesh, const ContactSurface& surface,
                             Real patch_size, const std::string& where);
 
