@@ -1,6 +1,7 @@
 // contact: the paper's chessboard partition of a rectangular contact surface (theory.md §2.3).
 #include <algorithm>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include <fmt/format.h>
@@ -40,30 +41,18 @@ Patches chessboard_patches(const mesh::TetMesh& mesh, const ContactSurface& surf
   const Real h2 = (lines2.back() - lines2.front()) / static_cast<Real>(m2);
   const Index n1 = m1 / 2, n2 = m2 / 2;
 
-  Patches p;
-  p.faces.resize(static_cast<size_t>(n1 * n2));
-  p.area = VectorXd::Zero(n1 * n2);
-  p.centroid = Eigen::Matrix<Real, 3, Eigen::Dynamic>::Zero(3, n1 * n2);
+  std::vector<std::vector<Index>> faces(static_cast<size_t>(n1 * n2));
   for (size_t k = 0; k < surface.faces.size(); ++k) {
-    const Index f = surface.faces[k];
-    Vec3 centroid = Vec3::Zero();
-    for (int v = 0; v < 3; ++v)
-      centroid += mesh.nodes.col(mesh.faces(v, f)) / 3.0;
+    const Vec3 centroid = face_centroid(mesh, surface.faces[k]);
     const Index a = std::clamp<Index>(
         static_cast<Index>(std::floor((surface.t1.dot(centroid) - lines1.front()) / (2 * h1))), 0,
         n1 - 1);
     const Index b = std::clamp<Index>(
         static_cast<Index>(std::floor((surface.t2.dot(centroid) - lines2.front()) / (2 * h2))), 0,
         n2 - 1);
-    const Index patch = a + n1 * b;
-    const Real area = mesh::face_area(mesh, f);
-    p.faces[static_cast<size_t>(patch)].push_back(static_cast<Index>(k));
-    p.area(patch) += area;
-    p.centroid.col(patch) += area * centroid;
+    faces[static_cast<size_t>(a + n1 * b)].push_back(static_cast<Index>(k));
   }
-  for (Index q = 0; q < p.size(); ++q)
-    p.centroid.col(q) /= p.area(q);
-  return p;
+  return finish_patches(mesh, surface, std::move(faces));
 }
 
 }  // namespace fricon::contact

@@ -51,7 +51,11 @@ struct ContactDiscretization {
   VectorXd offset;
   /// The free dofs of the surface nodes, node by node: the only columns B touches.
   std::vector<Index> dofs;
-  StabilityReport stability;       ///< condition (5.1), checked
+  StabilityReport stability;  ///< condition (5.1), checked
+  /// How the partition was made stable: empty when the partition asked for passed condition
+  /// (5.1) as built; for PatchKind::Agglomerate, the coarsenings that made it pass (the patch
+  /// sizes tried and their ratios), for the log and the report.
+  std::string partition_note;
   std::string radius_integration;  ///< how the radii are integrated (radii.hpp)
 
   Index n_patches() const { return patches.size(); }
@@ -59,8 +63,11 @@ struct ContactDiscretization {
 };
 
 /// Surface, patches, B, slip bounds and gap of the contact boundary, with the stability of B
-/// checked. Throws InputError (a tag that does not exist, a surface that is not planar or admits
-/// no such partition) and NumericalError (an unstable partition), naming the key's position.
+/// checked. An unstable PatchKind::Agglomerate partition is rebuilt coarser (patch size twice the
+/// mean patch diameter, a few times; see ContactDiscretization::partition_note). Throws
+/// InputError (a tag that does not exist, a surface that is not planar or admits no such
+/// partition) and NumericalError (an unstable partition: a chessboard or mesh partition, or an
+/// agglomerate one still unstable after the coarsenings), naming the key's position.
 ContactDiscretization discretize_contact(const mesh::TetMesh& mesh, const fe::DofMap& dofs,
                                          const ContactSpec& spec);
 
