@@ -150,10 +150,12 @@ void measure(const Model& m, const contact::ContactDiscretization& disc,
   fields.wn = s.wn;
   fields.wt1 = s.wt1;
   fields.wt2 = s.wt2;
-  const VectorXd wn_pos = s.wn.cwiseMax(0.0);
+  // Penetration of the obstacle w_n - gap (w_n itself at zero gap, the paper's quantity).
+  const VectorXd penetration = s.wn - disc.gap;
+  const VectorXd wn_pos = penetration.cwiseMax(0.0);
   rep.wn_pos_l2 = contact::surface_l2_norm(m.mesh, disc.surface, wn_pos);
   rep.wn_pos_inf = wn_pos.maxCoeff();
-  rep.max_neg_wn = (-s.wn).maxCoeff();
+  rep.max_neg_wn = (-penetration).maxCoeff();
   const VectorXd slip = s.slip();
   rep.max_wt = slip.maxCoeff();
   fields.F = slip.unaryExpr([&law](Real t) { return law(t); });

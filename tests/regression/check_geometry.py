@@ -1,0 +1,101 @@
+"""The geometry examples (examples/geometry) solve and agree with independent truth.
+
+  - hertz-hemisphere: a frictionless elastic hemisphere pressed on the plane; for the total force P
+    the run reports, Hertz's contact radius a = (3 P R / (4 E*))^(1/3) and pressure
+    p(r) = p0 sqrt(1 - r^2/a^2), p0 = 3 P / (2 pi a^2): the radius from the pressure's second
+    moment (a^2 = 5/2 int p r^2 / int p for Hertz's p) within 5 %, the largest patch pressure
+    within 10 % of p0, the pressure profile within 12 % in L1; the reaction of the pressed top
+    balances P.
+  - tilted-plane: the brick over a tilted plane with a gap; moved far below, the plane is never
+    touched (no pressure anywhere); made level at zero gap, it gives the paper brick's answer.
+  - wheel: two materials by region; a stiffer hub carries a larger force for the same prescribed
+    displacement, and the Coulomb certificate holds.
+Usage: check_geometry.py FRICON EXAMPLES_DIR OUTDIR
+"""
+import csv
+import json
+import math
+import pathlib
+import subprocess
+import sys
+
+exe, examples, out = sys.argv[1], pathlib.Path(sys.argv[2]), pathlib.Path(sys.argv[3])
+
+
+def solve(toml, name, *sets):
+    folder = out / name
+    args = [exe, "solve", str(toml), "--quiet", "--out", str(folder)]
+    for s in sets:
+        args += ["--set", s]
+    r = subprocess.run(args, capture_output=True, text=True, timeout=300)
+    if r.returncode != 0:
+        sys.exit(f"{name}: exit {r.returncode}\n{r.stdout}\n{r.stderr}")
+    report = json.loads((folder / "report.json").read_text())
+    assert report["status"] == "converged", name
+    with open(folder / "patches.csv") as f:
+        patches = [{k: (v if k == "state" else float(v)) for k, v in row.items()}
+                   for row in csv.DictReader(f)]
+    return report, patches
+
+
+def check_hertz():
+    report, patches = solve(examples / "hertz-hemisphere.toml", "hertz")
+    radius, young, poisson = 0.05, 2.0e11, 0.3  # as in hertz-hemisphere.geo/.toml
+    e_star = young / (1.0 - poisson**2)
+    force = sum(p["lambda_n"] * p["area"] for p in patches)
+    assert abs(force - report["total_normal_force"]) <= 1e-9 * force, (force, report)
+    a = (3.0 * force * radius / (4.0 * e_star)) ** (1.0 / 3.0)
+    p0 = 3.0 * force / (2.0 * math.pi * a * a)
+
+    def r_of(p):
+        return math.hypot(p["x"], p["y"])
+
+    second_moment = sum(p["lambda_n"] * p["area"] * r_of(p) ** 2 for p in patches)
+    a_h = math.sqrt(2.5 * second_moment / force)
+    p_max = max(p["lambda_n"] for p in patches)
+    hertz = [p0 * math.sqrt(max(0.0, 1.0 - r_of(p) ** 2 / a**2)) for p in patches]
+    l1 = sum(p["area"] * abs(p["lambda_n"] - h) for p, h in zip(patches, hertz))
+    l1 /= sum(p["area"] * h for p, h in zip(patches, hertz))
+    print(f"hertz: P = {force:.4e} N, a = {a:.4e} m, a_h = {a_h:.4e} m ({a_h / a - 1:+.2%}), "
+          f"p0 = {p0:.4e} Pa, max lambda_n = {p_max:.4e} Pa ({p_max / p0 - 1:+.2%}), "
+          f"L1 profile error {l1:.2%}")
+    assert abs(a_h / a - 1.0) <= 0.05, (a_h, a)
+    assert abs(p_max / p0 - 1.0) <= 0.10, (p_max, p0)
+    assert l1 <= 0.12, l1
+    reaction = report["reaction_force"]
+    assert abs(reaction[2] + force) <= 1e-8 * force, (reaction, force)
+
+
+def check_tilted_plane():
+    toml = examples / "tilted-plane.toml"
+    report, patches = solve(toml, "tilted")
+    assert report["total_normal_force"] > 0 and report["kkt"]["max"] <= report["kkt"]["bound"]
+    far, far_patches = solve(toml, "tilted-far", "contact.obstacle.point=[0.0, 0.0, -1.0]")
+    # (Tresca friction acts without pressure, its bound being g: only lambda_n must vanish.)
+    assert all(p["lambda_n"] == 0.0 for p in far_patches), far_patches
+    level, level_patches = solve(toml, "tilted-level", "contact.obstacle.point=[0.0, 0.0, 0.0]",
+                                 "contact.obstacle.normal=[0.0, 0.0, 1.0]")
+    paper, paper_patches = solve(examples.parent / "paper-brick.toml", "paper")
+    assert level["outer_iterations"] == paper["outer_iterations"], (level, paper)
+    scale = max(p["lambda_n"] for p in paper_patches)
+    for a, b in zip(level_patches, paper_patches):
+        for key in ("lambda_n", "lambda_t1", "lambda_t2"):
+            assert abs(a[key] - b[key]) <= 1e-8 * scale, (key, a, b)
+    # The tilt and the gap change the answer: contact is lighter than on the level plane.
+    assert report["total_normal_force"] < level["total_normal_force"], (report, level)
+
+
+def check_wheel():
+    toml = examples / "wheel.toml"
+    soft, _ = solve(toml, "wheel")
+    stiff, _ = solve(toml, "wheel-stiff-hub", "material.1.young=2.1e11")
+    assert soft["coulomb"]["residual"] <= soft["coulomb"]["bound"], soft["coulomb"]
+    print(f"wheel: normal force {soft['total_normal_force']:.4e} N (aluminium hub), "
+          f"{stiff['total_normal_force']:.4e} N (steel hub)")
+    assert stiff["total_normal_force"] > 1.02 * soft["total_normal_force"], (soft, stiff)
+
+
+check_hertz()
+check_tilted_plane()
+check_wheel()
+print("geometry examples: ok")
