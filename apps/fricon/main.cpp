@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -231,18 +232,22 @@ int solve(const std::string& file, const SolveOptions& so, const std::string& co
 int check(const std::string& file, const std::vector<std::string>& sets) {
   const fricon::driver::Problem problem = fricon::io::read_problem(file, sets);
   const fricon::mesh::TetMesh mesh = fricon::driver::make_mesh(problem);
+  (void)fricon::driver::make_materials(problem, mesh);  // every region has its material
   const fricon::fe::DofMap dofs = fricon::driver::make_dofs(problem, mesh);
+  std::optional<fricon::contact::ContactDiscretization> disc;
+  if (problem.contact) disc = fricon::driver::discretize_contact(problem, mesh, dofs);
   fmt::print("{}: valid\n", file);
-  fmt::print("  mesh       {} nodes, {} tetrahedra, {} boundary triangles (tags: {})\n",
-             mesh.n_nodes(), mesh.n_tets(), mesh.n_faces(), mesh.tag_list());
+  fmt::print("  mesh       {} nodes, {} tetrahedra, {} regions, {} boundary triangles (tags: {})\n",
+             mesh.n_nodes(), mesh.n_tets(), mesh.n_regions(), mesh.n_faces(), mesh.tag_list());
   fmt::print("  unknowns   n_primal = {}\n", dofs.n_free());
-  if (problem.contact) {
-    const auto disc = fricon::driver::discretize_contact(problem, mesh, dofs);
+  if (disc) {
     fmt::print(
         "  contact    '{}': {} surface nodes ({} contact nodes), {} patches ({}), n_dual = {}, "
-        "stability sigma_min/sigma_max(B) = {:.3g}\n",
-        disc.surface.tag, disc.surface.n_nodes(), disc.surface.n_contact_nodes(), disc.n_patches(),
-        fricon::enum_name(problem.contact->patches), disc.n_dual(), disc.stability.ratio);
+        "stability sigma_min/sigma_max(B) = {:.3g}, initial gap {:.3g} to {:.3g} m\n",
+        disc->surface.tag, disc->surface.n_nodes(), disc->surface.n_contact_nodes(),
+        disc->n_patches(), fricon::enum_name(problem.contact->patches), disc->n_dual(),
+        disc->stability.ratio, disc->gap.minCoeff(), disc->gap.maxCoeff());
+    if (!disc->partition_note.empty()) fmt::print("  partition  {}\n", disc->partition_note);
     fmt::print("  friction   {}\n",
                fricon::contact::make_friction_law(problem.contact->friction)->describe());
   }
