@@ -13,6 +13,10 @@ per file into RESULTS_DIR/plots (or --out):
     friction_circles       lambda_t against the slip bound of each patch         (paper Fig. 11)
     deformed               the deformed body, displacement magnified             (paper Fig. 7)
 
+The maps of the contact surface are drawn in the obstacle plane's coordinates (t1, t2) =
+(x . t1, x . t2), with the basis of report.json's contact_basis (x, y for an older folder without
+it), on the surface's own triangles from contact.vtu.
+
 A run without contact has no contact results: then only the deformed body is drawn. Every file is
 written atomically (temporary name in the same folder, then os.replace) and the list of files
 written is printed on stdout, one per line; notes go to stderr. Exit status 0 on success, 1 when
@@ -41,7 +45,6 @@ from matplotlib.patches import Circle  # noqa: E402
 from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection  # noqa: E402
 
 DPI = 150
-AXIS_NAMES = "xyz"
 # The paper's law (docs/theory.md §7.1): F = 0.3 up to t = 1e-5 m, then linear down to 0.2 at 1e-5 + 2/param.
 PAPER_PARAMS = (2.0e4, 6.0e4, 3.0e5)
 PAPER_T0 = 1.0e-5
@@ -76,28 +79,37 @@ def point_field(mesh, name):
     return a[:, 0] if a.ndim == 2 and a.shape[1] == 1 else a
 
 
-def load_contact(results):
-    """The contact surface of contact.vtu flattened to its plane, or None without contact results.
+def plane_basis(report):
+    """The tangents (t1, t2) of the obstacle plane and their axis names, from the report's
+    contact_basis; (e1, e2) named x, y for a folder written before the report had it."""
+    basis = report.get("contact_basis")
+    if basis is None:
+        return np.eye(3)[:2], ["x", "y"]
+    return np.array([basis["t1"], basis["t2"]], dtype=float), ["t1", "t2"]
 
-    Returns a dict with the 2D triangulation `tri`, the names of its two axes, the nodal fields
-    and the per-triangle (patch) fields, and the patch table (centroid, radius, lambda_t in the
-    plane) computed from the triangles.
+
+def load_contact(results, report):
+    """The contact surface of contact.vtu in the plane's coordinates, or None without contact
+    results.
+
+    The nodes are placed at (x . t1, x . t2) and connected by the surface's own triangles (those
+    of contact.vtu, not a Delaunay triangulation of the points: the surface may be curved or in
+    several pieces). Returns a dict with the 2D triangulation `tri`, the names of its two axes,
+    the nodal fields and the per-triangle (patch) fields, and the patch table (centroid, radius,
+    lambda_t in the plane) computed from the triangles.
     """
     path = results / "contact.vtu"
     if not path.is_file():
         return None
     mesh = meshio.read(path)
     triangles = np.asarray(mesh.cells[0].data)
-    pts = np.asarray(mesh.points)
-    # The contact surface is planar: its normal axis is the one along which it does not extend.
-    extent = pts.max(axis=0) - pts.min(axis=0)
-    normal_axis = int(np.argmin(extent))
-    axes = [a for a in range(3) if a != normal_axis]
-    tri = mtri.Triangulation(pts[:, axes[0]], pts[:, axes[1]], triangles)
+    tangents, axes = plane_basis(report)
+    uv = np.asarray(mesh.points) @ tangents.T
+    tri = mtri.Triangulation(uv[:, 0], uv[:, 1], triangles)
     patch = cell_field(mesh, "patch").astype(int)
     surface = {
         "tri": tri,
-        "axes": [AXIS_NAMES[a] for a in axes],
+        "axes": axes,
         "w_n": point_field(mesh, "w_n"),
         "norm_w_t": point_field(mesh, "norm_w_t"),
         "F": point_field(mesh, "F"),
@@ -107,7 +119,7 @@ def load_contact(results):
     }
     state = cell_field(mesh, "state") if "state" in mesh.cell_data else None
     surface["patches"] = patch_table(tri, patch, cell_field(mesh, "radius"),
-                                     cell_field(mesh, "lambda_t")[:, axes], state)
+                                     cell_field(mesh, "lambda_t") @ tangents.T, state)
     surface["patch_edges"] = patch_boundary_segments(tri, patch)
     return surface
 
@@ -462,6 +474,20 @@ def shade(rgba, normals, light=(-0.4, -0.6, 0.7)):
     return out
 
 
+def foundation_height(report, z_min):
+    """The height z of the obstacle plane when it is horizontal (it is then a line in the side
+    view), else None. Without the report's obstacle (an older folder): the brick's bottom z_min
+    when it is the contact boundary."""
+    obstacle = report.get("obstacle")
+    if obstacle is None:
+        boundary = report.get("problem", {}).get("contact", {}).get("boundary")
+        return z_min if boundary == "z0" else None
+    normal = np.asarray(obstacle["normal"], dtype=float)
+    if abs(abs(normal[2]) - 1.0) > 1e-12:
+        return None
+    return float(obstacle["point"][2])
+
+
 def plot_deformed(report, results):
     """Fig. 7: the boundary of the deformed body, coloured by von Mises, magnified displacement.
 
@@ -517,8 +543,9 @@ def plot_deformed(report, results):
     ax2.triplot(side, color="k", alpha=0.15, lw=0.3)
     ax2.plot([lo[0], hi[0], hi[0], lo[0], lo[0]], [lo[2], lo[2], hi[2], hi[2], lo[2]], "--",
              color="0.3", lw=0.9, label="undeformed")
-    if report.get("problem", {}).get("contact", {}).get("boundary") == "z0":
-        ax2.axhline(lo[2], color="k", lw=1.6, label="rigid foundation")
+    foundation = foundation_height(report, lo[2])
+    if foundation is not None:
+        ax2.axhline(foundation, color="k", lw=1.6, label="rigid foundation")
     ax2.set_aspect("equal")
     ax2.set_xlim(blo[0] - 0.02 * size, bhi[0] + 0.02 * size)
     ax2.set_ylim(blo[2] - 0.05 * size, bhi[2] + 0.03 * size)
@@ -561,7 +588,7 @@ def make_plots(results, out_dir, fmt):
     out_dir.mkdir(parents=True, exist_ok=True)
     written = []
     has_contact = "contact" in report.get("problem", {})
-    surface = load_contact(results) if has_contact else None
+    surface = load_contact(results, report) if has_contact else None
     if not has_contact:
         print(f"plot_results: {results}: a run without contact; only the deformed body is "
               "plotted", file=sys.stderr)

@@ -50,6 +50,7 @@ ContactReport describe(const Problem& problem, const contact::ContactDiscretizat
   rep.stability_estimated = disc.stability.estimated;
   rep.n_inactive_multipliers = disc.stability.n_inactive;
   rep.radius_integration = disc.radius_integration;
+  rep.partition_note = disc.partition_note;
   rep.kkt_bound = kCertificateFactor * problem.solver.qp_rtol;
   rep.coulomb_bound =
       kCoulombCertificateFactor * std::max(problem.solver.outer_tol, problem.solver.qp_rtol);
@@ -288,6 +289,7 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m,
   out.fields.surface = disc.surface;
   out.fields.patches = disc.patches;
   out.fields.slip_bound = disc.slip_bound;
+  out.fields.gap = disc.gap;
   out.fields.phi = map.slips(state);
   return out;
 }

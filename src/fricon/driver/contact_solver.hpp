@@ -69,6 +69,8 @@ struct ContactReport {
   Index n_inactive_multipliers = 0;
   std::string radius_integration;  ///< how the radii were integrated
   Real norm_Q = 0.0;               ///< power-method estimate of ||Q|| [m^3/Pa]
+  /// How the partition was made stable (ContactDiscretization::partition_note; may be empty).
+  std::string partition_note;
   outer::Termination termination = outer::Termination::IterationLimit;
   int outer_iterations = 0;
   long n_mult = 0;                ///< products with Q over all QPs (the paper's n_mult)
@@ -110,6 +112,7 @@ struct ContactFields {
   VectorXd lambda;                ///< multipliers (lambda_n, lambda_t1, lambda_t2) per patch [Pa]
   VectorXd radius;                ///< slip bounds rho_p used by the last QP [Pa]
   VectorXd phi;                   ///< phi per surface node used for the last radii [m]
+  VectorXd gap;                   ///< initial gap per surface node [m] (ContactDiscretization)
   VectorXd wn, wt1, wt2;          ///< components of the displacement w per surface node [m]
   VectorXd F;                     ///< F(||w_t||) per surface node
   VectorXd slip_bound;            ///< g per surface node [Pa]

@@ -1,5 +1,6 @@
 #include "fricon/io/results.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -8,6 +9,7 @@
 #include "fricon/io/atomic_file.hpp"
 #include "fricon/io/problem_file.hpp"
 #include "fricon/io/vtu.hpp"
+#include "fricon/mesh/tet_mesh.hpp"
 
 namespace fricon::io {
 
@@ -69,6 +71,47 @@ void add_contact_report(const driver::ContactReport& c, nlohmann::json& j) {
                   {"norm_Q", c.norm_Q},
                   {"fixed_point_residual", c.fixed_point_residual},
                   {"history", history}};
+  if (!c.partition_note.empty()) j["partition_note"] = c.partition_note;
+}
+
+// The regions of the body: per region its name, number of tetrahedra and volume [m^3].
+void add_regions(const mesh::TetMesh& mesh, nlohmann::json& j) {
+  const auto n = static_cast<size_t>(mesh.n_regions());
+  std::vector<Index> n_tets(n, 0);
+  std::vector<Real> volume(n, 0.0);
+  for (Index t = 0; t < mesh.n_tets(); ++t) {
+    const auto r = static_cast<size_t>(mesh.region(t));
+    ++n_tets[r];
+    volume[r] += mesh::tet_volume(mesh, t);
+  }
+  nlohmann::json regions = nlohmann::json::array();
+  for (size_t r = 0; r < n; ++r)
+    regions.push_back({{"name", mesh.region_names.empty() ? "body" : mesh.region_names[r]},
+                       {"n_tets", n_tets[r]},
+                       {"volume", volume[r]}});
+  j["n_regions"] = mesh.n_regions();
+  j["regions"] = regions;
+}
+
+// The obstacle plane (a point of it and its unit normal towards the body; without
+// [contact.obstacle] the plane of the flat contact surface, through its mean node) and the basis
+// (n, t1, t2) of the contact, in which the tangential components are given (README, Conventions).
+void add_contact_geometry(const driver::Problem& problem, const mesh::TetMesh& mesh,
+                          const driver::ContactFields& c, nlohmann::json& j) {
+  const auto& s = c.surface;
+  Vec3 point = Vec3::Zero();
+  if (problem.contact && problem.contact->obstacle) {
+    point = problem.contact->obstacle->point;
+  } else {
+    for (Index node : s.nodes)
+      point += mesh.nodes.col(node);
+    point /= static_cast<Real>(std::max<Index>(s.n_nodes(), 1));
+  }
+  j["obstacle"] = {{"kind", "plane"},
+                   {"point", vec3(point)},
+                   {"normal", vec3(-s.n)},
+                   {"given", problem.contact && problem.contact->obstacle.has_value()}};
+  j["contact_basis"] = {{"n", vec3(s.n)}, {"t1", vec3(s.t1)}, {"t2", vec3(s.t2)}};
 }
 
 }  // namespace
@@ -106,7 +149,9 @@ nlohmann::json report_json(const driver::Problem& problem, const driver::RunResu
   j["equilibrium_residual"] = r.equilibrium_residual;
   j["linear_residual"] = r.linear_residual;
   j["max_von_mises"] = result.von_mises.size() ? result.von_mises.maxCoeff() : 0.0;
+  add_regions(result.model.mesh, j);
   if (r.contact) add_contact_report(*r.contact, j);
+  if (result.contact) add_contact_geometry(problem, result.model.mesh, *result.contact, j);
   j["problem"] = to_json(problem);
   return j;
 }
@@ -126,27 +171,33 @@ std::filesystem::path result_path(const std::filesystem::path& dir, const std::s
 
 namespace {
 
-// The body: displacement per node, stress and von Mises per tetrahedron.
+// The body: displacement per node, stress, von Mises and region index (report.json "regions"
+// names them) per tetrahedron.
 VtuGrid body_grid(const driver::RunResult& result) {
+  const mesh::TetMesh& mesh = result.model.mesh;
   VtuGrid body;
-  body.points = result.model.mesh.nodes;
-  body.cells = result.model.mesh.tets;
+  body.points = mesh.nodes;
+  body.cells = mesh.tets;
   body.point_data.push_back({"displacement", result.displacement});
   body.cell_data.push_back({"stress", result.stress});
   body.cell_data.push_back({"von_mises", result.von_mises.transpose()});
+  MatrixXd region(1, mesh.n_tets());
+  for (Index t = 0; t < mesh.n_tets(); ++t)
+    region(0, t) = mesh.region(t);
+  body.cell_data.push_back({"region", region, VtuType::Int32});
   return body;
 }
 
-// contact_nodes.csv: per surface node w_n, w_t1, w_t2, phi, F (and coordinates).
+// contact_nodes.csv: per surface node its coordinates, initial gap, w_n, w_t1, w_t2, phi, F.
 void write_contact_nodes(const std::filesystem::path& path, const mesh::TetMesh& mesh,
                          const driver::ContactFields& c) {
   write_atomically(path, [&](std::ostream& out) {
-    out << "x,y,z,w_n,w_t1,w_t2,phi,F\n";
+    out << "x,y,z,gap,w_n,w_t1,w_t2,phi,F\n";
     for (Index k = 0; k < c.surface.n_nodes(); ++k) {
       const auto x = mesh.nodes.col(c.surface.nodes[static_cast<size_t>(k)]);
       const Real phi = std::hypot(c.wt1(k), c.wt2(k));
-      out << fmt::format("{},{},{},{},{},{},{},{}\n", x(0), x(1), x(2), c.wn(k), c.wt1(k), c.wt2(k),
-                         phi, c.F(k));
+      out << fmt::format("{},{},{},{},{},{},{},{},{}\n", x(0), x(1), x(2), c.gap(k), c.wn(k),
+                         c.wt1(k), c.wt2(k), phi, c.F(k));
     }
   });
 }
@@ -154,22 +205,23 @@ void write_contact_nodes(const std::filesystem::path& path, const mesh::TetMesh&
 // patches.csv: per patch its centroid, area, multipliers and radius.
 void write_patches(const std::filesystem::path& path, const driver::ContactFields& c) {
   write_atomically(path, [&](std::ostream& out) {
-    out << "x,y,area,lambda_n,lambda_t1,lambda_t2,radius,F,ratio,state\n";
+    out << "x,y,z,area,lambda_n,lambda_t1,lambda_t2,radius,F,ratio,state\n";
     for (Index p = 0; p < c.patches.size(); ++p) {
       const Real lt = c.lambda.segment<2>(3 * p + 1).norm();
       // ||lambda_t|| / lambda_n; infinite where Tresca friction acts without contact pressure.
       const Real ratio = c.lambda(3 * p) > 0.0 ? lt / c.lambda(3 * p)
                          : lt > 0.0            ? std::numeric_limits<Real>::infinity()
                                                : 0.0;
-      out << fmt::format("{},{},{},{},{},{},{},{},{},{}\n", c.patches.centroid(0, p),
-                         c.patches.centroid(1, p), c.patches.area(p), c.lambda(3 * p),
-                         c.lambda(3 * p + 1), c.lambda(3 * p + 2), c.radius(p), c.coefficient(p),
-                         ratio, enum_name(c.state[static_cast<size_t>(p)]));
+      out << fmt::format("{},{},{},{},{},{},{},{},{},{},{}\n", c.patches.centroid(0, p),
+                         c.patches.centroid(1, p), c.patches.centroid(2, p), c.patches.area(p),
+                         c.lambda(3 * p), c.lambda(3 * p + 1), c.lambda(3 * p + 2), c.radius(p),
+                         c.coefficient(p), ratio, enum_name(c.state[static_cast<size_t>(p)]));
     }
   });
 }
 
-// The contact surface as triangles: nodal w and slip, per-triangle multipliers of its patch.
+// The contact surface as triangles: nodal initial gap, w and slip, per-triangle multipliers of
+// its patch.
 VtuGrid contact_grid(const mesh::TetMesh& mesh, const driver::ContactFields& c) {
   const auto& s = c.surface;
   VtuGrid surface;
@@ -177,16 +229,14 @@ VtuGrid contact_grid(const mesh::TetMesh& mesh, const driver::ContactFields& c) 
   for (Index k = 0; k < s.n_nodes(); ++k)
     surface.points.col(k) = mesh.nodes.col(s.nodes[static_cast<size_t>(k)]);
   surface.cells = s.face_nodes;
-  MatrixXd w(3, s.n_nodes()), scalars(4, s.n_nodes());
+  MatrixXd w(3, s.n_nodes()), scalars(5, s.n_nodes());
   for (Index k = 0; k < s.n_nodes(); ++k) {
     w.col(k) = c.wn(k) * s.n + c.wt1(k) * s.t1 + c.wt2(k) * s.t2;
-    scalars.col(k) << c.wn(k), std::hypot(c.wt1(k), c.wt2(k)), c.phi(k), c.F(k);
+    scalars.col(k) << c.wn(k), std::hypot(c.wt1(k), c.wt2(k)), c.phi(k), c.F(k), c.gap(k);
   }
-  surface.point_data = {{"displacement", w},
-                        {"w_n", scalars.row(0)},
-                        {"norm_w_t", scalars.row(1)},
-                        {"phi", scalars.row(2)},
-                        {"F", scalars.row(3)}};
+  surface.point_data = {{"displacement", w},     {"gap", scalars.row(4)},
+                        {"w_n", scalars.row(0)}, {"norm_w_t", scalars.row(1)},
+                        {"phi", scalars.row(2)}, {"F", scalars.row(3)}};
   const Index nf = s.face_nodes.cols();
   MatrixXd lambda_t(3, nf), per_face(6, nf);
   for (Index p = 0; p < c.patches.size(); ++p)

@@ -1,5 +1,7 @@
 #include "fricon/io/vtu.hpp"
 
+#include <cmath>
+
 #include <fmt/format.h>
 #include <fmt/ostream.h>
 
@@ -14,14 +16,19 @@ void write_data_array(std::ostream& out, const VtuField& field, Index n_entities
   FRICON_CHECK(field.values.cols() == n_entities, "field " << field.name << " has "
                                                            << field.values.cols()
                                                            << " entries, expected " << n_entities);
+  const bool integer = field.type == VtuType::Int32;
   fmt::print(out,
-             "        <DataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"{}\" "
+             "        <DataArray type=\"{}\" Name=\"{}\" NumberOfComponents=\"{}\" "
              "format=\"ascii\">\n",
-             field.name, field.values.rows());
+             integer ? "Int32" : "Float64", field.name, field.values.rows());
   for (Index j = 0; j < field.values.cols(); ++j) {
     out << "         ";
-    for (Index i = 0; i < field.values.rows(); ++i)
-      fmt::print(out, " {}", field.values(i, j));
+    for (Index i = 0; i < field.values.rows(); ++i) {
+      if (integer)
+        fmt::print(out, " {}", static_cast<int>(std::lround(field.values(i, j))));
+      else
+        fmt::print(out, " {}", field.values(i, j));
+    }
     out << '\n';
   }
   out << "        </DataArray>\n";

@@ -10,10 +10,14 @@
 
 namespace fricon::io {
 
+/// How the values of a field are written: as doubles, or as integers (indices, labels).
+enum class VtuType { Float64, Int32 };
+
 /// A named field with `components` values per point or cell (column-major: one column per entity).
 struct VtuField {
   std::string name;
-  MatrixXd values;  ///< components x n_entities
+  MatrixXd values;  ///< components x n_entities (integral values when type is Int32)
+  VtuType type = VtuType::Float64;
 };
 
 struct VtuGrid {
