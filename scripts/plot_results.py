@@ -106,11 +106,21 @@ def load_contact(results, report):
     tangents, axes = plane_basis(report)
     uv = np.asarray(mesh.points) @ tangents.T
     tri = mtri.Triangulation(uv[:, 0], uv[:, 1], triangles)
+    # A curved surface seen along n: draw only the triangles that face the plane, so that its far
+    # side (a wheel's top, say) does not hide the part in contact.
+    n = np.asarray(report.get("contact_basis", {}).get("n", [0.0, 0.0, -1.0]))
+    p = np.asarray(mesh.points)[triangles]
+    facing = np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]) @ n > 0
+    if facing.any() and not facing.all():
+        tri.set_mask(~facing)
     patch = cell_field(mesh, "patch").astype(int)
+    w_n = point_field(mesh, "w_n")
+    gap = point_field(mesh, "gap") if "gap" in mesh.point_data else np.zeros_like(w_n)
     surface = {
         "tri": tri,
         "axes": axes,
-        "w_n": point_field(mesh, "w_n"),
+        "w_n": w_n,
+        "opening": gap - w_n,
         "norm_w_t": point_field(mesh, "norm_w_t"),
         "F": point_field(mesh, "F"),
         "lambda_n": cell_field(mesh, "lambda_n"),
@@ -344,8 +354,8 @@ def plot_contact_maps(report, surface):
     tri = surface["tri"]
     fig, axs = plt.subplots(2, 2, figsize=(13.0, 6.0), layout="constrained")
     panels = [
-        (axs[0, 0], -surface["w_n"], "nodal", "a) lift-off $-w_n$ (> 0: gap, < 0: penetration)",
-         (r"$-w_n$", "m"), "viridis"),
+        (axs[0, 0], surface["opening"], "nodal",
+         "a) opening gap $- w_n$ (> 0: open, < 0: penetration)", (r"gap $- w_n$", "m"), "viridis"),
         (axs[0, 1], surface["lambda_n"], "patch", r"b) contact pressure $\lambda_n$ per patch",
          (r"$\lambda_n$", "Pa"), "magma"),
         (axs[1, 0], surface["norm_w_t"], "nodal", r"c) tangential displacement $\Vert w_t\Vert$",
@@ -535,9 +545,15 @@ def plot_deformed(report, results):
     for name, axis in zip("xyz", (ax3.xaxis, ax3.yaxis, ax3.zaxis)):
         axis.set_label_text(f"{name} [m]")
 
-    # Side view: the boundary faces lying on y = min, drawn at their deformed x and z.
+    # Side view: the boundary faces lying on y = min, drawn at their deformed x and z; a body
+    # without such a flat face (a sphere, a wheel) shows the faces that look towards -y.
     ax2 = fig.add_axes([0.08, 0.06, 0.66, 0.28])
     front = np.all(np.isclose(pts[faces][:, :, 1], lo[1]), axis=1)
+    view = f"the face y = {lo[1]:g} m"
+    if not front.any():
+        p = pts[faces]
+        front = np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])[:, 1] < 0
+        view = "the body seen from -y"
     side = mtri.Triangulation(X[:, 0], X[:, 2], faces[front])
     ax2.tripcolor(side, facecolors=values[front], cmap=cmap, norm=norm, edgecolors="none")
     ax2.triplot(side, color="k", alpha=0.15, lw=0.3)
@@ -551,7 +567,7 @@ def plot_deformed(report, results):
     ax2.set_ylim(blo[2] - 0.05 * size, bhi[2] + 0.03 * size)
     ax2.set_xlabel("x [m]")
     ax2.set_ylabel("z [m]")
-    ax2.set_title(f"side view of the face y = {lo[1]:g} m (deformed, {factor:g}x)", fontsize=9)
+    ax2.set_title(f"side view of {view} (deformed, {factor:g}x)", fontsize=9)
     ax2.legend(loc="upper left", bbox_to_anchor=(1.0, 1.0), fontsize=8, frameon=False)
 
     cax = fig.add_axes([0.86, 0.4, 0.018, 0.45])

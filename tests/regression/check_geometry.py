@@ -81,6 +81,18 @@ def check_tilted_plane():
     for a, b in zip(level_patches, paper_patches):
         for key in ("lambda_n", "lambda_t1", "lambda_t2"):
             assert abs(a[key] - b[key]) <= 1e-8 * scale, (key, a, b)
+    # The gap of every node is its distance to the plane of tilted-plane.toml, and the report
+    # carries the plane's basis (n = -normal).
+    normal = [2.5e-5, 1.0e-5, 1.0]
+    length = math.sqrt(sum(c * c for c in normal))
+    normal = [c / length for c in normal]
+    with open(out / "tilted" / "contact_nodes.csv") as f:
+        for row in csv.DictReader(f):
+            x = [float(row["x"]), float(row["y"]), float(row["z"]) + 2.0e-5]
+            expected = sum(a * b for a, b in zip(x, normal))
+            assert abs(float(row["gap"]) - expected) <= 1e-12, (row, expected)
+    basis = report["contact_basis"]
+    assert all(abs(b + a) <= 1e-12 for a, b in zip(normal, basis["n"])), basis
     # The tilt and the gap change the answer: contact is lighter than on the level plane.
     assert report["total_normal_force"] < level["total_normal_force"], (report, level)
 
@@ -90,6 +102,13 @@ def check_wheel():
     soft, _ = solve(toml, "wheel")
     stiff, _ = solve(toml, "wheel-stiff-hub", "material.1.young=2.1e11")
     assert soft["coulomb"]["residual"] <= soft["coulomb"]["bound"], soft["coulomb"]
+    regions = {r["name"]: r for r in soft["regions"]}
+    assert soft["n_regions"] == 2 and set(regions) == {"hub", "tyre"}, soft["regions"]
+    # Figures on the curved tread, drawn in the plane's coordinates.
+    r = subprocess.run([exe, "plot", str(out / "wheel")], capture_output=True, text=True,
+                       timeout=300)
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert list((out / "wheel" / "plots").glob("*.png")), "no figures"
     print(f"wheel: normal force {soft['total_normal_force']:.4e} N (aluminium hub), "
           f"{stiff['total_normal_force']:.4e} N (steel hub)")
     assert stiff["total_normal_force"] > 1.02 * soft["total_normal_force"], (soft, stiff)
