@@ -1,5 +1,6 @@
 // The contact discretization: sizes of the paper, B's exact integrals, the stability check,
 // friction laws and the exact integration of the radii.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -120,6 +121,41 @@ TEST(ContactSurface, StabilityHoldsForTheChessboardAndFailsForFinePatches) {
   const Real exact = check_stability(b8.B, "test").ratio;
   EXPECT_NEAR(check_stability(b8.B, "test", 1e-8, /*dense_limit=*/0).ratio, exact, 1e-2 * exact);
   EXPECT_THROW(check_stability(Bfine, "test", 1e-8, /*dense_limit=*/0), NumericalError);
+}
+
+TEST(ContactSurface, RejectsANonManifoldSurface) {
+  // A second copy of a bottom triangle puts each of its edges in three triangles.
+  Brick b = paper_brick(4);
+  const int z0 = b.mesh.find_tag("z0");
+  const Index f = b.surface.faces.front();
+  b.mesh.faces.conservativeResize(3, b.mesh.n_faces() + 1);
+  b.mesh.faces.col(b.mesh.n_faces() - 1) = b.mesh.faces.col(f);
+  b.mesh.face_tag.push_back(z0);
+  try {
+    make_contact_surface(b.mesh, b.dofs, "z0", "t.toml:3:1");
+    FAIL() << "a non-manifold surface was accepted";
+  } catch (const InputError& e) {
+    EXPECT_THAT(std::string(e.what()), testing::HasSubstr("t.toml:3:1: contact.boundary: the "
+                                                          "surface 'z0' is not a manifold"));
+  }
+}
+
+TEST(ContactSurface, TheObstacleGivesTheBasisAndTheGap) {
+  Brick b = paper_brick(4);
+  const Vec3 normal = Vec3(0.01, -0.02, 1.0).normalized();
+  const Plane plane{Vec3(0.0, 0.0, -0.1), normal};
+  const ContactSurface s = make_contact_surface(b.mesh, b.dofs, "z0", "test", plane);
+  EXPECT_LE((s.n + normal).norm(), 1e-15);
+  EXPECT_NEAR(s.t1.dot(s.n), 0.0, 1e-15);
+  EXPECT_NEAR(s.t2.dot(s.n), 0.0, 1e-15);
+  EXPECT_LE((s.t1.cross(s.t2) + s.n).norm(), 1e-15);  // t2 = t1 x n: (t1, t2, -n) right-handed
+  const VectorXd gap = initial_gap(b.mesh, s, plane, "test");
+  for (Index k = 0; k < s.n_nodes(); ++k) {
+    const Vec3 x = b.mesh.nodes.col(s.nodes[static_cast<size_t>(k)]);
+    EXPECT_NEAR(gap(k), (x - plane.point).dot(normal), 1e-15);
+  }
+  const Plane above{Vec3(0.0, 0.0, 1e-3), normal};
+  EXPECT_THROW(initial_gap(b.mesh, s, above, "test"), InputError);
 }
 
 TEST(ContactSurface, RejectsMissingAndClampedSurfaces) {
