@@ -80,6 +80,45 @@ TEST(Geometry, RotatingTheWholeProblemRotatesTheAnswer) {
   std::filesystem::remove(file);
 }
 
+TEST(Geometry, AContactSurfaceInTwoPiecesIsOneProblem) {
+  // The brick standing on two feet: the bottom faces under x < 1 and x > 2 are one tag "feet"
+  // (two disconnected pieces), partitioned by agglomeration; the middle of the bottom is free.
+  Problem p = brick_over_plane();
+  mesh::TetMesh m = mesh::make_brick({Vec3(3, 1, 1), {12, 4, 4}});
+  const int z0 = m.find_tag("z0");
+  m.tag_names.push_back("feet");
+  const int feet = static_cast<int>(m.tag_names.size()) - 1;
+  for (Index f = 0; f < m.n_faces(); ++f) {
+    if (m.face_tag[static_cast<size_t>(f)] != z0) continue;
+    const Real x =
+        (m.nodes.col(m.faces(0, f)) + m.nodes.col(m.faces(1, f)) + m.nodes.col(m.faces(2, f)))(0) /
+        3.0;
+    if (x < 1.0 || x > 2.0) m.face_tag[static_cast<size_t>(f)] = feet;
+  }
+  const auto file = std::filesystem::path(testing::TempDir()) / "fricon-feet.msh";
+  mesh::write_gmsh(file, m);
+  p.mesh.kind = MeshKind::Gmsh;
+  p.mesh.file = file.string();
+  p.contact->boundary = "feet";
+  p.contact->patches = contact::PatchKind::Agglomerate;
+  const RunResult r = run(p);
+  std::filesystem::remove(file);
+  ASSERT_EQ(r.report.status, Status::Converged);
+  const ContactFields& c = *r.contact;
+  // Patches lie in one piece each, and both pieces carry pressure.
+  Real force_left = 0.0, force_right = 0.0;
+  for (Index q = 0; q < c.patches.size(); ++q) {
+    const Real x = c.patches.centroid(0, q);
+    EXPECT_TRUE(x < 1.0 || x > 2.0) << "patch " << q << " at x = " << x;
+    (x < 1.0 ? force_left : force_right) += c.lambda(3 * q) * c.patches.area(q);
+  }
+  EXPECT_GT(force_left, 0.0);
+  EXPECT_GT(force_right, 0.0);
+  EXPECT_NEAR(force_left + force_right, r.report.contact->total_normal_force,
+              1e-12 * (force_left + force_right));
+  EXPECT_LT(r.report.equilibrium_residual, 1e-10);
+}
+
 TEST(Geometry, TheDiscreteConstraintsHoldWithAGap) {
   const RunResult r = run(brick_over_plane());
   ASSERT_EQ(r.report.status, Status::Converged);
