@@ -37,6 +37,7 @@ test-sanitize: deps
 	  -DFRICON_SANITIZE=ON -DFRICON_BUILD_BENCH=OFF -DFRICON_WERROR=$(WERROR)
 	cmake --build $(SAN_BUILD)
 	ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+	  LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp \
 	  ctest --test-dir $(SAN_BUILD) -L "unit|leak|sanitize" --output-on-failure -j $(CTEST_JOBS)
 
 # BENCH_LARGE=1 adds n = 24, 32, 48 to the contact benchmark (minutes, several GiB); the Coulomb

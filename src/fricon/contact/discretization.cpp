@@ -130,10 +130,10 @@ void partition_stably(const mesh::TetMesh& mesh, const fe::DofMap& dofs, const C
       p = checked_entity_partition(mesh, dofs, d.surface, spec);
       break;
     case PatchKind::Chessboard:
-    default:
       p.patches = make_patches(spec.patches, mesh, d.surface, spec.patch_size, spec.where_patches);
       p.B = assemble_b(mesh, dofs, d.surface, p.patches);
       p.stability = check_stability(p.B, spec.where_patches, kMinStabilityRatio);
+      break;
   }
   d.patches = std::move(p.patches);
   d.B = std::move(p.B);
