@@ -14,6 +14,10 @@ packages=(
   libfclib-dev
   # meshes of other tools: the Gmsh C++ API (MSH files, .geo meshed on the fly)
   libgmsh-dev
+  # friction laws written as formulas in problem files (law = "expression")
+  libmuparser-dev
+  # the Python module (fricon for /usr/bin/python3) and its tests
+  pybind11-dev python3-dev python3-pytest
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
   # reading results back (tests) and plots: Debian's Python packages for /usr/bin/python3

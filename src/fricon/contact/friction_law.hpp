@@ -5,6 +5,7 @@
 // the contraction of the successive approximations).
 
 #include <array>
+#include <functional>
 #include <memory>
 #include <span>
 #include <string>
@@ -28,10 +29,27 @@ class FrictionLaw {
   virtual Real lipschitz() const = 0;
   /// Readable description, e.g. "paper(param = 60000)".
   virtual std::string describe() const = 0;
+  /// F at many slips at once: out[i] = F(t[i]) (same sizes). Laws whose evaluation has a fixed
+  /// cost per call (a Python function) override it; the default calls operator() per point.
+  virtual void evaluate(std::span<const Real> t, std::span<Real> out) const;
+  /// Whether F is linear between consecutive kinks (then the radii are integrated exactly);
+  /// otherwise they are integrated by adaptive quadrature to quadrature_rtol().
+  virtual bool piecewise_linear() const { return true; }
+  /// Relative accuracy of the radii's quadrature for a law that is not piecewise linear.
+  virtual Real quadrature_rtol() const { return 0.0; }
 };
 
-/// Which law: the paper's, a constant, or a table (the [contact.friction] law key).
-enum class FrictionLawKind { Paper, Constant, Table };
+/// Which law: the paper's, a constant, a table, a formula, or a function given by code (the
+/// [contact.friction] law key).
+enum class FrictionLawKind { Paper, Constant, Table, Expression, Function };
+
+/// A coefficient of friction given by code (e.g. a Python callable): fills out[i] = F(t[i]) for
+/// slips t[i] >= 0 [m]; same sizes. May throw; the values are checked (finite, >= 0) by the law.
+using FrictionFunction = std::function<void(std::span<const Real> t, std::span<Real> out)>;
+
+/// Default relative accuracy of the quadrature of the radii for laws that are not piecewise
+/// linear ([contact.friction] quadrature_rtol).
+inline constexpr Real kDefaultQuadratureRtol = 1.0e-10;
 
 /// A friction law as the user describes it ([contact.friction]); only the parameters of the
 /// chosen kind are used (friction_law_parameters lists them).
@@ -41,6 +59,18 @@ struct FrictionLawSpec {
   Real value = 0.3;     ///< [value] constant law: F, >= 0
   std::vector<Real> t;  ///< [t] table law: slips [m], strictly increasing, >= 0
   std::vector<Real> f;  ///< [f] table law: F at those slips, >= 0, as many as t
+  /// [expression] expression law: a formula in the slip t [m] (muparser syntax), e.g.
+  /// "0.1 + 0.4*exp(-t/5e-5)"; checked when the file is read.
+  std::string expression;
+  /// The function law's F, given by code (not by a problem file; the Python module).
+  FrictionFunction function;
+  /// A name for the function law in reports (e.g. the Python callable's name).
+  std::string function_name = "function";
+  /// [kinks] expression and function laws: slips [m] where F is not smooth, increasing, >= 0;
+  /// the quadrature of the radii splits there.
+  std::vector<Real> kinks;
+  /// [quadrature_rtol] expression and function laws: relative accuracy of the radii, in (0, 1).
+  Real quadrature_rtol = kDefaultQuadratureRtol;
 };
 
 /// The keys of [contact.friction] that law `kind` takes ({"param"}, {"value"}, {"t", "f"}).
@@ -65,4 +95,6 @@ std::unique_ptr<FrictionLaw> table_law(std::vector<Real> t, std::vector<Real> f)
 FRICON_ENUM_NAMES(fricon::contact::FrictionLawKind, "contact.friction.law",
                   {contact::FrictionLawKind::Paper, "paper"},
                   {contact::FrictionLawKind::Constant, "constant"},
-                  {contact::FrictionLawKind::Table, "table"});
+                  {contact::FrictionLawKind::Table, "table"},
+                  {contact::FrictionLawKind::Expression, "expression"},
+                  {contact::FrictionLawKind::Function, "function"});
