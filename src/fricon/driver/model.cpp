@@ -189,6 +189,8 @@ mesh::TetMesh make_mesh(const Problem& problem) {
       return make_brick_mesh(problem);
     case MeshKind::Gmsh:
       return read_gmsh_mesh(problem);
+    case MeshKind::Arrays:
+      return *problem.mesh.given;  // checked when it was built (mesh::mesh_from_arrays)
   }
   FRICON_CHECK(false, "make_mesh: invalid mesh kind");
   return {};

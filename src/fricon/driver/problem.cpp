@@ -10,6 +10,8 @@ std::span<const std::string_view> mesh_parameters(MeshKind kind) {
       return kBrick;
     case MeshKind::Gmsh:
       return kGmsh;
+    case MeshKind::Arrays:
+      return {};
   }
   return {};
 }

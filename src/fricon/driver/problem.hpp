@@ -8,6 +8,7 @@
 #include <array>
 #include <functional>
 #include <map>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -24,12 +25,17 @@
 #include "fricon/outer/acceleration.hpp"
 #include "fricon/qp/mpgp.hpp"
 
+namespace fricon::mesh {
+struct TetMesh;
+}  // namespace fricon::mesh
+
 namespace fricon::driver {
 
 /// Where the mesh comes from ([mesh] kind).
 enum class MeshKind {
-  Brick,  ///< the structured box generator (the paper's mesh)
-  Gmsh,   ///< a Gmsh file: a mesh (.msh, MSH 2.2 or 4.1) or a geometry meshed on the fly (.geo)
+  Brick,   ///< the structured box generator (the paper's mesh)
+  Gmsh,    ///< a Gmsh file: a mesh (.msh, MSH 2.2 or 4.1) or a geometry meshed on the fly (.geo)
+  Arrays,  ///< a mesh given by code (MeshOptions::given; fricon.Mesh in Python), not by a file
 };
 
 /// The keys of [mesh] that `kind` uses (besides kind).
@@ -46,6 +52,9 @@ struct MeshOptions {
   std::string file;
   /// [mesh.size_factor] Gmsh's Mesh.MeshSizeFactor for a .geo file, > 0 (gmsh, optional).
   std::optional<Real> size_factor;
+  /// The mesh itself (arrays): built and checked by code (mesh::mesh_from_arrays), shared, never
+  /// modified; required for kind = arrays, unused otherwise.
+  std::shared_ptr<const mesh::TetMesh> given;
 };
 
 /// [material], or one table of [[material]]
@@ -172,6 +181,6 @@ void validate(const Problem& problem);
 }  // namespace fricon::driver
 
 FRICON_ENUM_NAMES(fricon::driver::MeshKind, "mesh.kind", {driver::MeshKind::Brick, "brick"},
-                  {driver::MeshKind::Gmsh, "gmsh"});
+                  {driver::MeshKind::Gmsh, "gmsh"}, {driver::MeshKind::Arrays, "arrays"});
 FRICON_ENUM_NAMES(fricon::driver::ObstacleKind, "contact.obstacle.kind",
                   {driver::ObstacleKind::Plane, "plane"});

@@ -98,6 +98,11 @@ void validate_mesh(const Problem& p) {
     case MeshKind::Gmsh:
       validate_gmsh(p);
       break;
+    case MeshKind::Arrays:
+      if (!p.mesh.given)
+        fail_expected(p, "mesh.kind", "a mesh given by code with kind = \"arrays\" (fricon.Mesh)",
+                      "\"arrays\" without a mesh");
+      break;
   }
 }
 

@@ -38,13 +38,15 @@ struct Context {
   std::string file;
   std::unordered_map<const toml::node*, std::string> origins;
   std::map<std::string, std::string, std::less<>>* positions = nullptr;
+  std::string override_origin = "--set";  ///< how an override's origin is named
+  const CodeObjects* code = nullptr;      ///< objects given by code (may be null)
 
   /// "file:line:col" of a key (or of the node when the key has no position), "--set K=V" for a
   /// node from an override, or just "file" when toml++ knows no position.
   std::string where(const toml::node* node, const toml::key* key) const {
     if (node != nullptr) {
       const auto it = origins.find(node);
-      if (it != origins.end()) return "--set " + it->second;
+      if (it != origins.end()) return override_origin + " " + it->second;
     }
     const toml::source_region* src = nullptr;
     if (key != nullptr && key->source().begin.line > 0) {
@@ -327,15 +329,24 @@ std::string beside_problem_file(const Context& ctx, const std::string& file) {
   return (folder / path).lexically_normal().string();
 }
 
+std::string_view unused_mesh_key_hint(driver::MeshKind kind) {
+  switch (kind) {
+    case driver::MeshKind::Brick:
+      return "not used by kind \"brick\" (set mesh.kind = \"gmsh\" to read a Gmsh file)";
+    case driver::MeshKind::Gmsh:
+      return "not used by kind \"gmsh\" (the mesh comes from mesh.file)";
+    case driver::MeshKind::Arrays:
+      return "not used by kind \"arrays\" (the mesh is given by code)";
+  }
+  return "not used by this mesh kind";
+}
+
 void read_mesh(const Context& ctx, const Field& f, driver::MeshOptions& m) {
   static const auto params = all_parameters<driver::MeshKind>(driver::mesh_parameters);
   const TableReader t(ctx, f, "a table [mesh]", with_selector("kind", params));
   if (auto k = t.find("kind")) m.kind = get_enum<driver::MeshKind>(ctx, *k);
   if (auto k = find_unused(t, params, driver::mesh_parameters(m.kind)))
-    fail(ctx, *k,
-         m.kind == driver::MeshKind::Brick
-             ? "not used by kind \"brick\" (set mesh.kind = \"gmsh\" to read a Gmsh file)"
-             : "not used by kind \"gmsh\" (the mesh comes from mesh.file)");
+    fail(ctx, *k, unused_mesh_key_hint(m.kind));
   if (auto k = t.find("size")) m.size = get_reals<3>(ctx, *k, "a positive number [m]");
   if (auto k = t.find("cells")) {
     const auto& a = get_array(ctx, *k, "an array of 3 integers");
@@ -347,6 +358,13 @@ void read_mesh(const Context& ctx, const Field& f, driver::MeshOptions& m) {
   if (m.kind == driver::MeshKind::Gmsh) {
     const Field k = t.require("file", "mesh.kind = \"gmsh\" reads a .msh or .geo file");
     m.file = beside_problem_file(ctx, get_string(ctx, k, "a Gmsh file name (.msh or .geo)"));
+  }
+  if (m.kind == driver::MeshKind::Arrays) {
+    if (ctx.code == nullptr || !ctx.code->mesh)
+      fail(ctx, *t.find("kind"),
+           "\"arrays\" is a mesh given by code (fricon.Mesh in Python); a problem file uses "
+           "kind = \"brick\" or \"gmsh\"");
+    m.given = ctx.code->mesh;
   }
   if (auto k = t.find("size_factor")) m.size_factor = get_real(ctx, *k, "a positive number");
 }
@@ -808,8 +826,17 @@ nlohmann::json material_json(const driver::MaterialOptions& m) {
 
 driver::Problem parse_problem(std::string_view text, const std::string& source_name,
                               const std::vector<std::string>& overrides) {
+  ReadOptions options;
+  options.overrides = overrides;
+  return parse_problem(text, source_name, options);
+}
+
+driver::Problem parse_problem(std::string_view text, const std::string& source_name,
+                              const ReadOptions& options) {
   Context ctx;
   ctx.file = source_name;
+  ctx.override_origin = options.override_origin;
+  ctx.code = &options.code;
   toml::table root;
   try {
     root = toml::parse(text, std::string_view(source_name));
@@ -828,7 +855,7 @@ driver::Problem parse_problem(std::string_view text, const std::string& source_n
                     e.description(), show ? fmt::format(" in `{}`", quote_line(line)) : "",
                     open_string ? " (is the closing quote of a string missing?)" : ""));
   }
-  for (const auto& o : overrides)
+  for (const auto& o : options.overrides)
     apply_override(ctx, root, o);
   Problem problem;
   convert(ctx, root, problem);
@@ -836,7 +863,7 @@ driver::Problem parse_problem(std::string_view text, const std::string& source_n
   return problem;
 }
 
-driver::Problem read_problem(const std::string& path, const std::vector<std::string>& overrides) {
+std::string read_problem_text(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in)
     throw InputError(
@@ -844,7 +871,11 @@ driver::Problem read_problem(const std::string& path, const std::vector<std::str
   std::ostringstream text;
   text << in.rdbuf();
   if (in.bad()) throw InputError(fmt::format("{}: cannot read the problem file", path));
-  return parse_problem(text.str(), path, overrides);
+  return text.str();
+}
+
+driver::Problem read_problem(const std::string& path, const std::vector<std::string>& overrides) {
+  return parse_problem(read_problem_text(path), path, overrides);
 }
 
 nlohmann::json to_json(const driver::Problem& p) {
@@ -852,12 +883,17 @@ nlohmann::json to_json(const driver::Problem& p) {
   json j;
   j["title"] = p.title;
   j["mesh"] = {{"kind", enum_name(p.mesh.kind)}};
-  if (p.mesh.kind == driver::MeshKind::Brick) {
-    j["mesh"]["size"] = p.mesh.size;
-    j["mesh"]["cells"] = p.mesh.cells;
-  } else {
-    j["mesh"]["file"] = p.mesh.file;
-    if (p.mesh.size_factor) j["mesh"]["size_factor"] = *p.mesh.size_factor;
+  switch (p.mesh.kind) {
+    case driver::MeshKind::Brick:
+      j["mesh"]["size"] = p.mesh.size;
+      j["mesh"]["cells"] = p.mesh.cells;
+      break;
+    case driver::MeshKind::Gmsh:
+      j["mesh"]["file"] = p.mesh.file;
+      if (p.mesh.size_factor) j["mesh"]["size_factor"] = *p.mesh.size_factor;
+      break;
+    case driver::MeshKind::Arrays:  // the mesh itself is in the results, not in the problem
+      break;
   }
   if (p.materials.empty()) {
     j["material"] = material_json(p.material);

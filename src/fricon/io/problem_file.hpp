@@ -10,15 +10,36 @@
 //   --set material.young=-1: material.young: expected a positive number [Pa], got -1.0
 // Boundary tags are not checked against the mesh here (the mesh does not exist yet).
 
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "fricon/contact/friction_law.hpp"
 #include "fricon/driver/problem.hpp"
 
 namespace fricon::io {
+
+/// What a problem can hold that a problem file cannot: objects given by code (the Python module).
+struct CodeObjects {
+  /// The mesh of [mesh] kind = "arrays" (mesh::mesh_from_arrays); a file cannot name one.
+  std::shared_ptr<const mesh::TetMesh> mesh;
+  /// F of [contact.friction] law = "function", and its name in reports.
+  contact::FrictionFunction friction;
+  std::string friction_name = "function";
+};
+
+/// How a problem is read besides its text.
+struct ReadOptions {
+  /// "KEY=VALUE" overrides, as read_problem's.
+  std::vector<std::string> overrides;
+  /// How messages name where an override came from: "--set" (the command line) or, e.g.,
+  /// "fricon.Problem" (attributes set in Python).
+  std::string override_origin = "--set";
+  CodeObjects code;
+};
 
 /// Reads the problem file at `path` and validates the Problem (driver::validate). `overrides` are
 /// "KEY=VALUE" strings (the command line's --set): KEY is a dotted key path, where an integer
@@ -34,6 +55,14 @@ driver::Problem read_problem(const std::string& path,
 /// stored in Problem::source.
 driver::Problem parse_problem(std::string_view text, const std::string& source_name,
                               const std::vector<std::string>& overrides = {});
+
+/// As parse_problem, with the objects code gives (mesh kind "arrays", law "function") and the
+/// name of the overrides' origin. A relative mesh.file is resolved against source_name's folder.
+driver::Problem parse_problem(std::string_view text, const std::string& source_name,
+                              const ReadOptions& options);
+
+/// The text of the problem file at `path`. Throws InputError naming it if it cannot be read.
+std::string read_problem_text(const std::string& path);
 
 /// The effective problem as JSON, with the key names of the file and every default filled in.
 /// Keys that the file would reject as unused are left out: `contact` when there is no contact,

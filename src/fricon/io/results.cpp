@@ -164,6 +164,78 @@ const std::vector<std::pair<std::string, std::string>> kResultFiles{
 constexpr const char* kNotConverged = ".not-converged";
 }  // namespace
 
+Index Table::rows() const {
+  if (columns.empty()) return 0;
+  const Column& c = columns.front();
+  return c.text.empty() ? c.values.size() : static_cast<Index>(c.text.size());
+}
+
+Table contact_node_table(const mesh::TetMesh& mesh, const driver::ContactFields& c) {
+  const Index n = c.surface.n_nodes();
+  Table table;
+  for (const char* name : {"x", "y", "z"})
+    table.columns.push_back({name, VectorXd(n), {}});
+  for (Index k = 0; k < n; ++k)
+    for (int d = 0; d < 3; ++d)
+      table.columns[static_cast<size_t>(d)].values(k) =
+          mesh.nodes(d, c.surface.nodes[static_cast<size_t>(k)]);
+  VectorXd phi(n);
+  for (Index k = 0; k < n; ++k)
+    phi(k) = std::hypot(c.wt1(k), c.wt2(k));
+  table.columns.push_back({"gap", c.gap, {}});
+  table.columns.push_back({"w_n", c.wn, {}});
+  table.columns.push_back({"w_t1", c.wt1, {}});
+  table.columns.push_back({"w_t2", c.wt2, {}});
+  table.columns.push_back({"phi", phi, {}});
+  table.columns.push_back({"F", c.F, {}});
+  return table;
+}
+
+Table patch_table(const driver::ContactFields& c) {
+  const Index n = c.patches.size();
+  Table table;
+  for (const char* name : {"x", "y", "z", "area", "lambda_n", "lambda_t1", "lambda_t2", "radius",
+                           "F", "ratio"})
+    table.columns.push_back({name, VectorXd(n), {}});
+  std::vector<std::string> state;
+  for (Index p = 0; p < n; ++p) {
+    const Real lt = c.lambda.segment<2>(3 * p + 1).norm();
+    // ||lambda_t|| / lambda_n; infinite where Tresca friction acts without contact pressure.
+    const Real ratio = c.lambda(3 * p) > 0.0 ? lt / c.lambda(3 * p)
+                       : lt > 0.0            ? std::numeric_limits<Real>::infinity()
+                                             : 0.0;
+    const Real row[] = {c.patches.centroid(0, p), c.patches.centroid(1, p),
+                        c.patches.centroid(2, p), c.patches.area(p),
+                        c.lambda(3 * p),          c.lambda(3 * p + 1),
+                        c.lambda(3 * p + 2),      c.radius(p),
+                        c.coefficient(p),         ratio};
+    for (size_t j = 0; j < std::size(row); ++j)
+      table.columns[j].values(p) = row[j];
+    state.emplace_back(enum_name(c.state[static_cast<size_t>(p)]));
+  }
+  table.columns.push_back({"state", {}, std::move(state)});
+  return table;
+}
+
+void write_csv(const std::filesystem::path& path, const Table& table) {
+  write_atomically(path, [&](std::ostream& out) {
+    for (size_t j = 0; j < table.columns.size(); ++j)
+      out << (j ? "," : "") << table.columns[j].name;
+    out << '\n';
+    for (Index i = 0; i < table.rows(); ++i) {
+      for (size_t j = 0; j < table.columns.size(); ++j) {
+        const Table::Column& col = table.columns[j];
+        out << (j ? "," : "");
+        if (col.text.empty())
+          out << fmt::format("{}", col.values(i));
+        else
+          out << col.text[static_cast<size_t>(i)];
+      }
+      out << '\n';
+    }
+  });
+}
+
 std::filesystem::path result_path(const std::filesystem::path& dir, const std::string& base,
                                   const std::string& extension, bool converged) {
   return dir / (base + (converged ? "" : kNotConverged) + extension);
@@ -186,38 +258,6 @@ VtuGrid body_grid(const driver::RunResult& result) {
     region(0, t) = mesh.region(t);
   body.cell_data.push_back({"region", region, VtuType::Int32});
   return body;
-}
-
-// contact_nodes.csv: per surface node its coordinates, initial gap, w_n, w_t1, w_t2, phi, F.
-void write_contact_nodes(const std::filesystem::path& path, const mesh::TetMesh& mesh,
-                         const driver::ContactFields& c) {
-  write_atomically(path, [&](std::ostream& out) {
-    out << "x,y,z,gap,w_n,w_t1,w_t2,phi,F\n";
-    for (Index k = 0; k < c.surface.n_nodes(); ++k) {
-      const auto x = mesh.nodes.col(c.surface.nodes[static_cast<size_t>(k)]);
-      const Real phi = std::hypot(c.wt1(k), c.wt2(k));
-      out << fmt::format("{},{},{},{},{},{},{},{},{}\n", x(0), x(1), x(2), c.gap(k), c.wn(k),
-                         c.wt1(k), c.wt2(k), phi, c.F(k));
-    }
-  });
-}
-
-// patches.csv: per patch its centroid, area, multipliers and radius.
-void write_patches(const std::filesystem::path& path, const driver::ContactFields& c) {
-  write_atomically(path, [&](std::ostream& out) {
-    out << "x,y,z,area,lambda_n,lambda_t1,lambda_t2,radius,F,ratio,state\n";
-    for (Index p = 0; p < c.patches.size(); ++p) {
-      const Real lt = c.lambda.segment<2>(3 * p + 1).norm();
-      // ||lambda_t|| / lambda_n; infinite where Tresca friction acts without contact pressure.
-      const Real ratio = c.lambda(3 * p) > 0.0 ? lt / c.lambda(3 * p)
-                         : lt > 0.0            ? std::numeric_limits<Real>::infinity()
-                                               : 0.0;
-      out << fmt::format("{},{},{},{},{},{},{},{},{},{},{}\n", c.patches.centroid(0, p),
-                         c.patches.centroid(1, p), c.patches.centroid(2, p), c.patches.area(p),
-                         c.lambda(3 * p), c.lambda(3 * p + 1), c.lambda(3 * p + 2), c.radius(p),
-                         c.coefficient(p), ratio, enum_name(c.state[static_cast<size_t>(p)]));
-    }
-  });
 }
 
 // The contact surface as triangles: nodal initial gap, w and slip, per-triangle multipliers of
@@ -275,8 +315,9 @@ std::vector<std::filesystem::path> write_results(const std::filesystem::path& di
   write_vtu(path("solution", ".vtu"), body_grid(result));
   parts.push_back(written.back().filename().string());
   if (result.contact) {
-    write_contact_nodes(path("contact_nodes", ".csv"), result.model.mesh, *result.contact);
-    write_patches(path("patches", ".csv"), *result.contact);
+    write_csv(path("contact_nodes", ".csv"),
+              contact_node_table(result.model.mesh, *result.contact));
+    write_csv(path("patches", ".csv"), patch_table(*result.contact));
     write_vtu(path("contact", ".vtu"), contact_grid(result.model.mesh, *result.contact));
     parts.push_back(written.back().filename().string());
   }

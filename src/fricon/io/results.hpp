@@ -29,6 +29,30 @@ struct RunContext {
 nlohmann::json report_json(const driver::Problem& problem, const driver::RunResult& result,
                            const RunContext& context);
 
+/// A table of the results (a CSV file, a dict of numpy arrays in Python): named columns of equal
+/// length, each numeric (values) or text (text).
+struct Table {
+  struct Column {
+    std::string name;
+    VectorXd values;                ///< a numeric column
+    std::vector<std::string> text;  ///< a text column (values empty)
+  };
+  std::vector<Column> columns;
+  Index rows() const;
+};
+
+/// contact_nodes.csv: per surface node x, y, z [m], gap [m], w_n, w_t1, w_t2 [m] (components of
+/// the displacement in the obstacle's basis), phi = ||w_t|| [m] and F(phi).
+Table contact_node_table(const mesh::TetMesh& mesh, const driver::ContactFields& fields);
+
+/// patches.csv: per patch its centroid x, y, z [m], area [m^2], lambda_n, lambda_t1, lambda_t2
+/// [Pa], radius [Pa], F (the patch's mean coefficient), ratio ||lambda_t|| / lambda_n and state.
+Table patch_table(const driver::ContactFields& fields);
+
+/// Writes `table` as CSV (a header of column names, numbers in shortest round-trip form),
+/// atomically.
+void write_csv(const std::filesystem::path& path, const Table& table);
+
 /// Path of result file `base` + `extension` in `dir`, marked when the run did not converge.
 std::filesystem::path result_path(const std::filesystem::path& dir, const std::string& base,
                                   const std::string& extension, bool converged);

@@ -290,12 +290,11 @@ void require_all_nodes_used(const std::string& source, const GmshNodes& nodes,
           source, n, nodes.tag_of[n]));
 }
 
-// Every face of every tetrahedron, sorted by its vertex set, with the tetrahedron and its
-// opposite vertex: to find the tetrahedron a triangle bounds.
+// Every face of every tetrahedron, sorted by its vertex set, with its tetrahedron: to name the
+// tetrahedra of a non-conforming face.
 struct TetFaceRef {
   std::array<Index, 3> key;
   Index tet;
-  Index opposite;
 };
 
 std::array<Index, 3> sorted_key(Index a, Index b, Index c) {
@@ -313,7 +312,7 @@ std::vector<TetFaceRef> tet_faces(const TetMesh& mesh) {
       int n = 0;
       for (int v = 0; v < kNodesPerTet; ++v)
         if (v != opposite) others[n++] = mesh.tets(v, t);
-      faces.push_back({sorted_key(others[0], others[1], others[2]), t, mesh.tets(opposite, t)});
+      faces.push_back({sorted_key(others[0], others[1], others[2]), t});
     }
   std::stable_sort(faces.begin(), faces.end(),
                    [](const TetFaceRef& a, const TetFaceRef& b) { return a.key < b.key; });
@@ -334,19 +333,9 @@ void require_conforming(const std::string& source, const std::vector<TetFaceRef>
           tets.element_tag[static_cast<size_t>(faces[i + 2].tet)]));
 }
 
-// Orders face f counter-clockwise seen from outside the tetrahedron it bounds.
-void orient_outward(TetMesh& mesh, Index f, Index opposite) {
-  const Vec3 a = mesh.nodes.col(mesh.faces(0, f));
-  const Vec3 b = mesh.nodes.col(mesh.faces(1, f));
-  const Vec3 c = mesh.nodes.col(mesh.faces(2, f));
-  if ((b - a).cross(c - a).dot(mesh.nodes.col(opposite) - a) > 0.0)
-    std::swap(mesh.faces(1, f), mesh.faces(2, f));
-}
-
 // The 3-node triangles of every 2D physical group, one face per group they are in, oriented
 // outward.
-void read_tagged_faces(const std::string& source, const GmshNodes& nodes,
-                       const std::vector<TetFaceRef>& faces_of_tets, TetMesh& mesh) {
+void read_tagged_faces(const std::string& source, const GmshNodes& nodes, TetMesh& mesh) {
   std::vector<Index> corners;
   std::vector<std::size_t> element_of_face;
   for (const auto& [group, name] : physical_groups(2)) {
@@ -371,21 +360,15 @@ void read_tagged_faces(const std::string& source, const GmshNodes& nodes,
     }
   }
   mesh.faces.resize(kNodesPerTriangle, static_cast<Index>(element_of_face.size()));
-  for (Index f = 0; f < mesh.n_faces(); ++f) {
+  for (Index f = 0; f < mesh.n_faces(); ++f)
     for (int v = 0; v < kNodesPerTriangle; ++v)
       mesh.faces(v, f) = corners[static_cast<size_t>(kNodesPerTriangle * f + v)];
-    const TetFaceRef probe{sorted_key(mesh.faces(0, f), mesh.faces(1, f), mesh.faces(2, f)), 0, 0};
-    const auto it =
-        std::lower_bound(faces_of_tets.begin(), faces_of_tets.end(), probe,
-                         [](const TetFaceRef& a, const TetFaceRef& b) { return a.key < b.key; });
-    if (it == faces_of_tets.end() || it->key != probe.key)
-      throw InputError(
-          fmt::format("{}: triangle {} (Gmsh element {}) of physical group '{}' is no face of any "
-                      "tetrahedron",
-                      source, f, element_of_face[static_cast<size_t>(f)],
-                      mesh.tag_names[static_cast<size_t>(mesh.face_tag[static_cast<size_t>(f)])]));
-    orient_outward(mesh, f, it->opposite);
-  }
+  if (const Index f = orient_faces_outward(mesh); f >= 0)
+    throw InputError(
+        fmt::format("{}: triangle {} (Gmsh element {}) of physical group '{}' is no face of any "
+                    "tetrahedron",
+                    source, f, element_of_face[static_cast<size_t>(f)],
+                    mesh.tag_names[static_cast<size_t>(mesh.face_tag[static_cast<size_t>(f)])]));
 }
 
 // @sect: writing, the steps.
@@ -528,14 +511,12 @@ TetMesh read_gmsh(const std::filesystem::path& file, std::optional<Real> size_fa
   TetMesh mesh;
   GmshNodes nodes;
   GmshTets tets;
-  std::vector<TetFaceRef> faces_of_tets;
   session.run("reading the mesh", [&] {
     nodes = read_nodes(mesh);
     tets = read_tets(source, nodes, mesh);
     require_all_nodes_used(source, nodes, mesh);
-    faces_of_tets = tet_faces(mesh);
-    require_conforming(source, faces_of_tets, tets);
-    read_tagged_faces(source, nodes, faces_of_tets, mesh);
+    require_conforming(source, tet_faces(mesh), tets);
+    read_tagged_faces(source, nodes, mesh);
   });
   check_mesh(mesh, source);
   return mesh;

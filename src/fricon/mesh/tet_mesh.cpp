@@ -206,4 +206,17 @@ Eigen::Matrix<Index, 3, Eigen::Dynamic> boundary_faces_of(const TetMesh& mesh) {
   return result;
 }
 
+Index orient_faces_outward(TetMesh& mesh) {
+  const std::vector<TetFace> faces = sorted_tet_faces(mesh);
+  for (Index f = 0; f < mesh.n_faces(); ++f) {
+    const FaceKey key = sorted_face(mesh.faces(0, f), mesh.faces(1, f), mesh.faces(2, f));
+    const auto it = std::lower_bound(faces.begin(), faces.end(), key,
+                                     [](const TetFace& a, const FaceKey& k) { return a.key < k; });
+    if (it == faces.end() || it->key != key) return f;
+    for (int v = 0; v < 3; ++v)
+      mesh.faces(v, f) = it->oriented[static_cast<size_t>(v)];
+  }
+  return -1;
+}
+
 }  // namespace fricon::mesh

@@ -87,4 +87,9 @@ FaceSharing face_sharing(const TetMesh& mesh);
 /// Extracts the faces that belong to exactly one tetrahedron, oriented outward.
 Eigen::Matrix<Index, 3, Eigen::Dynamic> boundary_faces_of(const TetMesh& mesh);
 
+/// Orders every boundary triangle of `mesh` counter-clockwise seen from outside the tetrahedron
+/// it bounds (tetrahedra positively oriented). Returns the index of the first triangle that is no
+/// face of any tetrahedron, or -1 when every one is (the caller names it in its message).
+Index orient_faces_outward(TetMesh& mesh);
+
 }  // namespace fricon::mesh

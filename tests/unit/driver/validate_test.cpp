@@ -120,8 +120,8 @@ std::vector<BadCase> mesh_and_material_cases() {
        "<memory>: mesh.cells: expected at most 100000000 cubes in all, got 1000 x 1000 x 1000 = "
        "1e+09"},
       {"MeshKindCast", [](Problem& p) { p.mesh.kind = static_cast<MeshKind>(7); },
-       "<memory>: mesh.kind: expected one of \"brick\", \"gmsh\", got 7 (a value outside the "
-       "enum)"},
+       "<memory>: mesh.kind: expected one of \"brick\", \"gmsh\", \"arrays\", got 7 (a value "
+       "outside the enum)"},
       {"YoungNegative", [](Problem& p) { p.material.young = -1.0; },
        "<memory>: material.young: expected a positive number [Pa], got -1.0"},
       {"YoungNan", [](Problem& p) { p.material.young = kNan; },
