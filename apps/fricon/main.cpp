@@ -567,18 +567,8 @@ void define_mesh(CLI::App& app, CommandLine& cl) {
       ->check(CLI::PositiveNumber);
 }
 
-// The BLAS threads: --threads, else OPENBLAS_NUM_THREADS as OpenBLAS read it, else the cores the
-// machine's load leaves free.
-void set_blas_threads(int threads) {
-  if (threads > 0) {
-    fricon::linalg::set_threads(threads);
-  } else if (std::getenv("OPENBLAS_NUM_THREADS") == nullptr) {
-    fricon::linalg::set_threads(fricon::linalg::threads_for_load());
-  }
-}
-
 int dispatch(CommandLine& cl, int argc, char** argv) {
-  set_blas_threads(cl.threads);
+  fricon::linalg::choose_threads(cl.threads);
   cl.solve.verbosity = cl.quiet     ? Verbosity::Quiet
                        : cl.verbose ? Verbosity::Verbose
                                     : Verbosity::Normal;

@@ -194,8 +194,8 @@ Table contact_node_table(const mesh::TetMesh& mesh, const driver::ContactFields&
 Table patch_table(const driver::ContactFields& c) {
   const Index n = c.patches.size();
   Table table;
-  for (const char* name : {"x", "y", "z", "area", "lambda_n", "lambda_t1", "lambda_t2", "radius",
-                           "F", "ratio"})
+  for (const char* name :
+       {"x", "y", "z", "area", "lambda_n", "lambda_t1", "lambda_t2", "radius", "F", "ratio"})
     table.columns.push_back({name, VectorXd(n), {}});
   std::vector<std::string> state;
   for (Index p = 0; p < n; ++p) {

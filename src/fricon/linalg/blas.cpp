@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -96,6 +97,14 @@ int threads_for_load() {
     others = std::min(others, std::max(0, runnable - own_runnable_threads()));
   }
   return std::clamp(cores - others, 1, cores);
+}
+
+void choose_threads(int requested) {
+  if (requested > 0) {
+    set_threads(requested);
+  } else if (std::getenv("OPENBLAS_NUM_THREADS") == nullptr) {
+    set_threads(threads_for_load());
+  }
 }
 
 void solve_lower(ConstBlockRef L, BlockRef X, bool transpose) {

@@ -26,6 +26,10 @@ int threads();
 /// machine this is 1, where spinning BLAS threads would steal time from the working one.
 int threads_for_load();
 
+/// The threads of a run: `requested` if > 0, else those of OPENBLAS_NUM_THREADS as OpenBLAS read
+/// it when that variable is set, else threads_for_load(). Sets them (set_threads).
+void choose_threads(int requested);
+
 /// X <- L^-1 X, or L^-T X when `transpose`. L is square and lower triangular (its strict upper
 /// part is not read), X has L.rows() rows.
 void solve_lower(ConstBlockRef L, BlockRef X, bool transpose = false);

@@ -42,8 +42,7 @@ void require_all_nodes_used(const std::string& source, const TetMesh& mesh) {
 void add_boundary(const MeshArrays& a, const std::string& source, TetMesh& mesh) {
   std::vector<Index> corners;
   for (const auto& [name, triangles] : a.boundary) {
-    require_rows(source, fmt::format("boundary['{}']", name), triangles.size(),
-                 kNodesPerTriangle);
+    require_rows(source, fmt::format("boundary['{}']", name), triangles.size(), kNodesPerTriangle);
     const int tag = static_cast<int>(mesh.tag_names.size());
     mesh.tag_names.push_back(name);
     corners.insert(corners.end(), triangles.begin(), triangles.end());
@@ -73,9 +72,10 @@ void add_regions(const MeshArrays& a, const std::string& source, TetMesh& mesh) 
   }
   for (Index t = 0; t < mesh.n_tets(); ++t)
     if (mesh.tet_region[static_cast<std::size_t>(t)] < 0)
-      throw InputError(fmt::format("{}: tetrahedron {} is in no region (regions must cover the "
-                                   "mesh)",
-                                   source, t));
+      throw InputError(
+          fmt::format("{}: tetrahedron {} is in no region (regions must cover the "
+                      "mesh)",
+                      source, t));
 }
 
 }  // namespace
@@ -92,10 +92,12 @@ TetMesh mesh_from_arrays(const MeshArrays& arrays, const std::string& source) {
         "{}: the mesh is not conforming: a triangle is a face of three or more tetrahedra",
         source));
   if (const Index f = orient_faces_outward(mesh); f >= 0)
-    throw InputError(fmt::format("{}: boundary triangle {} ('{}': nodes {} {} {}) is no face of "
-                                 "any tetrahedron",
-                                 source, f, mesh.tag_names[static_cast<std::size_t>(mesh.face_tag[static_cast<std::size_t>(f)])],
-                                 mesh.faces(0, f), mesh.faces(1, f), mesh.faces(2, f)));
+    throw InputError(fmt::format(
+        "{}: boundary triangle {} ('{}': nodes {} {} {}) is no face of "
+        "any tetrahedron",
+        source, f,
+        mesh.tag_names[static_cast<std::size_t>(mesh.face_tag[static_cast<std::size_t>(f)])],
+        mesh.faces(0, f), mesh.faces(1, f), mesh.faces(2, f)));
   return mesh;
 }
 

@@ -1,0 +1,132 @@
+// Meshes from and to numpy arrays (the Mesh class of the module).
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include "bindings.hpp"
+#include "fricon/mesh/brick.hpp"
+#include "fricon/mesh/from_arrays.hpp"
+
+namespace fricon::python {
+
+namespace {
+
+using IndexArray = py::array_t<Index, py::array::c_style | py::array::forcecast>;
+using RealArray = py::array_t<Real, py::array::c_style | py::array::forcecast>;
+
+template <typename T>
+std::vector<T> flat(const py::array_t<T, py::array::c_style | py::array::forcecast>& a,
+                    py::ssize_t columns, const std::string& what) {
+  if (a.ndim() != 2 || a.shape(1) != columns)
+    throw InputError(fmt::format(
+        "fricon.Mesh: {}: expected an array of shape (k, {}), got {} "
+        "dimension(s){}",
+        what, columns, a.ndim(),
+        a.ndim() == 2 ? fmt::format(" of shape ({}, {})", a.shape(0), a.shape(1)) : ""));
+  return std::vector<T>(a.data(), a.data() + a.size());
+}
+
+std::vector<Index> flat_indices(const IndexArray& a, const std::string& what) {
+  if (a.ndim() != 1)
+    throw InputError(
+        fmt::format("fricon.Mesh: {}: expected a 1-D array of tetrahedron indices", what));
+  return std::vector<Index>(a.data(), a.data() + a.size());
+}
+
+PyMesh make_mesh(const RealArray& points, const IndexArray& tets,
+                 const std::map<std::string, IndexArray>& boundary,
+                 const std::optional<std::map<std::string, IndexArray>>& regions) {
+  mesh::MeshArrays arrays;
+  arrays.points = flat<Real>(points, 3, "points");
+  arrays.tets = flat<Index>(tets, 4, "tets");
+  for (const auto& [name, triangles] : boundary)
+    arrays.boundary[name] = flat<Index>(triangles, 3, fmt::format("boundary['{}']", name));
+  if (regions)
+    for (const auto& [name, members] : *regions)
+      arrays.regions[name] = flat_indices(members, fmt::format("regions['{}']", name));
+  return PyMesh{
+      std::make_shared<const mesh::TetMesh>(mesh::mesh_from_arrays(arrays, "fricon.Mesh"))};
+}
+
+py::dict boundary_of(const mesh::TetMesh& mesh) {
+  py::dict out;
+  for (std::size_t tag = 0; tag < mesh.tag_names.size(); ++tag) {
+    const std::vector<Index> faces = mesh.faces_with_tag(mesh.tag_names[tag]);
+    py::array_t<Index> tri({static_cast<py::ssize_t>(faces.size()), py::ssize_t{3}});
+    auto r = tri.mutable_unchecked<2>();
+    for (std::size_t k = 0; k < faces.size(); ++k)
+      for (int v = 0; v < 3; ++v)
+        r(static_cast<py::ssize_t>(k), v) = mesh.faces(v, faces[k]);
+    out[py::str(mesh.tag_names[tag])] = tri;
+  }
+  return out;
+}
+
+py::dict regions_of(const mesh::TetMesh& mesh) {
+  py::dict out;
+  std::vector<std::vector<Index>> members(static_cast<std::size_t>(mesh.n_regions()));
+  for (Index t = 0; t < mesh.n_tets(); ++t)
+    members[static_cast<std::size_t>(mesh.region(t))].push_back(t);
+  for (int r = 0; r < mesh.n_regions(); ++r) {
+    const std::string name =
+        mesh.region_names.empty() ? "body" : mesh.region_names[static_cast<std::size_t>(r)];
+    out[py::str(name)] =
+        py::array_t<Index>(static_cast<py::ssize_t>(members[r].size()), members[r].data());
+  }
+  return out;
+}
+
+}  // namespace
+
+void bind_mesh(py::module_& m) {
+  py::class_<PyMesh>(m, "Mesh", R"(A tetrahedral mesh from arrays, checked as a mesh file is.
+
+Mesh(points, tets, boundary, regions=None)
+  points    (n, 3) float: node coordinates [m]
+  tets      (m, 4) int: 0-based node indices of linear tetrahedra, positively oriented
+  boundary  {name: (k, 3) int}: tagged boundary triangles (faces of the tetrahedra, any
+            orientation), the names [[dirichlet]], [[traction]] and [contact] refer to
+  regions   {name: 1-D int}: the tetrahedra of each region ([[material]] region = name);
+            None: one region "body"
+Raises fricon.InputError for inverted or degenerate tetrahedra, indices out of range, unused
+nodes, triangles that are no face of a tetrahedron, ...)")
+      .def(py::init(&make_mesh), py::arg("points"), py::arg("tets"),
+           py::arg("boundary") = std::map<std::string, IndexArray>{},
+           py::arg("regions") = py::none())
+      .def_static(
+          "brick",
+          [](std::array<Real, 3> size, std::array<Index, 3> cells) {
+            mesh::BrickSpec spec;
+            spec.size = Vec3(size[0], size[1], size[2]);
+            spec.cells = cells;
+            return PyMesh{std::make_shared<const mesh::TetMesh>(mesh::make_brick(spec))};
+          },
+          py::arg("size") = std::array<Real, 3>{3.0, 1.0, 1.0},
+          py::arg("cells") = std::array<Index, 3>{12, 4, 4},
+          "The mesh of [mesh] kind = \"brick\" (the paper's generator), as a Mesh.")
+      .def_property_readonly(
+          "points",
+          [](py::object self) { return rows_view(self.cast<PyMesh&>().mesh->nodes, self); },
+          "(n, 3) node coordinates [m] (read-only view)")
+      .def_property_readonly(
+          "tets", [](py::object self) { return rows_view(self.cast<PyMesh&>().mesh->tets, self); },
+          "(m, 4) node indices (read-only view)")
+      .def_property_readonly(
+          "boundary", [](const PyMesh& p) { return boundary_of(*p.mesh); },
+          "{name: (k, 3) triangles}, oriented outward")
+      .def_property_readonly(
+          "regions", [](const PyMesh& p) { return regions_of(*p.mesh); },
+          "{name: tetrahedron indices}")
+      .def_property_readonly("n_nodes", [](const PyMesh& p) { return p.mesh->n_nodes(); })
+      .def_property_readonly("n_tets", [](const PyMesh& p) { return p.mesh->n_tets(); })
+      .def("__repr__", [](const PyMesh& p) {
+        return fmt::format("fricon.Mesh({} nodes, {} tetrahedra, boundary: {})", p.mesh->n_nodes(),
+                           p.mesh->n_tets(), p.mesh->tag_list());
+      });
+}
+
+}  // namespace fricon::python

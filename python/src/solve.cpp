@@ -1,0 +1,218 @@
+// fricon.solve's engine: the run on a worker thread while the interpreter's thread waits without
+// the GIL, calls the progress callback with each outer iteration and checks for Ctrl-C; and the
+// Result with its arrays as numpy views of the run's own memory.
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <deque>
+#include <exception>
+#include <mutex>
+#include <optional>
+#include <thread>
+
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include "bindings.hpp"
+#include "fricon/driver/run.hpp"
+#include "fricon/io/results.hpp"
+#include "fricon/linalg/blas.hpp"
+
+namespace fricon::python {
+
+namespace {
+
+/// How often the waiting thread looks for Ctrl-C and progress [ms].
+constexpr auto kPollInterval = std::chrono::milliseconds(20);
+
+struct PyResult {
+  std::shared_ptr<const driver::Problem> problem;
+  std::shared_ptr<const driver::RunResult> run;
+  io::RunContext context;
+};
+
+/// A table of the results as {column: numpy array} (text columns as arrays of str).
+py::dict table_dict(const io::Table& table) {
+  py::dict out;
+  for (const auto& c : table.columns) {
+    if (c.text.empty())
+      out[py::str(c.name)] = py::array_t<Real>(c.values.size(), c.values.data());
+    else
+      out[py::str(c.name)] = py::module_::import("numpy").attr("array")(py::cast(c.text));
+  }
+  return out;
+}
+
+/// What the worker thread hands to the interpreter's thread.
+struct Exchange {
+  std::mutex mutex;
+  std::condition_variable changed;
+  std::deque<driver::OuterIteration> iterations;
+  bool done = false;
+};
+
+PyResult solve(const PyProblem& p, const py::object& progress, std::optional<int> threads) {
+  linalg::choose_threads(threads.value_or(0));
+  Exchange exchange;
+  std::atomic<bool> stop{false};
+  driver::RunOptions options;
+  options.stop_requested = &stop;
+  options.on_outer_iteration = [&exchange](const driver::OuterIteration& it) {
+    const std::lock_guard lock(exchange.mutex);
+    exchange.iterations.push_back(it);
+    exchange.changed.notify_one();
+  };
+  std::optional<driver::RunResult> result;
+  std::exception_ptr failure;
+  const driver::Problem& problem = *p.problem;
+
+  std::thread worker;
+  {
+    const py::gil_scoped_release release;
+    worker = std::thread([&] {
+      try {
+        result.emplace(driver::run(problem, options));
+      } catch (...) {
+        failure = std::current_exception();
+      }
+      const std::lock_guard lock(exchange.mutex);
+      exchange.done = true;
+      exchange.changed.notify_one();
+    });
+  }
+
+  // The interpreter's side: progress, Ctrl-C (KeyboardInterrupt) and the callback's own errors
+  // stop the run at its next QP step; the first such Python error is raised once it has ended.
+  std::optional<py::error_already_set> python_error;
+  for (bool done = false; !done;) {
+    std::deque<driver::OuterIteration> iterations;
+    {
+      const py::gil_scoped_release release;
+      std::unique_lock lock(exchange.mutex);
+      exchange.changed.wait_for(lock, kPollInterval,
+                                [&] { return exchange.done || !exchange.iterations.empty(); });
+      iterations.swap(exchange.iterations);
+      done = exchange.done;
+    }
+    for (const auto& it : iterations) {
+      if (progress.is_none() || python_error) break;
+      try {
+        progress(it);
+      } catch (py::error_already_set& e) {
+        python_error.emplace(std::move(e));
+        stop = true;
+      }
+    }
+    if (!python_error && PyErr_CheckSignals() != 0) {
+      python_error.emplace();  // fetches the KeyboardInterrupt
+      stop = true;
+    }
+  }
+  {
+    const py::gil_scoped_release release;
+    worker.join();
+  }
+  if (python_error) throw std::move(*python_error);
+  if (failure) std::rethrow_exception(failure);
+  return PyResult{p.problem, std::make_shared<const driver::RunResult>(std::move(*result)),
+                  io::RunContext{p.edits, "python: fricon.solve"}};
+}
+
+std::string report_text(const PyResult& r) {
+  return io::report_json(*r.problem, *r.run, r.context).dump();
+}
+
+}  // namespace
+
+void bind_solve(py::module_& m) {
+  py::class_<driver::OuterIteration>(m, "OuterIteration",
+                                     "One outer iteration, as the progress callback receives it.")
+      .def_readonly("k", &driver::OuterIteration::k)
+      .def_readonly("err", &driver::OuterIteration::err,
+                    "||phi^k - phi^(k-1)|| / ||phi^k|| (docs/theory.md §5.2)")
+      .def_readonly("qp_iterations", &driver::OuterIteration::qp_iterations)
+      .def_readonly("qp_products", &driver::OuterIteration::qp_products,
+                    "products with Q in this QP")
+      .def_readonly("qp_rel_gp", &driver::OuterIteration::qp_rel_gp, "final ||g^P|| / ||h||")
+      .def_readonly("seconds", &driver::OuterIteration::seconds)
+      .def("__repr__", [](const driver::OuterIteration& it) {
+        return fmt::format("OuterIteration(k={}, err={:.3e}, qp_iterations={}, qp_products={})",
+                           it.k, it.err, it.qp_iterations, it.qp_products);
+      });
+
+  py::class_<PyResult>(m, "Result", "The outcome of fricon.solve (the files of `fricon solve`).")
+      .def_property_readonly(
+          "converged",
+          [](const PyResult& r) { return r.run->report.status == driver::Status::Converged; },
+          "False when the run did not converge or its certificate failed (exit code 2)")
+      .def_property_readonly(
+          "message", [](const PyResult& r) { return r.run->report.message; },
+          "why the run did not converge (empty when it did)")
+      .def_property_readonly(
+          "report", [](const PyResult& r) { return to_python(report_text(r)); },
+          "the content of report.json, as a dict")
+      .def_property_readonly(
+          "points",
+          [](py::object self) {
+            return rows_view(self.cast<PyResult&>().run->model.mesh.nodes, self);
+          },
+          "(n, 3) node coordinates [m]")
+      .def_property_readonly(
+          "tets",
+          [](py::object self) {
+            return rows_view(self.cast<PyResult&>().run->model.mesh.tets, self);
+          },
+          "(m, 4) node indices")
+      .def_property_readonly(
+          "displacement",
+          [](py::object self) { return rows_view(self.cast<PyResult&>().run->displacement, self); },
+          "(n, 3) displacement [m]")
+      .def_property_readonly(
+          "stress",
+          [](py::object self) { return rows_view(self.cast<PyResult&>().run->stress, self); },
+          "(m, 6) stress per tetrahedron [Pa], Voigt order 11, 22, 33, 23, 13, 12")
+      .def_property_readonly(
+          "von_mises",
+          [](py::object self) { return vector_view(self.cast<PyResult&>().run->von_mises, self); },
+          "(m,) von Mises stress per tetrahedron [Pa]")
+      .def_property_readonly(
+          "contact_nodes",
+          [](const PyResult& r) -> py::object {
+            if (!r.run->contact) return py::none();
+            return table_dict(io::contact_node_table(r.run->model.mesh, *r.run->contact));
+          },
+          "the columns of contact_nodes.csv as numpy arrays (None without contact)")
+      .def_property_readonly(
+          "patches",
+          [](const PyResult& r) -> py::object {
+            if (!r.run->contact) return py::none();
+            return table_dict(io::patch_table(*r.run->contact));
+          },
+          "the columns of patches.csv as numpy arrays (None without contact)")
+      .def(
+          "write",
+          [](const PyResult& r, const std::string& dir) {
+            std::vector<std::string> written;
+            for (const auto& path : io::write_results(dir, *r.problem, *r.run, r.context))
+              written.push_back(path.string());
+            return written;
+          },
+          py::arg("dir"),
+          "Writes the files of `fricon solve` into dir (atomically; marked .not-converged when "
+          "the run did not converge); returns their paths.")
+      .def("__repr__", [](const PyResult& r) {
+        return fmt::format(
+            "fricon.Result({}, {} nodes{})",
+            r.run->report.status == driver::Status::Converged ? "converged" : "NOT converged",
+            r.run->report.n_nodes,
+            r.run->report.contact
+                ? fmt::format(", {} outer iterations", r.run->report.contact->outer_iterations)
+                : "");
+      });
+
+  m.def("_solve", &solve, py::arg("problem"), py::arg("progress") = py::none(),
+        py::arg("threads") = py::none());
+}
+
+}  // namespace fricon::python
