@@ -5,6 +5,7 @@
 #                must not depend on rounding), then the unit tests and a fast subset of the
 #                command-line tests under AddressSanitizer + UndefinedBehaviorSanitizer
 #   make bench   build and run the benchmarks (outside the tests)
+#   Both build the Python module into $(BUILD)/python: PYTHONPATH=$(BUILD)/python /usr/bin/python3
 #   make format  clang-format every C++ file
 BUILD     ?= build
 SAN_BUILD ?= build-asan
@@ -48,6 +49,8 @@ bench: build
 	@if [ -n "$(BENCH_LARGE)" ]; then $(BUILD)/bench/contact_bench 24 32 48; fi
 	@if [ -x $(BUILD)/bench/siconos_compare ]; then echo "== siconos_compare"; $(BUILD)/bench/siconos_compare; fi
 	@if [ -x $(BUILD)/bench/fclib_compare ]; then echo "== fclib_compare"; $(BUILD)/bench/fclib_compare; fi
+	@echo "== bench/python_study.py"; PYTHONPATH=$(BUILD)/python /usr/bin/python3 bench/python_study.py \
+	  $(BUILD)/apps/fricon/fricon
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.hpp')
