@@ -131,3 +131,12 @@ def test_an_unsupported_body_is_refused_before_it_is_solved():
         fricon.solve(p)
     assert issubclass(fricon.InputError, ValueError)
     assert issubclass(fricon.NumericalError, ArithmeticError)
+
+
+def test_the_arrays_are_views_of_the_result_not_copies():
+    r = fricon.solve(PAPER_BRICK, threads=1)
+    a, b = r.displacement, r.displacement
+    assert a.ctypes.data == b.ctypes.data  # the same memory each time
+    assert isinstance(a.base, fricon.Result) or a.base is not None
+    del r
+    assert np.isfinite(a).all()  # the view keeps the result alive
