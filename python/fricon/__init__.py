@@ -283,6 +283,44 @@ class Problem:
         return f"fricon.Problem({self._source}, {len(self._edits)} edit(s))"
 
 
+def _mesh_from_meshio(mesh):
+    """A fricon.Mesh from a meshio.Mesh: its "tetra" cells, and its cell sets as boundary tags
+    (the sets' triangles) and regions (the sets' tetrahedra), e.g. the physical groups of a Gmsh
+    file read by meshio.read."""
+    import numpy as np
+
+    blocks = list(mesh.cells)
+    tet_blocks = [i for i, b in enumerate(blocks) if b.type == "tetra"]
+    if not tet_blocks:
+        raise InputError("fricon.Mesh.from_meshio: the mesh has no \"tetra\" cells (fricon needs "
+                         "linear tetrahedra)")
+    offset, start = {}, 0
+    for i in tet_blocks:
+        offset[i] = start
+        start += len(blocks[i].data)
+    tets = np.concatenate([blocks[i].data for i in tet_blocks])
+    boundary, regions = {}, {}
+    for name, per_block in mesh.cell_sets.items():
+        if name.startswith("gmsh:"):
+            continue
+        triangles, members = [], []
+        for i, idx in enumerate(per_block):
+            if idx is None or len(idx) == 0:
+                continue
+            if blocks[i].type == "triangle":
+                triangles.append(blocks[i].data[idx])
+            elif blocks[i].type == "tetra":
+                members.append(offset[i] + np.asarray(idx))
+        if triangles:
+            boundary[name] = np.concatenate(triangles)
+        if members:
+            regions[name] = np.concatenate(members)
+    return Mesh(np.asarray(mesh.points, dtype=float), tets, boundary, regions or None)
+
+
+Mesh.from_meshio = staticmethod(_mesh_from_meshio)
+
+
 # A FrictionLaw assigned without a function clears the function of an earlier one.
 _NO_LAW = FrictionLaw({})
 _NO_LAW.function = None

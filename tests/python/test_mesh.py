@@ -141,3 +141,24 @@ def test_a_mesh_can_only_go_to_p_mesh():
     p = fricon.Problem()
     with pytest.raises(fricon.InputError, match="p.mesh"):
         p.material = fricon.Mesh(points, tets, boundary)
+
+
+def test_a_gmsh_file_read_by_meshio_equals_the_same_file_read_by_fricon(fricon_exe, tmp_path):
+    meshio = pytest.importorskip("meshio")
+    import subprocess
+
+    msh = tmp_path / "brick.msh"
+    subprocess.run([fricon_exe, "mesh", "brick", "--size", "3", "1", "1", "--cells", "12", "4", "4",
+                    "--out", str(msh)], check=True, capture_output=True)
+    by_fricon = fricon.load(PAPER_BRICK)
+    by_fricon.mesh = {"kind": "gmsh", "file": str(msh)}
+    by_fricon.contact.patches = "agglomerate"
+    by_meshio = by_fricon.copy()
+    by_meshio.mesh = fricon.Mesh.from_meshio(meshio.read(msh))
+    assert sorted(by_meshio.to_dict()["mesh"]) == ["kind"]
+    a, b = fricon.solve(by_fricon, threads=1), fricon.solve(by_meshio, threads=1)
+    # Same nodes in the same order (both keep the file's); the same answer.
+    np.testing.assert_array_equal(a.points, b.points)
+    np.testing.assert_allclose(b.displacement, a.displacement, rtol=0,
+                               atol=1e-12 * np.abs(a.displacement).max())
+    assert a.report["outer_iterations"] == b.report["outer_iterations"]
