@@ -49,7 +49,7 @@ ContactReport describe(const Problem& problem, const contact::ContactDiscretizat
   rep.stability_ratio = disc.stability.ratio;
   rep.stability_estimated = disc.stability.estimated;
   rep.n_inactive_multipliers = disc.stability.n_inactive;
-  rep.radius_integration = disc.radius_integration;
+  rep.radius_integration = contact::radius_integration(law);
   rep.partition_note = disc.partition_note;
   rep.kkt_bound = kCertificateFactor * problem.solver.qp_rtol;
   rep.coulomb_bound =
