@@ -109,6 +109,11 @@ constexpr int kNodesPerInterval = 15;
 // halvings take any interval below the resolution of a double).
 constexpr int kMaxQuadratureRounds = 60;
 
+// At most this many intervals at once: kMaxIntervalsFactor x the initial ones + kMaxIntervalsExtra
+// (bounds the memory, 15 nodes of 16 bytes each per interval).
+constexpr size_t kMaxIntervalsFactor = 16;
+constexpr size_t kMaxIntervalsExtra = 100000;
+
 // A triangle whose range of phi_h is below this fraction of |phi_h| is treated as having a
 // constant phi_h (the level-line weight would divide by ~0).
 constexpr Real kFlatRelative = 1e-13;
@@ -180,7 +185,10 @@ VectorXd quadrature_radii(const mesh::TetMesh& mesh, const ContactSurface& surfa
     }
   }
 
-  std::vector<Real> integral(n_patches, 0.0), scale(n_patches, 0.0);  // accepted parts [N]
+  // The accepted parts of each patch's integral [N], of its integral of |F g_h| and of its
+  // estimated error.
+  std::vector<Real> integral(n_patches, 0.0), scale(n_patches, 0.0), accepted_error(n_patches, 0.0);
+  const size_t max_intervals = kMaxIntervalsFactor * active.size() + kMaxIntervalsExtra;
   std::vector<Real> t, f;
   for (int round = 0; !active.empty() || round == 0; ++round) {
     if (round == kMaxQuadratureRounds)
@@ -237,24 +245,36 @@ VectorXd quadrature_radii(const mesh::TetMesh& mesh, const ContactSurface& surfa
       trial_scale[static_cast<size_t>(I.patch)] += magnitude[i];
     }
 
-    // Accept an interval whose error is within half its share of rtol x the patch's scale,
-    // shared by its own magnitude or by its length (the sum of either share is <= rtol x
-    // scale, so the patch's error is <= rtol x scale); bisect the others.
+    // A patch whose estimated error (accepted intervals and these) is within rtol x its scale
+    // is done. Otherwise an interval is accepted when its error is within half its share of
+    // rtol x the patch's scale, shared by the interval's own magnitude or by its length (the
+    // sum of either share is <= rtol x scale, so the accepted errors stay within it); the
+    // others are bisected.
+    std::vector<Real> trial_error = accepted_error;
+    for (size_t i = 0; i < active.size(); ++i)
+      trial_error[static_cast<size_t>(active[i].patch)] += error[i];
     std::vector<Interval> next;
     for (size_t i = 0; i < active.size(); ++i) {
       const Interval& I = active[i];
       const auto p = static_cast<size_t>(I.patch);
       const Real share =
           std::max(magnitude[i], trial_scale[p] * (I.hi - I.lo) / std::max(length[p], 1e-300));
-      if (error[i] <= 0.5 * rtol * share) {
+      if (trial_error[p] <= rtol * trial_scale[p] || error[i] <= 0.5 * rtol * share) {
         integral[p] += kronrod[i];
         scale[p] += magnitude[i];
+        accepted_error[p] += error[i];
       } else {
         const Real mid = 0.5 * (I.lo + I.hi);
         next.push_back({I.patch, I.base, I.sign, I.c1, I.c2, I.lo, mid});
         next.push_back({I.patch, I.base, I.sign, I.c1, I.c2, mid, I.hi});
       }
     }
+    if (next.size() > max_intervals)
+      throw NumericalError(fmt::format(
+          "the quadrature of the radii did not reach quadrature_rtol = {} for the friction law "
+          "{}: {} intervals would be needed (at most {}); F may oscillate too fast, or the "
+          "tolerance be too tight",
+          rtol, F.describe(), next.size(), max_intervals));
     active = std::move(next);
   }
 
