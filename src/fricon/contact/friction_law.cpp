@@ -51,8 +51,9 @@ constexpr const char* kSlipVariable = "t";
 // starts the message: "contact.friction.expression: " or "contact.friction: the function law's ".
 void check_coefficient(std::string_view who, Real t, Real value) {
   if (std::isfinite(value) && value >= 0.0) return;
-  throw InputError(fmt::format(
-      "{}F(t = {} m) = {}: a coefficient of friction must be finite and >= 0", who, t, value));
+  throw InputError(
+      fmt::format("{}F(t = {:.6g} m) = {:.6g}: a coefficient of friction must be finite and >= 0",
+                  who, t, value));
 }
 
 // The kinks and the quadrature tolerance of the expression and function laws.
