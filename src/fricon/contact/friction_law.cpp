@@ -112,9 +112,9 @@ class ExpressionLaw final : public QuadratureLaw {
   explicit ExpressionLaw(const FrictionLawSpec& spec)
       : QuadratureLaw(spec), expression_(spec.expression) {
     if (const auto problem = check_friction_expression(expression_))
-      throw InputError(fmt::format("contact.friction.expression: {} at column {} of \"{}\": {}",
-                                   problem->what, problem->position + 1, expression_,
-                                   problem->detail));
+      throw InputError(fmt::format(
+          "contact.friction.expression: {} at column {} of \"{}\": {}", problem->what,
+          std::max<std::ptrdiff_t>(problem->position, 0) + 1, expression_, problem->detail));
     setup_parser(parser_, expression_, &t_);
   }
 

@@ -445,14 +445,14 @@ void check_expression(const Context& ctx, const Field& f, const std::string& exp
   if (!problem) return;
   std::string where = ctx.where(f.node, nullptr);
   const auto& src = f.node->source();
+  const auto offset = std::max<std::ptrdiff_t>(problem->position, 0);
   if (ctx.origins.find(f.node) == ctx.origins.end() && src.begin.line > 0) {
-    const auto offset = std::max<std::ptrdiff_t>(problem->position, 0);
     const auto column = static_cast<std::ptrdiff_t>(src.begin.column) +
                         opening_quote_length(*f.node, expression) + offset;
     where = fmt::format("{}:{}:{}", ctx.file, src.begin.line, column);
   }
   throw InputError(fmt::format("{}: {}: {} at column {} of \"{}\": {}", where, f.path,
-                               problem->what, problem->position + 1, expression, problem->detail));
+                               problem->what, offset + 1, expression, problem->detail));
 }
 
 /// kinks and quadrature_rtol of the expression (and function) laws.
