@@ -28,6 +28,11 @@ add_library(fricon_gmsh INTERFACE)
 target_include_directories(fricon_gmsh SYSTEM INTERFACE ${GMSH_INCLUDE_DIR})
 target_link_libraries(fricon_gmsh INTERFACE ${GMSH_LIBRARY})
 
+# muparser (Debian: libmuparser-dev) evaluates the friction law "expression"
+# (src/fricon/contact/friction_law.cpp); it ships a pkg-config file only.
+find_package(PkgConfig REQUIRED)
+pkg_check_modules(MUPARSER REQUIRED IMPORTED_TARGET muparser)
+
 # FCLIB (Debian: libfclib-dev, with HDF5): the problems of other codes (`fricon dual solve`).
 # Its config file clears CMAKE_CXX_STANDARD: restore ours.
 find_package(fclib 3 REQUIRED CONFIG)

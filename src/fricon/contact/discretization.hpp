@@ -56,7 +56,9 @@ struct ContactDiscretization {
   /// (5.1) as built; for PatchKind::Agglomerate, the coarsenings that made it pass (the patch
   /// sizes tried and their ratios), for the log and the report.
   std::string partition_note;
-  std::string radius_integration;  ///< how the radii are integrated (radii.hpp)
+  /// How the radii are integrated for a piecewise-linear law (radii.hpp); the report names the
+  /// method for the law in use (contact::radius_integration).
+  std::string radius_integration;
 
   Index n_patches() const { return patches.size(); }
   Index n_dual() const { return 3 * patches.size(); }

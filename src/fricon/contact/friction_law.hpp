@@ -5,8 +5,10 @@
 // the contraction of the successive approximations).
 
 #include <array>
+#include <cstddef>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -73,7 +75,8 @@ struct FrictionLawSpec {
   Real quadrature_rtol = kDefaultQuadratureRtol;
 };
 
-/// The keys of [contact.friction] that law `kind` takes ({"param"}, {"value"}, {"t", "f"}).
+/// The keys of [contact.friction] that law `kind` takes ({"param"}, {"value"}, {"t", "f"},
+/// {"expression", "kinks", "quadrature_rtol"}, {"kinks", "quadrature_rtol"}).
 std::span<const std::string_view> friction_law_parameters(FrictionLawKind kind);
 
 /// The law a spec describes. Throws InputError for parameters out of range.
@@ -82,6 +85,31 @@ std::unique_ptr<FrictionLaw> make_friction_law(const FrictionLawSpec& spec);
 /// The paper's law (theory.md §7): 0.3 up to t0 = 1e-5 m, then decreasing linearly with slope
 /// 0.05 param to 0.2, reached at t0 + 2/param; `param` [1/m] > 0.
 std::unique_ptr<FrictionLaw> paper_law(Real param);
+
+/// What is wrong with a friction expression (check_friction_expression).
+struct ExpressionProblem {
+  /// 0-based offset in the expression where muparser found the problem; -1 when it names none
+  /// (an empty expression).
+  std::ptrdiff_t position = -1;
+  std::string what;    ///< "syntax error" or "unknown name \"x\""
+  std::string detail;  ///< muparser's message without its position, or a hint
+};
+
+/// Parses a friction expression (muparser syntax, the only variable t [m]) once, without
+/// evaluating it for any meaningful slip. Returns nothing when it is valid.
+std::optional<ExpressionProblem> check_friction_expression(const std::string& expression);
+
+/// F given by a formula in t (spec.expression; muparser). Throws InputError for an invalid
+/// expression, kinks that are not increasing and >= 0, or quadrature_rtol outside (0, 1). Each
+/// law object owns one parser guarded by a mutex: evaluating from several threads is safe but
+/// serialized. Every value computed is checked (finite, >= 0; InputError naming the slip).
+std::unique_ptr<FrictionLaw> expression_law(const FrictionLawSpec& spec);
+
+/// F given by code (spec.function, a batch function; spec.function_name in describe()). Each
+/// evaluate() calls it once for the whole batch, operator() once with one slip; every value it
+/// returns is checked (finite, >= 0; InputError naming the slip). Throws InputError for an empty
+/// function or bad kinks / quadrature_rtol.
+std::unique_ptr<FrictionLaw> function_law(const FrictionLawSpec& spec);
 
 /// A constant coefficient F(t) = value >= 0 (classical Tresca friction).
 std::unique_ptr<FrictionLaw> constant_law(Real value);

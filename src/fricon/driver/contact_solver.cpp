@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 
 #include <fmt/format.h>
 
@@ -49,7 +50,7 @@ ContactReport describe(const Problem& problem, const contact::ContactDiscretizat
   rep.stability_ratio = disc.stability.ratio;
   rep.stability_estimated = disc.stability.estimated;
   rep.n_inactive_multipliers = disc.stability.n_inactive;
-  rep.radius_integration = disc.radius_integration;
+  rep.radius_integration = contact::radius_integration(law);
   rep.partition_note = disc.partition_note;
   rep.kkt_bound = kCertificateFactor * problem.solver.qp_rtol;
   rep.coulomb_bound =
@@ -159,7 +160,9 @@ void measure(const Model& m, const contact::ContactDiscretization& disc,
   rep.max_neg_wn = (-penetration).maxCoeff();
   const VectorXd slip = s.slip();
   rep.max_wt = slip.maxCoeff();
-  fields.F = slip.unaryExpr([&law](Real t) { return law(t); });
+  fields.F.resize(slip.size());  // one batch: a function law is called once
+  law.evaluate(std::span<const Real>(slip.data(), static_cast<size_t>(slip.size())),
+               std::span<Real>(fields.F.data(), static_cast<size_t>(fields.F.size())));
   for (Index p = 0; p < rep.n_patches; ++p) {
     rep.max_lambda_n = std::max(rep.max_lambda_n, lambda(3 * p));
     rep.max_lambda_t = std::max(rep.max_lambda_t, lambda.segment<2>(3 * p + 1).norm());

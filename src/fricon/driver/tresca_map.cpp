@@ -1,5 +1,7 @@
 #include "fricon/driver/tresca_map.hpp"
 
+#include <cmath>
+
 #include <fmt/format.h>
 
 namespace fricon::driver {
@@ -73,6 +75,12 @@ outer::StepResult TrescaMap::apply(int k, const VectorXd& state, VectorXd& image
 }
 
 std::string TrescaMap::stall_hint() const {
+  // An expression or function law has no known Lipschitz constant (lipschitz() is NaN).
+  if (!std::isfinite(law_.lipschitz()))
+    return fmt::format(
+        "the friction law {} may vary too fast with the slip for the successive approximations "
+        "to contract (its Lipschitz constant is not known), or qp_rtol too loose for outer_tol",
+        law_.describe());
   return fmt::format(
       "the friction law's Lipschitz constant {:.3g} 1/m may be too large for this problem, or "
       "qp_rtol too loose for outer_tol",

@@ -201,6 +201,21 @@ void validate_table_law(const Problem& p, const FrictionOptions& fr) {
                      fr.f.size()));
 }
 
+/// kinks (>= 0, strictly increasing) and quadrature_rtol (in (0, 1)) of the expression and
+/// function laws.
+void validate_quadrature_keys(const Problem& p, const FrictionOptions& fr) {
+  for (std::size_t i = 0; i < fr.kinks.size(); ++i) {
+    const std::string key = fmt::format("contact.friction.kinks[{}]", i);
+    check_real(p, key, fr.kinks[i], "a number >= 0 [m]", fr.kinks[i] >= 0.0);
+    if (i > 0 && !(fr.kinks[i] > fr.kinks[i - 1]))
+      fail(p, key,
+           fmt::format("expected slips in strictly increasing order, got {} after {}",
+                       format_real(fr.kinks[i]), format_real(fr.kinks[i - 1])));
+  }
+  check_real(p, "contact.friction.quadrature_rtol", fr.quadrature_rtol, "a number in (0, 1)",
+             fr.quadrature_rtol > 0.0 && fr.quadrature_rtol < 1.0);
+}
+
 void validate_friction(const Problem& p, const FrictionOptions& fr) {
   check_enum(p, fr.law);
   switch (fr.law) {
@@ -212,6 +227,17 @@ void validate_friction(const Problem& p, const FrictionOptions& fr) {
       break;
     case contact::FrictionLawKind::Table:
       validate_table_law(p, fr);
+      break;
+    case contact::FrictionLawKind::Expression:
+      if (fr.expression.empty())
+        fail_expected(p, "contact.friction.expression", "a formula in the slip t [m]", "\"\"");
+      validate_quadrature_keys(p, fr);
+      break;
+    case contact::FrictionLawKind::Function:
+      if (!fr.function)
+        fail(p, "contact.friction.law",
+             "law \"function\" needs a function given from code (FrictionLawSpec::function)");
+      validate_quadrature_keys(p, fr);
       break;
   }
 }

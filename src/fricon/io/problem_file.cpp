@@ -447,6 +447,39 @@ std::vector<T> read_table_array(const Context& ctx, const Field& f, std::string_
   return out;
 }
 
+/// How many characters open the string value `n` in the file: 3 for a one-line """...""" or
+/// '''...''' string, else 1 (a quote). Escapes in a basic string are not accounted for.
+int opening_quote_length(const toml::node& n, const std::string& value) {
+  const auto& src = n.source();
+  if (src.begin.line == 0 || src.begin.line != src.end.line) return 1;
+  const auto raw = static_cast<std::size_t>(src.end.column - src.begin.column);
+  return raw == value.size() + 6 ? 3 : 1;
+}
+
+/// contact.friction.expression parsed once: a syntax error or an unknown name is reported at its
+/// line and column in the file (the string's position plus muparser's offset in it).
+void check_expression(const Context& ctx, const Field& f, const std::string& expression) {
+  const auto problem = contact::check_friction_expression(expression);
+  if (!problem) return;
+  std::string where = ctx.where(f.node, nullptr);
+  const auto& src = f.node->source();
+  const auto offset = std::max<std::ptrdiff_t>(problem->position, 0);
+  if (ctx.origins.find(f.node) == ctx.origins.end() && src.begin.line > 0) {
+    const auto column = static_cast<std::ptrdiff_t>(src.begin.column) +
+                        opening_quote_length(*f.node, expression) + offset;
+    where = fmt::format("{}:{}:{}", ctx.file, src.begin.line, column);
+  }
+  throw InputError(fmt::format("{}: {}: {} at column {} of \"{}\": {}", where, f.path,
+                               problem->what, offset + 1, expression, problem->detail));
+}
+
+/// kinks and quadrature_rtol of the expression (and function) laws.
+void read_quadrature_keys(const Context& ctx, const TableReader& t, driver::FrictionOptions& fr) {
+  if (auto k = t.find("kinks")) fr.kinks = get_real_list(ctx, *k, "a number >= 0 [m]");
+  if (auto k = t.find("quadrature_rtol"))
+    fr.quadrature_rtol = get_real(ctx, *k, "a number in (0, 1)");
+}
+
 void read_friction(const Context& ctx, const Field& f, driver::FrictionOptions& fr) {
   static const auto params =
       all_parameters<contact::FrictionLawKind>(contact::friction_law_parameters);
@@ -472,6 +505,20 @@ void read_friction(const Context& ctx, const Field& f, driver::FrictionOptions& 
       fr.t = get_real_list(ctx, kt, "a number >= 0 [m]");
       fr.f = get_real_list(ctx, kf, "a number >= 0");
       break;
+    }
+    case contact::FrictionLawKind::Expression: {
+      const Field k =
+          t.require("expression", "law \"expression\" needs a formula in the slip t [m]");
+      fr.expression = get_string(ctx, k, "a formula in the slip t [m], e.g. \"0.3 - 100*t\"");
+      check_expression(ctx, k, fr.expression);
+      read_quadrature_keys(ctx, t, fr);
+      break;
+    }
+    case contact::FrictionLawKind::Function: {
+      const auto law = t.find("law");
+      fail(ctx, law ? *law : f,
+           "law \"function\" is a function given from code (fricon.FrictionLaw.function in "
+           "Python); in a problem file write law = \"expression\"");
     }
   }
 }
@@ -922,6 +969,14 @@ nlohmann::json to_json(const driver::Problem& p) {
     if (c.friction.law == contact::FrictionLawKind::Table) {
       fr["t"] = c.friction.t;
       fr["f"] = c.friction.f;
+    }
+    if (c.friction.law == contact::FrictionLawKind::Expression)
+      fr["expression"] = c.friction.expression;
+    if (c.friction.law == contact::FrictionLawKind::Function) fr["name"] = c.friction.function_name;
+    if (c.friction.law == contact::FrictionLawKind::Expression ||
+        c.friction.law == contact::FrictionLawKind::Function) {
+      fr["kinks"] = c.friction.kinks;
+      fr["quadrature_rtol"] = c.friction.quadrature_rtol;
     }
     j["contact"] = {{"boundary", c.boundary},
                     {"model", enum_name(c.model)},

@@ -203,8 +203,9 @@ std::vector<BadCase> contact_cases() {
        "finite)"},
       {"PatchesCast", [](Problem& p) { p.contact->patches = static_cast<contact::PatchKind>(9); },
        "<memory>: contact.patches: expected one of \"chessboard\"", true},
-      {"LawCast", [](Problem& p) { p.contact->friction.law = static_cast<K>(3); },
-       "<memory>: contact.friction.law: expected one of \"paper\", \"constant\", \"table\", got 3",
+      {"LawCast", [](Problem& p) { p.contact->friction.law = static_cast<K>(9); },
+       "<memory>: contact.friction.law: expected one of \"paper\", \"constant\", \"table\", "
+       "\"expression\", \"function\", got 9",
        true},
       {"ParamZero", [](Problem& p) { p.contact->friction.param = 0.0; },
        "<memory>: contact.friction.param: expected a positive number [1/m], got 0.0"},

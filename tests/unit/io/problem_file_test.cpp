@@ -2,9 +2,11 @@
 
 #include "fricon/io/problem_file.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <span>
 #include <sstream>
 #include <string>
 #include <type_traits>
@@ -730,6 +732,9 @@ TEST(ProblemFileJson, RoundTripThroughToml) {
        "contact.friction.f=[0.3, 0.1]", "volume_force=[0, 0, -7.85e4]", "title=\"x y\""},
       {"contact.friction.law=constant", "solver.dual_operator=schur", "mesh.size=[1.5, 0.5, 2]"},
       {"contact.model=coulomb", "contact.start_slip_bound=1e7"},
+      {"contact.friction.law=expression", "contact.friction.expression=\"0.1 + 0.4*exp(-t/5e-5)\"",
+       "contact.friction.kinks=[1e-5, 2e-5]", "contact.friction.quadrature_rtol=1e-8"},
+      {"contact.friction.law=expression", "contact.friction.expression=\"0.3\""},
   };
   for (const auto& overrides : variants) {
     const auto p = read_problem(kPaper, overrides);
@@ -753,6 +758,104 @@ TEST(ProblemFileJson, RoundTripThroughToml) {
   std::ostringstream toml_text;
   toml_text << toml_table(to_json(p));
   EXPECT_EQ(to_json(parse_problem(toml_text.str(), "roundtrip.toml")), to_json(p));
+}
+
+// ------------------------------------------------------------------------------------------
+// The friction law "expression" (and "function", which a file cannot give).
+
+// A problem whose [contact.friction] table is `friction` (its first line is line 6).
+std::string with_friction(const std::string& friction) {
+  return "[mesh]\n[material]\n[contact]\nboundary = \"z0\"\n[contact.friction]\n" + friction;
+}
+
+TEST(ProblemFileExpression, ReadsTheFormulaKinksAndTolerance) {
+  const auto p = parse_problem(with_friction("law = \"expression\"\n"
+                                             "expression = \"0.1 + 0.4*exp(-t/5e-5)\"\n"
+                                             "kinks = [1e-5, 3e-5]\nquadrature_rtol = 1e-8\n"),
+                               "t.toml");
+  const auto& fr = p.contact->friction;
+  EXPECT_EQ(fr.law, contact::FrictionLawKind::Expression);
+  EXPECT_EQ(fr.expression, "0.1 + 0.4*exp(-t/5e-5)");
+  EXPECT_EQ(fr.kinks, (std::vector<Real>{1e-5, 3e-5}));
+  EXPECT_EQ(fr.quadrature_rtol, 1e-8);
+  const auto j = to_json(p)["contact"]["friction"];
+  EXPECT_EQ(j["law"], "expression");
+  EXPECT_EQ(j["expression"], "0.1 + 0.4*exp(-t/5e-5)");
+  EXPECT_EQ(j["kinks"], (std::vector<Real>{1e-5, 3e-5}));
+  EXPECT_EQ(j["quadrature_rtol"], 1e-8);
+  EXPECT_FALSE(j.contains("param"));
+  // Defaults.
+  const auto d =
+      parse_problem(with_friction("law = \"expression\"\nexpression = \"0.3\"\n"), "t.toml");
+  EXPECT_TRUE(d.contact->friction.kinks.empty());
+  EXPECT_EQ(d.contact->friction.quadrature_rtol, contact::kDefaultQuadratureRtol);
+}
+
+TEST(ProblemFileExpression, SyntaxErrorsAndUnknownNamesAreNamedInsideTheFile) {
+  // Line 7 is `expression = "..."`: the quote is column 14, the expression starts at column 15.
+  EXPECT_EQ(error_of(with_friction("law = \"expression\"\nexpression = \"0.1 + * t\"\n")),
+            "t.toml:7:21: contact.friction.expression: syntax error at column 7 of \"0.1 + * t\": "
+            "Unexpected operator \"*\"");
+  EXPECT_EQ(error_of(with_friction("law = \"expression\"\nexpression = \"0.1 + x\"\n")),
+            "t.toml:7:21: contact.friction.expression: unknown name \"x\" at column 7 of \"0.1 + "
+            "x\": the only variable is t, the slip [m] (docs/problem-file.md lists the functions)");
+  // A literal string and some indentation: still the right column.
+  EXPECT_THAT(error_of(with_friction("law = \"expression\"\n  expression = '0.1 + * t'\n")),
+              HasSubstr("t.toml:7:23: contact.friction.expression: syntax error at column 7"));
+  EXPECT_THAT(error_of(with_friction("law = \"expression\"\nexpression = \"sin(\"\n")),
+              HasSubstr("t.toml:7:20: contact.friction.expression: syntax error at column 6 of "
+                        "\"sin(\": Unexpected end of expression"));
+  // From --set: named by the override.
+  EXPECT_THAT(error_of(with_friction("law = \"expression\"\nexpression = \"t\"\n"),
+                       {"contact.friction.expression=\"2 * * t\""}),
+              HasSubstr("--set contact.friction.expression=\"2 * * t\": "
+                        "contact.friction.expression: syntax error at column 5"));
+  EXPECT_THAT(
+      error_of(with_friction("law = \"expression\"\n")),
+      HasSubstr("missing required key 'contact.friction.expression' (law \"expression\" needs a "
+                "formula in the slip t [m])"));
+  EXPECT_THAT(error_of(with_friction("law = \"expression\"\nexpression = \"\"\n")),
+              HasSubstr("contact.friction.expression: syntax error"));
+  EXPECT_THAT(error_of(with_friction("law = \"expression\"\nexpression = \"0.3\"\nparam = 1\n")),
+              HasSubstr("not used by law \"expression\" (it takes: expression, kinks, "
+                        "quadrature_rtol)"));
+}
+
+TEST(ProblemFileExpression, KinksAndToleranceAreValidated) {
+  const std::string law = "law = \"expression\"\nexpression = \"0.3\"\n";
+  EXPECT_THAT(error_of(with_friction(law + "kinks = [2e-5, 1e-5]\n")), HasSubstr("t.toml:8:"));
+  EXPECT_THAT(error_of(with_friction(law + "kinks = [2e-5, 1e-5]\n")),
+              HasSubstr("contact.friction.kinks[1]: expected slips in strictly increasing order"));
+  EXPECT_THAT(error_of(with_friction(law + "kinks = [-1e-5]\n")),
+              HasSubstr("contact.friction.kinks[0]: expected a number >= 0 [m], got -1e-05"));
+  EXPECT_THAT(error_of(with_friction(law + "quadrature_rtol = 1.0\n")),
+              HasSubstr("t.toml:8:1: contact.friction.quadrature_rtol: expected a number in (0, "
+                        "1), got 1.0"));
+  EXPECT_THAT(error_of(with_friction(law + "quadrature_rtol = 0\n")),
+              HasSubstr("contact.friction.quadrature_rtol: expected a number in (0, 1)"));
+}
+
+TEST(ProblemFileExpression, LawFunctionIsForCodeOnly) {
+  EXPECT_EQ(error_of(with_friction("law = \"function\"\n")),
+            "t.toml:6:1: contact.friction.law: law \"function\" is a function given from code "
+            "(fricon.FrictionLaw.function in Python); in a problem file write law = "
+            "\"expression\"");
+  // In code, a function law is a valid Problem; to_json names it.
+  auto p = parse_problem(with_friction("law = \"expression\"\nexpression = \"0.3\"\n"), "t.toml");
+  auto& fr = p.contact->friction;
+  fr.law = contact::FrictionLawKind::Function;
+  fr.function_name = "my_law";
+  EXPECT_THROW(driver::validate(p), InputError);  // no function yet
+  fr.function = [](std::span<const Real>, std::span<Real> out) {
+    std::fill(out.begin(), out.end(), 0.3);
+  };
+  EXPECT_NO_THROW(driver::validate(p));
+  const auto j = to_json(p)["contact"]["friction"];
+  EXPECT_EQ(j["law"], "function");
+  EXPECT_EQ(j["name"], "my_law");
+  EXPECT_TRUE(j.contains("kinks"));
+  EXPECT_EQ(j["quadrature_rtol"], contact::kDefaultQuadratureRtol);
+  EXPECT_FALSE(j.contains("expression"));
 }
 
 }  // namespace
