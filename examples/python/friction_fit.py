@@ -74,14 +74,15 @@ def main():
 
     fig, (law_ax, slip_ax) = plt.subplots(1, 2, figsize=(10, 4))
     s = np.linspace(0.0, t[-1], 400)
-    law_ax.plot(t, f, "ko", label="measured")
-    law_ax.plot(s, fitted(s), label="fitted a + b exp(-t/c)")
-    law_ax.plot(s, np.interp(s, t, f), "--", label="table (piecewise linear)")
-    law_ax.set(xlabel="slip t [m]", ylabel="F(t)", title="coefficient of friction")
+    um = 1e6  # slips in micrometres on the axes
+    law_ax.plot(um * t, f, "ko", label="measured")
+    law_ax.plot(um * s, fitted(s), label="fitted a + b exp(-t/c)")
+    law_ax.plot(um * s, np.interp(s, t, f), "--", label="table (piecewise linear)")
+    law_ax.set(xlabel="slip t [um]", ylabel="F(t)", title="coefficient of friction")
     for name, r in results.items():
         nodes = r.contact_nodes
-        slip_ax.plot(nodes["x"], nodes["phi"], ".", label=name)
-    slip_ax.set(xlabel="x [m]", ylabel="||w_t|| [m]", title="slip on the contact surface")
+        slip_ax.plot(nodes["x"], um * nodes["phi"], ".", label=name)
+    slip_ax.set(xlabel="x [m]", ylabel="||w_t|| [um]", title="slip on the contact surface")
     for ax in (law_ax, slip_ax):
         ax.grid(True, alpha=0.3)
         ax.legend()

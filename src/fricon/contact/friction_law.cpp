@@ -12,13 +12,6 @@
 
 namespace fricon::contact {
 
-void FrictionLaw::evaluate(std::span<const Real> t, std::span<Real> out) const {
-  FRICON_CHECK(t.size() == out.size(), "FrictionLaw::evaluate: " << t.size() << " slips, "
-                                                                  << out.size() << " values");
-  for (std::size_t i = 0; i < t.size(); ++i)
-    out[i] = (*this)(t[i]);
-}
-
 namespace {
 
 // Piecewise linear through points, constant outside; all built-in laws are of this kind.

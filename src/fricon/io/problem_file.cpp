@@ -515,10 +515,16 @@ void read_friction(const Context& ctx, const Field& f, driver::FrictionOptions& 
       break;
     }
     case contact::FrictionLawKind::Function: {
-      const auto law = t.find("law");
-      fail(ctx, law ? *law : f,
-           "law \"function\" is a function given from code (fricon.FrictionLaw.function in "
-           "Python); in a problem file write law = \"expression\"");
+      if (ctx.code == nullptr || !ctx.code->friction) {
+        const auto law = t.find("law");
+        fail(ctx, law ? *law : f,
+             "law \"function\" is a function given from code (fricon.FrictionLaw.function in "
+             "Python); in a problem file write law = \"expression\"");
+      }
+      fr.function = ctx.code->friction;
+      fr.function_name = ctx.code->friction_name;
+      read_quadrature_keys(ctx, t, fr);
+      break;
     }
   }
 }
