@@ -61,3 +61,17 @@ else()
   message(STATUS "Siconos numerics not found (libsiconos-numerics-dev): the comparisons with it "
                  "are not built")
 endif()
+
+# PETSc 3.18 with MPI (OpenMPI) and MUMPS (Debian: petsc-dev): the building blocks of the
+# distributed backend (docs/petsc-backend.md; so far bench/petsc). Optional: without it they are
+# not built.
+find_package(MPI COMPONENTS C CXX)
+pkg_check_modules(PETSC IMPORTED_TARGET PETSc)
+if(MPI_FOUND AND PETSC_FOUND)
+  message(STATUS "PETSc ${PETSC_VERSION} with MPI found")
+  add_library(fricon_petsc INTERFACE)
+  target_link_libraries(fricon_petsc INTERFACE PkgConfig::PETSC MPI::MPI_CXX MPI::MPI_C)
+  find_program(FRICON_MPIEXEC NAMES mpirun mpiexec)
+else()
+  message(STATUS "PETSc with MPI not found (petsc-dev): the PETSc programs are not built")
+endif()

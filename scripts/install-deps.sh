@@ -18,6 +18,8 @@ packages=(
   libmuparser-dev
   # the Python module (fricon for /usr/bin/python3) and its tests
   pybind11-dev python3-dev python3-pytest
+  # runs on many MPI ranks: PETSc 3.18 with OpenMPI, MUMPS, hypre, PT-Scotch
+  petsc-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
   # reading results back (tests) and plots: Debian's Python packages for /usr/bin/python3

@@ -1,0 +1,228 @@
+// The measurement behind the PETSc backend's design (docs/petsc-backend.md): on P MPI ranks,
+// two ways of forming the dual Hessian Q = B K^-1 B^T of the paper's brick with MUMPS through
+// PETSc, against fricon's own Q (CHOLMOD, forward operator) on the same discrete problem:
+//   schur    MUMPS on the augmented matrix [[K, B^T], [B, 0]] with the multipliers as Schur
+//            variables (centralized on rank 0): Q = -S; and whether MatSolve then still works
+//            with that factor (the solves for the displacement need it)
+//   columns  MUMPS Cholesky of K alone, Q = B X with K X = B^T solved in blocks of columns
+// Run: mpirun -n P build/bench/petsc_schur_probe [n [--try-solve]]   (n: mesh parameter, default
+// 8; --try-solve: try MatSolve with the Schur factor on several ranks too, which hangs with
+// PETSc 3.18)
+// The model is built on every rank (replicated input; each rank inserts its own rows).
+
+#include <petscmat.h>
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "fricon/driver/model.hpp"
+#include "fricon/dual/dual_operator.hpp"
+#include "fricon/io/problem_file.hpp"
+#include "fricon/core/timer.hpp"
+
+namespace {
+
+using fricon::Index;
+using fricon::MatrixXd;
+using fricon::SparseMatrix;
+
+constexpr PetscInt kColumnsPerBlock = 256;  // right-hand sides per MatMatSolve of "columns"
+constexpr double kAgreement = 1e-9;         // max |Q - Q_cholmod| / max |Q| the test accepts
+
+void check(PetscErrorCode e, const char* what) {
+  if (e != 0) throw fricon::NumericalError(fmt::format("PETSc: {} failed (error {})", what, e));
+}
+
+// Rows [rs, re) of the symmetric matrix [[K, B^T], [B, 0]] (or K alone when B is null), from the
+// replicated column-major K and B, each rank its own rows, preallocated from their pattern (COO).
+Mat assemble(const SparseMatrix& K, const SparseMatrix* B) {
+  const PetscInt n = K.rows(), m = B ? B->rows() : 0, N = n + m;
+  PetscInt local = PETSC_DECIDE, global = N, re = 0;
+  check(PetscSplitOwnership(PETSC_COMM_WORLD, &local, &global), "PetscSplitOwnership");
+  check(MPI_Scan(&local, &re, 1, MPIU_INT, MPI_SUM, PETSC_COMM_WORLD), "MPI_Scan");
+  const PetscInt rs = re - local;
+  Mat A;
+  check(MatCreate(PETSC_COMM_WORLD, &A), "MatCreate");
+  check(MatSetSizes(A, local, local, N, N), "MatSetSizes");
+  check(MatSetType(A, MATAIJ), "MatSetType");
+  std::vector<PetscInt> rows, cols;
+  std::vector<PetscScalar> values;
+  const auto add = [&](PetscInt i, PetscInt j, PetscScalar v) {
+    rows.push_back(i), cols.push_back(j), values.push_back(v);
+  };
+  const SparseMatrix Bt = B ? SparseMatrix(B->transpose()) : SparseMatrix();
+  for (PetscInt j = rs; j < std::min(re, n); ++j) {  // row j of K = column j (K symmetric)
+    for (SparseMatrix::InnerIterator it(K, j); it; ++it) add(j, it.row(), it.value());
+    if (B)
+      for (SparseMatrix::InnerIterator it(*B, j); it; ++it) add(j, n + it.row(), it.value());
+  }
+  for (PetscInt i = std::max(rs, n); i < re; ++i) {  // row i - n of B, and a zero diagonal
+    for (SparseMatrix::InnerIterator it(Bt, i - n); it; ++it) add(i, it.row(), it.value());
+    add(i, i, 0.0);
+  }
+  check(MatSetPreallocationCOO(A, static_cast<PetscCount>(rows.size()), rows.data(), cols.data()),
+        "MatSetPreallocationCOO");
+  check(MatSetValuesCOO(A, values.data(), INSERT_VALUES), "MatSetValuesCOO");
+  check(MatSetOption(A, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
+  if (!B) check(MatSetOption(A, MAT_SPD, PETSC_TRUE), "MatSetOption");
+  return A;
+}
+
+double relative_difference(const MatrixXd& a, const MatrixXd& b) {
+  return (a - b).cwiseAbs().maxCoeff() / b.cwiseAbs().maxCoeff();
+}
+
+enum class SolveCheck { Works, Refused, NotTried };
+
+// "schur": Q = -S from the augmented factor; and whether MatSolve works with it. On more than one
+// rank PETSc 3.18 refuses on rank 0 only while the others enter MUMPS and wait forever, so it is
+// tried there only when asked (try_solve).
+std::pair<MatrixXd, SolveCheck> schur_way(const SparseMatrix& K, const SparseMatrix& B, int rank,
+                                          int size, bool try_solve) {
+  const PetscInt n = K.rows(), m = B.rows();
+  Mat A = assemble(K, &B), F, S;
+  IS schur;
+  check(ISCreateStride(PETSC_COMM_SELF, rank == 0 ? m : 0, n, 1, &schur), "ISCreateStride");
+  check(MatGetFactor(A, MATSOLVERMUMPS, MAT_FACTOR_CHOLESKY, &F), "MatGetFactor");
+  check(MatFactorSetSchurIS(F, schur), "MatFactorSetSchurIS");
+  MatFactorInfo info;
+  check(MatFactorInfoInitialize(&info), "MatFactorInfoInitialize");
+  check(MatCholeskyFactorSymbolic(F, A, nullptr, &info), "MatCholeskyFactorSymbolic");
+  check(MatCholeskyFactorNumeric(F, A, &info), "MatCholeskyFactorNumeric");
+  MatFactorSchurStatus status;
+  check(MatFactorCreateSchurComplement(F, &S, &status), "MatFactorCreateSchurComplement");
+  MatrixXd Q = MatrixXd::Zero(m, m);
+  if (rank == 0) {
+    const PetscScalar* s = nullptr;
+    check(MatDenseGetArrayRead(S, &s), "MatDenseGetArrayRead");
+    Q = -Eigen::Map<const MatrixXd>(s, m, m);
+    check(MatDenseRestoreArrayRead(S, &s), "MatDenseRestoreArrayRead");
+  }
+  check(MPI_Bcast(Q.data(), static_cast<int>(Q.size()), MPI_DOUBLE, 0, PETSC_COMM_WORLD),
+        "MPI_Bcast");
+  // Whether the same factor solves K w = r (the displacement): PETSc's answer, not an abort.
+  SolveCheck solves = SolveCheck::NotTried;
+  if (size == 1 || try_solve) {
+    Vec b, x;
+    check(MatCreateVecs(A, &x, &b), "MatCreateVecs");
+    check(VecSet(b, 1.0), "VecSet");
+    check(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr), "PetscPushErrorHandler");
+    solves = MatSolve(F, b, x) == 0 ? SolveCheck::Works : SolveCheck::Refused;
+    check(PetscPopErrorHandler(), "PetscPopErrorHandler");
+    VecDestroy(&b), VecDestroy(&x);
+  }
+  MatDestroy(&S), MatDestroy(&F), MatDestroy(&A), ISDestroy(&schur);
+  return {Q, solves};
+}
+
+// "columns": Q = B K^-1 B^T by solves with the MUMPS factor of K alone, kColumnsPerBlock at once.
+MatrixXd columns_way(const SparseMatrix& K, const SparseMatrix& B) {
+  const PetscInt n = K.rows(), m = B.rows();
+  Mat A = assemble(K, nullptr), F;
+  check(MatGetFactor(A, MATSOLVERMUMPS, MAT_FACTOR_CHOLESKY, &F), "MatGetFactor");
+  MatFactorInfo info;
+  check(MatFactorInfoInitialize(&info), "MatFactorInfoInitialize");
+  check(MatCholeskyFactorSymbolic(F, A, nullptr, &info), "MatCholeskyFactorSymbolic");
+  check(MatCholeskyFactorNumeric(F, A, &info), "MatCholeskyFactorNumeric");
+  PetscInt rs = 0, re = 0;
+  check(MatGetOwnershipRange(A, &rs, &re), "MatGetOwnershipRange");
+  const SparseMatrix Bt = B.transpose();
+  MatrixXd Q = MatrixXd::Zero(m, m);
+  for (PetscInt c0 = 0; c0 < m; c0 += kColumnsPerBlock) {
+    const PetscInt nc = std::min(kColumnsPerBlock, m - c0);
+    Mat R, X;
+    check(MatCreateDense(PETSC_COMM_WORLD, re - rs, PETSC_DECIDE, n, nc, nullptr, &R), "MatCreateDense");
+    check(MatCreateDense(PETSC_COMM_WORLD, re - rs, PETSC_DECIDE, n, nc, nullptr, &X), "MatCreateDense");
+    PetscScalar* r = nullptr;
+    check(MatDenseGetArray(R, &r), "MatDenseGetArray");
+    const Index local = re - rs;
+    std::fill(r, r + local * nc, 0.0);
+    for (PetscInt c = 0; c < nc; ++c)
+      for (SparseMatrix::InnerIterator it(Bt, c0 + c); it; ++it)
+        if (it.row() >= rs && it.row() < re) r[c * local + (it.row() - rs)] = it.value();
+    check(MatDenseRestoreArray(R, &r), "MatDenseRestoreArray");
+    check(MatMatSolve(F, R, X), "MatMatSolve");
+    const PetscScalar* x = nullptr;
+    check(MatDenseGetArrayRead(X, &x), "MatDenseGetArrayRead");
+    // Q[:, block] = B X: each rank its own rows of X, summed over the ranks.
+    const Eigen::Map<const MatrixXd> Xl(x, local, nc);
+    Q.middleCols(c0, nc) = B.middleCols(rs, local) * Xl;
+    check(MatDenseRestoreArrayRead(X, &x), "MatDenseRestoreArrayRead");
+    MatDestroy(&R), MatDestroy(&X);
+  }
+  check(MPI_Allreduce(MPI_IN_PLACE, Q.data(), static_cast<int>(Q.size()), MPI_DOUBLE, MPI_SUM,
+                      PETSC_COMM_WORLD),
+        "MPI_Allreduce");
+  MatDestroy(&F), MatDestroy(&A);
+  return Q;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (PetscInitialize(&argc, &argv, nullptr, nullptr) != 0) return 1;
+  int rank = 0, size = 1;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  int status = 0;
+  try {
+    const int n = argc > 1 ? std::stoi(argv[1]) : 8;
+    const bool try_solve = argc > 2 && std::string(argv[2]) == "--try-solve";
+    const fricon::driver::Problem problem = fricon::io::read_problem(
+        FRICON_SOURCE_DIR "/examples/paper-brick.toml",
+        {fmt::format("mesh.cells=[{},{},{}]", 3 * n, n, n)});
+    fricon::PhaseTimes times;
+    fricon::driver::Model model = fricon::driver::assemble_model(problem, times, {});
+    const auto disc = fricon::driver::discretize_contact(problem, model.mesh, model.dofs);
+
+    fricon::Stopwatch clock;
+    fricon::driver::factorize_model(model, {}, times, {});
+    const fricon::dual::DualInput input{model.factor, disc.B, model.f, disc.dofs, {}, &disc.offset};
+    const MatrixXd Q = fricon::dual::make_dual_operator(fricon::dual::DualOperatorKind::Forward,
+                                                        input)->to_dense();
+    const double cholmod_s = clock.seconds();
+
+    clock = fricon::Stopwatch();
+    const auto [Qs, solves] = schur_way(model.K, disc.B, rank, size, try_solve);
+    const double schur_s = clock.seconds();
+    clock = fricon::Stopwatch();
+    const MatrixXd Qc = columns_way(model.K, disc.B);
+    const double columns_s = clock.seconds();
+    struct rusage usage {};
+    getrusage(RUSAGE_SELF, &usage);
+    const double peak_mib = static_cast<double>(usage.ru_maxrss) / 1024.0;
+
+    if (rank == 0) {
+      fmt::print("petsc_schur_probe: paper brick n = {}, {} free dofs, {} multipliers, {} rank(s)\n",
+                 n, model.K.rows(), disc.B.rows(), size);
+      fmt::print("  cholmod forward   Q in {:7.3f} s (factor + Q, one process)\n", cholmod_s);
+      fmt::print("  mumps schur       Q in {:7.3f} s, max |Q - Q_cholmod| / max |Q| = {:.2e}, "
+                 "MatSolve with this factor: {}\n",
+                 schur_s, relative_difference(Qs, Q),
+                 solves == SolveCheck::Works     ? "works"
+                 : solves == SolveCheck::Refused ? "refused"
+                                                 : "not tried on several ranks (--try-solve)");
+      fmt::print("  mumps columns     Q in {:7.3f} s, max |Q - Q_cholmod| / max |Q| = {:.2e} "
+                 "({} columns per solve)\n",
+                 columns_s, relative_difference(Qc, Q), kColumnsPerBlock);
+    }
+    PetscSynchronizedPrintf(PETSC_COMM_WORLD, "  rank %d: peak resident memory %.0f MiB\n", rank,
+                            peak_mib);
+    PetscSynchronizedFlush(PETSC_COMM_WORLD, PETSC_STDOUT);
+    // As a test (tests/CMakeLists.txt, label mpi): both ways must give fricon's Q.
+    if (std::max(relative_difference(Qs, Q), relative_difference(Qc, Q)) > kAgreement) {
+      if (rank == 0) std::fprintf(stderr, "petsc_schur_probe: Q differs from fricon's\n");
+      status = 1;
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "petsc_schur_probe (rank %d): %s\n", rank, e.what());
+    status = 1;
+  }
+  PetscFinalize();
+  return status;
+}
