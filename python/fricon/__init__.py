@@ -268,6 +268,26 @@ class Problem:
     def source(self):
         return self._source
 
+    def to_toml(self):
+        """The effective problem as the text of a problem file (every default written out).
+
+        Raises fricon.InputError for what a file cannot hold: a fricon.Mesh (write it as a Gmsh
+        file) or a FrictionLaw.function (write it as an expression or a table).
+        """
+        return self._parsed.to_toml()
+
+    def save(self, path):
+        """Writes to_toml() to path, atomically: `fricon solve path` then solves this problem.
+
+        A relative mesh.file is written as the path the problem opens it by.
+        """
+        text = self.to_toml()
+        path = os.fspath(path)
+        partial = f"{path}.partial"
+        with open(partial, "w", encoding="utf-8") as out:
+            out.write(text)
+        os.replace(partial, path)
+
     def set(self, key, value):
         """p.set("contact.friction.param", 3e4): as the attribute, by the key path of --set."""
         self._assign([key], value)

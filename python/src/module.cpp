@@ -93,6 +93,7 @@ PYBIND11_MODULE(_fricon, m) {
   py::class_<PyProblem>(m, "_Problem", "A validated problem, as the library holds it.")
       .def("to_dict",
            [](const PyProblem& p) { return to_python(fricon::io::to_json(*p.problem).dump()); })
+      .def("to_toml", [](const PyProblem& p) { return fricon::io::to_toml(*p.problem); })
       .def_property_readonly("source", [](const PyProblem& p) { return p.problem->source; })
       .def_property_readonly("edits", [](const PyProblem& p) { return p.edits; });
 

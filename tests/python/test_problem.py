@@ -90,3 +90,25 @@ def test_a_mesh_kind_arrays_needs_a_mesh():
     p = fricon.Problem()
     with pytest.raises(fricon.InputError, match="given by code"):
         p.mesh = {"kind": "arrays"}
+
+
+def test_save_writes_a_problem_file_the_command_line_solves_alike(fricon_exe, tmp_path):
+    from conftest import numbers_of, run_cli
+
+    p = fricon.load(PAPER_BRICK)
+    p.contact.friction = fricon.FrictionLaw.expression("0.1 + 0.4*exp(-t/5e-5)")
+    p.solver.qp_rtol = 1e-8
+    p.save(tmp_path / "saved.toml")
+    assert fricon.load(tmp_path / "saved.toml").to_dict() == p.to_dict()
+    rc, cli = run_cli(fricon_exe, tmp_path / "saved.toml", tmp_path / "cli")
+    assert rc == 0
+    ours = numbers_of(fricon.solve(p, threads=1).report)
+    assert ours == numbers_of(cli)
+
+
+def test_what_code_gave_cannot_be_saved(tmp_path):
+    p = fricon.load(PAPER_BRICK)
+    p.contact.friction = fricon.FrictionLaw.function(lambda t: 0.3 + 0 * t)
+    with pytest.raises(fricon.InputError, match="cannot be written to a problem file"):
+        p.save(tmp_path / "x.toml")
+    assert not (tmp_path / "x.toml").exists()

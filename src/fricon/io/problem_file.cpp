@@ -1010,4 +1010,67 @@ nlohmann::json to_json(const driver::Problem& p) {
   return j;
 }
 
+namespace {
+
+// JSON (to_json's output) -> TOML: each JSON value as the TOML node it was read from.
+toml::array toml_array(const nlohmann::json& j);
+toml::table toml_table(const nlohmann::json& j);
+
+template <typename Container>
+void put(Container& c, const std::string& key, const nlohmann::json& v) {
+  const auto add = [&](auto&& x) {
+    if constexpr (std::is_same_v<Container, toml::table>) {
+      c.insert(key, std::forward<decltype(x)>(x));
+    } else {
+      c.push_back(std::forward<decltype(x)>(x));
+    }
+  };
+  if (v.is_object()) {
+    add(toml_table(v));
+  } else if (v.is_array()) {
+    add(toml_array(v));
+  } else if (v.is_boolean()) {
+    add(v.get<bool>());
+  } else if (v.is_number_integer()) {
+    add(v.get<std::int64_t>());
+  } else if (v.is_number()) {
+    add(v.get<double>());
+  } else if (v.is_string()) {
+    add(v.get<std::string>());
+  }
+}
+
+toml::array toml_array(const nlohmann::json& j) {
+  toml::array a;
+  for (const auto& v : j)
+    put(a, "", v);
+  return a;
+}
+
+toml::table toml_table(const nlohmann::json& j) {
+  toml::table t;
+  for (const auto& [k, v] : j.items())
+    put(t, k, v);
+  return t;
+}
+
+}  // namespace
+
+std::string to_toml(const driver::Problem& problem) {
+  if (problem.mesh.kind == driver::MeshKind::Arrays)
+    throw InputError(
+        fmt::format("{}: mesh.kind = \"arrays\": a mesh given by code cannot be "
+                    "written to a problem file (write it as a Gmsh file)",
+                    problem.where("mesh.kind")));
+  if (problem.contact && problem.contact->friction.law == contact::FrictionLawKind::Function)
+    throw InputError(
+        fmt::format("{}: contact.friction.law = \"function\": a friction law given "
+                    "by code cannot be written to a problem file (write it as law = "
+                    "\"expression\" or \"table\")",
+                    problem.where("contact.friction.law")));
+  std::ostringstream out;
+  out << toml::toml_formatter(toml_table(to_json(problem))) << '\n';
+  return out.str();
+}
+
 }  // namespace fricon::io

@@ -71,4 +71,9 @@ std::string read_problem_text(const std::string& path);
 /// valid problem file that reads back to the same Problem.
 nlohmann::json to_json(const driver::Problem& problem);
 
+/// to_json as the text of a problem file (TOML), which parse_problem reads back to the same
+/// Problem. Throws InputError for what a file cannot hold: a mesh given by code (kind
+/// "arrays") or a friction law given by code (law "function").
+std::string to_toml(const driver::Problem& problem);
+
 }  // namespace fricon::io
