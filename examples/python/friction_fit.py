@@ -61,7 +61,7 @@ def main():
     problem = fricon.load(PAPER_BRICK)
     results = {}
     for name, law in (("fitted function", fricon.FrictionLaw.function(fitted)),
-                      ("table of the points", fricon.FrictionLaw.table_law(t, f))):
+                      ("table of the points", fricon.FrictionLaw.table(t, f))):
         problem.contact.friction = law
         r = fricon.solve(problem)
         if not r.converged:

@@ -66,8 +66,8 @@ class FrictionLaw:
     of problem files; FrictionLaw.function(F) is any Python callable.
     """
 
-    def __init__(self, table, function=None, name="function"):
-        self.table = dict(table)  # the keys of [contact.friction]
+    def __init__(self, spec, function=None, name="function"):
+        self.spec = dict(spec)  # the keys of [contact.friction]
         self.function = function
         self.name = name
 
@@ -80,18 +80,19 @@ class FrictionLaw:
         return cls({"law": "constant", "value": value})
 
     @classmethod
-    def table_law(cls, t, f):
+    def table(cls, t, f):
+        """Piecewise linear through the points (t [m], f), constant beyond them."""
         return cls({"law": "table", "t": list(t), "f": list(f)})
 
     @classmethod
     def expression(cls, text, kinks=None, quadrature_rtol=None):
         """A formula in t [m] (muparser syntax), e.g. "0.1 + 0.4*exp(-t/5e-5)"."""
-        table = {"law": "expression", "expression": text}
+        spec = {"law": "expression", "expression": text}
         if kinks is not None:
-            table["kinks"] = list(kinks)
+            spec["kinks"] = list(kinks)
         if quadrature_rtol is not None:
-            table["quadrature_rtol"] = quadrature_rtol
-        return cls(table)
+            spec["quadrature_rtol"] = quadrature_rtol
+        return cls(spec)
 
     @classmethod
     def function(cls, F, kinks=None, quadrature_rtol=None, name=None):
@@ -103,15 +104,15 @@ class FrictionLaw:
         """
         if not callable(F):
             raise InputError(f"contact.friction: FrictionLaw.function needs a callable, got {F!r}")
-        table = {"law": "function"}
+        spec = {"law": "function"}
         if kinks is not None:
-            table["kinks"] = list(kinks)
+            spec["kinks"] = list(kinks)
         if quadrature_rtol is not None:
-            table["quadrature_rtol"] = quadrature_rtol
-        return cls(table, F, name or getattr(F, "__name__", "function"))
+            spec["quadrature_rtol"] = quadrature_rtol
+        return cls(spec, F, name or getattr(F, "__name__", "function"))
 
     def __repr__(self):
-        return f"fricon.FrictionLaw({self.table})"
+        return f"fricon.FrictionLaw({self.spec})"
 
 
 class _Section:
@@ -222,8 +223,7 @@ class Problem:
         elif isinstance(value, FrictionLaw):
             if not key.endswith("friction"):
                 raise InputError(f"{key}: a fricon.FrictionLaw belongs in p.contact.friction")
-            law = value if value.function is not None else _NO_LAW
-            self._edit(key, value.table, law=law)
+            self._edit(key, value.spec, law=value)
         else:
             self._edit(key, value)
 
@@ -339,11 +339,6 @@ def _mesh_from_meshio(mesh):
 
 
 Mesh.from_meshio = staticmethod(_mesh_from_meshio)
-
-
-# A FrictionLaw assigned without a function clears the function of an earlier one.
-_NO_LAW = FrictionLaw({})
-_NO_LAW.function = None
 
 
 def load(path):
