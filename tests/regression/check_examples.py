@@ -5,6 +5,8 @@
   - tresca-constant: the coefficient does not depend on the slip, so the second outer iteration
     repeats the first (err(2) = 0 up to rounding) and every slip bound is 0.3 g;
   - friction-table: every slip bound lies between the table's extremes 0.25 g and 0.4 g;
+  - friction-expression: every slip bound lies between the formula's bounds 0.1 g and 0.5 g, and
+    the report names the formula and the quadrature's tolerance;
   - paper-brick with the three params: the paper's sizes (n_p = 900, n_d = 36);
   - parameter-study.sh runs and writes one CSV line per run.
 Usage: check_examples.py FRICON EXAMPLES_DIR OUTDIR
@@ -51,6 +53,12 @@ for p in patches(folder):
 folder, _ = reports["friction-table"]
 for p in patches(folder):
     assert 0.25 * 2e7 - 1e-6 <= p["radius"] <= 0.4 * 2e7 + 1e-6, p
+
+folder, report = reports["friction-expression"]
+for p in patches(folder):
+    assert 0.1 * 2e7 - 1e-6 <= p["radius"] <= 0.5 * 2e7 + 1e-6, p
+assert "0.1 + 0.4*exp(-t/5e-5)" in report["contact"]["friction_law"], report["contact"]
+assert "1e-10" in report["contact"]["radius_integration"], report["contact"]
 
 for name in ["paper-brick", "paper-brick-param2e4", "paper-brick-param3e5"]:
     _, report = reports[name]
