@@ -99,6 +99,12 @@ class QuadratureLaw : public FrictionLaw {
   Real lipschitz() const override { return std::numeric_limits<Real>::quiet_NaN(); }
   bool piecewise_linear() const override { return false; }
   Real quadrature_rtol() const override { return rtol_; }
+  /// One point through evaluate(), which every such law implements (and checks).
+  Real operator()(Real t) const final {
+    Real v = 0.0;
+    evaluate(std::span<const Real>(&t, 1), std::span<Real>(&v, 1));
+    return v;
+  }
 
  private:
   std::vector<Real> kinks_;
@@ -116,12 +122,6 @@ class ExpressionLaw final : public QuadratureLaw {
           "contact.friction.expression: {} at column {} of \"{}\": {}", problem->what,
           std::max<std::ptrdiff_t>(problem->position, 0) + 1, expression_, problem->detail));
     setup_parser(parser_, expression_, &t_);
-  }
-
-  Real operator()(Real t) const override {
-    Real v = 0.0;
-    evaluate(std::span<const Real>(&t, 1), std::span<Real>(&v, 1));
-    return v;
   }
 
   void evaluate(std::span<const Real> t, std::span<Real> out) const override {
@@ -154,12 +154,6 @@ class FunctionLaw final : public QuadratureLaw {
  public:
   explicit FunctionLaw(const FrictionLawSpec& spec)
       : QuadratureLaw(spec), function_(spec.function), name_(spec.function_name) {}
-
-  Real operator()(Real t) const override {
-    Real v = 0.0;
-    evaluate(std::span<const Real>(&t, 1), std::span<Real>(&v, 1));
-    return v;
-  }
 
   // `out` is filled with NaN first: a value the function does not set is reported as F = nan.
   void evaluate(std::span<const Real> t, std::span<Real> out) const override {
