@@ -62,20 +62,22 @@ else()
                  "are not built")
 endif()
 
-# PETSc 3.18 with MPI (OpenMPI) and MUMPS (Debian: petsc-dev): the building blocks of the
-# distributed backend (docs/petsc-backend.md; so far bench/petsc). Optional: without it they are
-# not built.
-# MUMPS (Debian: libmumps-dev, which petsc-dev brings) is also called directly.
-find_package(MPI COMPONENTS C CXX)
-pkg_check_modules(PETSC IMPORTED_TARGET PETSc)
-find_library(DMUMPS_LIBRARY dmumps)
-find_library(MUMPS_COMMON_LIBRARY mumps_common)
-if(MPI_FOUND AND PETSC_FOUND AND DMUMPS_LIBRARY AND MUMPS_COMMON_LIBRARY)
-  message(STATUS "PETSc ${PETSC_VERSION} with MPI and MUMPS found")
+# PETSc 3.18 with MPI (OpenMPI) and MUMPS (Debian: petsc-dev): the distributed backend
+# ([solver] backend = "petsc", docs/parallel.md). Optional: without it (or with
+# FRICON_WITH_PETSC=OFF) fricon runs on one process and says how to get the backend when asked.
+# MUMPS (Debian: libmumps-dev, which petsc-dev brings) is called directly.
+if(FRICON_WITH_PETSC)
+  find_package(MPI COMPONENTS C CXX)
+  pkg_check_modules(PETSC IMPORTED_TARGET PETSc)
+  find_library(DMUMPS_LIBRARY dmumps)
+  find_library(MUMPS_COMMON_LIBRARY mumps_common)
+endif()
+if(FRICON_WITH_PETSC AND MPI_FOUND AND PETSC_FOUND AND DMUMPS_LIBRARY AND MUMPS_COMMON_LIBRARY)
+  message(STATUS "PETSc ${PETSC_VERSION} with MPI and MUMPS found: the PETSc backend is built")
   add_library(fricon_petsc INTERFACE)
   target_link_libraries(fricon_petsc INTERFACE PkgConfig::PETSC ${DMUMPS_LIBRARY}
                         ${MUMPS_COMMON_LIBRARY} MPI::MPI_CXX MPI::MPI_C)
   find_program(FRICON_MPIEXEC NAMES mpirun mpiexec)
 else()
-  message(STATUS "PETSc with MPI not found (petsc-dev): the PETSc programs are not built")
+  message(STATUS "PETSc backend not built (petsc-dev not found or FRICON_WITH_PETSC=OFF)")
 endif()

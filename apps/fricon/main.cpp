@@ -34,6 +34,11 @@
 #include "fricon/linalg/blas.hpp"
 #include "fricon/mesh/brick.hpp"
 #include "fricon/mesh/gmsh_file.hpp"
+#ifdef FRICON_HAVE_PETSC
+#include <fcntl.h>
+
+#include "fricon/parallel/mpi/session.hpp"
+#endif
 
 namespace {
 
@@ -198,9 +203,60 @@ int plot(const std::string& dir, const std::string& out) {
   return kConverged;
 }
 
+#ifdef FRICON_HAVE_PETSC
+// Under mpirun every rank runs this program; only rank 0 prints (progress, summary, errors).
+// FRICON_RANK_OUTPUT=all keeps the other ranks' output, for debugging.
+void silence_other_ranks() {
+  if (fricon::parallel::world_rank() == 0) return;
+  if (const char* keep = std::getenv("FRICON_RANK_OUTPUT"); keep && std::string(keep) == "all")
+    return;
+  const int null = open("/dev/null", O_WRONLY);
+  if (null < 0) return;
+  dup2(null, STDOUT_FILENO);
+  dup2(null, STDERR_FILENO);
+  close(null);
+}
+#endif
+
+int mpi_ranks() {
+#ifdef FRICON_HAVE_PETSC
+  return fricon::parallel::initialized() ? fricon::parallel::world_size() : 1;
+#else
+  return 1;
+#endif
+}
+
+// The problem, read by every rank of an MPI job (an error on one rank ends them all, the same).
+fricon::driver::Problem read_problem_on_every_rank(const std::string& file,
+                                                   const std::vector<std::string>& sets) {
+  fricon::driver::Problem problem;
+  const auto read = [&] {
+    problem = fricon::io::read_problem(file, sets);
+    if (mpi_ranks() > 1 && problem.solver.backend != fricon::parallel::Backend::Petsc)
+      throw fricon::InputError(fmt::format(
+          "{}: solver.backend: \"{}\" runs on one process, but mpirun started {} ranks; run "
+          "with --set solver.backend=petsc (docs/parallel.md)",
+          problem.where("solver.backend"), fricon::enum_name(problem.solver.backend), mpi_ranks()));
+  };
+#ifdef FRICON_HAVE_PETSC
+  if (fricon::parallel::initialized()) {
+    fricon::parallel::collectively(read);
+    return problem;
+  }
+#endif
+  read();
+  return problem;
+}
+
 int solve(const std::string& file, const SolveOptions& so, const std::string& command_line) {
   const fricon::Stopwatch clock;
-  const fricon::driver::Problem problem = fricon::io::read_problem(file, so.sets);
+#ifdef FRICON_HAVE_PETSC
+  if (fricon::parallel::launched_by_mpi()) {
+    fricon::parallel::initialize();
+    silence_other_ranks();
+  }
+#endif
+  const fricon::driver::Problem problem = read_problem_on_every_rank(file, so.sets);
   const std::filesystem::path dir =
       std::filesystem::path(so.out.empty() ? problem.output.dir : so.out);
   fricon::driver::RunOptions options = progress_options(so.verbosity, clock);
@@ -213,6 +269,9 @@ int solve(const std::string& file, const SolveOptions& so, const std::string& co
   };
   install_signal_handlers();
   const fricon::driver::RunResult result = fricon::driver::run(problem, options);
+  // The other ranks of a distributed run have served rank 0, which writes the results.
+  if (result.report.parallel && result.report.parallel->rank != 0)
+    return result.report.status == fricon::driver::Status::Converged ? kConverged : kNotConverged;
   if (!so.dump_dual.empty()) {
     if (!result.first_dual)
       throw fricon::InputError(fmt::format("{}: --dump-dual needs a [contact] section", file));
@@ -582,6 +641,25 @@ int dispatch(CommandLine& cl, int argc, char** argv) {
   return kInternalError;
 }
 
+// The command's exit code; exceptions become their codes, with one message.
+int run_guarded(CommandLine& cl, int argc, char** argv) {
+  try {
+    return dispatch(cl, argc, argv);
+  } catch (const fricon::Interrupted& e) {
+    std::cerr << "fricon: " << e.what() << " (no iterate to write yet)\n";
+    return kNotConverged;
+  } catch (const fricon::InputError& e) {
+    std::cerr << "fricon: error: " << e.what() << "\n";
+    return kBadInput;
+  } catch (const fricon::NumericalError& e) {
+    std::cerr << "fricon: error: " << e.what() << "\n";
+    return kBadInput;
+  } catch (const std::exception& e) {
+    std::cerr << "fricon: internal error: " << e.what() << "\n";
+    return kInternalError;
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -591,7 +669,9 @@ int main(int argc, char** argv) {
       "coefficient of friction (P1 finite elements, dual MPGP, successive approximations).\n"
       "Exit codes: 0 converged, 1 bad input, 2 not converged, 3 internal error."};
   app.require_subcommand(1);
-  app.set_version_flag("--version", std::string("fricon ") + FRICON_VERSION);
+  app.set_version_flag("--version", std::string("fricon ") + FRICON_VERSION +
+                                        " (backends: cholmod" +
+                                        (fricon::parallel::petsc_available() ? ", petsc)" : ")"));
   CommandLine cl;
   app.add_option("--threads", cl.threads,
                  "Threads of the BLAS (factorization, forming Q). Default: OPENBLAS_NUM_THREADS\n"
@@ -612,20 +692,14 @@ int main(int argc, char** argv) {
     return code == 0 ? 0 : kBadInput;
   }
 
-  // @sect: the run, and its outcome as an exit code.
-  try {
-    return dispatch(cl, argc, argv);
-  } catch (const fricon::Interrupted& e) {
-    std::cerr << "fricon: " << e.what() << " (no iterate to write yet)\n";
-    return kNotConverged;
-  } catch (const fricon::InputError& e) {
-    std::cerr << "fricon: error: " << e.what() << "\n";
-    return kBadInput;
-  } catch (const fricon::NumericalError& e) {
-    std::cerr << "fricon: error: " << e.what() << "\n";
-    return kBadInput;
-  } catch (const std::exception& e) {
-    std::cerr << "fricon: internal error: " << e.what() << "\n";
-    return kInternalError;
+  // @sect: the run, and its outcome as an exit code (rank 0's, on every rank of an MPI job).
+  const int code = run_guarded(cl, argc, argv);
+#ifdef FRICON_HAVE_PETSC
+  if (fricon::parallel::initialized()) {
+    int agreed = code;
+    MPI_Bcast(&agreed, 1, MPI_INT, 0, fricon::parallel::world());
+    return agreed;
   }
+#endif
+  return code;
 }

@@ -297,10 +297,10 @@ namespace {
 
 // A dual operator whose products are off by a relative 1e-3 from B K^-1 B^T (a defect the QP
 // cannot see: it solves its own problem to qp_rtol), with the true displacement recovery.
-class SkewedOperator final : public dual::DualOperator {
+class SkewedOperator final : public dual::FactorDualOperator {
  public:
   explicit SkewedOperator(const dual::DualInput& input)
-      : DualOperator(input), exact_(dual::make_forward_operator(input)) {}
+      : FactorDualOperator(input), exact_(dual::make_forward_operator(input)) {}
   dual::DualOperatorKind kind() const override { return dual::DualOperatorKind::Forward; }
   void apply(const VectorXd& x, VectorXd& y) const override {
     exact_->apply(x, y);

@@ -170,7 +170,8 @@ void measure(const Model& m, const contact::ContactDiscretization& disc,
   }
   const VectorXd contact_load = -(disc.B.transpose() * lambda);
   out.contact_force = m.dofs.to_nodal(contact_load).rowwise().sum();
-  out.linear_residual = (m.K * out.w - m.f - contact_load).norm() / std::max(m.f.norm(), 1e-300);
+  out.linear_residual =
+      (stiffness_times(m, out.w) - m.f - contact_load).norm() / std::max(m.f.norm(), 1e-300);
 }
 
 // Per patch: the mean coefficient F_R of the result and whether it sticks, slips or is separated

@@ -196,8 +196,10 @@ mesh::TetMesh make_mesh(const Problem& problem) {
   return {};
 }
 
-Model assemble_model(const Problem& problem, PhaseTimes& times,
-                     const PhaseCallback& on_phase_start) {
+namespace {
+
+Model assemble(const Problem& problem, PhaseTimes& times, const PhaseCallback& on_phase_start,
+               bool with_stiffness) {
   Model model;
   if (on_phase_start) on_phase_start("mesh");
   {
@@ -209,11 +211,29 @@ Model assemble_model(const Problem& problem, PhaseTimes& times,
   {
     ScopedPhase phase(times, "assembly");
     model.dofs = make_dofs(problem, model.mesh);
-    model.K = fe::assemble_stiffness(model.mesh, model.materials, model.dofs);
     model.prescribed = make_prescribed(problem, model.mesh);
+    if (with_stiffness) model.K = fe::assemble_stiffness(model.mesh, model.materials, model.dofs);
     model.f = full_load(problem, model.mesh, model.dofs) - prescribed_load(model);
   }
   return model;
+}
+
+}  // namespace
+
+Model assemble_loads(const Problem& problem, PhaseTimes& times,
+                     const PhaseCallback& on_phase_start) {
+  return assemble(problem, times, on_phase_start, false);
+}
+
+Model assemble_model(const Problem& problem, PhaseTimes& times,
+                     const PhaseCallback& on_phase_start) {
+  return assemble(problem, times, on_phase_start, true);
+}
+
+VectorXd stiffness_times(const Model& model, const VectorXd& w) {
+  if (model.K.rows() == w.size()) return model.K * w;
+  return model.dofs.from_nodal(
+      fe::internal_forces(model.mesh, model.materials, model.dofs.to_nodal(w)));
 }
 
 void factorize_model(Model& model, const dual::FactorizationRequest& request, PhaseTimes& times,

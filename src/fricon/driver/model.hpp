@@ -27,12 +27,18 @@ struct Model {
   /// The prescribed displacement [m] at every node (3 x n_nodes): the [[dirichlet]] values at
   /// fixed components, zero elsewhere. The displacement of a solve is dofs.to_nodal(u) + this.
   fe::NodalField prescribed;
-  SparseMatrix K;  ///< stiffness over the free dofs [N/m]
+  /// Stiffness over the free dofs [N/m]; empty in a distributed run (backend "petsc"), where
+  /// each rank assembles only its own elements' part and MUMPS holds the sum.
+  SparseMatrix K;
   /// Load vector over the free dofs [N]: the applied loads minus K_free,fixed times the prescribed
   /// displacements.
   VectorXd f;
-  linalg::CholeskyFactor factor;  ///< Cholesky factor of K
+  linalg::CholeskyFactor factor;  ///< Cholesky factor of K (CHOLMOD; empty if distributed)
 };
+
+/// K w [N] for w over the free dofs: with K when it was assembled, else element by element
+/// (the same sum, for a distributed run whose K exists only in pieces).
+VectorXd stiffness_times(const Model& model, const VectorXd& w);
 
 /// Builds the mesh the problem describes and checks it. Throws InputError on bad input.
 mesh::TetMesh make_mesh(const Problem& problem);
@@ -52,6 +58,11 @@ std::vector<fe::Material> make_materials(const Problem& problem, const mesh::Tet
 
 /// Called with each phase's name ("mesh", "assembly", "factorize", ...) as it starts.
 using PhaseCallback = std::function<void(const std::string& phase)>;
+
+/// The model without K: mesh, materials, dofs, prescribed displacements and f (phases "mesh",
+/// "assembly"). Throws as assemble_model.
+Model assemble_loads(const Problem& problem, PhaseTimes& times,
+                     const PhaseCallback& on_phase_start = {});
 
 /// The model up to the factorization: mesh, material, dofs, K and f (phases "mesh",
 /// "assembly"). Throws InputError when a boundary tag named by the problem does not exist on the

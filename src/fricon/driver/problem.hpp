@@ -23,6 +23,7 @@
 #include "fricon/dual/dual_operator_kind.hpp"
 #include "fricon/fe/material.hpp"
 #include "fricon/outer/acceleration.hpp"
+#include "fricon/parallel/backend.hpp"
 #include "fricon/qp/mpgp.hpp"
 
 namespace fricon::mesh {
@@ -139,6 +140,11 @@ struct SolverOptions {
   /// lengths, 5-10x fewer products with Q on the paper's problems) or paper (the paper's plain
   /// MPGP, which reproduces its n_mult).
   qp::MpgpVariant qp_variant = qp::MpgpVariant::BarzilaiBorwein;
+  /// [solver.backend] where K is factored: CHOLMOD on one process, or MUMPS on the ranks of an
+  /// MPI job (docs/parallel.md).
+  parallel::Backend backend = parallel::Backend::Cholmod;
+  /// [solver.partition] how a distributed run splits the tetrahedra among its ranks.
+  parallel::PartitionKind partition = parallel::PartitionKind::Graph;
 };
 
 /// [output]

@@ -4,11 +4,11 @@
 #include <memory>
 
 #include "fricon/core/error.hpp"
+#include "fricon/driver/run_steps.hpp"
 #include "fricon/fe/stress.hpp"
+#include "fricon/parallel/distributed_run.hpp"
 
 namespace fricon::driver {
-
-namespace {
 
 bool stop_requested(const RunOptions& o) {
   return o.stop_requested && o.stop_requested->load();
@@ -18,29 +18,17 @@ void phase_start(const RunOptions& o, const std::string& name) {
   if (o.on_phase_start) o.on_phase_start(name);
 }
 
-// The contact solve on the factored model: the dual operator (phase "dual"), then the outer
-// loop. Fills the report's contact part and returns the displacement over the free dofs.
-VectorXd solve_with_contact(const Problem& problem, const contact::ContactDiscretization& disc,
-                            const RunOptions& options, RunResult& r) {
+std::function<void()> interrupt_poll(const RunOptions& options) {
+  return [&options] {
+    if (stop_requested(options)) throw Interrupted("interrupted while forming Q");
+  };
+}
+
+VectorXd solve_with_operator(const Problem& problem, const contact::ContactDiscretization& disc,
+                             const dual::DualOperator& Q, const RunOptions& options, RunResult& r) {
   RunReport& rep = r.report;
-  const Model& m = r.model;
-  phase_start(options, "dual");
-  std::unique_ptr<dual::DualOperator> Q;
-  {
-    ScopedPhase phase(rep.times, "dual");
-    const dual::DualInput input{m.factor,
-                                disc.B,
-                                m.f,
-                                disc.dofs,
-                                [&options] {
-                                  if (stop_requested(options))
-                                    throw Interrupted("interrupted while forming Q");
-                                },
-                                &disc.offset};
-    Q = dual::make_dual_operator(problem.solver.dual_operator, input);
-  }
   phase_start(options, "outer loop");
-  ContactOutcome c = solve_contact(problem, m, disc, *Q, rep.times, options);
+  ContactOutcome c = solve_contact(problem, r.model, disc, Q, rep.times, options);
   r.first_dual = std::move(c.first_dual);
   rep.status = c.converged ? Status::Converged : Status::NotConverged;
   rep.message = c.message;
@@ -49,6 +37,24 @@ VectorXd solve_with_contact(const Problem& problem, const contact::ContactDiscre
   rep.contact = std::move(c.report);
   r.contact = std::move(c.fields);
   return std::move(c.w);
+}
+
+namespace {
+
+// The contact solve on the factored model: the dual operator (phase "dual"), then the outer
+// loop. Fills the report's contact part and returns the displacement over the free dofs.
+VectorXd solve_with_contact(const Problem& problem, const contact::ContactDiscretization& disc,
+                            const RunOptions& options, RunResult& r) {
+  const Model& m = r.model;
+  phase_start(options, "dual");
+  std::unique_ptr<dual::DualOperator> Q;
+  {
+    ScopedPhase phase(r.report.times, "dual");
+    const dual::DualInput input{m.factor,    disc.B, m.f, disc.dofs, interrupt_poll(options),
+                                &disc.offset};
+    Q = dual::make_dual_operator(problem.solver.dual_operator, input);
+  }
+  return solve_with_operator(problem, disc, *Q, options, r);
 }
 
 // Without contact: one solve with the factor of K.
@@ -60,7 +66,8 @@ VectorXd solve_elastic(RunResult& r) {
   return u;
 }
 
-// Stresses, and the global equilibrium of applied loads, contact forces and reactions.
+}  // namespace
+
 void postprocess(const Problem& problem, const VectorXd& u, RunResult& r) {
   RunReport& rep = r.report;
   const Model& m = r.model;
@@ -80,9 +87,12 @@ void postprocess(const Problem& problem, const VectorXd& u, RunResult& r) {
       (rep.applied_force + rep.contact_force + rep.reaction_force).norm() / scale;
 }
 
-}  // namespace
-
 RunResult run(const Problem& problem, const RunOptions& options) {
+  if (problem.solver.backend == parallel::Backend::Petsc) {
+    // Validated on every rank there; a build without PETSc says here how to get it.
+    if (!parallel::petsc_available()) validate(problem);
+    return parallel::run_distributed(problem, options);
+  }
   const Stopwatch total;
   validate(problem);
   RunResult r;

@@ -7,6 +7,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "fricon/core/timer.hpp"
 #include "fricon/driver/contact_solver.hpp"
@@ -17,6 +18,22 @@ namespace fricon::driver {
 
 /// The outcome of a run as the report and the exit code give it.
 enum class Status { Converged, NotConverged };
+
+/// One rank of a distributed run (backend "petsc").
+struct RankReport {
+  Index n_tets = 0;             ///< tetrahedra this rank assembled
+  double peak_memory_mib = 0;   ///< peak resident memory of the process [MiB]
+  double mumps_memory_mib = 0;  ///< memory MUMPS allocated for the factorization here [MiB]
+};
+
+/// What a distributed run adds to the report.
+struct ParallelReport {
+  int rank = 0;     ///< of the process that holds this report
+  int n_ranks = 1;  ///< MPI ranks of the run
+  parallel::PartitionKind partition = parallel::PartitionKind::Graph;
+  Index n_schur = 0;              ///< Schur variables of the MUMPS factorization (0: K alone)
+  std::vector<RankReport> ranks;  ///< per rank, on rank 0
+};
 
 /// What a run reports (the JSON report serialises this struct).
 struct RunReport {
@@ -34,8 +51,9 @@ struct RunReport {
       Vec3::Zero();  ///< sum of contact forces on the body [N] (zero without contact)
   /// |applied + contact + reaction| / |applied|: global equilibrium, round-off if all is well.
   Real equilibrium_residual = 0.0;
-  Real linear_residual = 0.0;            ///< ||K u - (f - B^T lambda)|| / ||f||
-  std::optional<ContactReport> contact;  ///< present when the problem has a [contact] section
+  Real linear_residual = 0.0;              ///< ||K u - (f - B^T lambda)|| / ||f||
+  std::optional<ContactReport> contact;    ///< present when the problem has a [contact] section
+  std::optional<ParallelReport> parallel;  ///< present for backend "petsc"
 };
 
 struct RunResult {

@@ -288,6 +288,17 @@ void validate_solver(const Problem& p) {
   check_enum(p, s.dual_operator);
   check_enum(p, s.acceleration);
   check_enum(p, s.qp_variant);
+  check_enum(p, s.backend);
+  check_enum(p, s.partition);
+  if (s.backend == parallel::Backend::Petsc && !parallel::petsc_available())
+    fail(p, "solver.backend",
+         "\"petsc\": this fricon was built without PETSc; install Debian's petsc-dev (`make deps` "
+         "or scripts/install-deps.sh does) and rebuild (`make build`: CMake finds it), then run "
+         "`mpirun -n P fricon solve ...` (docs/parallel.md)");
+  if (s.backend == parallel::Backend::Petsc && s.dual_operator == dual::DualOperatorKind::Forward)
+    fail(p, "solver.dual_operator",
+         "\"forward\" sweeps a CHOLMOD factor; with backend = \"petsc\" use \"auto\", \"schur\" "
+         "(Q from MUMPS's Schur complement) or \"implicit\" (a distributed solve per product)");
   check_int(p, "solver.anderson_depth", s.anderson_depth, "an integer in [1, 20]",
             s.anderson_depth >= 1 && s.anderson_depth <= 20);
 }

@@ -1,6 +1,7 @@
 #include "fricon/dual/dual_operator.hpp"
 
 #include <algorithm>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -31,14 +32,18 @@ DualOperatorKind resolve(DualOperatorKind kind, const linalg::CholeskyInfo& fact
   return q_entries <= limit ? DualOperatorKind::Forward : DualOperatorKind::Implicit;
 }
 
-DualOperator::DualOperator(const DualInput& input) : in_(input) {
-  u0_ = in_.factor.solve(in_.f);
-  ++n_kinv_;
-  h_ = in_.B * u0_;
-  if (in_.offset != nullptr) h_ -= *in_.offset;
+void DualOperator::set_free_solution(VectorXd u0, const SparseMatrix& B, const VectorXd* offset) {
+  u0_ = std::move(u0);
+  h_ = B * u0_;
+  if (offset != nullptr) h_ -= *offset;
 }
 
-VectorXd DualOperator::displacement(const VectorXd& lambda) const {
+FactorDualOperator::FactorDualOperator(const DualInput& input) : in_(input) {
+  set_free_solution(in_.factor.solve(in_.f), in_.B, in_.offset);
+  ++n_kinv_;
+}
+
+VectorXd FactorDualOperator::displacement(const VectorXd& lambda) const {
   ++n_kinv_;
   return in_.factor.solve(VectorXd(in_.f - in_.B.transpose() * lambda));
 }

@@ -8,6 +8,7 @@
 //   schur_operator.cpp     Q from the trailing block of a factor ordered with the contact dofs last
 // An operator may need a particular factorization of K (schur does); the driver asks for it with
 // factorization_request() before it factorizes, so nothing else knows about orderings.
+// The distributed backend's operator (MUMPS, parallel/mpi/) implements the same interface.
 
 #include <functional>
 #include <memory>
@@ -49,6 +50,8 @@ struct DualInput {
   const VectorXd* offset = nullptr;
 };
 
+/// The dual problem's operator, whatever factors K: CHOLMOD here (FactorDualOperator), MUMPS
+/// across MPI ranks in parallel/mpi/ (docs/theory.md §3.4).
 class DualOperator {
  public:
   virtual ~DualOperator() = default;
@@ -70,9 +73,9 @@ class DualOperator {
   /// w = K^-1 (f - B^T lambda) on the contact dofs; w is sized n_free on return and its other
   /// entries are left as they were (exact on every dof pivoted on the contact dofs' reach).
   virtual void contact_displacement(const VectorXd& lambda, VectorXd& w) const = 0;
-
   /// w = K^-1 (f - B^T lambda) over all free dofs: one solve with the factor.
-  VectorXd displacement(const VectorXd& lambda) const;
+  virtual VectorXd displacement(const VectorXd& lambda) const = 0;
+
   /// Q as a dense matrix: dense() if formed, else n_dual products with unit vectors.
   MatrixXd to_dense() const;
   /// The operator as the QP layer applies it.
@@ -81,11 +84,23 @@ class DualOperator {
   long n_kinv() const { return n_kinv_; }
 
  protected:
-  /// Computes u0 and h (one solve).
-  explicit DualOperator(const DualInput& input);
-  DualInput in_;
+  DualOperator() = default;
+  /// Stores u0 = K^-1 f (solved by the implementation) and h = B u0 - c (c: offset, or zero).
+  void set_free_solution(VectorXd u0, const SparseMatrix& B, const VectorXd* offset);
   VectorXd h_, u0_;
   mutable long n_kinv_ = 0;
+};
+
+/// The operators on a CHOLMOD factor of K (implicit, forward, schur): u0 and the displacement
+/// are solves with DualInput::factor.
+class FactorDualOperator : public DualOperator {
+ public:
+  VectorXd displacement(const VectorXd& lambda) const override;
+
+ protected:
+  /// Computes u0 and h (one solve).
+  explicit FactorDualOperator(const DualInput& input);
+  DualInput in_;
 };
 
 /// The operator of `kind` (Auto resolved by resolve()). Throws Error if the factor was not built

@@ -10,10 +10,10 @@ namespace fricon::dual {
 
 namespace {
 
-class ForwardOperator final : public DualOperator {
+class ForwardOperator final : public FactorDualOperator {
  public:
   explicit ForwardOperator(const DualInput& input)
-      : DualOperator(input),
+      : FactorDualOperator(input),
         Q_(in_.factor.inverse_gram(SparseMatrix(in_.B.transpose()), in_.poll)),
         reach_(in_.factor.reach(in_.contact_dofs)) {
     n_kinv_ += in_.B.rows();

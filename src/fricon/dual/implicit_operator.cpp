@@ -6,9 +6,9 @@ namespace fricon::dual {
 
 namespace {
 
-class ImplicitOperator final : public DualOperator {
+class ImplicitOperator final : public FactorDualOperator {
  public:
-  explicit ImplicitOperator(const DualInput& input) : DualOperator(input) {}
+  explicit ImplicitOperator(const DualInput& input) : FactorDualOperator(input) {}
   DualOperatorKind kind() const override { return DualOperatorKind::Implicit; }
 
   void apply(const VectorXd& x, VectorXd& y) const override {

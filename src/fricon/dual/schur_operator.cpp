@@ -13,10 +13,10 @@ namespace fricon::dual {
 
 namespace {
 
-class SchurOperator final : public DualOperator {
+class SchurOperator final : public FactorDualOperator {
  public:
   explicit SchurOperator(const DualInput& input)
-      : DualOperator(input), order_(in_.factor.trailing_order()) {
+      : FactorDualOperator(input), order_(in_.factor.trailing_order()) {
     if (order_.size() != in_.contact_dofs.size())
       throw Error(fmt::format(
           "dual operator schur needs K factored with the {} contact dofs last (factor has {})",

@@ -22,13 +22,28 @@ struct NodeGraph {
   std::vector<Index> adj;
 };
 
-NodeGraph node_graph(const mesh::TetMesh& mesh) {
+// The tetrahedra assembled: all, or a subset (a rank's own, in a distributed run).
+class ElementRange {
+ public:
+  ElementRange(const mesh::TetMesh& mesh, const std::vector<Index>* subset)
+      : n_(subset ? static_cast<Index>(subset->size()) : mesh.n_tets()), subset_(subset) {}
+  Index size() const { return n_; }
+  Index operator[](Index k) const { return subset_ ? (*subset_)[static_cast<size_t>(k)] : k; }
+
+ private:
+  Index n_;
+  const std::vector<Index>* subset_;
+};
+
+NodeGraph node_graph(const mesh::TetMesh& mesh, const ElementRange& elements) {
   const Index n = mesh.n_nodes();
   std::vector<std::vector<Index>> lists(static_cast<size_t>(n));
-  for (Index t = 0; t < mesh.n_tets(); ++t)
+  for (Index k = 0; k < elements.size(); ++k) {
+    const Index t = elements[k];
     for (int a = 0; a < 4; ++a)
       for (int b = 0; b < 4; ++b)
         lists[mesh.tets(a, t)].push_back(mesh.tets(b, t));
+  }
   NodeGraph g;
   g.start.assign(static_cast<size_t>(n + 1), 0);
   for (Index i = 0; i < n; ++i) {
@@ -47,9 +62,11 @@ NodeGraph node_graph(const mesh::TetMesh& mesh) {
 
 }  // namespace
 
-SparseMatrix assemble_stiffness(const mesh::TetMesh& mesh, Materials materials,
-                                const DofMap& dofs) {
-  const NodeGraph graph = node_graph(mesh);
+namespace {
+
+SparseMatrix assemble(const mesh::TetMesh& mesh, Materials materials, const DofMap& dofs,
+                      const ElementRange& elements) {
+  const NodeGraph graph = node_graph(mesh, elements);
   const Index n = dofs.n_free();
 
   // Pattern: column dof(b, d) holds rows dof(a, c) for the neighbours a of b, in increasing
@@ -86,7 +103,8 @@ SparseMatrix assemble_stiffness(const mesh::TetMesh& mesh, Materials materials,
   // Values: add each element matrix into the pattern, locating rows by binary search.
   const SparseIndex* rows = K.innerIndexPtr();
   Real* values = K.valuePtr();
-  for (Index t = 0; t < mesh.n_tets(); ++t) {
+  for (Index k = 0; k < elements.size(); ++k) {
+    const Index t = elements[k];
     const ElementMatrix Ke =
         element_stiffness(tet_vertices(mesh, t), material_of(materials, mesh, t));
     Index local_dof[12];
@@ -109,6 +127,18 @@ SparseMatrix assemble_stiffness(const mesh::TetMesh& mesh, Materials materials,
     }
   }
   return K;
+}
+
+}  // namespace
+
+SparseMatrix assemble_stiffness(const mesh::TetMesh& mesh, Materials materials,
+                                const DofMap& dofs) {
+  return assemble(mesh, materials, dofs, ElementRange(mesh, nullptr));
+}
+
+SparseMatrix assemble_stiffness(const mesh::TetMesh& mesh, Materials materials, const DofMap& dofs,
+                                const std::vector<Index>& elements) {
+  return assemble(mesh, materials, dofs, ElementRange(mesh, &elements));
 }
 
 namespace {

@@ -17,6 +17,11 @@ using NodalField = Eigen::Matrix<Real, 3, Eigen::Dynamic>;
 /// the sparsity of the node graph (every pair of nodes sharing a tetrahedron). Positive definite
 /// when the Dirichlet conditions remove the rigid motions.
 SparseMatrix assemble_stiffness(const mesh::TetMesh& mesh, Materials materials, const DofMap& dofs);
+/// The part of K that the tetrahedra `elements` contribute (n_free x n_free, both triangles):
+/// the sum of these parts over a partition of the mesh is K. A rank of a distributed run
+/// assembles its own elements with it (parallel/mpi/).
+SparseMatrix assemble_stiffness(const mesh::TetMesh& mesh, Materials materials, const DofMap& dofs,
+                                const std::vector<Index>& elements);
 /// One material everywhere.
 inline SparseMatrix assemble_stiffness(const mesh::TetMesh& mesh, const Material& material,
                                        const DofMap& dofs) {

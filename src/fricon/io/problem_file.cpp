@@ -564,7 +564,7 @@ void read_contact(const Context& ctx, const Field& f, driver::ContactOptions& c)
 void read_solver(const Context& ctx, const Field& f, driver::SolverOptions& s) {
   const TableReader t(ctx, f, "a table [solver]",
                       {"outer_tol", "outer_max", "qp_rtol", "qp_max", "warm_start", "dual_operator",
-                       "acceleration", "anderson_depth", "qp_variant"});
+                       "acceleration", "anderson_depth", "qp_variant", "backend", "partition"});
   if (auto k = t.find("outer_tol")) s.outer_tol = get_real(ctx, *k, "a positive number");
   if (auto k = t.find("outer_max")) s.outer_max = get_int<int>(ctx, *k, "an integer >= 1");
   if (auto k = t.find("qp_rtol")) s.qp_rtol = get_real(ctx, *k, "a number in (0, 1)");
@@ -573,6 +573,8 @@ void read_solver(const Context& ctx, const Field& f, driver::SolverOptions& s) {
   if (auto k = t.find("dual_operator")) s.dual_operator = get_enum<dual::DualOperatorKind>(ctx, *k);
   if (auto k = t.find("acceleration")) s.acceleration = get_enum<outer::Acceleration>(ctx, *k);
   if (auto k = t.find("qp_variant")) s.qp_variant = get_enum<qp::MpgpVariant>(ctx, *k);
+  if (auto k = t.find("backend")) s.backend = get_enum<parallel::Backend>(ctx, *k);
+  if (auto k = t.find("partition")) s.partition = get_enum<parallel::PartitionKind>(ctx, *k);
   if (auto k = t.find("anderson_depth"))
     s.anderson_depth = get_int<int>(ctx, *k, "an integer in [1, 20]");
 }
@@ -1005,7 +1007,9 @@ nlohmann::json to_json(const driver::Problem& p) {
                  {"dual_operator", enum_name(s.dual_operator)},
                  {"acceleration", enum_name(s.acceleration)},
                  {"anderson_depth", s.anderson_depth},
-                 {"qp_variant", enum_name(s.qp_variant)}};
+                 {"qp_variant", enum_name(s.qp_variant)},
+                 {"backend", enum_name(s.backend)},
+                 {"partition", enum_name(s.partition)}};
   j["output"] = {{"dir", p.output.dir}};
   return j;
 }

@@ -114,6 +114,20 @@ void add_contact_geometry(const driver::Problem& problem, const mesh::TetMesh& m
   j["contact_basis"] = {{"n", vec3(s.n)}, {"t1", vec3(s.t1)}, {"t2", vec3(s.t2)}};
 }
 
+// A distributed run: its ranks, partition and each rank's work and memory.
+void add_parallel_report(const driver::ParallelReport& p, nlohmann::json& j) {
+  nlohmann::json ranks = nlohmann::json::array();
+  for (const auto& r : p.ranks)
+    ranks.push_back({{"n_tets", r.n_tets},
+                     {"peak_memory_mib", r.peak_memory_mib},
+                     {"mumps_memory_mib", r.mumps_memory_mib}});
+  j["parallel"] = {{"backend", "petsc"},
+                   {"n_ranks", p.n_ranks},
+                   {"partition", enum_name(p.partition)},
+                   {"n_schur", p.n_schur},
+                   {"ranks", ranks}};
+}
+
 }  // namespace
 
 nlohmann::json report_json(const driver::Problem& problem, const driver::RunResult& result,
@@ -151,6 +165,7 @@ nlohmann::json report_json(const driver::Problem& problem, const driver::RunResu
   j["max_von_mises"] = result.von_mises.size() ? result.von_mises.maxCoeff() : 0.0;
   add_regions(result.model.mesh, j);
   if (r.contact) add_contact_report(*r.contact, j);
+  if (r.parallel) add_parallel_report(*r.parallel, j);
   if (result.contact) add_contact_geometry(problem, result.model.mesh, *result.contact, j);
   j["problem"] = to_json(problem);
   return j;

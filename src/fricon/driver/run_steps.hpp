@@ -1,0 +1,26 @@
+#pragma once
+// driver: the steps of a run that both backends share (run.cpp on one process, the distributed
+// run of parallel/mpi/ on rank 0): the outer loop on a dual operator, and the postprocessing.
+
+#include <string>
+
+#include "fricon/driver/run.hpp"
+
+namespace fricon::driver {
+
+bool stop_requested(const RunOptions& options);
+void phase_start(const RunOptions& options, const std::string& name);
+
+/// The poll of a dual operator while it forms Q: throws Interrupted when a stop was requested.
+std::function<void()> interrupt_poll(const RunOptions& options);
+
+/// The outer loop of dual QPs on operator Q (phase "outer loop"); fills the contact part of
+/// r.report and r.contact and returns the displacement over the free dofs.
+VectorXd solve_with_operator(const Problem& problem, const contact::ContactDiscretization& disc,
+                             const dual::DualOperator& Q, const RunOptions& options, RunResult& r);
+
+/// Stresses, and the global equilibrium of applied loads, contact forces and reactions, from
+/// the displacement u over the free dofs (phase "postprocess").
+void postprocess(const Problem& problem, const VectorXd& u, RunResult& r);
+
+}  // namespace fricon::driver

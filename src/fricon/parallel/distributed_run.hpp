@@ -1,0 +1,20 @@
+#pragma once
+// parallel: the run of a problem on the ranks of an MPI job ([solver] backend = "petsc";
+// docs/parallel.md, docs/theory.md §3.4). Implemented in parallel/mpi/ when fricon is built with
+// PETSc; without it, validate() has already refused the backend.
+
+#include "fricon/driver/run.hpp"
+
+namespace fricon::parallel {
+
+/// driver::run on every rank of MPI_COMM_WORLD (started here if it is not yet: a process not
+/// launched by mpirun is a job of one rank). Collective: every rank calls it with the same
+/// problem. Every rank builds the mesh and the loads, assembles K from its own tetrahedra
+/// (solver.partition) and gives the entries to one MUMPS factorization; rank 0 runs the dual
+/// QPs and the outer loop on Q and returns the whole result, the same as driver::run's. The
+/// other ranks serve rank 0's solves and return a result whose report holds only the status
+/// (and report.parallel->rank). An error on any rank is thrown on every rank, the same.
+driver::RunResult run_distributed(const driver::Problem& problem,
+                                  const driver::RunOptions& options);
+
+}  // namespace fricon::parallel

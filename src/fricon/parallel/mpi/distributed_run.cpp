@@ -1,0 +1,196 @@
+// parallel/mpi: driver::run on the ranks of an MPI job (docs/parallel.md, docs/theory.md §3.4).
+//   every rank   mesh, loads, contact discretization (the same on every rank)
+//                -> partition of the tetrahedra -> the entries of its own tetrahedra
+//   all ranks    one MUMPS factorization (of K, or of [[K, B^T], [B, 0]] with Q as its Schur
+//                complement on rank 0)
+//   rank 0       dual operator -> outer loop of dual QPs -> postprocessing, while the others
+//                serve its solves
+// Every step that may fail on some ranks runs in collectively(), and rank 0 ends the others'
+// serve() with its status or its error: no rank is left waiting.
+#include <algorithm>
+#include <memory>
+#include <optional>
+
+#include "fricon/core/error.hpp"
+#include "fricon/driver/run_steps.hpp"
+#include "fricon/fe/assembly.hpp"
+#include "fricon/linalg/blas.hpp"
+#include "fricon/parallel/distributed_run.hpp"
+#include "fricon/parallel/mpi/mumps_factor.hpp"
+#include "fricon/parallel/mpi/mumps_operator.hpp"
+#include "fricon/parallel/mpi/partition.hpp"
+#include "fricon/parallel/mpi/session.hpp"
+
+namespace fricon::parallel {
+
+namespace {
+
+using driver::RunOptions;
+using driver::RunResult;
+
+// Up to this many multipliers Q is formed (as a Schur complement) by "auto": the serial rule's
+// small-mesh limit (dual/dual_operator.cpp), 288 MB of dense Q on rank 0.
+constexpr Index kDenseDualLimit = 6000;
+
+dual::DualOperatorKind operator_kind(dual::DualOperatorKind asked, Index n_dual) {
+  if (asked != dual::DualOperatorKind::Auto) return asked;  // Schur or Implicit (validated)
+  return n_dual <= kDenseDualLimit ? dual::DualOperatorKind::Schur
+                                   : dual::DualOperatorKind::Implicit;
+}
+
+// The lower triangle of this rank's part of K and, when B is given (rank 0 of a Schur
+// factorization), the block B below K in the augmented matrix.
+LocalEntries local_entries(const driver::Model& m, const std::vector<Index>& mine,
+                           const SparseMatrix* B) {
+  LocalEntries e;
+  {
+    const SparseMatrix K_part = fe::assemble_stiffness(m.mesh, m.materials, m.dofs, mine);
+    const Index n_lower = (K_part.nonZeros() + K_part.rows()) / 2;
+    e.rows.reserve(static_cast<std::size_t>(n_lower));
+    e.cols.reserve(static_cast<std::size_t>(n_lower));
+    e.values.reserve(static_cast<std::size_t>(n_lower));
+    for (Index j = 0; j < K_part.outerSize(); ++j)
+      for (SparseMatrix::InnerIterator it(K_part, j); it; ++it)
+        if (it.row() >= j) e.add(it.row(), j, it.value());
+  }
+  if (B != nullptr) {
+    const Index n_free = B->cols();
+    for (Index j = 0; j < B->outerSize(); ++j)
+      for (SparseMatrix::InnerIterator it(*B, j); it; ++it)
+        e.add(n_free + it.row(), j, it.value());
+  }
+  return e;
+}
+
+// The factor's figures in the report's terms.
+linalg::CholeskyInfo factor_info(const MumpsInfo& m) {
+  linalg::CholeskyInfo i;
+  i.n = m.n;
+  i.nnz_K = static_cast<Index>(m.nnz_A);
+  i.nnz_L = m.nnz_factor;
+  i.flops = m.flops;
+  i.supernodal = false;  // multifrontal
+  i.ordering = m.ordering;
+  i.rcond = 0.0;  // MUMPS gives no estimate here
+  i.blas_threads = linalg::threads();
+  return i;
+}
+
+// Every rank's figures, on rank 0. Collective.
+std::vector<driver::RankReport> gather_ranks(Index n_tets, const MumpsInfo& info, int rank,
+                                             int size) {
+  double mine[3] = {static_cast<double>(n_tets), peak_memory_mib(), info.memory_mib};
+  std::vector<double> all(static_cast<std::size_t>(3 * size));
+  MPI_Gather(mine, 3, MPI_DOUBLE, all.data(), 3, MPI_DOUBLE, 0, world());
+  std::vector<driver::RankReport> ranks;
+  if (rank != 0) return ranks;
+  for (int r = 0; r < size; ++r)
+    ranks.push_back({static_cast<Index>(all[3 * r]), all[3 * r + 1], all[3 * r + 2]});
+  return ranks;
+}
+
+}  // namespace
+
+RunResult run_distributed(const driver::Problem& problem, const RunOptions& options) {
+  initialize();
+  const Stopwatch total;
+  const int rank = world_rank(), size = world_size();
+  // Progress and callbacks come from rank 0 only; a stop request reaches rank 0's outer loop.
+  RunOptions quiet;
+  quiet.stop_requested = options.stop_requested;
+  const RunOptions& opts = rank == 0 ? options : quiet;
+  RunResult r;
+  driver::RunReport& rep = r.report;
+  driver::ParallelReport par;
+  par.rank = rank;
+  par.n_ranks = size;
+  par.partition = problem.solver.partition;
+
+  // @sect: every rank: the model without K, and the contact discretization.
+  std::optional<contact::ContactDiscretization> disc;
+  collectively([&] {
+    driver::validate(problem);
+    r.model = driver::assemble_loads(problem, rep.times, opts.on_phase_start);
+    if (problem.contact) {
+      driver::phase_start(opts, "contact");
+      ScopedPhase phase(rep.times, "contact");
+      disc = driver::discretize_contact(problem, r.model.mesh, r.model.dofs);
+    }
+  });
+  const Index n_free = r.model.dofs.n_free();
+  const dual::DualOperatorKind kind =
+      disc ? operator_kind(problem.solver.dual_operator, disc->n_dual())
+           : dual::DualOperatorKind::Implicit;
+  const bool with_schur = disc && kind == dual::DualOperatorKind::Schur;
+  par.n_schur = with_schur ? disc->n_dual() : 0;
+
+  // @sect: the partition, and each rank's part of K (and B, on rank 0).
+  driver::phase_start(opts, "partition");
+  LocalEntries entries;
+  Index n_mine = 0;
+  collectively([&] {
+    std::vector<Index> mine;
+    {
+      ScopedPhase phase(rep.times, "partition");
+      mine = elements_of(partition_elements(r.model.mesh, par.partition, world()), rank);
+    }
+    n_mine = static_cast<Index>(mine.size());
+    ScopedPhase phase(rep.times, "assembly");
+    entries = local_entries(r.model, mine, with_schur && rank == 0 ? &disc->B : nullptr);
+  });
+
+  // @sect: one factorization across the ranks.
+  driver::phase_start(opts, "factorize");
+  std::unique_ptr<MumpsFactor> factor;
+  collectively([&] {
+    ScopedPhase phase(rep.times, "factorize");
+    factor = std::make_unique<MumpsFactor>(world(), n_free, par.n_schur, std::move(entries));
+  });
+
+  // @sect: the ranks other than 0 serve rank 0's solves until it ends the run.
+  if (rank != 0) {
+    rep.status = static_cast<driver::Status>(factor->serve());
+    par.ranks = gather_ranks(n_mine, factor->info(), rank, size);
+    rep.parallel = par;
+    return r;
+  }
+
+  // @sect: rank 0: the dual operator and the outer loop, or one solve; then the fields.
+  rep.n_nodes = r.model.mesh.n_nodes();
+  rep.n_tets = r.model.mesh.n_tets();
+  rep.n_primal = n_free;
+  rep.factor = factor_info(factor->info());
+  try {
+    if (driver::stop_requested(opts)) throw Interrupted("interrupted before the solve");
+    VectorXd u;
+    if (disc) {
+      driver::phase_start(opts, "dual");
+      std::unique_ptr<dual::DualOperator> Q;
+      {
+        ScopedPhase phase(rep.times, "dual");
+        Q = make_mumps_operator(kind, *factor, disc->B, r.model.f, &disc->offset);
+      }
+      u = driver::solve_with_operator(problem, *disc, *Q, opts, r);
+    } else {
+      ScopedPhase phase(rep.times, "solve");
+      u = factor->solve(r.model.f);
+      rep.linear_residual = (driver::stiffness_times(r.model, u) - r.model.f).norm() /
+                            std::max(r.model.f.norm(), 1e-300);
+    }
+    if (driver::stop_requested(opts) && rep.status == driver::Status::Converged) {
+      rep.status = driver::Status::NotConverged;
+      rep.message = "interrupted";
+    }
+    driver::postprocess(problem, u, r);
+  } catch (...) {
+    factor->fail(capture_current_exception());
+    throw;
+  }
+  factor->finish(static_cast<int>(rep.status));
+  par.ranks = gather_ranks(n_mine, factor->info(), rank, size);
+  rep.parallel = par;
+  rep.time_s = total.seconds();
+  return r;
+}
+
+}  // namespace fricon::parallel

@@ -1,0 +1,90 @@
+#pragma once
+// parallel/mpi: one MUMPS factorization shared by the ranks of a distributed run (docs/theory.md
+// §3.4, docs/parallel.md). The ranks give the entries of the lower triangle they assembled; MUMPS
+// sums them, orders, factors across the ranks, and
+//   - without Schur variables: factors K (symmetric positive definite);
+//   - with m Schur variables: factors the augmented matrix A = [[K, B^T], [B, 0]] (symmetric
+//     indefinite) and returns the Schur complement of K in A, S = -B K^-1 B^T = -Q, dense on rank
+//     0; solves with K are the "interior" solves of the same factor (ICNTL(26) = 0).
+// After the factorization rank 0 drives: its solve() calls are collective, so the other ranks sit
+// in serve() until rank 0 calls finish() or fail(). Every call here is collective unless it says
+// "rank 0".
+
+#include <mpi.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "fricon/core/types.hpp"
+#include "fricon/parallel/mpi/session.hpp"
+
+namespace fricon::parallel {
+
+/// Entries (row >= col, 0-based, duplicates allowed and summed) that one rank gives.
+struct LocalEntries {
+  std::vector<int> rows, cols;
+  std::vector<double> values;
+  void add(Index row, Index col, double value) {
+    rows.push_back(static_cast<int>(row));
+    cols.push_back(static_cast<int>(col));
+    values.push_back(value);
+  }
+  std::size_t size() const { return values.size(); }
+};
+
+/// What the factorization reports: sizes and cost (global), and this rank's memory.
+struct MumpsInfo {
+  Index n = 0;              ///< order of the factored matrix (n_free + n_schur)
+  Index n_schur = 0;        ///< Schur variables (the multipliers), 0 for K alone
+  double nnz_A = 0.0;       ///< entries given by all ranks
+  double nnz_factor = 0.0;  ///< entries of the factors (INFOG(29))
+  double flops = 0.0;       ///< operations of the elimination (RINFOG(3))
+  std::string ordering;     ///< the fill-reducing ordering MUMPS used (INFOG(7))
+  double memory_mib = 0.0;  ///< memory MUMPS allocated on this rank during factorization (INFO(16))
+};
+
+class MumpsFactor {
+ public:
+  /// Collective. Factors the matrix of order n_free + n_schur whose lower-triangle entries the
+  /// ranks give (`entries`, moved in and freed after the factorization); the last n_schur
+  /// variables are the Schur variables. Throws NumericalError on every rank if MUMPS fails (with
+  /// its INFOG(1), INFOG(2) and what they mean).
+  MumpsFactor(MPI_Comm comm, Index n_free, Index n_schur, LocalEntries entries);
+  /// Collective (MUMPS releases its memory on every rank).
+  ~MumpsFactor();
+  MumpsFactor(const MumpsFactor&) = delete;
+  MumpsFactor& operator=(const MumpsFactor&) = delete;
+
+  int rank() const { return rank_; }
+  Index n_free() const { return n_free_; }
+  const MumpsInfo& info() const { return info_; }
+
+  /// Rank 0: the Schur complement S = -B K^-1 B^T (n_schur x n_schur, both triangles) [m^3/Pa].
+  const MatrixXd& schur() const { return schur_; }
+
+  /// Rank 0: X = K^-1 B for n_free x k right-hand sides. Collective with the other ranks'
+  /// serve(). Throws NumericalError if MUMPS fails.
+  MatrixXd solve(const MatrixXd& b) const;
+  VectorXd solve(const VectorXd& b) const;
+
+  /// Ranks other than 0: take part in rank 0's solves until it calls finish() (returns its
+  /// status) or fail() (throws its error, as rank 0 does).
+  int serve() const;
+  /// Rank 0: ends the other ranks' serve() with `status`.
+  void finish(int status) const;
+  /// Rank 0: ends the other ranks' serve() by throwing `error` there.
+  void fail(const ErrorPacket& error) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  MPI_Comm comm_;
+  int rank_ = 0;
+  Index n_free_ = 0;
+  MumpsInfo info_;
+  MatrixXd schur_;
+  void run_solve(int n_rhs, double* rhs) const;
+};
+
+}  // namespace fricon::parallel

@@ -1,0 +1,24 @@
+#pragma once
+// parallel/mpi: which rank assembles each tetrahedron of a distributed run (docs/parallel.md).
+// Each rank computes the element matrices of its own tetrahedra only; MUMPS sums the entries the
+// ranks give, so the partition changes the work of each rank, not the matrix.
+
+#include <mpi.h>
+
+#include <vector>
+
+#include "fricon/mesh/tet_mesh.hpp"
+#include "fricon/parallel/backend.hpp"
+
+namespace fricon::parallel {
+
+/// The owner rank (0 .. size-1) of every tetrahedron of `mesh`, the same array on every rank.
+/// Graph: PETSc's MatPartitioning (PT-Scotch) on the dual graph (tetrahedra sharing a face),
+/// each rank giving the rows of its block of tetrahedra; Blocks: consecutive blocks in mesh
+/// order. Collective over `comm`; every rank must hold the same mesh.
+std::vector<int> partition_elements(const mesh::TetMesh& mesh, PartitionKind kind, MPI_Comm comm);
+
+/// The tetrahedra that `owner` gives to `rank`, ascending.
+std::vector<Index> elements_of(const std::vector<int>& owner, int rank);
+
+}  // namespace fricon::parallel
