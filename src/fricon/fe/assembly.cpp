@@ -16,12 +16,6 @@ Eigen::Matrix<Real, 3, 4> tet_vertices(const mesh::TetMesh& mesh, Index t) {
 
 namespace {
 
-// Sorted neighbour lists of the node graph (a node is its own neighbour), as CSR arrays.
-struct NodeGraph {
-  std::vector<Index> start;  // size n_nodes + 1
-  std::vector<Index> adj;
-};
-
 // The tetrahedra assembled: all, or a subset (a rank's own, in a distributed run).
 class ElementRange {
  public:
@@ -35,7 +29,7 @@ class ElementRange {
   const std::vector<Index>* subset_;
 };
 
-NodeGraph node_graph(const mesh::TetMesh& mesh, const ElementRange& elements) {
+NodeGraph graph_of(const mesh::TetMesh& mesh, const ElementRange& elements) {
   const Index n = mesh.n_nodes();
   std::vector<std::vector<Index>> lists(static_cast<size_t>(n));
   for (Index k = 0; k < elements.size(); ++k) {
@@ -66,7 +60,7 @@ namespace {
 
 SparseMatrix assemble(const mesh::TetMesh& mesh, Materials materials, const DofMap& dofs,
                       const ElementRange& elements) {
-  const NodeGraph graph = node_graph(mesh, elements);
+  const NodeGraph graph = graph_of(mesh, elements);
   const Index n = dofs.n_free();
 
   // Pattern: column dof(b, d) holds rows dof(a, c) for the neighbours a of b, in increasing
@@ -130,6 +124,8 @@ SparseMatrix assemble(const mesh::TetMesh& mesh, Materials materials, const DofM
 }
 
 }  // namespace
+
+NodeGraph node_graph(const mesh::TetMesh& mesh) { return graph_of(mesh, ElementRange(mesh, nullptr)); }
 
 SparseMatrix assemble_stiffness(const mesh::TetMesh& mesh, Materials materials,
                                 const DofMap& dofs) {

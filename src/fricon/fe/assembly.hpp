@@ -50,6 +50,14 @@ void add_volume_force_p1(const mesh::TetMesh& mesh, const DofMap& dofs, const No
 /// internal force K_full u for a displacement field given at the nodes. Used for reactions.
 NodalField internal_forces(const mesh::TetMesh& mesh, Materials materials, const NodalField& u);
 
+/// The node graph of the mesh in CSR arrays: node a's neighbours (the nodes sharing a
+/// tetrahedron with it, a itself included) are adj[start[a] .. start[a+1]), ascending.
+struct NodeGraph {
+  std::vector<SparseIndex> start;  ///< size n_nodes + 1
+  std::vector<SparseIndex> adj;
+};
+NodeGraph node_graph(const mesh::TetMesh& mesh);
+
 /// Vertices of tetrahedron t as columns.
 Eigen::Matrix<Real, 3, 4> tet_vertices(const mesh::TetMesh& mesh, Index t);
 

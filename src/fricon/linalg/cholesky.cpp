@@ -489,3 +489,30 @@ VectorXd CholeskyFactor::solve(const VectorXd& b) const {
 }
 
 }  // namespace fricon::linalg
+
+namespace fricon::linalg {
+
+std::vector<Index> nested_dissection(const std::vector<SparseIndex>& start,
+                                     const std::vector<SparseIndex>& adjacent) {
+  FRICON_CHECK(!start.empty() && start.back() == static_cast<SparseIndex>(adjacent.size()),
+               "nested_dissection: inconsistent graph arrays");
+  const auto n = static_cast<SuiteSparse_long>(start.size() - 1);
+  cholmod_common common{};
+  cholmod_l_start(&common);
+  common.print = 0;
+  common.error_handler = nullptr;
+  std::vector<SuiteSparse_long> order;
+  try {
+    order = compressed_nested_dissection(
+        {n, reinterpret_cast<const SuiteSparse_long*>(start.data()),
+         reinterpret_cast<const SuiteSparse_long*>(adjacent.data())},
+        &common);
+  } catch (...) {
+    cholmod_l_finish(&common);
+    throw;
+  }
+  cholmod_l_finish(&common);
+  return {order.begin(), order.end()};
+}
+
+}  // namespace fricon::linalg

@@ -92,4 +92,11 @@ class CholeskyFactor {
   std::vector<Index> trailing_order_;
 };
 
+/// The fill-reducing order fricon gives CHOLMOD, for another solver (MUMPS, parallel/mpi/): nested
+/// dissection (CHOLMOD's: METIS bisection, CAMD on the leaves) of the symmetric graph whose
+/// vertex v is adjacent to adjacent[start[v] .. start[v+1]) (both directions stored, sorted; v
+/// itself may be listed). Returns the vertices in elimination order.
+std::vector<Index> nested_dissection(const std::vector<SparseIndex>& start,
+                                     const std::vector<SparseIndex>& adjacent);
+
 }  // namespace fricon::linalg

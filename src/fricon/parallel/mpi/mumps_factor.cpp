@@ -80,13 +80,15 @@ void check_phase(const DMUMPS_STRUC_C& id, const char* phase) {
 struct MumpsFactor::Impl {
   DMUMPS_STRUC_C id{};
   std::vector<MUMPS_INT> schur_vars;
+  std::vector<MUMPS_INT> perm_in;  // position (from 1) of each variable in the given order
   void call(MUMPS_INT job) {
     id.job = job;
     dmumps_c(&id);
   }
 };
 
-MumpsFactor::MumpsFactor(MPI_Comm comm, Index n_free, Index n_schur, LocalEntries entries)
+MumpsFactor::MumpsFactor(MPI_Comm comm, Index n_free, Index n_schur, LocalEntries entries,
+                         const std::vector<Index>& order)
     : impl_(std::make_unique<Impl>()), comm_(comm), n_free_(n_free) {
   MPI_Comm_rank(comm_, &rank_);
   DMUMPS_STRUC_C& id = impl_->id;
@@ -123,6 +125,21 @@ MumpsFactor::MumpsFactor(MPI_Comm comm, Index n_free, Index n_schur, LocalEntrie
       id.schur = schur_.data();
     }
   }
+  int given_order = rank_ == 0 && !order.empty();
+  MPI_Bcast(&given_order, 1, MPI_INT, 0, comm_);
+  if (given_order) {
+    icntl(id, 7) = 1;  // the order given in PERM_IN (on rank 0)
+    if (rank_ == 0) {
+      FRICON_CHECK(static_cast<Index>(order.size()) == n_free,
+                   "order of " << order.size() << " variables, expected " << n_free);
+      impl_->perm_in.assign(static_cast<std::size_t>(n), 0);
+      for (std::size_t k = 0; k < order.size(); ++k)
+        impl_->perm_in[static_cast<std::size_t>(order[k])] = static_cast<MUMPS_INT>(k + 1);
+      for (Index k = n_free; k < n; ++k)
+        impl_->perm_in[static_cast<std::size_t>(k)] = static_cast<MUMPS_INT>(k + 1);
+      id.perm_in = impl_->perm_in.data();
+    }
+  }
   impl_->call(kJobAnalyse);
   check_phase(id, "analysis");
   for (int attempt = 1;; ++attempt) {
@@ -138,7 +155,8 @@ MumpsFactor::MumpsFactor(MPI_Comm comm, Index n_free, Index n_schur, LocalEntrie
            given,
            count(id, 29),
            id.rinfog[2],
-           ordering_name(infog(id, 7)),
+           given_order ? "nested dissection of the node graph (given to MUMPS)"
+                       : ordering_name(infog(id, 7)),
            static_cast<double>(id.info[15])};
   // The entries are no longer needed (no iterative refinement): free them now.
   id.irn_loc = id.jcn_loc = nullptr;

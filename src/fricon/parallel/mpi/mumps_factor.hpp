@@ -40,7 +40,7 @@ struct MumpsInfo {
   double nnz_A = 0.0;       ///< entries given by all ranks
   double nnz_factor = 0.0;  ///< entries of the factors (INFOG(29))
   double flops = 0.0;       ///< operations of the elimination (RINFOG(3))
-  std::string ordering;     ///< the fill-reducing ordering MUMPS used (INFOG(7))
+  std::string ordering;     ///< the fill-reducing ordering used (given, or MUMPS's INFOG(7))
   double memory_mib = 0.0;  ///< memory MUMPS allocated on this rank during factorization (INFO(16))
 };
 
@@ -48,9 +48,11 @@ class MumpsFactor {
  public:
   /// Collective. Factors the matrix of order n_free + n_schur whose lower-triangle entries the
   /// ranks give (`entries`, moved in and freed after the factorization); the last n_schur
-  /// variables are the Schur variables. Throws NumericalError on every rank if MUMPS fails (with
-  /// its INFOG(1), INFOG(2) and what they mean).
-  MumpsFactor(MPI_Comm comm, Index n_free, Index n_schur, LocalEntries entries);
+  /// variables are the Schur variables. `order` (read on rank 0; empty: MUMPS chooses) is the
+  /// elimination order of the first n_free variables, the Schur variables following. Throws
+  /// NumericalError on every rank if MUMPS fails (with its INFOG(1), INFOG(2) and their meaning).
+  MumpsFactor(MPI_Comm comm, Index n_free, Index n_schur, LocalEntries entries,
+              const std::vector<Index>& order = {});
   /// Collective (MUMPS releases its memory on every rank).
   ~MumpsFactor();
   MumpsFactor(const MumpsFactor&) = delete;
