@@ -3,7 +3,8 @@
 #   make test    install what is missing, build (Release), run the whole CTest suite with the
 #                BLAS's default threads, the numerical tests again with one BLAS thread (results
 #                must not depend on rounding), then the unit tests and a fast subset of the
-#                command-line tests under AddressSanitizer + UndefinedBehaviorSanitizer
+#                command-line tests under AddressSanitizer + UndefinedBehaviorSanitizer, in a
+#                build without PETSc (which also checks that such a build refuses backend petsc)
 #   make bench   build and run the benchmarks (outside the tests)
 #   Both build the Python module into $(BUILD)/python: PYTHONPATH=$(BUILD)/python /usr/bin/python3
 #   make format  clang-format every C++ file
@@ -35,13 +36,14 @@ test-release: build
 
 test-sanitize: deps
 	cmake -S . -B $(SAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-g -O1" \
-	  -DFRICON_SANITIZE=ON -DFRICON_BUILD_BENCH=OFF -DFRICON_WERROR=$(WERROR)
+	  -DFRICON_SANITIZE=ON -DFRICON_BUILD_BENCH=OFF -DFRICON_WITH_PETSC=OFF -DFRICON_WERROR=$(WERROR)
 	cmake --build $(SAN_BUILD)
 	ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
 	  LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp \
 	  ctest --test-dir $(SAN_BUILD) -L "unit|leak|sanitize" --output-on-failure -j $(CTEST_JOBS)
 
-# BENCH_LARGE=1 adds n = 24, 32, 48 to the contact benchmark (minutes, several GiB); the Coulomb
+# BENCH_LARGE=1 adds n = 24, 32, 48 to the contact benchmark (minutes, several GiB) and the
+# PETSc backend's strong scaling at n = 32, 48 (bench/petsc_scaling.py, docs/parallel.md); the Coulomb
 # runs at those sizes: build/bench/contact_bench --model coulomb 24 32 48 (10 min, 14 GiB).
 bench: build
 	@for b in $(BUILD)/bench/*_bench; do echo "== $$b"; $$b || exit 1; done
@@ -49,6 +51,8 @@ bench: build
 	@if [ -n "$(BENCH_LARGE)" ]; then $(BUILD)/bench/contact_bench 24 32 48; fi
 	@if [ -x $(BUILD)/bench/siconos_compare ]; then echo "== siconos_compare"; $(BUILD)/bench/siconos_compare; fi
 	@if [ -x $(BUILD)/bench/fclib_compare ]; then echo "== fclib_compare"; $(BUILD)/bench/fclib_compare; fi
+	@if [ -n "$(BENCH_LARGE)" ] && $(BUILD)/apps/fricon/fricon --version | grep -q petsc; then \
+	  /usr/bin/python3 bench/petsc_scaling.py $(BUILD)/apps/fricon/fricon; fi
 	@echo "== bench/python_study.py"; PYTHONPATH=$(BUILD)/python /usr/bin/python3 bench/python_study.py \
 	  $(BUILD)/apps/fricon/fricon
 

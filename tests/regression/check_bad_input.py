@@ -6,6 +6,8 @@ Each CORPUS_DIR/*.toml starts with a line
     # expect: <fragment> | <fragment> ...
 listing text that the error message must contain (the file name and line, the key, what is
 wrong). Every file is run as `FRICON solve FILE --out OUTDIR/<name>` and must give exit code 1,
+A second line "# requires: petsc" (or "no-petsc") runs the file only in a build with (without)
+the PETSc backend, as `FRICON --version` says. Every file must give exit code 1,
 exactly one line "fricon: error: ..." on stderr containing every fragment, no sanitizer report
 or traceback, no crash or hang (10 s each), and no file in the --out folder.
 """
@@ -26,6 +28,17 @@ def expectations(path):
         return None
     frags = [f.strip() for f in first[0][len(prefix):].split("|")]
     return [f for f in frags if f]
+
+
+def requirement(path):
+    lines = path.read_text(encoding="utf-8", errors="replace").splitlines()[1:2]
+    prefix = "# requires:"
+    return lines[0][len(prefix):].strip() if lines and lines[0].startswith(prefix) else None
+
+
+def has_petsc(exe):
+    version = subprocess.run([exe, "--version"], capture_output=True, text=True, check=True)
+    return "petsc" in version.stdout
 
 
 def check(exe, path, out_root):
@@ -70,6 +83,11 @@ def main():
     if not files:
         sys.exit(f"no *.toml files in {corpus}")
     failed = 0
+    petsc = has_petsc(exe)
+    skipped = [p for p in files if requirement(p) == ("no-petsc" if petsc else "petsc")]
+    for path in skipped:
+        print(f"skip {path.name}: requires {requirement(path)}")
+    files = [p for p in files if p not in skipped]
     for path in files:
         problems = check(exe, path, out_root)
         if problems:

@@ -51,7 +51,7 @@ struct DualInput {
 };
 
 /// The dual problem's operator, whatever factors K: CHOLMOD here (FactorDualOperator), MUMPS
-/// across MPI ranks in parallel/mpi/ (docs/theory.md §3.4).
+/// across MPI ranks in parallel/mpi/ (docs/theory.md §3.3).
 class DualOperator {
  public:
   virtual ~DualOperator() = default;

@@ -17,7 +17,7 @@ enum class Backend {
   Cholmod,
   /// P MPI ranks (P >= 1): each rank assembles its own elements, MUMPS factors the augmented
   /// matrix [[K, B^T], [B, 0]] across the ranks and returns Q as its Schur complement on rank 0
-  /// (docs/theory.md §3.4).
+  /// (docs/theory.md §3.3).
   Petsc,
 };
 

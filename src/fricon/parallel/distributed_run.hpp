@@ -1,6 +1,6 @@
 #pragma once
 // parallel: the run of a problem on the ranks of an MPI job ([solver] backend = "petsc";
-// docs/parallel.md, docs/theory.md §3.4). Implemented in parallel/mpi/ when fricon is built with
+// docs/parallel.md, docs/theory.md §3.3). Implemented in parallel/mpi/ when fricon is built with
 // PETSc; without it, validate() has already refused the backend.
 
 #include "fricon/driver/run.hpp"

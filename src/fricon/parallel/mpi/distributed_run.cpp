@@ -1,4 +1,4 @@
-// parallel/mpi: driver::run on the ranks of an MPI job (docs/parallel.md, docs/theory.md §3.4).
+// parallel/mpi: driver::run on the ranks of an MPI job (docs/parallel.md, docs/theory.md §3.3).
 //   every rank   mesh, loads, contact discretization (the same on every rank)
 //                -> partition of the tetrahedra -> the entries of its own tetrahedra
 //   all ranks    one MUMPS factorization (of K, or of [[K, B^T], [B, 0]] with Q as its Schur

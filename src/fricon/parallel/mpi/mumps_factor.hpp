@@ -1,6 +1,6 @@
 #pragma once
 // parallel/mpi: one MUMPS factorization shared by the ranks of a distributed run (docs/theory.md
-// §3.4, docs/parallel.md). The ranks give the entries of the lower triangle they assembled; MUMPS
+// §3.3, docs/parallel.md). The ranks give the entries of the lower triangle they assembled; MUMPS
 // sums them, orders, factors across the ranks, and
 //   - without Schur variables: factors K (symmetric positive definite);
 //   - with m Schur variables: factors the augmented matrix A = [[K, B^T], [B, 0]] (symmetric

@@ -1,5 +1,5 @@
 #pragma once
-// parallel/mpi: the dual operator of a distributed run (docs/theory.md §3.4), on rank 0:
+// parallel/mpi: the dual operator of a distributed run (docs/theory.md §3.3), on rank 0:
 //   schur     Q = -S, the Schur complement MUMPS returns from the factorization of the augmented
 //             matrix; products are dense, and the displacement is one distributed solve
 //   implicit  K factored alone; each product with Q is one distributed solve (for a Q too large
