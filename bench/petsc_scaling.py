@@ -48,7 +48,10 @@ def describe(label, rep):
         memory = ", ".join(f"{x['peak_memory_mib']:.0f}" for x in par["ranks"])
         mumps = ", ".join(f"{x['mumps_memory_mib']:.0f}" for x in par["ranks"])
         tets = ", ".join(str(x["n_tets"]) for x in par["ranks"])
-        mem = f"peak memory per rank [MiB] {memory}; MUMPS per rank [MiB] {mumps}; tets per rank {tets}"
+        mem = (f"peak memory per rank [MiB] {memory}; MUMPS per rank [MiB] {mumps}; tets per rank "
+               f"{tets}\n  {'':<10} MUMPS analysis {par['analysis_s']:.2f} s (rank 0), numerical "
+               f"factorization {par['factorization_s']:.2f} s; BLAS threads per rank "
+               f"{rep['factor']['blas_threads']}")
     else:
         mem = f"peak memory [MiB] {rep['wrapper_peak_mib']:.0f}"
     f = rep["factor"]

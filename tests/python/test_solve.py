@@ -140,3 +140,20 @@ def test_the_arrays_are_views_of_the_result_not_copies():
     assert isinstance(a.base, fricon.Result) or a.base is not None
     del r
     assert np.isfinite(a).all()  # the view keeps the result alive
+
+
+def test_the_petsc_backend_in_the_interpreter_gives_the_serial_answer():
+    """backend petsc from Python: a job of one rank in this process (docs/parallel.md)."""
+    tight = {"solver.qp_rtol": 1e-12, "solver.outer_tol": 1e-10}
+    serial = fricon.solve(PAPER_BRICK, set=tight)
+    try:
+        distributed = fricon.solve(PAPER_BRICK, set={**tight, "solver.backend": "petsc"})
+    except fricon.InputError as e:
+        assert "built without PETSc" in str(e)
+        pytest.skip("this fricon was built without PETSc")
+    assert distributed.report["parallel"]["n_ranks"] == 1
+    assert distributed.report["outer_iterations"] == serial.report["outer_iterations"]
+    scale = np.abs(serial.displacement).max()
+    assert np.abs(distributed.displacement - serial.displacement).max() <= 1e-8 * scale
+    lam = serial.patches["lambda_n"]
+    assert np.abs(distributed.patches["lambda_n"] - lam).max() <= 1e-8 * np.abs(lam).max()

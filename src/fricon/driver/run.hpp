@@ -32,6 +32,8 @@ struct ParallelReport {
   int n_ranks = 1;  ///< MPI ranks of the run
   parallel::PartitionKind partition = parallel::PartitionKind::Graph;
   Index n_schur = 0;              ///< Schur variables of the MUMPS factorization (0: K alone)
+  double analysis_s = 0.0;        ///< MUMPS's analysis (ordering, symbolic; on rank 0) [s]
+  double factorization_s = 0.0;   ///< MUMPS's numerical factorization, across the ranks [s]
   std::vector<RankReport> ranks;  ///< per rank, on rank 0
 };
 

@@ -160,8 +160,7 @@ RunResult run_distributed(const driver::Problem& problem, const RunOptions& opti
   collectively([&] {
     ScopedPhase phase(rep.times, "factorize");
     const std::vector<Index> order = rank == 0 ? free_dof_order(r.model) : std::vector<Index>{};
-    factor =
-        std::make_unique<MumpsFactor>(world(), n_free, par.n_schur, std::move(entries), order);
+    factor = std::make_unique<MumpsFactor>(world(), n_free, par.n_schur, std::move(entries), order);
   });
 
   // @sect: the ranks other than 0 serve rank 0's solves until it ends the run.
@@ -177,6 +176,8 @@ RunResult run_distributed(const driver::Problem& problem, const RunOptions& opti
   rep.n_tets = r.model.mesh.n_tets();
   rep.n_primal = n_free;
   rep.factor = factor_info(factor->info());
+  par.analysis_s = factor->info().analysis_s;
+  par.factorization_s = factor->info().factorization_s;
   try {
     if (driver::stop_requested(opts)) throw Interrupted("interrupted before the solve");
     VectorXd u;

@@ -3,7 +3,9 @@
 #include <dmumps_c.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <thread>
 
 #include <fmt/format.h>
 
@@ -140,8 +142,11 @@ MumpsFactor::MumpsFactor(MPI_Comm comm, Index n_free, Index n_schur, LocalEntrie
       id.perm_in = impl_->perm_in.data();
     }
   }
+  const Stopwatch analysis;
   impl_->call(kJobAnalyse);
   check_phase(id, "analysis");
+  const double analysis_s = analysis.seconds();
+  const Stopwatch factorization;
   for (int attempt = 1;; ++attempt) {
     impl_->call(kJobFactorize);
     if (!workspace_too_small(infog(id, 1)) || attempt == kFactorizationAttempts) break;
@@ -157,7 +162,9 @@ MumpsFactor::MumpsFactor(MPI_Comm comm, Index n_free, Index n_schur, LocalEntrie
            id.rinfog[2],
            given_order ? "nested dissection of the node graph (given to MUMPS)"
                        : ordering_name(infog(id, 7)),
-           static_cast<double>(id.info[15])};
+           static_cast<double>(id.info[15]),
+           analysis_s,
+           factorization.seconds()};
   // The entries are no longer needed (no iterative refinement): free them now.
   id.irn_loc = id.jcn_loc = nullptr;
   id.a_loc = nullptr;
@@ -191,11 +198,10 @@ void MumpsFactor::run_solve(int n_rhs, double* rhs) const {
 MatrixXd MumpsFactor::solve(const MatrixXd& b) const {
   FRICON_CHECK(rank_ == 0, "MumpsFactor::solve is called by rank 0");
   FRICON_CHECK(b.rows() == n_free_, "solve: " << b.rows() << " rows, expected " << n_free_);
-  int command[2] = {kSolve, static_cast<int>(b.cols())};
-  MPI_Bcast(command, 2, MPI_INT, 0, comm_);
+  send_command(kSolve, static_cast<int>(b.cols()));
   MatrixXd rhs = MatrixXd::Zero(impl_->id.n, b.cols());
   rhs.topRows(n_free_) = b;
-  run_solve(command[1], rhs.data());
+  run_solve(static_cast<int>(b.cols()), rhs.data());
   check_phase(impl_->id, "solve");
   return rhs.topRows(n_free_);
 }
@@ -204,11 +210,30 @@ VectorXd MumpsFactor::solve(const VectorXd& b) const {
   return solve(MatrixXd(b)).col(0);
 }
 
+namespace {
+
+// Waits for rank 0's next command without spinning: a blocking MPI_Bcast busy-polls a core,
+// which rank 0's QP and BLAS threads need while the other ranks only wait (rank 0 may work
+// for minutes between two solves). Polling every kIdlePoll adds that much latency per command.
+constexpr auto kIdlePoll = std::chrono::microseconds(200);
+
+void receive_command(int (&command)[2], MPI_Comm comm) {
+  MPI_Request request = MPI_REQUEST_NULL;
+  MPI_Ibcast(command, 2, MPI_INT, 0, comm, &request);
+  for (int done = 0;;) {
+    MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+    if (done) return;
+    std::this_thread::sleep_for(kIdlePoll);
+  }
+}
+
+}  // namespace
+
 int MumpsFactor::serve() const {
   FRICON_CHECK(rank_ != 0, "MumpsFactor::serve is called by the ranks other than 0");
   for (;;) {
     int command[2] = {0, 0};
-    MPI_Bcast(command, 2, MPI_INT, 0, comm_);
+    receive_command(command, comm_);
     switch (command[0]) {
       case kSolve:
         // A failure shows on every rank; rank 0 reports it and ends the serve with fail().
@@ -227,14 +252,19 @@ int MumpsFactor::serve() const {
   }
 }
 
+void MumpsFactor::send_command(int command, int argument) const {
+  int message[2] = {command, argument};
+  MPI_Request request = MPI_REQUEST_NULL;
+  MPI_Ibcast(message, 2, MPI_INT, 0, comm_, &request);
+  MPI_Wait(&request, MPI_STATUS_IGNORE);
+}
+
 void MumpsFactor::finish(int status) const {
-  int command[2] = {kFinish, status};
-  MPI_Bcast(command, 2, MPI_INT, 0, comm_);
+  send_command(kFinish, status);
 }
 
 void MumpsFactor::fail(const ErrorPacket& error) const {
-  int command[2] = {kFail, 0};
-  MPI_Bcast(command, 2, MPI_INT, 0, comm_);
+  send_command(kFail, 0);
   ErrorPacket copy = error;
   broadcast(copy, 0, comm_);
 }

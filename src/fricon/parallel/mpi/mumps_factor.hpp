@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "fricon/core/timer.hpp"
 #include "fricon/core/types.hpp"
 #include "fricon/parallel/mpi/session.hpp"
 
@@ -42,6 +43,8 @@ struct MumpsInfo {
   double flops = 0.0;       ///< operations of the elimination (RINFOG(3))
   std::string ordering;     ///< the fill-reducing ordering used (given, or MUMPS's INFOG(7))
   double memory_mib = 0.0;  ///< memory MUMPS allocated on this rank during factorization (INFO(16))
+  double analysis_s = 0.0;  ///< wall time of the analysis (ordering, symbolic) [s]
+  double factorization_s = 0.0;  ///< wall time of the numerical factorization [s]
 };
 
 class MumpsFactor {
@@ -87,6 +90,8 @@ class MumpsFactor {
   MumpsInfo info_;
   MatrixXd schur_;
   void run_solve(int n_rhs, double* rhs) const;
+  /// Rank 0: one command to the ranks in serve() (a non-blocking broadcast, as they receive it).
+  void send_command(int command, int argument) const;
 };
 
 }  // namespace fricon::parallel
