@@ -57,6 +57,13 @@ void print_summary(const fricon::driver::RunResult& result, const std::filesyste
   fmt::print("  mesh          {} nodes, {} tetrahedra\n", r.n_nodes, r.n_tets);
   fmt::print("  unknowns      n_primal = {}\n", r.n_primal);
   fmt::print("  factor        nnz(L) = {:.0f}, ordering {}\n", r.factor.nnz_L, r.factor.ordering);
+  if (r.parallel) {
+    fmt::print("  ranks         {} (backend petsc, partition {}), peak memory per rank [MiB]:",
+               r.parallel->n_ranks, fricon::enum_name(r.parallel->partition));
+    for (const auto& rank : r.parallel->ranks)
+      fmt::print(" {:.0f}", rank.peak_memory_mib);
+    fmt::print("\n");
+  }
   if (r.contact) {
     const auto& c = *r.contact;
     fmt::print("  contact       '{}': {} patches, n_dual = {}, {} contact nodes, {} friction {}\n",
