@@ -142,20 +142,21 @@ void push_pieces(Index patch, Real base, Real sign, Real c1, Real c2, Real lengt
     out.push_back({patch, base, sign, c1, c2, cuts[c], cuts[c + 1]});
 }
 
-VectorXd quadrature_radii(const mesh::TetMesh& mesh, const ContactSurface& surface,
-                          const Patches& patches, const FrictionLaw& F, const VectorXd& phi,
-                          const VectorXd& g) {
-  const std::vector<Real> kinks = F.kinks();
-  const Real rtol = F.quadrature_rtol();
-  FRICON_CHECK(rtol > 0.0 && rtol < 1.0, "quadrature_rtol = " << rtol << " is not in (0, 1)");
-  const auto n_patches = static_cast<size_t>(patches.size());
-
-  // The level-line reduction of every triangle (theory.md §2.6, eq. (2.6.2)): intervals, and
-  // for triangles with a constant phi_h a point value weight * F(s).
-  std::vector<Interval> active;
+// The level-line reduction of every triangle of the patches (theory.md §2.6, eq. (2.6.2)):
+// intervals of the 1D integrals, and for triangles with a constant phi_h point values
+// weight * F(s).
+struct Reduction {
+  std::vector<Interval> intervals;
   std::vector<Real> flat_s, flat_weight;
   std::vector<Index> flat_patch;
-  std::vector<Real> length(n_patches, 0.0);  // total length of the intervals of each patch [m]
+  std::vector<Real> length;  // total length of the intervals of each patch [m]
+};
+
+Reduction level_line_reduction(const mesh::TetMesh& mesh, const ContactSurface& surface,
+                               const Patches& patches, const std::vector<Real>& kinks,
+                               const VectorXd& phi, const VectorXd& g) {
+  Reduction r;
+  r.length.assign(static_cast<size_t>(patches.size()), 0.0);
   for (Index p = 0; p < patches.size(); ++p) {
     for (Index k : patches.faces[static_cast<size_t>(p)]) {
       std::array<Index, 3> v{};
@@ -169,21 +170,70 @@ VectorXd quadrature_radii(const mesh::TetMesh& mesh, const ContactSurface& surfa
       const Real s0 = phi(v[0]), s1 = phi(v[1]), s2 = phi(v[2]);
       const Real g0 = g(v[0]), g1 = g(v[1]), g2 = g(v[2]);
       if (s2 - s0 <= kFlatRelative * std::max(std::abs(s0), std::abs(s2))) {
-        flat_s.push_back(0.5 * (s0 + s2));
-        flat_weight.push_back(A * (g0 + g1 + g2) / 3.0);
-        flat_patch.push_back(p);
+        r.flat_s.push_back(0.5 * (s0 + s2));
+        r.flat_weight.push_back(A * (g0 + g1 + g2) / 3.0);
+        r.flat_patch.push_back(p);
         continue;
       }
-      length[static_cast<size_t>(p)] += s2 - s0;
+      r.length[static_cast<size_t>(p)] += s2 - s0;
       const Real d1 = s1 - s0, e1 = s2 - s1, d = s2 - s0;
       if (d1 > 0.0)  // lower part, u = s - s0 in [0, d1]
         push_pieces(p, s0, 1.0, 2.0 * A * g0 / (d1 * d),
-                    A * ((g1 - g0) / d1 + (g2 - g0) / d) / (d1 * d), d1, kinks, active);
+                    A * ((g1 - g0) / d1 + (g2 - g0) / d) / (d1 * d), d1, kinks, r.intervals);
       if (e1 > 0.0)  // upper part, u = s2 - s in [0, e1]
         push_pieces(p, s2, -1.0, 2.0 * A * g2 / (e1 * d),
-                    A * ((g1 - g2) / e1 + (g0 - g2) / d) / (e1 * d), e1, kinks, active);
+                    A * ((g1 - g2) / e1 + (g0 - g2) / d) / (e1 * d), e1, kinks, r.intervals);
     }
   }
+  return r;
+}
+
+// The 15 Kronrod nodes s of each interval, after n_flat leading entries, into t.
+void kronrod_nodes(const std::vector<Interval>& intervals, size_t n_flat, std::vector<Real>& t) {
+  for (size_t i = 0; i < intervals.size(); ++i) {
+    const Interval& I = intervals[i];
+    const Real mid = 0.5 * (I.lo + I.hi), half = 0.5 * (I.hi - I.lo);
+    Real* ti = t.data() + n_flat + kNodesPerInterval * i;
+    for (int j = 0; j < 7; ++j) {
+      ti[2 * j] = I.base + I.sign * (mid - half * kKronrodX[j]);
+      ti[2 * j + 1] = I.base + I.sign * (mid + half * kKronrodX[j]);
+    }
+    ti[14] = I.base + I.sign * mid;
+  }
+}
+
+// One interval's Kronrod-15 value, |K15 - G7| error estimate and integral of |F w|, from F at
+// its nodes (fi, in kronrod_nodes' order).
+struct Estimate {
+  Real value, error, magnitude;
+};
+
+Estimate gauss_kronrod(const Interval& I, const Real* fi) {
+  const Real mid = 0.5 * (I.lo + I.hi), half = 0.5 * (I.hi - I.lo);
+  auto integrand = [&](Real fv, Real u) { return fv * (I.c1 * u + I.c2 * u * u); };
+  Real K = 0.0, G = 0.0, M = 0.0;
+  for (int j = 0; j < 7; ++j) {
+    const Real a = integrand(fi[2 * j], mid - half * kKronrodX[j]);
+    const Real b = integrand(fi[2 * j + 1], mid + half * kKronrodX[j]);
+    K += kKronrodW[j] * (a + b);
+    M += kKronrodW[j] * (std::abs(a) + std::abs(b));
+    if (j % 2 == 1) G += kGaussW[j / 2] * (a + b);
+  }
+  const Real c = integrand(fi[14], mid);
+  K += kKronrodW[7] * c;
+  M += kKronrodW[7] * std::abs(c);
+  G += kGaussW[3] * c;
+  return {half * K, half * std::abs(K - G), half * M};
+}
+
+VectorXd quadrature_radii(const mesh::TetMesh& mesh, const ContactSurface& surface,
+                          const Patches& patches, const FrictionLaw& F, const VectorXd& phi,
+                          const VectorXd& g) {
+  const Real rtol = F.quadrature_rtol();
+  FRICON_CHECK(rtol > 0.0 && rtol < 1.0, "quadrature_rtol = " << rtol << " is not in (0, 1)");
+  const auto n_patches = static_cast<size_t>(patches.size());
+  Reduction red = level_line_reduction(mesh, surface, patches, F.kinks(), phi, g);
+  std::vector<Interval>& active = red.intervals;
 
   // The accepted parts of each patch's integral [N], of its integral of |F g_h| and of its
   // estimated error.
@@ -198,51 +248,24 @@ VectorXd quadrature_radii(const mesh::TetMesh& mesh, const ContactSurface& surfa
           "have kinks not listed in contact.friction.kinks",
           rtol, kMaxQuadratureRounds, F.describe(), active.size()));
     // All nodes of all intervals (and, in the first round, the flat triangles) in one batch.
-    const size_t n_flat = round == 0 ? flat_s.size() : 0;
+    const size_t n_flat = round == 0 ? red.flat_s.size() : 0;
     t.assign(n_flat + kNodesPerInterval * active.size(), 0.0);
-    std::copy(flat_s.begin(), flat_s.begin() + static_cast<std::ptrdiff_t>(n_flat), t.begin());
-    for (size_t i = 0; i < active.size(); ++i) {
-      const Interval& I = active[i];
-      const Real mid = 0.5 * (I.lo + I.hi), half = 0.5 * (I.hi - I.lo);
-      Real* ti = t.data() + n_flat + kNodesPerInterval * i;
-      for (int j = 0; j < 7; ++j) {
-        ti[2 * j] = I.base + I.sign * (mid - half * kKronrodX[j]);
-        ti[2 * j + 1] = I.base + I.sign * (mid + half * kKronrodX[j]);
-      }
-      ti[14] = I.base + I.sign * mid;
-    }
+    std::copy(red.flat_s.begin(), red.flat_s.begin() + static_cast<std::ptrdiff_t>(n_flat),
+              t.begin());
+    kronrod_nodes(active, n_flat, t);
     f.assign(t.size(), 0.0);
     F.evaluate(t, f);
     for (size_t i = 0; i < n_flat; ++i) {
-      const auto p = static_cast<size_t>(flat_patch[i]);
-      integral[p] += flat_weight[i] * f[i];
-      scale[p] += std::abs(flat_weight[i] * f[i]);
+      const auto p = static_cast<size_t>(red.flat_patch[i]);
+      integral[p] += red.flat_weight[i] * f[i];
+      scale[p] += std::abs(red.flat_weight[i] * f[i]);
     }
-
-    // K15, G7 and the integral of |F w| of each interval.
-    std::vector<Real> kronrod(active.size()), error(active.size()), magnitude(active.size());
-    std::vector<Real> trial_scale = scale;
+    std::vector<Estimate> estimate(active.size());
+    std::vector<Real> trial_scale = scale, trial_error = accepted_error;
     for (size_t i = 0; i < active.size(); ++i) {
-      const Interval& I = active[i];
-      const Real mid = 0.5 * (I.lo + I.hi), half = 0.5 * (I.hi - I.lo);
-      const Real* fi = f.data() + n_flat + kNodesPerInterval * i;
-      auto integrand = [&](Real fv, Real u) { return fv * (I.c1 * u + I.c2 * u * u); };
-      Real K = 0.0, G = 0.0, M = 0.0;
-      for (int j = 0; j < 7; ++j) {
-        const Real a = integrand(fi[2 * j], mid - half * kKronrodX[j]);
-        const Real b = integrand(fi[2 * j + 1], mid + half * kKronrodX[j]);
-        K += kKronrodW[j] * (a + b);
-        M += kKronrodW[j] * (std::abs(a) + std::abs(b));
-        if (j % 2 == 1) G += kGaussW[j / 2] * (a + b);
-      }
-      const Real c = integrand(fi[14], mid);
-      K += kKronrodW[7] * c;
-      M += kKronrodW[7] * std::abs(c);
-      G += kGaussW[3] * c;
-      kronrod[i] = half * K;
-      error[i] = half * std::abs(K - G);
-      magnitude[i] = half * M;
-      trial_scale[static_cast<size_t>(I.patch)] += magnitude[i];
+      estimate[i] = gauss_kronrod(active[i], f.data() + n_flat + kNodesPerInterval * i);
+      trial_scale[static_cast<size_t>(active[i].patch)] += estimate[i].magnitude;
+      trial_error[static_cast<size_t>(active[i].patch)] += estimate[i].error;
     }
 
     // A patch whose estimated error (accepted intervals and these) is within rtol x its scale
@@ -250,19 +273,17 @@ VectorXd quadrature_radii(const mesh::TetMesh& mesh, const ContactSurface& surfa
     // rtol x the patch's scale, shared by the interval's own magnitude or by its length (the
     // sum of either share is <= rtol x scale, so the accepted errors stay within it); the
     // others are bisected.
-    std::vector<Real> trial_error = accepted_error;
-    for (size_t i = 0; i < active.size(); ++i)
-      trial_error[static_cast<size_t>(active[i].patch)] += error[i];
     std::vector<Interval> next;
     for (size_t i = 0; i < active.size(); ++i) {
       const Interval& I = active[i];
+      const Estimate& e = estimate[i];
       const auto p = static_cast<size_t>(I.patch);
       const Real share =
-          std::max(magnitude[i], trial_scale[p] * (I.hi - I.lo) / std::max(length[p], 1e-300));
-      if (trial_error[p] <= rtol * trial_scale[p] || error[i] <= 0.5 * rtol * share) {
-        integral[p] += kronrod[i];
-        scale[p] += magnitude[i];
-        accepted_error[p] += error[i];
+          std::max(e.magnitude, trial_scale[p] * (I.hi - I.lo) / std::max(red.length[p], 1e-300));
+      if (trial_error[p] <= rtol * trial_scale[p] || e.error <= 0.5 * rtol * share) {
+        integral[p] += e.value;
+        scale[p] += e.magnitude;
+        accepted_error[p] += e.error;
       } else {
         const Real mid = 0.5 * (I.lo + I.hi);
         next.push_back({I.patch, I.base, I.sign, I.c1, I.c2, I.lo, mid});

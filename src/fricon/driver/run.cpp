@@ -62,12 +62,11 @@ VectorXd solve_elastic(RunResult& r) {
   ScopedPhase phase(r.report.times, "solve");
   const Model& m = r.model;
   VectorXd u = m.factor.solve(m.f);
-  r.report.linear_residual = (m.K * u - m.f).norm() / std::max(m.f.norm(), 1e-300);
+  r.report.linear_residual = elastic_residual(m, u);
   return u;
 }
 
-}  // namespace
-
+// Stresses, and the global equilibrium of applied loads, contact forces and reactions.
 void postprocess(const Problem& problem, const VectorXd& u, RunResult& r) {
   RunReport& rep = r.report;
   const Model& m = r.model;
@@ -85,6 +84,27 @@ void postprocess(const Problem& problem, const VectorXd& u, RunResult& r) {
       {rep.applied_force.norm(), rep.contact_force.norm(), rep.reaction_force.norm(), 1e-300});
   rep.equilibrium_residual =
       (rep.applied_force + rep.contact_force + rep.reaction_force).norm() / scale;
+}
+
+}  // namespace
+
+void report_sizes(const Model& model, RunReport& report) {
+  report.n_nodes = model.mesh.n_nodes();
+  report.n_tets = model.mesh.n_tets();
+  report.n_primal = model.dofs.n_free();
+}
+
+Real elastic_residual(const Model& model, const VectorXd& u) {
+  return (stiffness_times(model, u) - model.f).norm() / std::max(model.f.norm(), 1e-300);
+}
+
+void finish_run(const Problem& problem, const VectorXd& u, const RunOptions& options,
+                RunResult& r) {
+  if (stop_requested(options) && r.report.status == Status::Converged) {
+    r.report.status = Status::NotConverged;
+    r.report.message = "interrupted";
+  }
+  postprocess(problem, u, r);
 }
 
 RunResult run(const Problem& problem, const RunOptions& options) {
@@ -112,21 +132,15 @@ RunResult run(const Problem& problem, const RunOptions& options) {
       disc ? dual::factorization_request(problem.solver.dual_operator, disc->dofs)
            : dual::FactorizationRequest{};
   factorize_model(r.model, request, rep.times, options.on_phase_start);
-  rep.n_nodes = r.model.mesh.n_nodes();
-  rep.n_tets = r.model.mesh.n_tets();
-  rep.n_primal = r.model.dofs.n_free();
+  report_sizes(r.model, rep);
   rep.factor = r.model.factor.info();
   if (stop_requested(options)) throw Interrupted("interrupted before the solve");
 
   // @sect: the displacement: one solve, or the outer loop of dual QPs.
   const VectorXd u = disc ? solve_with_contact(problem, *disc, options, r) : solve_elastic(r);
-  if (stop_requested(options) && rep.status == Status::Converged) {
-    rep.status = Status::NotConverged;
-    rep.message = "interrupted";
-  }
 
   // @sect: fields and the self-check of the result.
-  postprocess(problem, u, r);
+  finish_run(problem, u, options, r);
   rep.time_s = total.seconds();
   return r;
 }

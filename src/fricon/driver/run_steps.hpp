@@ -19,8 +19,15 @@ std::function<void()> interrupt_poll(const RunOptions& options);
 VectorXd solve_with_operator(const Problem& problem, const contact::ContactDiscretization& disc,
                              const dual::DualOperator& Q, const RunOptions& options, RunResult& r);
 
-/// Stresses, and the global equilibrium of applied loads, contact forces and reactions, from
-/// the displacement u over the free dofs (phase "postprocess").
-void postprocess(const Problem& problem, const VectorXd& u, RunResult& r);
+/// The model's sizes in the report (nodes, tetrahedra, free dofs).
+void report_sizes(const Model& model, RunReport& report);
+
+/// ||K u - f|| / ||f|| of an elastic solve u (no contact).
+Real elastic_residual(const Model& model, const VectorXd& u);
+
+/// The end of a run from its displacement u over the free dofs: a stop requested during the run
+/// turns a converged report into "not converged (interrupted)"; then stresses, and the global
+/// equilibrium of applied loads, contact forces and reactions (phase "postprocess").
+void finish_run(const Problem& problem, const VectorXd& u, const RunOptions& options, RunResult& r);
 
 }  // namespace fricon::driver

@@ -7,7 +7,6 @@
 //                serve its solves
 // Every step that may fail on some ranks runs in collectively(), and rank 0 ends the others'
 // serve() with its status or its error: no rank is left waiting.
-#include <algorithm>
 #include <memory>
 #include <optional>
 
@@ -104,6 +103,30 @@ std::vector<driver::RankReport> gather_ranks(Index n_tets, const MumpsInfo& info
   return ranks;
 }
 
+// Rank 0: the dual operator on the MUMPS factor and the outer loop of dual QPs, or without
+// contact one solve. Returns the displacement over the free dofs; its solves are collective with
+// the other ranks' serve().
+VectorXd solve_on_rank_0(const driver::Problem& problem,
+                         const std::optional<contact::ContactDiscretization>& disc,
+                         dual::DualOperatorKind kind, const MumpsFactor& factor,
+                         const RunOptions& opts, RunResult& r) {
+  driver::RunReport& rep = r.report;
+  if (driver::stop_requested(opts)) throw Interrupted("interrupted before the solve");
+  if (!disc) {
+    ScopedPhase phase(rep.times, "solve");
+    VectorXd u = factor.solve(r.model.f);
+    rep.linear_residual = driver::elastic_residual(r.model, u);
+    return u;
+  }
+  driver::phase_start(opts, "dual");
+  std::unique_ptr<dual::DualOperator> Q;
+  {
+    ScopedPhase phase(rep.times, "dual");
+    Q = make_mumps_operator(kind, factor, disc->B, r.model.f, &disc->offset);
+  }
+  return driver::solve_with_operator(problem, *disc, *Q, opts, r);
+}
+
 }  // namespace
 
 RunResult run_distributed(const driver::Problem& problem, const RunOptions& options) {
@@ -171,35 +194,14 @@ RunResult run_distributed(const driver::Problem& problem, const RunOptions& opti
     return r;
   }
 
-  // @sect: rank 0: the dual operator and the outer loop, or one solve; then the fields.
-  rep.n_nodes = r.model.mesh.n_nodes();
-  rep.n_tets = r.model.mesh.n_tets();
-  rep.n_primal = n_free;
+  // @sect: rank 0: the displacement, then the fields; the other ranks wait until it ends.
+  driver::report_sizes(r.model, rep);
   rep.factor = factor_info(factor->info());
   par.analysis_s = factor->info().analysis_s;
   par.factorization_s = factor->info().factorization_s;
   try {
-    if (driver::stop_requested(opts)) throw Interrupted("interrupted before the solve");
-    VectorXd u;
-    if (disc) {
-      driver::phase_start(opts, "dual");
-      std::unique_ptr<dual::DualOperator> Q;
-      {
-        ScopedPhase phase(rep.times, "dual");
-        Q = make_mumps_operator(kind, *factor, disc->B, r.model.f, &disc->offset);
-      }
-      u = driver::solve_with_operator(problem, *disc, *Q, opts, r);
-    } else {
-      ScopedPhase phase(rep.times, "solve");
-      u = factor->solve(r.model.f);
-      rep.linear_residual = (driver::stiffness_times(r.model, u) - r.model.f).norm() /
-                            std::max(r.model.f.norm(), 1e-300);
-    }
-    if (driver::stop_requested(opts) && rep.status == driver::Status::Converged) {
-      rep.status = driver::Status::NotConverged;
-      rep.message = "interrupted";
-    }
-    driver::postprocess(problem, u, r);
+    const VectorXd u = solve_on_rank_0(problem, disc, kind, *factor, opts, r);
+    driver::finish_run(problem, u, opts, r);
   } catch (...) {
     factor->fail(capture_current_exception());
     throw;

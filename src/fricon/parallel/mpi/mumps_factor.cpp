@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "fricon/core/error.hpp"
+#include "fricon/core/timer.hpp"
 
 namespace fricon::parallel {
 
@@ -195,19 +196,22 @@ void MumpsFactor::run_solve(int n_rhs, double* rhs) const {
   impl_->call(kJobSolve);
 }
 
-MatrixXd MumpsFactor::solve(const MatrixXd& b) const {
+MatrixXd MumpsFactor::solve(const Eigen::Ref<const MatrixXd>& b) const {
   FRICON_CHECK(rank_ == 0, "MumpsFactor::solve is called by rank 0");
   FRICON_CHECK(b.rows() == n_free_, "solve: " << b.rows() << " rows, expected " << n_free_);
-  send_command(kSolve, static_cast<int>(b.cols()));
+  const int n_rhs = static_cast<int>(b.cols());
+  send_command(kSolve, n_rhs);
+  // The right-hand sides over all n variables (MUMPS ignores the Schur variables' entries).
   MatrixXd rhs = MatrixXd::Zero(impl_->id.n, b.cols());
   rhs.topRows(n_free_) = b;
-  run_solve(static_cast<int>(b.cols()), rhs.data());
+  run_solve(n_rhs, rhs.data());
   check_phase(impl_->id, "solve");
-  return rhs.topRows(n_free_);
+  rhs.conservativeResize(n_free_, Eigen::NoChange);
+  return rhs;
 }
 
 VectorXd MumpsFactor::solve(const VectorXd& b) const {
-  return solve(MatrixXd(b)).col(0);
+  return solve(Eigen::Ref<const MatrixXd>(b)).col(0);
 }
 
 namespace {

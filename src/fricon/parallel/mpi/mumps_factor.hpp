@@ -16,7 +16,6 @@
 #include <string>
 #include <vector>
 
-#include "fricon/core/timer.hpp"
 #include "fricon/core/types.hpp"
 #include "fricon/parallel/mpi/session.hpp"
 
@@ -70,7 +69,7 @@ class MumpsFactor {
 
   /// Rank 0: X = K^-1 B for n_free x k right-hand sides. Collective with the other ranks'
   /// serve(). Throws NumericalError if MUMPS fails.
-  MatrixXd solve(const MatrixXd& b) const;
+  MatrixXd solve(const Eigen::Ref<const MatrixXd>& b) const;
   VectorXd solve(const VectorXd& b) const;
 
   /// Ranks other than 0: take part in rank 0's solves until it calls finish() (returns its
