@@ -18,6 +18,9 @@ augmented matrix) and a different dual operator:
                           and the message of rank 1, printed once; no hang
   failing_write           rank 0 cannot write its results after the solve: every rank ends
                           with its exit code (3, as a serial run's)
+  failing_factorization   the factorization cannot run within solver.memory_per_rank: every
+                          rank ends with the same error (seen with FRICON_RANK_OUTPUT=all) and
+                          exit code 1, printed once normally; nothing is written
   cholmod_under_mpirun    backend cholmod on 2 ranks is refused once, with the fix
 Agreement: the same number of outer iterations and err(k) to 1e-8; multipliers (per patch) to
 1e-8 of the largest; contact-node displacements and the penetration measures to 1e-8 of max |u|;
@@ -25,6 +28,7 @@ forces, max |u| and max von Mises to 1e-8 relative.
 """
 import csv
 import json
+import os
 import pathlib
 import subprocess
 import sys
@@ -135,6 +139,7 @@ def expect_error(cmd, fragments, label, code=1, prefix="fricon: error:"):
     if problems:
         sys.exit(f"FAIL {label}: " + "; ".join(problems) + f"\nstderr:\n{r.stderr}")
     print(f"ok   {label}: {errors[0]}")
+    return errors[0][len(prefix):].strip()
 
 
 def main():
@@ -183,6 +188,22 @@ def main():
                                         str(blocker / "results")],
                      [str(blocker)], "rank 0 cannot write: both ranks end with its exit code",
                      code=3, prefix="fricon: internal error:")
+    elif case == "failing_factorization":
+        # The brick's MUMPS estimate is about 2 MiB per rank: 1 MiB is too little.
+        cmd = mpirun(mpi, 2) + [fricon, "solve", str(brick), *PETSC, "--set",
+                                "solver.memory_per_rank=1", "-q", "-o", str(out / "f")]
+        fragments = ["--set solver.memory_per_rank=1: solver.memory_per_rank:",
+                     "MUMPS's analysis estimates", "run on more ranks"]
+        message = expect_error(cmd, fragments, "the factorization fails on every rank: one message")
+        # Every rank's own output (the two ranks' lines may interleave): the same message twice.
+        r = subprocess.run(cmd, capture_output=True, text=True, timeout=TIMEOUT_S,
+                           env={**os.environ, "FRICON_RANK_OUTPUT": "all"})
+        if r.returncode != 1 or r.stderr.count(message) != 2:
+            sys.exit(f"FAIL: every rank should end with {message!r} and exit code 1; exit code "
+                     f"{r.returncode}, stderr:\n{r.stderr}")
+        print("ok   both ranks end with the same error")
+        if (out / "f").exists() and any((out / "f").iterdir()):
+            sys.exit(f"FAIL: a failed run wrote {sorted(p.name for p in (out / 'f').iterdir())}")
     elif case == "cholmod_under_mpirun":
         expect_error(mpirun(mpi, 2) + [fricon, "solve", str(brick), "-q", "-o", str(out / "c")],
                      ["solver.backend", "runs on one process", "--set solver.backend=petsc"],

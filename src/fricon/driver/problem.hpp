@@ -145,6 +145,10 @@ struct SolverOptions {
   parallel::Backend backend = parallel::Backend::Cholmod;
   /// [solver.partition] how a distributed run splits the tetrahedra among its ranks.
   parallel::PartitionKind partition = parallel::PartitionKind::Graph;
+  /// [solver.memory_per_rank] with backend petsc: the most memory the factorization may take on
+  /// one rank [MiB], > 0; absent: no limit. A run whose MUMPS estimate exceeds it stops before
+  /// factorizing (docs/parallel.md).
+  std::optional<Real> memory_per_rank;
 };
 
 /// [output]

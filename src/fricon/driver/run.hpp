@@ -21,9 +21,10 @@ enum class Status { Converged, NotConverged };
 
 /// One rank of a distributed run (backend "petsc").
 struct RankReport {
-  Index n_tets = 0;             ///< tetrahedra this rank assembled
-  double peak_memory_mib = 0;   ///< peak resident memory of the process [MiB]
-  double mumps_memory_mib = 0;  ///< memory MUMPS allocated for the factorization here [MiB]
+  Index n_tets = 0;               ///< tetrahedra this rank assembled
+  double peak_memory_mib = 0;     ///< peak resident memory of the process [MiB]
+  double mumps_memory_mib = 0;    ///< memory MUMPS allocated for the factorization here [MiB]
+  double mumps_estimate_mib = 0;  ///< what MUMPS's analysis estimated for it [MiB]
 };
 
 /// What a distributed run adds to the report.

@@ -299,6 +299,14 @@ void validate_solver(const Problem& p) {
     fail(p, "solver.dual_operator",
          "\"forward\" sweeps a CHOLMOD factor; with backend = \"petsc\" use \"auto\", \"schur\" "
          "(Q from MUMPS's Schur complement) or \"implicit\" (a distributed solve per product)");
+  if (s.memory_per_rank) {
+    check_real(p, "solver.memory_per_rank", *s.memory_per_rank, "a positive number [MiB]",
+               *s.memory_per_rank > 0.0);
+    if (s.backend != parallel::Backend::Petsc)
+      fail(p, "solver.memory_per_rank",
+           fmt::format("limits the MUMPS factorization of backend = \"petsc\" (backend is \"{}\")",
+                       enum_name(s.backend)));
+  }
   check_int(p, "solver.anderson_depth", s.anderson_depth, "an integer in [1, 20]",
             s.anderson_depth >= 1 && s.anderson_depth <= 20);
 }

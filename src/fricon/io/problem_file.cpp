@@ -562,9 +562,10 @@ void read_contact(const Context& ctx, const Field& f, driver::ContactOptions& c)
 }
 
 void read_solver(const Context& ctx, const Field& f, driver::SolverOptions& s) {
-  const TableReader t(ctx, f, "a table [solver]",
-                      {"outer_tol", "outer_max", "qp_rtol", "qp_max", "warm_start", "dual_operator",
-                       "acceleration", "anderson_depth", "qp_variant", "backend", "partition"});
+  const TableReader t(
+      ctx, f, "a table [solver]",
+      {"outer_tol", "outer_max", "qp_rtol", "qp_max", "warm_start", "dual_operator", "acceleration",
+       "anderson_depth", "qp_variant", "backend", "partition", "memory_per_rank"});
   if (auto k = t.find("outer_tol")) s.outer_tol = get_real(ctx, *k, "a positive number");
   if (auto k = t.find("outer_max")) s.outer_max = get_int<int>(ctx, *k, "an integer >= 1");
   if (auto k = t.find("qp_rtol")) s.qp_rtol = get_real(ctx, *k, "a number in (0, 1)");
@@ -575,6 +576,8 @@ void read_solver(const Context& ctx, const Field& f, driver::SolverOptions& s) {
   if (auto k = t.find("qp_variant")) s.qp_variant = get_enum<qp::MpgpVariant>(ctx, *k);
   if (auto k = t.find("backend")) s.backend = get_enum<parallel::Backend>(ctx, *k);
   if (auto k = t.find("partition")) s.partition = get_enum<parallel::PartitionKind>(ctx, *k);
+  if (auto k = t.find("memory_per_rank"))
+    s.memory_per_rank = get_real(ctx, *k, "a positive number [MiB]");
   if (auto k = t.find("anderson_depth"))
     s.anderson_depth = get_int<int>(ctx, *k, "an integer in [1, 20]");
 }
@@ -1010,6 +1013,7 @@ nlohmann::json to_json(const driver::Problem& p) {
                  {"qp_variant", enum_name(s.qp_variant)},
                  {"backend", enum_name(s.backend)},
                  {"partition", enum_name(s.partition)}};
+  if (s.memory_per_rank) j["solver"]["memory_per_rank"] = *s.memory_per_rank;
   j["output"] = {{"dir", p.output.dir}};
   return j;
 }

@@ -76,6 +76,13 @@ std::vector<Index> free_dof_order(const driver::Model& m) {
   return order;
 }
 
+// [solver] memory_per_rank as MUMPS is given it.
+MemoryLimit memory_limit(const driver::Problem& problem) {
+  const std::optional<Real>& mib = problem.solver.memory_per_rank;
+  if (!mib) return {};
+  return {*mib, problem.where("solver.memory_per_rank"), "solver.memory_per_rank"};
+}
+
 // The factor's figures in the report's terms.
 linalg::CholeskyInfo factor_info(const MumpsInfo& m) {
   linalg::CholeskyInfo i;
@@ -93,13 +100,17 @@ linalg::CholeskyInfo factor_info(const MumpsInfo& m) {
 // Every rank's figures, on rank 0. Collective.
 std::vector<driver::RankReport> gather_ranks(Index n_tets, const MumpsInfo& info, int rank,
                                              int size) {
-  double mine[3] = {static_cast<double>(n_tets), peak_memory_mib(), info.memory_mib};
-  std::vector<double> all(static_cast<std::size_t>(3 * size));
-  MPI_Gather(mine, 3, MPI_DOUBLE, all.data(), 3, MPI_DOUBLE, 0, world());
+  constexpr int kFigures = 4;
+  const double mine[kFigures] = {static_cast<double>(n_tets), peak_memory_mib(), info.memory_mib,
+                                 info.estimate_mib};
+  std::vector<double> all(static_cast<std::size_t>(kFigures * size));
+  MPI_Gather(mine, kFigures, MPI_DOUBLE, all.data(), kFigures, MPI_DOUBLE, 0, world());
   std::vector<driver::RankReport> ranks;
   if (rank != 0) return ranks;
-  for (int r = 0; r < size; ++r)
-    ranks.push_back({static_cast<Index>(all[3 * r]), all[3 * r + 1], all[3 * r + 2]});
+  for (int r = 0; r < size; ++r) {
+    const double* a = &all[static_cast<std::size_t>(kFigures * r)];
+    ranks.push_back({static_cast<Index>(a[0]), a[1], a[2], a[3]});
+  }
   return ranks;
 }
 
@@ -183,7 +194,8 @@ RunResult run_distributed(const driver::Problem& problem, const RunOptions& opti
   collectively([&] {
     ScopedPhase phase(rep.times, "factorize");
     const std::vector<Index> order = rank == 0 ? free_dof_order(r.model) : std::vector<Index>{};
-    factor = std::make_unique<MumpsFactor>(world(), n_free, par.n_schur, std::move(entries), order);
+    factor = std::make_unique<MumpsFactor>(world(), n_free, par.n_schur, std::move(entries), order,
+                                           memory_limit(problem));
   });
 
   // @sect: the ranks other than 0 serve rank 0's solves until it ends the run.

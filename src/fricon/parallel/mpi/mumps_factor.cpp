@@ -39,6 +39,9 @@ double count(const DMUMPS_STRUC_C& id, int k) {
   return v >= 0 ? static_cast<double>(v) : -1e6 * static_cast<double>(v);
 }
 
+// MUMPS counts memory in MB of 10^6 bytes (INFO(15), INFO(16), ICNTL(23)); fricon reports MiB.
+constexpr double kMibPerMumpsMb = 1.0e6 / (1024.0 * 1024.0);
+
 bool workspace_too_small(int code) {
   return code == -8 || code == -9 || code == -14 || code == -15 || (code <= -17 && code >= -20);
 }
@@ -78,6 +81,18 @@ void check_phase(const DMUMPS_STRUC_C& id, const char* phase) {
                                    infog(id, 1), infog(id, 2), meaning(infog(id, 1))));
 }
 
+// Before the numerical factorization: the analysis's estimate of the largest rank's memory
+// against the limit. INFOG is global, so every rank throws the same error.
+void check_estimate(const DMUMPS_STRUC_C& id, const MemoryLimit& limit) {
+  const double largest_mib = infog(id, 16) * kMibPerMumpsMb;
+  if (limit.mib <= 0.0 || largest_mib <= limit.mib) return;
+  throw NumericalError(fmt::format(
+      "{}: {}: MUMPS's analysis estimates {:.1f} MiB for the factorization on its largest rank, "
+      "more than the limit of {:.1f} MiB per rank; run on more ranks (the memory per rank falls "
+      "with them, docs/parallel.md) or raise the limit",
+      limit.where, limit.key, largest_mib, limit.mib));
+}
+
 }  // namespace
 
 struct MumpsFactor::Impl {
@@ -88,97 +103,146 @@ struct MumpsFactor::Impl {
     id.job = job;
     dmumps_c(&id);
   }
+
+  // An instance on comm for a matrix of order n, silent, with distributed entries.
+  void initialize(MPI_Comm comm, Index n, bool indefinite) {
+    id.comm_fortran = static_cast<MUMPS_INT>(MPI_Comm_c2f(comm));
+    id.par = 1;  // rank 0 works too
+    id.sym = indefinite ? kSymmetricGeneral : kSymmetricDefinite;
+    call(kJobInit);
+    check_phase(id, "initialisation");
+    icntl(id, 1) = icntl(id, 2) = icntl(id, 3) = -1;  // no messages
+    icntl(id, 4) = 0;
+    icntl(id, 7) = 7;  // ordering: MUMPS's automatic choice
+    icntl(id, 14) = kWorkspaceRelaxation;
+    icntl(id, 18) = 3;  // distributed entries: each rank gives its own
+    icntl(id, 28) = 1;  // sequential analysis (Debian's MUMPS has no parallel ordering tool)
+    id.n = static_cast<MUMPS_INT>(n);
+  }
+
+  // This rank's entries, counted from 1 as MUMPS does (they must live until released).
+  void give_entries(LocalEntries& entries) {
+    for (int& r : entries.rows)
+      ++r;
+    for (int& c : entries.cols)
+      ++c;
+    id.nnz_loc = static_cast<MUMPS_INT8>(entries.size());
+    id.irn_loc = entries.rows.data();
+    id.jcn_loc = entries.cols.data();
+    id.a_loc = entries.values.data();
+  }
+  void release_entries() {
+    id.irn_loc = id.jcn_loc = nullptr;
+    id.a_loc = nullptr;
+  }
+
+  // The last n_schur of the n variables as Schur variables, S centralized into `schur` (rank 0).
+  void request_schur(Index n_schur, int rank, MatrixXd& schur) {
+    const Index n_free = id.n - n_schur;
+    icntl(id, 19) = 1;
+    id.size_schur = static_cast<MUMPS_INT>(n_schur);
+    if (rank != 0) return;
+    schur_vars.resize(static_cast<std::size_t>(n_schur));
+    for (Index k = 0; k < n_schur; ++k)
+      schur_vars[static_cast<std::size_t>(k)] = static_cast<MUMPS_INT>(n_free + k + 1);
+    id.listvar_schur = schur_vars.data();
+    schur.setZero(n_schur, n_schur);
+    id.schur = schur.data();
+  }
+
+  // Rank 0's order of the first n_free variables, the others following (rank 0 decides whether
+  // there is one). Returns whether an order was given.
+  bool give_order(const std::vector<Index>& order, Index n_free, int rank, MPI_Comm comm) {
+    int given = rank == 0 && !order.empty();
+    MPI_Bcast(&given, 1, MPI_INT, 0, comm);
+    if (!given) return false;
+    icntl(id, 7) = 1;  // the order given in PERM_IN (on rank 0)
+    if (rank != 0) return true;
+    FRICON_CHECK(static_cast<Index>(order.size()) == n_free,
+                 "order of " << order.size() << " variables, expected " << n_free);
+    const Index n = id.n;
+    perm_in.assign(static_cast<std::size_t>(n), 0);
+    for (std::size_t k = 0; k < order.size(); ++k)
+      perm_in[static_cast<std::size_t>(order[k])] = static_cast<MUMPS_INT>(k + 1);
+    for (Index k = n_free; k < n; ++k)
+      perm_in[static_cast<std::size_t>(k)] = static_cast<MUMPS_INT>(k + 1);
+    id.perm_in = perm_in.data();
+    return true;
+  }
+
+  // The numerical factorization, within `limit` (ICNTL(23)); the workspace is enlarged and the
+  // factorization repeated when it runs short.
+  void factorize(const MemoryLimit& limit) {
+    if (limit.mib > 0.0)
+      icntl(id, 23) = std::max(1, static_cast<int>(std::floor(limit.mib / kMibPerMumpsMb)));
+    for (int attempt = 1;; ++attempt) {
+      call(kJobFactorize);
+      if (!workspace_too_small(infog(id, 1)) || attempt == kFactorizationAttempts) break;
+      icntl(id, 14) *= 2;
+    }
+    if (limit.mib > 0.0 && workspace_too_small(infog(id, 1)))
+      throw NumericalError(fmt::format(
+          "{}: {}: the MUMPS factorization needs more than the limit of {:.0f} MiB per rank "
+          "(INFOG(1) = {}, INFOG(2) = {}); run on more ranks or raise the limit",
+          limit.where, limit.key, limit.mib, infog(id, 1), infog(id, 2)));
+    check_phase(id, "factorization");
+  }
 };
 
+namespace {
+
+// MUMPS returns one triangle of the symmetric S; both, in place.
+void complete_symmetric(MatrixXd& S) {
+  const bool lower = S.triangularView<Eigen::StrictlyUpper>().toDenseMatrix().isZero(0.0);
+  const MatrixXd T = lower ? MatrixXd(S.triangularView<Eigen::Lower>())
+                           : MatrixXd(S.triangularView<Eigen::Upper>());
+  S = T + T.transpose();
+  S.diagonal() = T.diagonal();
+}
+
+}  // namespace
+
 MumpsFactor::MumpsFactor(MPI_Comm comm, Index n_free, Index n_schur, LocalEntries entries,
-                         const std::vector<Index>& order)
+                         const std::vector<Index>& order, const MemoryLimit& limit)
     : impl_(std::make_unique<Impl>()), comm_(comm), n_free_(n_free) {
   MPI_Comm_rank(comm_, &rank_);
-  DMUMPS_STRUC_C& id = impl_->id;
-  id.comm_fortran = static_cast<MUMPS_INT>(MPI_Comm_c2f(comm_));
-  id.par = 1;  // rank 0 works too
-  id.sym = n_schur > 0 ? kSymmetricGeneral : kSymmetricDefinite;
-  impl_->call(kJobInit);
-  check_phase(id, "initialisation");
-  icntl(id, 1) = icntl(id, 2) = icntl(id, 3) = -1;  // no messages
-  icntl(id, 4) = 0;
-  icntl(id, 7) = 7;  // ordering: MUMPS's automatic choice
-  icntl(id, 14) = kWorkspaceRelaxation;
-  icntl(id, 18) = 3;  // distributed entries: each rank gives its own
-  icntl(id, 28) = 1;  // sequential analysis (Debian's MUMPS has no parallel ordering tool)
-  const Index n = n_free + n_schur;
-  id.n = static_cast<MUMPS_INT>(n);
-  for (int& r : entries.rows)
-    ++r;  // MUMPS counts from 1
-  for (int& c : entries.cols)
-    ++c;
-  id.nnz_loc = static_cast<MUMPS_INT8>(entries.size());
-  id.irn_loc = entries.rows.data();
-  id.jcn_loc = entries.cols.data();
-  id.a_loc = entries.values.data();
-  if (n_schur > 0) {
-    icntl(id, 19) = 1;  // Schur complement, centralized on rank 0
-    id.size_schur = static_cast<MUMPS_INT>(n_schur);
-    if (rank_ == 0) {
-      impl_->schur_vars.resize(static_cast<std::size_t>(n_schur));
-      for (Index k = 0; k < n_schur; ++k)
-        impl_->schur_vars[static_cast<std::size_t>(k)] = static_cast<MUMPS_INT>(n_free + k + 1);
-      id.listvar_schur = impl_->schur_vars.data();
-      schur_.setZero(n_schur, n_schur);
-      id.schur = schur_.data();
-    }
+  Impl& m = *impl_;
+  m.initialize(comm_, n_free + n_schur, n_schur > 0);
+  // From here a failure is seen by every rank (INFOG is global): each releases MUMPS and throws.
+  try {
+    m.give_entries(entries);
+    if (n_schur > 0) m.request_schur(n_schur, rank_, schur_);
+    const bool given_order = m.give_order(order, n_free, rank_, comm_);
+    const Stopwatch analysis;
+    m.call(kJobAnalyse);
+    check_phase(m.id, "analysis");
+    const double analysis_s = analysis.seconds();
+    check_estimate(m.id, limit);
+    const Stopwatch factorization;
+    m.factorize(limit);
+    double given = static_cast<double>(entries.size());
+    MPI_Allreduce(MPI_IN_PLACE, &given, 1, MPI_DOUBLE, MPI_SUM, comm_);
+    info_ = {m.id.n,
+             n_schur,
+             given,
+             count(m.id, 29),
+             m.id.rinfog[2],
+             given_order ? "nested dissection of the node graph (given to MUMPS)"
+                         : ordering_name(infog(m.id, 7)),
+             m.id.info[15] * kMibPerMumpsMb,
+             m.id.info[14] * kMibPerMumpsMb,
+             infog(m.id, 16) * kMibPerMumpsMb,
+             analysis_s,
+             factorization.seconds()};
+  } catch (...) {
+    m.call(kJobEnd);
+    throw;
   }
-  int given_order = rank_ == 0 && !order.empty();
-  MPI_Bcast(&given_order, 1, MPI_INT, 0, comm_);
-  if (given_order) {
-    icntl(id, 7) = 1;  // the order given in PERM_IN (on rank 0)
-    if (rank_ == 0) {
-      FRICON_CHECK(static_cast<Index>(order.size()) == n_free,
-                   "order of " << order.size() << " variables, expected " << n_free);
-      impl_->perm_in.assign(static_cast<std::size_t>(n), 0);
-      for (std::size_t k = 0; k < order.size(); ++k)
-        impl_->perm_in[static_cast<std::size_t>(order[k])] = static_cast<MUMPS_INT>(k + 1);
-      for (Index k = n_free; k < n; ++k)
-        impl_->perm_in[static_cast<std::size_t>(k)] = static_cast<MUMPS_INT>(k + 1);
-      id.perm_in = impl_->perm_in.data();
-    }
-  }
-  const Stopwatch analysis;
-  impl_->call(kJobAnalyse);
-  check_phase(id, "analysis");
-  const double analysis_s = analysis.seconds();
-  const Stopwatch factorization;
-  for (int attempt = 1;; ++attempt) {
-    impl_->call(kJobFactorize);
-    if (!workspace_too_small(infog(id, 1)) || attempt == kFactorizationAttempts) break;
-    icntl(id, 14) *= 2;
-  }
-  check_phase(id, "factorization");
-  double given = static_cast<double>(entries.size());
-  MPI_Allreduce(MPI_IN_PLACE, &given, 1, MPI_DOUBLE, MPI_SUM, comm_);
-  info_ = {n,
-           n_schur,
-           given,
-           count(id, 29),
-           id.rinfog[2],
-           given_order ? "nested dissection of the node graph (given to MUMPS)"
-                       : ordering_name(infog(id, 7)),
-           static_cast<double>(id.info[15]),
-           analysis_s,
-           factorization.seconds()};
   // The entries are no longer needed (no iterative refinement): free them now.
-  id.irn_loc = id.jcn_loc = nullptr;
-  id.a_loc = nullptr;
+  m.release_entries();
   entries = LocalEntries{};
-  if (n_schur > 0 && rank_ == 0) {
-    // MUMPS returns one triangle of the symmetric S; complete it.
-    const bool lower = schur_.triangularView<Eigen::StrictlyUpper>().toDenseMatrix().isZero(0.0);
-    const MatrixXd T = lower ? MatrixXd(schur_.triangularView<Eigen::Lower>())
-                             : MatrixXd(schur_.triangularView<Eigen::Upper>());
-    schur_ = T + T.transpose();
-    schur_.diagonal() = T.diagonal();
-  }
-  id.schur = nullptr;
+  if (n_schur > 0 && rank_ == 0) complete_symmetric(schur_);
+  m.id.schur = nullptr;
 }
 
 MumpsFactor::~MumpsFactor() {
@@ -196,7 +260,11 @@ void MumpsFactor::run_solve(int n_rhs, double* rhs) const {
   impl_->call(kJobSolve);
 }
 
-MatrixXd MumpsFactor::solve(const Eigen::Ref<const MatrixXd>& b) const {
+MatrixXd MumpsFactor::solve(const MatrixXd& b) const {
+  return solve_block(b);
+}
+
+MatrixXd MumpsFactor::solve_block(const Eigen::Ref<const MatrixXd>& b) const {
   FRICON_CHECK(rank_ == 0, "MumpsFactor::solve is called by rank 0");
   FRICON_CHECK(b.rows() == n_free_, "solve: " << b.rows() << " rows, expected " << n_free_);
   const int n_rhs = static_cast<int>(b.cols());
@@ -211,7 +279,7 @@ MatrixXd MumpsFactor::solve(const Eigen::Ref<const MatrixXd>& b) const {
 }
 
 VectorXd MumpsFactor::solve(const VectorXd& b) const {
-  return solve(Eigen::Ref<const MatrixXd>(b)).col(0);
+  return solve_block(b).col(0);
 }
 
 namespace {

@@ -42,8 +42,17 @@ struct MumpsInfo {
   double flops = 0.0;       ///< operations of the elimination (RINFOG(3))
   std::string ordering;     ///< the fill-reducing ordering used (given, or MUMPS's INFOG(7))
   double memory_mib = 0.0;  ///< memory MUMPS allocated on this rank during factorization (INFO(16))
-  double analysis_s = 0.0;  ///< wall time of the analysis (ordering, symbolic) [s]
-  double factorization_s = 0.0;  ///< wall time of the numerical factorization [s]
+  double estimate_mib = 0.0;      ///< memory the analysis estimated for this rank (INFO(15))
+  double estimate_max_mib = 0.0;  ///< the largest rank's estimate (INFOG(16))
+  double analysis_s = 0.0;        ///< wall time of the analysis (ordering, symbolic) [s]
+  double factorization_s = 0.0;   ///< wall time of the numerical factorization [s]
+};
+
+/// A bound on the memory of the factorization on every rank.
+struct MemoryLimit {
+  double mib = 0.0;   ///< the most MUMPS may allocate on one rank [MiB]; 0: no limit
+  std::string where;  ///< where the limit was given (for the message), e.g. "f.toml:12:1"
+  std::string key;    ///< its name, e.g. "solver.memory_per_rank"
 };
 
 class MumpsFactor {
@@ -52,9 +61,11 @@ class MumpsFactor {
   /// ranks give (`entries`, moved in and freed after the factorization); the last n_schur
   /// variables are the Schur variables. `order` (read on rank 0; empty: MUMPS chooses) is the
   /// elimination order of the first n_free variables, the Schur variables following. Throws
-  /// NumericalError on every rank if MUMPS fails (with its INFOG(1), INFOG(2) and their meaning).
+  /// NumericalError on every rank if MUMPS fails (with its INFOG(1), INFOG(2) and their meaning),
+  /// or, before the numerical factorization, if the analysis estimates more memory on some rank
+  /// than `limit` allows (the limit also bounds MUMPS's allocations, ICNTL(23)).
   MumpsFactor(MPI_Comm comm, Index n_free, Index n_schur, LocalEntries entries,
-              const std::vector<Index>& order = {});
+              const std::vector<Index>& order = {}, const MemoryLimit& limit = {});
   /// Collective (MUMPS releases its memory on every rank).
   ~MumpsFactor();
   MumpsFactor(const MumpsFactor&) = delete;
@@ -69,7 +80,7 @@ class MumpsFactor {
 
   /// Rank 0: X = K^-1 B for n_free x k right-hand sides. Collective with the other ranks'
   /// serve(). Throws NumericalError if MUMPS fails.
-  MatrixXd solve(const Eigen::Ref<const MatrixXd>& b) const;
+  MatrixXd solve(const MatrixXd& b) const;
   VectorXd solve(const VectorXd& b) const;
 
   /// Ranks other than 0: take part in rank 0's solves until it calls finish() (returns its
@@ -89,6 +100,7 @@ class MumpsFactor {
   MumpsInfo info_;
   MatrixXd schur_;
   void run_solve(int n_rhs, double* rhs) const;
+  MatrixXd solve_block(const Eigen::Ref<const MatrixXd>& b) const;
   /// Rank 0: one command to the ranks in serve() (a non-blocking broadcast, as they receive it).
   void send_command(int command, int argument) const;
 };
