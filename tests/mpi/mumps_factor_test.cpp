@@ -1,8 +1,10 @@
 // parallel::MumpsFactor on the ranks of an MPI job (run under mpirun -n 1 and -n 2; label mpi),
-// against dense Eigen on the same small matrices: the solves with K, the Schur complement of K in
-// [[K, B^T], [B, 0]], and the failures that must end every rank with the same error (a singular
-// matrix, a memory limit below the analysis's estimate). Each rank gives the entries of its own
-// share of the rows, so the matrix MUMPS factors is a sum over ranks as in a distributed run.
+// against dense Eigen on the same small matrices: the Schur complement of K in [[K, B^T], [B, 0]],
+// distributed solves with K (each rank gives rows and gets back its own), what DistributedSolves
+// brings to rank 0 (Q x, the displacement everywhere and on the contact dofs), and the failures
+// that must end every rank with the same error (a singular matrix, a memory limit below the
+// analysis's estimate). Each rank gives the entries of its own share of the rows, so the matrix
+// MUMPS factors is a sum over ranks as in a distributed run.
 
 #include <gtest/gtest.h>
 
@@ -10,6 +12,8 @@
 #include <string>
 
 #include "fricon/core/error.hpp"
+#include "fricon/parallel/mpi/command_channel.hpp"
+#include "fricon/parallel/mpi/distributed_solves.hpp"
 #include "fricon/parallel/mpi/mumps_factor.hpp"
 #include "fricon/parallel/mpi/session.hpp"
 
@@ -57,17 +61,6 @@ LocalEntries share(const MatrixXd& K, const MatrixXd* B) {
   return e;
 }
 
-// Runs `on_rank_0` with the factor on rank 0 while the other ranks serve its solves.
-template <class F>
-void drive(const MumpsFactor& factor, F on_rank_0) {
-  if (world_rank() != 0) {
-    EXPECT_EQ(factor.serve(), 7);
-    return;
-  }
-  on_rank_0();
-  factor.finish(7);
-}
-
 // The message of the error every rank threw, the same on all ranks.
 void expect_same_error_everywhere(const std::string& message, const std::string& fragment) {
   EXPECT_NE(message.find(fragment), std::string::npos) << message;
@@ -79,34 +72,93 @@ void expect_same_error_everywhere(const std::string& message, const std::string&
   EXPECT_EQ(message, root) << "rank " << world_rank();
 }
 
-TEST(MumpsFactor, SolvesWithK) {
-  const MatrixXd K = stiffness();
-  const MumpsFactor factor(world(), kN, 0, share(K, nullptr));
-  EXPECT_EQ(factor.info().n, kN);
-  drive(factor, [&] {
-    MatrixXd b(kN, 2);
-    for (Index i = 0; i < kN; ++i) {
-      b(i, 0) = std::sin(static_cast<double>(i));
-      b(i, 1) = 1.0;
-    }
-    const MatrixXd x = factor.solve(b);
-    const MatrixXd truth = K.llt().solve(b);
-    EXPECT_LT((x - truth).norm(), kAgree * truth.norm());
-  });
-}
-
 TEST(MumpsFactor, SchurComplementIsMinusQ) {
   const MatrixXd K = stiffness(), B = constraints();
   const MumpsFactor factor(world(), kN, kM, share(K, &B));
-  drive(factor, [&] {
-    const MatrixXd Q = B * K.llt().solve(B.transpose());
-    ASSERT_EQ(factor.schur().rows(), kM);
-    EXPECT_LT((factor.schur() + Q).norm(), kAgree * Q.norm());
-    // The interior solves of the same factor are solves with K.
-    const VectorXd b = VectorXd::LinSpaced(kN, -1.0, 2.0);
-    const VectorXd truth = K.llt().solve(b);
-    EXPECT_LT((factor.solve(b) - truth).norm(), kAgree * truth.norm());
-  });
+  EXPECT_EQ(factor.info().n, kN + kM);
+  if (world_rank() != 0) return;
+  const MatrixXd Q = B * K.llt().solve(B.transpose());
+  ASSERT_EQ(factor.schur().rows(), kM);
+  EXPECT_LT((factor.schur() + Q).norm(), kAgree * Q.norm());
+}
+
+// Distributed solves: each rank gives the rows i % size == rank of two right-hand sides and
+// gets back its own rows of the solution; together the ranks hold every free dof once.
+void expect_distributed_solve(const MumpsFactor& factor, const MatrixXd& K) {
+  const int rank = world_rank(), size = world_size();
+  MatrixXd b(kN, 2);
+  for (Index i = 0; i < kN; ++i) {
+    b(i, 0) = std::cos(static_cast<double>(i));
+    b(i, 1) = static_cast<double>(i % 3) - 1.0;
+  }
+  std::vector<Index> rows;
+  for (Index i = rank; i < kN; i += size)
+    rows.push_back(i);
+  const MatrixXd x = factor.solve_distributed(rows, b(rows, Eigen::all), 2);
+  const MatrixXd truth = K.llt().solve(b);
+  const std::vector<Index>& mine = factor.solution_rows();
+  ASSERT_EQ(x.rows(), static_cast<Index>(mine.size()));
+  std::vector<int> held(static_cast<std::size_t>(kN), 0);
+  for (std::size_t k = 0; k < mine.size(); ++k) {
+    ++held[static_cast<std::size_t>(mine[k])];
+    EXPECT_LT((x.row(static_cast<Index>(k)) - truth.row(mine[k])).norm(), kAgree * truth.norm());
+  }
+  MPI_Allreduce(MPI_IN_PLACE, held.data(), static_cast<int>(kN), MPI_INT, MPI_SUM, world());
+  for (Index i = 0; i < kN; ++i)
+    EXPECT_EQ(held[static_cast<std::size_t>(i)], 1) << "dof " << i;
+}
+
+TEST(MumpsFactor, DistributedSolvesWithK) {
+  const MatrixXd K = stiffness();
+  const MumpsFactor factor(world(), kN, 0, share(K, nullptr));
+  expect_distributed_solve(factor, K);
+}
+
+TEST(MumpsFactor, DistributedInteriorSolvesOfTheSchurFactor) {
+  const MatrixXd K = stiffness(), B = constraints();
+  const MumpsFactor factor(world(), kN, kM, share(K, &B));
+  expect_distributed_solve(factor, K);
+  expect_distributed_solve(factor, K);  // again, with the same factor
+}
+
+// DistributedSolves on both factors: what rank 0 receives against dense Eigen.
+void expect_distributed_steps(const MumpsFactor& factor, const MatrixXd& K, const MatrixXd& B) {
+  const SparseMatrix B_sparse = B.sparseView();
+  const VectorXd f = VectorXd::LinSpaced(kN, 1.0, -0.5);
+  std::vector<Index> contact_dofs;
+  for (Index j = 0; j < kN; ++j)
+    if (B.col(j).squaredNorm() > 0.0) contact_dofs.push_back(j);
+  const CommandChannel channel(world());
+  const DistributedSolves solves(factor, channel, &B_sparse, f, contact_dofs);
+  if (world_rank() != 0) {
+    EXPECT_EQ(solves.follow(), 7);
+    return;
+  }
+  const Eigen::LLT<MatrixXd> llt(K);
+  const VectorXd x = VectorXd::LinSpaced(kM, -2.0, 3.0);
+  const VectorXd Qx = B * llt.solve(B.transpose() * x);
+  EXPECT_LT((solves.apply(x) - Qx).norm(), kAgree * Qx.norm());
+  const VectorXd w = llt.solve(f - B.transpose() * x);
+  EXPECT_LT((solves.displacement(x) - w).norm(), kAgree * w.norm());
+  VectorXd w_c = VectorXd::Constant(kN, 99.0);
+  solves.contact_displacement(x, w_c);
+  for (Index j = 0; j < kN; ++j) {
+    const bool contact = B.col(j).squaredNorm() > 0.0;
+    EXPECT_NEAR(w_c(j), contact ? w(j) : 99.0, kAgree * w.norm()) << "dof " << j;
+  }
+  channel.finish(7);
+}
+
+TEST(DistributedSolves, OnTheFactorOfK) {
+  const MatrixXd K = stiffness(), B = constraints();
+  const MumpsFactor factor(world(), kN, 0, share(K, nullptr));
+  expect_distributed_steps(factor, K, B);
+}
+
+TEST(DistributedSolves, OnTheSchurFactor) {
+  const MatrixXd K = stiffness(), B = constraints();
+  const MumpsFactor factor(world(), kN, kM, share(K, &B));
+  expect_distributed_steps(factor, K, B);
 }
 
 TEST(MumpsFactor, SingularMatrixFailsOnEveryRank) {
@@ -116,7 +168,6 @@ TEST(MumpsFactor, SingularMatrixFailsOnEveryRank) {
   std::string message;
   try {
     const MumpsFactor factor(world(), kN, 0, share(K, nullptr));
-    drive(factor, [] {});
   } catch (const NumericalError& e) {
     message = e.what();
   }
@@ -148,13 +199,11 @@ TEST(MumpsFactor, MemoryLimitBelowTheEstimateFailsOnEveryRank) {
   {  // without a limit: the estimate the limit is then set below
     const MumpsFactor factor(world(), n, 0, laplacian_share());
     ASSERT_GT(factor.info().estimate_max_mib, 1.0);
-    drive(factor, [] {});
   }
   const MemoryLimit limit{0.5, "test.toml:3:1", "solver.memory_per_rank"};
   std::string message;
   try {
     const MumpsFactor factor(world(), n, 0, laplacian_share(), {}, limit);
-    drive(factor, [] {});
   } catch (const NumericalError& e) {
     message = e.what();
   }

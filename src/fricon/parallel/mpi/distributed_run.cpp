@@ -4,9 +4,11 @@
 //   all ranks    one MUMPS factorization (of K, or of [[K, B^T], [B, 0]] with Q as its Schur
 //                complement on rank 0)
 //   rank 0       dual operator -> outer loop of dual QPs -> postprocessing, while the others
-//                serve its solves
+//                follow its distributed solves (DistributedSolves: right-hand sides and
+//                solutions stay distributed; rank 0 receives n_dual numbers per product with Q,
+//                the contact dofs per outer iteration, and the displacement once at the end)
 // Every step that may fail on some ranks runs in collectively(), and rank 0 ends the others'
-// serve() with its status or its error: no rank is left waiting.
+// follow() with its status or its error: no rank is left waiting.
 #include <memory>
 #include <optional>
 
@@ -16,6 +18,8 @@
 #include "fricon/linalg/blas.hpp"
 #include "fricon/linalg/cholesky.hpp"
 #include "fricon/parallel/distributed_run.hpp"
+#include "fricon/parallel/mpi/command_channel.hpp"
+#include "fricon/parallel/mpi/distributed_solves.hpp"
 #include "fricon/parallel/mpi/mumps_factor.hpp"
 #include "fricon/parallel/mpi/mumps_operator.hpp"
 #include "fricon/parallel/mpi/partition.hpp"
@@ -114,18 +118,18 @@ std::vector<driver::RankReport> gather_ranks(Index n_tets, const MumpsInfo& info
   return ranks;
 }
 
-// Rank 0: the dual operator on the MUMPS factor and the outer loop of dual QPs, or without
+// Rank 0: the dual operator on the distributed solves and the outer loop of dual QPs, or without
 // contact one solve. Returns the displacement over the free dofs; its solves are collective with
-// the other ranks' serve().
+// the other ranks' DistributedSolves::follow().
 VectorXd solve_on_rank_0(const driver::Problem& problem,
                          const std::optional<contact::ContactDiscretization>& disc,
                          dual::DualOperatorKind kind, const MumpsFactor& factor,
-                         const RunOptions& opts, RunResult& r) {
+                         const DistributedSolves& solves, const RunOptions& opts, RunResult& r) {
   driver::RunReport& rep = r.report;
   if (driver::stop_requested(opts)) throw Interrupted("interrupted before the solve");
   if (!disc) {
     ScopedPhase phase(rep.times, "solve");
-    VectorXd u = factor.solve(r.model.f);
+    VectorXd u = solves.displacement(VectorXd());
     rep.linear_residual = driver::elastic_residual(r.model, u);
     return u;
   }
@@ -133,7 +137,7 @@ VectorXd solve_on_rank_0(const driver::Problem& problem,
   std::unique_ptr<dual::DualOperator> Q;
   {
     ScopedPhase phase(rep.times, "dual");
-    Q = make_mumps_operator(kind, factor, disc->B, r.model.f, &disc->offset);
+    Q = make_mumps_operator(kind, solves, &factor.schur(), disc->B, &disc->offset);
   }
   return driver::solve_with_operator(problem, *disc, *Q, opts, r);
 }
@@ -198,9 +202,13 @@ RunResult run_distributed(const driver::Problem& problem, const RunOptions& opti
                                            memory_limit(problem));
   });
 
-  // @sect: the ranks other than 0 serve rank 0's solves until it ends the run.
+  // @sect: the ranks other than 0 take part in rank 0's solves until it ends the run.
+  const CommandChannel channel(world());
+  const std::vector<Index> no_contact_dofs;
+  const DistributedSolves solves(*factor, channel, disc ? &disc->B : nullptr, r.model.f,
+                                 disc ? disc->dofs : no_contact_dofs);
   if (rank != 0) {
-    rep.status = static_cast<driver::Status>(factor->serve());
+    rep.status = static_cast<driver::Status>(solves.follow());
     par.ranks = gather_ranks(n_mine, factor->info(), rank, size);
     rep.parallel = par;
     return r;
@@ -212,13 +220,13 @@ RunResult run_distributed(const driver::Problem& problem, const RunOptions& opti
   par.analysis_s = factor->info().analysis_s;
   par.factorization_s = factor->info().factorization_s;
   try {
-    const VectorXd u = solve_on_rank_0(problem, disc, kind, *factor, opts, r);
+    const VectorXd u = solve_on_rank_0(problem, disc, kind, *factor, solves, opts, r);
     driver::finish_run(problem, u, opts, r);
   } catch (...) {
-    factor->fail(capture_current_exception());
+    channel.fail(capture_current_exception());
     throw;
   }
-  factor->finish(static_cast<int>(rep.status));
+  channel.finish(static_cast<int>(rep.status));
   par.ranks = gather_ranks(n_mine, factor->info(), rank, size);
   rep.parallel = par;
   rep.time_s = total.seconds();

@@ -3,9 +3,7 @@
 #include <dmumps_c.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <thread>
 
 #include <fmt/format.h>
 
@@ -22,9 +20,6 @@ constexpr MUMPS_INT kSymmetricDefinite = 1, kSymmetricGeneral = 2;
 // ICNTL(14): percentage of extra workspace; doubled when a factorization runs short.
 constexpr MUMPS_INT kWorkspaceRelaxation = 30;
 constexpr int kFactorizationAttempts = 4;
-
-// The commands rank 0 sends the ranks waiting in serve().
-enum Command : int { kSolve = 1, kFinish = 2, kFail = 3 };
 
 int& icntl(DMUMPS_STRUC_C& id, int k) {
   return id.icntl[k - 1];
@@ -249,96 +244,43 @@ MumpsFactor::~MumpsFactor() {
   impl_->call(kJobEnd);
 }
 
-void MumpsFactor::run_solve(int n_rhs, double* rhs) const {
+MatrixXd MumpsFactor::solve_distributed(const std::vector<Index>& rows, MatrixXd rhs,
+                                        int n_rhs) const {
   DMUMPS_STRUC_C& id = impl_->id;
-  id.icntl[25] = 0;  // ICNTL(26) = 0: with Schur variables, solve the interior problem (K)
-  id.icntl[19] = 0;  // ICNTL(20) = 0: dense right-hand sides on rank 0
-  id.icntl[20] = 0;  // ICNTL(21) = 0: solution on rank 0
+  FRICON_CHECK(rhs.rows() == static_cast<Index>(rows.size()) && rhs.cols() == n_rhs,
+               "solve_distributed: right-hand sides " << rhs.rows() << " x " << rhs.cols()
+                                                      << ", expected " << rows.size() << " x "
+                                                      << n_rhs);
+  std::vector<MUMPS_INT> given(rows.size());
+  for (std::size_t k = 0; k < rows.size(); ++k)
+    given[k] = static_cast<MUMPS_INT>(rows[k] + 1);
+  const int n_mine = id.info[22];  // INFO(23): pivots of this rank
+  MatrixXd solution(std::max(n_mine, 1), n_rhs);
+  std::vector<MUMPS_INT> solution_rows(static_cast<std::size_t>(std::max(n_mine, 1)));
+  id.icntl[25] = 0;   // ICNTL(26) = 0: with Schur variables, solve the interior problem (K)
+  id.icntl[19] = 10;  // ICNTL(20) = 10: dense right-hand sides, distributed by rows
+  id.icntl[20] = 1;   // ICNTL(21) = 1: solution distributed as MUMPS holds its pivots
   id.nrhs = n_rhs;
-  id.lrhs = id.n;
-  id.rhs = rhs;
+  id.nloc_rhs = static_cast<MUMPS_INT>(rows.size());
+  id.lrhs_loc = std::max<MUMPS_INT>(id.nloc_rhs, 1);
+  id.irhs_loc = given.data();
+  id.rhs_loc = rhs.data();
+  id.lsol_loc = std::max(n_mine, 1);
+  id.sol_loc = solution.data();
+  id.isol_loc = solution_rows.data();
   impl_->call(kJobSolve);
-}
-
-MatrixXd MumpsFactor::solve(const MatrixXd& b) const {
-  return solve_block(b);
-}
-
-MatrixXd MumpsFactor::solve_block(const Eigen::Ref<const MatrixXd>& b) const {
-  FRICON_CHECK(rank_ == 0, "MumpsFactor::solve is called by rank 0");
-  FRICON_CHECK(b.rows() == n_free_, "solve: " << b.rows() << " rows, expected " << n_free_);
-  const int n_rhs = static_cast<int>(b.cols());
-  send_command(kSolve, n_rhs);
-  // The right-hand sides over all n variables (MUMPS ignores the Schur variables' entries).
-  MatrixXd rhs = MatrixXd::Zero(impl_->id.n, b.cols());
-  rhs.topRows(n_free_) = b;
-  run_solve(n_rhs, rhs.data());
-  check_phase(impl_->id, "solve");
-  rhs.conservativeResize(n_free_, Eigen::NoChange);
-  return rhs;
-}
-
-VectorXd MumpsFactor::solve(const VectorXd& b) const {
-  return solve_block(b).col(0);
-}
-
-namespace {
-
-// Waits for rank 0's next command without spinning: a blocking MPI_Bcast busy-polls a core,
-// which rank 0's QP and BLAS threads need while the other ranks only wait (rank 0 may work
-// for minutes between two solves). Polling every kIdlePoll adds that much latency per command.
-constexpr auto kIdlePoll = std::chrono::microseconds(200);
-
-void receive_command(int (&command)[2], MPI_Comm comm) {
-  MPI_Request request = MPI_REQUEST_NULL;
-  MPI_Ibcast(command, 2, MPI_INT, 0, comm, &request);
-  for (int done = 0;;) {
-    MPI_Test(&request, &done, MPI_STATUS_IGNORE);
-    if (done) return;
-    std::this_thread::sleep_for(kIdlePoll);
-  }
-}
-
-}  // namespace
-
-int MumpsFactor::serve() const {
-  FRICON_CHECK(rank_ != 0, "MumpsFactor::serve is called by the ranks other than 0");
-  for (;;) {
-    int command[2] = {0, 0};
-    receive_command(command, comm_);
-    switch (command[0]) {
-      case kSolve:
-        // A failure shows on every rank; rank 0 reports it and ends the serve with fail().
-        run_solve(command[1], nullptr);
-        break;
-      case kFinish:
-        return command[1];
-      case kFail: {
-        ErrorPacket error;
-        broadcast(error, 0, comm_);
-        raise(error);
-      }
-      default:
-        throw Error(fmt::format("MumpsFactor::serve: unknown command {}", command[0]));
+  id.irhs_loc = id.isol_loc = nullptr;
+  id.rhs_loc = id.sol_loc = nullptr;
+  check_phase(id, "solve");
+  // Of the Schur variables (the multipliers) only the free dofs are kept.
+  std::vector<Index> keep;
+  solution_rows_.clear();
+  for (int k = 0; k < n_mine; ++k)
+    if (const Index row = solution_rows[static_cast<std::size_t>(k)] - 1; row < n_free_) {
+      keep.push_back(k);
+      solution_rows_.push_back(row);
     }
-  }
-}
-
-void MumpsFactor::send_command(int command, int argument) const {
-  int message[2] = {command, argument};
-  MPI_Request request = MPI_REQUEST_NULL;
-  MPI_Ibcast(message, 2, MPI_INT, 0, comm_, &request);
-  MPI_Wait(&request, MPI_STATUS_IGNORE);
-}
-
-void MumpsFactor::finish(int status) const {
-  send_command(kFinish, status);
-}
-
-void MumpsFactor::fail(const ErrorPacket& error) const {
-  send_command(kFail, 0);
-  ErrorPacket copy = error;
-  broadcast(copy, 0, comm_);
+  return solution(keep, Eigen::all);
 }
 
 }  // namespace fricon::parallel

@@ -6,9 +6,9 @@
 //   - with m Schur variables: factors the augmented matrix A = [[K, B^T], [B, 0]] (symmetric
 //     indefinite) and returns the Schur complement of K in A, S = -B K^-1 B^T = -Q, dense on rank
 //     0; solves with K are the "interior" solves of the same factor (ICNTL(26) = 0).
-// After the factorization rank 0 drives: its solve() calls are collective, so the other ranks sit
-// in serve() until rank 0 calls finish() or fail(). Every call here is collective unless it says
-// "rank 0".
+// Solves take and return distributed right-hand sides and solutions (each rank its rows); what
+// rank 0 needs of them is DistributedSolves's business. Every call here is collective unless it
+// says "rank 0".
 
 #include <mpi.h>
 
@@ -78,18 +78,15 @@ class MumpsFactor {
   /// Rank 0: the Schur complement S = -B K^-1 B^T (n_schur x n_schur, both triangles) [m^3/Pa].
   const MatrixXd& schur() const { return schur_; }
 
-  /// Rank 0: X = K^-1 B for n_free x k right-hand sides. Collective with the other ranks'
-  /// serve(). Throws NumericalError if MUMPS fails.
-  MatrixXd solve(const MatrixXd& b) const;
-  VectorXd solve(const VectorXd& b) const;
-
-  /// Ranks other than 0: take part in rank 0's solves until it calls finish() (returns its
-  /// status) or fail() (throws its error, as rank 0 does).
-  int serve() const;
-  /// Rank 0: ends the other ranks' serve() with `status`.
-  void finish(int status) const;
-  /// Rank 0: ends the other ranks' serve() by throwing `error` there.
-  void fail(const ErrorPacket& error) const;
+  /// Collective, every rank: K X = R with distributed right-hand sides and solution. This rank
+  /// gives the rows `rows` of R (0-based free dofs; no row is given by two ranks, and rows no rank
+  /// gives are zero) as `rhs` (rows.size() x n_rhs); it gets back its share of X: the rows
+  /// solution_rows() (the pivots MUMPS holds here; every free dof on exactly one rank) x n_rhs.
+  /// Throws NumericalError on every rank if MUMPS fails.
+  MatrixXd solve_distributed(const std::vector<Index>& rows, MatrixXd rhs, int n_rhs) const;
+  /// The free dofs whose solution solve_distributed() returns on this rank (0-based, in its row
+  /// order), known after the first call.
+  const std::vector<Index>& solution_rows() const { return solution_rows_; }
 
  private:
   struct Impl;
@@ -99,10 +96,7 @@ class MumpsFactor {
   Index n_free_ = 0;
   MumpsInfo info_;
   MatrixXd schur_;
-  void run_solve(int n_rhs, double* rhs) const;
-  MatrixXd solve_block(const Eigen::Ref<const MatrixXd>& b) const;
-  /// Rank 0: one command to the ranks in serve() (a non-blocking broadcast, as they receive it).
-  void send_command(int command, int argument) const;
+  mutable std::vector<Index> solution_rows_;
 };
 
 }  // namespace fricon::parallel

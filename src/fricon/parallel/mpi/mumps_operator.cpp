@@ -9,35 +9,33 @@ namespace fricon::parallel {
 
 namespace {
 
-// What both operators share: u0, h and the displacement by solves with the MUMPS factor.
+// What both operators share: u0, h and the displacement by distributed solves.
 class MumpsOperator : public dual::DualOperator {
  public:
-  MumpsOperator(const MumpsFactor& factor, const SparseMatrix& B, const VectorXd& f,
-                const VectorXd* offset)
-      : factor_(factor), B_(B), f_(f) {
-    set_free_solution(factor_.solve(f_), B_, offset);
+  MumpsOperator(const DistributedSolves& solves, const SparseMatrix& B, const VectorXd* offset)
+      : solves_(solves), B_(B) {
+    set_free_solution(solves_.displacement(VectorXd::Zero(B.rows())), B_, offset);
     ++n_kinv_;
   }
   VectorXd displacement(const VectorXd& lambda) const override {
     ++n_kinv_;
-    return factor_.solve(VectorXd(f_ - B_.transpose() * lambda));
+    return solves_.displacement(lambda);
   }
-  /// One distributed solve gives w everywhere; the contact dofs are among them.
   void contact_displacement(const VectorXd& lambda, VectorXd& w) const override {
-    w = displacement(lambda);
+    ++n_kinv_;
+    solves_.contact_displacement(lambda, w);
   }
 
  protected:
-  const MumpsFactor& factor_;
+  const DistributedSolves& solves_;
   const SparseMatrix& B_;
-  const VectorXd& f_;
 };
 
 class MumpsSchurOperator final : public MumpsOperator {
  public:
-  MumpsSchurOperator(const MumpsFactor& factor, const SparseMatrix& B, const VectorXd& f,
+  MumpsSchurOperator(const DistributedSolves& solves, const MatrixXd& schur, const SparseMatrix& B,
                      const VectorXd* offset)
-      : MumpsOperator(factor, B, f, offset), Q_(-factor.schur()) {
+      : MumpsOperator(solves, B, offset), Q_(-schur) {
     if (Q_.rows() != B.rows())
       throw Error(fmt::format("the MUMPS Schur complement has order {}, expected n_dual = {}",
                               Q_.rows(), B.rows()));
@@ -55,7 +53,7 @@ class MumpsImplicitOperator final : public MumpsOperator {
   using MumpsOperator::MumpsOperator;
   dual::DualOperatorKind kind() const override { return dual::DualOperatorKind::Implicit; }
   void apply(const VectorXd& x, VectorXd& y) const override {
-    y = B_ * factor_.solve(VectorXd(B_.transpose() * x));
+    y = solves_.apply(x);
     ++n_kinv_;
   }
 };
@@ -63,14 +61,16 @@ class MumpsImplicitOperator final : public MumpsOperator {
 }  // namespace
 
 std::unique_ptr<dual::DualOperator> make_mumps_operator(dual::DualOperatorKind kind,
-                                                        const MumpsFactor& factor,
-                                                        const SparseMatrix& B, const VectorXd& f,
+                                                        const DistributedSolves& solves,
+                                                        const MatrixXd* schur,
+                                                        const SparseMatrix& B,
                                                         const VectorXd* offset) {
   switch (kind) {
     case dual::DualOperatorKind::Schur:
-      return std::make_unique<MumpsSchurOperator>(factor, B, f, offset);
+      FRICON_CHECK(schur != nullptr, "make_mumps_operator: schur needs the Schur complement");
+      return std::make_unique<MumpsSchurOperator>(solves, *schur, B, offset);
     case dual::DualOperatorKind::Implicit:
-      return std::make_unique<MumpsImplicitOperator>(factor, B, f, offset);
+      return std::make_unique<MumpsImplicitOperator>(solves, B, offset);
     default:
       throw Error(fmt::format("make_mumps_operator: no MUMPS operator \"{}\"", enum_name(kind)));
   }
