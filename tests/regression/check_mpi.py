@@ -120,6 +120,9 @@ def serial_and_distributed(fricon, mpi, problem, out, ranks, extra=()):
     if sum(x["n_tets"] for x in par["ranks"]) != report["n_tets"]:
         sys.exit(f"FAIL: the ranks assembled {[x['n_tets'] for x in par['ranks']]} tetrahedra, "
                  f"the mesh has {report['n_tets']}")
+    for x in par["ranks"]:
+        if not (0 < x["model_memory_mib"] <= x["peak_memory_mib"] and x["mumps_estimate_mib"] > 0):
+            sys.exit(f"FAIL: a rank's memory figures are inconsistent: {x}")
     if r.stdout.count("fricon 0.") != 1:
         sys.exit(f"FAIL: the summary is not printed once:\n{r.stdout}")
     agree(f"{problem.name} {' '.join(extra)} on {ranks} rank(s) = serial", serial, distributed)

@@ -25,6 +25,9 @@ struct RankReport {
   double peak_memory_mib = 0;     ///< peak resident memory of the process [MiB]
   double mumps_memory_mib = 0;    ///< memory MUMPS allocated for the factorization here [MiB]
   double mumps_estimate_mib = 0;  ///< what MUMPS's analysis estimated for it [MiB]
+  /// Peak resident memory once the replicated input (mesh, loads, contact discretization) was
+  /// built, before the assembly and factorization [MiB].
+  double model_memory_mib = 0;
 };
 
 /// What a distributed run adds to the report.

@@ -121,7 +121,8 @@ void add_parallel_report(const driver::ParallelReport& p, nlohmann::json& j) {
     ranks.push_back({{"n_tets", r.n_tets},
                      {"peak_memory_mib", r.peak_memory_mib},
                      {"mumps_memory_mib", r.mumps_memory_mib},
-                     {"mumps_estimate_mib", r.mumps_estimate_mib}});
+                     {"mumps_estimate_mib", r.mumps_estimate_mib},
+                     {"model_memory_mib", r.model_memory_mib}});
   j["parallel"] = {
       {"backend", "petsc"},   {"n_ranks", p.n_ranks},       {"partition", enum_name(p.partition)},
       {"n_schur", p.n_schur}, {"analysis_s", p.analysis_s}, {"factorization_s", p.factorization_s},

@@ -102,18 +102,18 @@ linalg::CholeskyInfo factor_info(const MumpsInfo& m) {
 }
 
 // Every rank's figures, on rank 0. Collective.
-std::vector<driver::RankReport> gather_ranks(Index n_tets, const MumpsInfo& info, int rank,
-                                             int size) {
-  constexpr int kFigures = 4;
+std::vector<driver::RankReport> gather_ranks(Index n_tets, double model_mib, const MumpsInfo& info,
+                                             int rank, int size) {
+  constexpr int kFigures = 5;
   const double mine[kFigures] = {static_cast<double>(n_tets), peak_memory_mib(), info.memory_mib,
-                                 info.estimate_mib};
+                                 info.estimate_mib, model_mib};
   std::vector<double> all(static_cast<std::size_t>(kFigures * size));
   MPI_Gather(mine, kFigures, MPI_DOUBLE, all.data(), kFigures, MPI_DOUBLE, 0, world());
   std::vector<driver::RankReport> ranks;
   if (rank != 0) return ranks;
   for (int r = 0; r < size; ++r) {
     const double* a = &all[static_cast<std::size_t>(kFigures * r)];
-    ranks.push_back({static_cast<Index>(a[0]), a[1], a[2], a[3]});
+    ranks.push_back({static_cast<Index>(a[0]), a[1], a[2], a[3], a[4]});
   }
   return ranks;
 }
@@ -170,6 +170,7 @@ RunResult run_distributed(const driver::Problem& problem, const RunOptions& opti
       disc = driver::discretize_contact(problem, r.model.mesh, r.model.dofs);
     }
   });
+  const double model_mib = peak_memory_mib();  // what the replicated input costs this rank
   const Index n_free = r.model.dofs.n_free();
   const dual::DualOperatorKind kind =
       disc ? operator_kind(problem.solver.dual_operator, disc->n_dual())
@@ -209,7 +210,7 @@ RunResult run_distributed(const driver::Problem& problem, const RunOptions& opti
                                  disc ? disc->dofs : no_contact_dofs);
   if (rank != 0) {
     rep.status = static_cast<driver::Status>(solves.follow());
-    par.ranks = gather_ranks(n_mine, factor->info(), rank, size);
+    par.ranks = gather_ranks(n_mine, model_mib, factor->info(), rank, size);
     rep.parallel = par;
     return r;
   }
@@ -227,7 +228,7 @@ RunResult run_distributed(const driver::Problem& problem, const RunOptions& opti
     throw;
   }
   channel.finish(static_cast<int>(rep.status));
-  par.ranks = gather_ranks(n_mine, factor->info(), rank, size);
+  par.ranks = gather_ranks(n_mine, model_mib, factor->info(), rank, size);
   rep.parallel = par;
   rep.time_s = total.seconds();
   return r;
