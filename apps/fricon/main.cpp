@@ -114,11 +114,14 @@ void print_summary(const fricon::driver::RunResult& result, const std::filesyste
 
 enum class Verbosity { Quiet, Normal, Verbose };
 
-// Ctrl-C (SIGINT) and SIGTERM. Once the outer loop has started there is an iterate to save: the
-// signal asks the run to stop at its next QP step, and the run writes its last iterate as not
-// converged. Before (assembly, factorization, forming Q: long library calls with nothing to
-// save) the program ends at once with exit code 2 and no results. A second signal ends it at
-// once in any case.
+// Ctrl-C (SIGINT), SIGTERM and SIGUSR1. Once the outer loop has started there is an iterate to
+// save: the signal asks the run to stop at its next QP step, and the run writes its last iterate
+// as not converged. Before (assembly, factorization, forming Q: long library calls with nothing
+// to save) the program ends at once with exit code 2 and no results. A second signal ends it at
+// once in any case. Under mpirun (docs/parallel.md) SIGUSR1 is the one to send: mpirun forwards
+// it to every rank, while on Ctrl-C it kills the ranks a second after SIGTERM; the ranks other
+// than 0 ignore the first signal once they follow rank 0's outer loop, whose solves they serve
+// until rank 0 has written its results.
 std::atomic<bool> g_stop{false};
 std::atomic<bool> g_has_iterate{false};
 static_assert(std::atomic<bool>::is_always_lock_free, "the signal handler needs a lock-free flag");
@@ -141,6 +144,7 @@ void install_signal_handlers() {
   sigemptyset(&action.sa_mask);
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);
+  sigaction(SIGUSR1, &action, nullptr);
 }
 
 struct SolveOptions {
@@ -271,7 +275,7 @@ int solve(const std::string& file, const SolveOptions& so, const std::string& co
   options.stop_requested = &g_stop;
   // From the outer loop on, a signal stops the run at its next QP step with an iterate to save.
   options.on_phase_start = [progress = options.on_phase_start](const std::string& phase) {
-    if (phase == "outer loop") g_has_iterate.store(true);
+    if (phase == "outer loop" || phase == "follow") g_has_iterate.store(true);
     if (progress) progress(phase);
   };
   install_signal_handlers();

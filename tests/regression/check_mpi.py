@@ -21,6 +21,8 @@ augmented matrix) and a different dual operator:
   failing_factorization   the factorization cannot run within solver.memory_per_rank: every
                           rank ends with the same error (seen with FRICON_RANK_OUTPUT=all) and
                           exit code 1, printed once normally; nothing is written
+  stop_signal             SIGUSR1 to mpirun during the outer loop: every rank stops, rank 0
+                          writes the last iterate (*.not-converged.*), exit code 2
   cholmod_under_mpirun    backend cholmod on 2 ranks is refused once, with the fix
 Agreement: the same number of outer iterations and err(k) to 1e-8; multipliers (per patch) to
 1e-8 of the largest; contact-node displacements and the penetration measures to 1e-8 of max |u|;
@@ -30,8 +32,10 @@ import csv
 import json
 import os
 import pathlib
+import signal
 import subprocess
 import sys
+import time
 
 TIGHT = ["--set", "solver.qp_rtol=1e-12", "--set", "solver.outer_tol=1e-10"]
 PETSC = ["--set", "solver.backend=petsc"]
@@ -145,6 +149,43 @@ def expect_error(cmd, fragments, label, code=1, prefix="fricon: error:"):
     return errors[0][len(prefix):].strip()
 
 
+def stop_signal(fricon, mpi, brick, outdir):
+    # The implicit operator and a tight QP keep the run in its QP steps for many seconds.
+    cmd = mpirun(mpi, 2) + [fricon, "solve", str(brick), *PETSC, "--set", "mesh.cells=[18,6,6]",
+                            "--set", "solver.dual_operator=implicit", "--set",
+                            "solver.qp_variant=paper", "--set", "solver.qp_rtol=1e-12", "-o",
+                            str(outdir)]
+    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    t0 = time.time()
+    seen = []
+    while time.time() - t0 < 120:  # the monitor's header, then the line of outer iteration 1
+        line = proc.stderr.readline()
+        seen.append(line)
+        if not line or "elapsed" in line:
+            break
+    if not seen or "elapsed" not in seen[-1]:
+        proc.kill()
+        sys.exit(f"FAIL: no monitor line within 120 s: {seen}")
+    seen.append(proc.stderr.readline())
+    time.sleep(0.3)
+    proc.send_signal(signal.SIGUSR1)
+    stdout, stderr = proc.communicate(timeout=120)
+    report = outdir / "report.not-converged.json"
+    if proc.returncode != 2 or not report.exists() or (outdir / "report.json").exists():
+        sys.exit(f"FAIL: SIGUSR1: exit code {proc.returncode} (expected 2), files "
+                 f"{sorted(p.name for p in outdir.iterdir()) if outdir.exists() else []}\n"
+                 f"stderr:\n{''.join(seen)}{stderr}")
+    r = json.loads(report.read_text())
+    if r["termination"] != "interrupted" or r["outer_iterations"] < 2:
+        sys.exit(f"FAIL: SIGUSR1: termination {r['termination']}, outer iterations "
+                 f"{r['outer_iterations']}")
+    for name in ["solution.not-converged.vtu", "patches.not-converged.csv"]:
+        if not (outdir / name).exists():
+            sys.exit(f"FAIL: SIGUSR1: {name} missing")
+    print(f"ok   SIGUSR1 to mpirun: the last iterate (outer iteration {r['outer_iterations']}) "
+          f"written, exit code 2")
+
+
 def main():
     fricon, mpi, case, out = sys.argv[1], sys.argv[2], sys.argv[3], pathlib.Path(sys.argv[4])
     examples = pathlib.Path(__file__).resolve().parents[2] / "examples"
@@ -207,6 +248,8 @@ def main():
         print("ok   both ranks end with the same error")
         if (out / "f").exists() and any((out / "f").iterdir()):
             sys.exit(f"FAIL: a failed run wrote {sorted(p.name for p in (out / 'f').iterdir())}")
+    elif case == "stop_signal":
+        stop_signal(fricon, mpi, brick, out / "s")
     elif case == "cholmod_under_mpirun":
         expect_error(mpirun(mpi, 2) + [fricon, "solve", str(brick), "-q", "-o", str(out / "c")],
                      ["solver.backend", "runs on one process", "--set solver.backend=petsc"],

@@ -1,4 +1,4 @@
-"""Signals, for real: SIGINT and SIGTERM during the QP phase stop the run with exit code 2 and
+"""Signals, for real: SIGINT, SIGTERM and SIGUSR1 during the QP phase stop the run with exit code 2 and
 the last iterate in the .not-converged files; a signal while there is nothing to save (the
 factorization) ends the run within a second, even with the machine's cores busy, with exit
 code 2 and no result files.
@@ -114,6 +114,7 @@ def nothing_to_save():
 
 qp_phase(signal.SIGINT)
 qp_phase(signal.SIGTERM)
+qp_phase(signal.SIGUSR1)
 nothing_to_save()
 if failures:
     sys.exit("\n\n".join(failures))

@@ -128,7 +128,9 @@ struct RunOptions {
   std::function<void(const OuterIteration&)> on_outer_iteration;
   /// Called after every MPGP step of every QP (verbose progress); return false to stop.
   std::function<bool(const qp::MpgpIteration&)> on_qp_iteration;
-  /// Called when a phase starts ("assembly", "factorize", ...) so that long phases are visible.
+  /// Called when a phase starts ("assembly", "factorize", ...) so that long phases are visible;
+  /// on the ranks other than 0 of a distributed run, "follow" when they start serving rank 0's
+  /// outer loop.
   std::function<void(const std::string& phase)> on_phase_start;
   /// If set and true, the run stops at the next QP step (e.g. set by a SIGINT handler) and
   /// returns what it has, not converged; while Q is formed it throws fricon::Interrupted.

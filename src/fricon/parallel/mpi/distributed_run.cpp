@@ -209,6 +209,7 @@ RunResult run_distributed(const driver::Problem& problem, const RunOptions& opti
   const DistributedSolves solves(*factor, channel, disc ? &disc->B : nullptr, r.model.f,
                                  disc ? disc->dofs : no_contact_dofs);
   if (rank != 0) {
+    driver::phase_start(options, "follow");  // (a stop request is rank 0's to act on)
     rep.status = static_cast<driver::Status>(solves.follow());
     par.ranks = gather_ranks(n_mine, model_mib, factor->info(), rank, size);
     rep.parallel = par;
