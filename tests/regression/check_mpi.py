@@ -11,7 +11,7 @@ augmented matrix) and a different dual operator:
   gmsh2                   the Hertz hemisphere (a Gmsh mesh, a prescribed displacement) on 2 ranks
   implicit2               the brick with dual_operator = "implicit" (a distributed solve per
                           product with Q) on 2 ranks
-  elastic2                the brick without contact on 2 ranks
+  elastic2                the brick without contact, with gravity, on 2 ranks
   single                  backend petsc without mpirun (a job of one rank)
   partitions              two partitions of the tetrahedra on 2 ranks (graph, blocks) agree
   failing_rank            rank 1 reads a bad value, rank 0 a good one: both end with exit code 1
@@ -202,7 +202,9 @@ def main():
         serial_and_distributed(fricon, mpi, brick, out, 2,
                                ["--set", "solver.dual_operator=implicit"])
     elif case == "elastic2":
-        serial_and_distributed(fricon, mpi, examples / "elastic-brick.toml", out, 2)
+        # With gravity too: every kind of load is assembled in parts by the ranks.
+        serial_and_distributed(fricon, mpi, examples / "elastic-brick.toml", out, 2,
+                               ["--set", "volume_force=[0.0,0.0,-7.7e4]"])
     elif case == "single":
         run([fricon, "solve", str(brick), *TIGHT, "-q", "-o", str(out / "serial")])
         run([fricon, "solve", str(brick), *TIGHT, *PETSC, "-q", "-o", str(out / "single")])

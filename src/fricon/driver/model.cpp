@@ -1,6 +1,8 @@
 #include "fricon/driver/model.hpp"
 
 #include <algorithm>
+#include <array>
+#include <map>
 
 #include <fmt/format.h>
 
@@ -198,8 +200,10 @@ mesh::TetMesh make_mesh(const Problem& problem) {
 
 namespace {
 
+enum class Parts { Dofs, Loads, LoadsAndStiffness };
+
 Model assemble(const Problem& problem, PhaseTimes& times, const PhaseCallback& on_phase_start,
-               bool with_stiffness) {
+               Parts parts) {
   Model model;
   if (on_phase_start) on_phase_start("mesh");
   {
@@ -212,22 +216,78 @@ Model assemble(const Problem& problem, PhaseTimes& times, const PhaseCallback& o
     ScopedPhase phase(times, "assembly");
     model.dofs = make_dofs(problem, model.mesh);
     model.prescribed = make_prescribed(problem, model.mesh);
-    if (with_stiffness) model.K = fe::assemble_stiffness(model.mesh, model.materials, model.dofs);
-    model.f = full_load(problem, model.mesh, model.dofs) - prescribed_load(model);
+    if (parts == Parts::LoadsAndStiffness)
+      model.K = fe::assemble_stiffness(model.mesh, model.materials, model.dofs);
+    if (parts != Parts::Dofs)
+      model.f = full_load(problem, model.mesh, model.dofs) - prescribed_load(model);
   }
   return model;
 }
 
 }  // namespace
 
+Model assemble_dofs(const Problem& problem, PhaseTimes& times,
+                    const PhaseCallback& on_phase_start) {
+  return assemble(problem, times, on_phase_start, Parts::Dofs);
+}
+
 Model assemble_loads(const Problem& problem, PhaseTimes& times,
                      const PhaseCallback& on_phase_start) {
-  return assemble(problem, times, on_phase_start, false);
+  return assemble(problem, times, on_phase_start, Parts::Loads);
 }
 
 Model assemble_model(const Problem& problem, PhaseTimes& times,
                      const PhaseCallback& on_phase_start) {
-  return assemble(problem, times, on_phase_start, true);
+  return assemble(problem, times, on_phase_start, Parts::LoadsAndStiffness);
+}
+
+namespace {
+
+// The boundary triangles that are faces of the tetrahedra `elements` (each boundary triangle is
+// a face of exactly one tetrahedron), marked over all triangles.
+std::vector<bool> faces_of(const mesh::TetMesh& mesh, const std::vector<Index>& elements) {
+  using Triple = std::array<Index, 3>;
+  const auto sorted = [](Index a, Index b, Index c) {
+    Triple t{a, b, c};
+    std::sort(t.begin(), t.end());
+    return t;
+  };
+  std::map<Triple, Index> boundary;
+  for (Index f = 0; f < mesh.n_faces(); ++f)
+    boundary.emplace(sorted(mesh.faces(0, f), mesh.faces(1, f), mesh.faces(2, f)), f);
+  std::vector<bool> mine(static_cast<size_t>(mesh.n_faces()), false);
+  // Face k of a tetrahedron leaves out its vertex k.
+  for (Index t : elements)
+    for (int k = 0; k < 4; ++k) {
+      const Index v[3] = {mesh.tets((k + 1) % 4, t), mesh.tets((k + 2) % 4, t),
+                          mesh.tets((k + 3) % 4, t)};
+      if (auto it = boundary.find(sorted(v[0], v[1], v[2])); it != boundary.end())
+        mine[static_cast<size_t>(it->second)] = true;
+    }
+  return mine;
+}
+
+}  // namespace
+
+VectorXd partial_load(const Problem& problem, const Model& model,
+                      const std::vector<Index>& elements) {
+  const mesh::TetMesh& mesh = model.mesh;
+  VectorXd f = VectorXd::Zero(model.dofs.n_free());
+  const std::vector<bool> mine = faces_of(mesh, elements);
+  for (size_t i = 0; i < problem.traction.size(); ++i) {
+    const auto& t = problem.traction[i];
+    std::vector<Index> faces;
+    for (Index face :
+         tagged_faces(mesh, problem, fmt::format("traction[{}].boundary", i), t.boundary))
+      if (mine[static_cast<size_t>(face)]) faces.push_back(face);
+    fe::add_traction(mesh, model.dofs, faces, t.value, f);
+  }
+  if (problem.volume_force.squaredNorm() > 0)
+    fe::add_volume_force(mesh, model.dofs, problem.volume_force, f, elements);
+  if (!model.prescribed.isZero(0.0))
+    f -= model.dofs.from_nodal(
+        fe::internal_forces(mesh, model.materials, model.prescribed, elements));
+  return f;
 }
 
 VectorXd stiffness_times(const Model& model, const VectorXd& w) {

@@ -64,6 +64,19 @@ using PhaseCallback = std::function<void(const std::string& phase)>;
 Model assemble_loads(const Problem& problem, PhaseTimes& times,
                      const PhaseCallback& on_phase_start = {});
 
+/// The model without K and f: mesh, materials, dofs and prescribed displacements (phases "mesh",
+/// "assembly"), for a rank of a distributed run that assembles only its part of f
+/// (partial_load). Throws as assemble_model.
+Model assemble_dofs(const Problem& problem, PhaseTimes& times,
+                    const PhaseCallback& on_phase_start = {});
+
+/// The part of f [N] (over the free dofs) that the tetrahedra `elements` contribute: their volume
+/// forces and prescribed-displacement coupling, and the tractions on the boundary triangles that
+/// are faces of them. Over a partition of the tetrahedra the parts sum to Model::f. Reads the
+/// mesh, materials, dofs and prescribed displacements of `model` (not its f).
+VectorXd partial_load(const Problem& problem, const Model& model,
+                      const std::vector<Index>& elements);
+
 /// The model up to the factorization: mesh, material, dofs, K and f (phases "mesh",
 /// "assembly"). Throws InputError when a boundary tag named by the problem does not exist on the
 /// mesh or the Dirichlet conditions leave rigid motions free.

@@ -125,7 +125,9 @@ SparseMatrix assemble(const mesh::TetMesh& mesh, Materials materials, const DofM
 
 }  // namespace
 
-NodeGraph node_graph(const mesh::TetMesh& mesh) { return graph_of(mesh, ElementRange(mesh, nullptr)); }
+NodeGraph node_graph(const mesh::TetMesh& mesh) {
+  return graph_of(mesh, ElementRange(mesh, nullptr));
+}
 
 SparseMatrix assemble_stiffness(const mesh::TetMesh& mesh, Materials materials,
                                 const DofMap& dofs) {
@@ -174,13 +176,26 @@ void add_traction_p1(const mesh::TetMesh& mesh, const DofMap& dofs, const std::v
   }
 }
 
-void add_volume_force(const mesh::TetMesh& mesh, const DofMap& dofs, const Vec3& b, VectorXd& f) {
+namespace {
+void add_volume_force(const mesh::TetMesh& mesh, const DofMap& dofs, const Vec3& b, VectorXd& f,
+                      const ElementRange& elements) {
   check_load_vector(dofs, f);
-  for (Index t = 0; t < mesh.n_tets(); ++t) {
+  for (Index k = 0; k < elements.size(); ++k) {
+    const Index t = elements[k];
     const Vec3 share = std::abs(mesh::tet_volume(mesh, t)) / 4.0 * b;
     for (int a = 0; a < 4; ++a)
       add_nodal(dofs, mesh.tets(a, t), share, f);
   }
+}
+}  // namespace
+
+void add_volume_force(const mesh::TetMesh& mesh, const DofMap& dofs, const Vec3& b, VectorXd& f) {
+  add_volume_force(mesh, dofs, b, f, ElementRange(mesh, nullptr));
+}
+
+void add_volume_force(const mesh::TetMesh& mesh, const DofMap& dofs, const Vec3& b, VectorXd& f,
+                      const std::vector<Index>& elements) {
+  add_volume_force(mesh, dofs, b, f, ElementRange(mesh, &elements));
 }
 
 void add_volume_force_p1(const mesh::TetMesh& mesh, const DofMap& dofs, const NodalField& b,
@@ -196,9 +211,12 @@ void add_volume_force_p1(const mesh::TetMesh& mesh, const DofMap& dofs, const No
   }
 }
 
-NodalField internal_forces(const mesh::TetMesh& mesh, Materials materials, const NodalField& u) {
+namespace {
+NodalField internal_forces(const mesh::TetMesh& mesh, Materials materials, const NodalField& u,
+                           const ElementRange& elements) {
   NodalField r = NodalField::Zero(3, mesh.n_nodes());
-  for (Index t = 0; t < mesh.n_tets(); ++t) {
+  for (Index k = 0; k < elements.size(); ++k) {
+    const Index t = elements[k];
     Eigen::Matrix<Real, 12, 1> ue;
     for (int a = 0; a < 4; ++a)
       ue.segment<3>(3 * a) = u.col(mesh.tets(a, t));
@@ -208,6 +226,16 @@ NodalField internal_forces(const mesh::TetMesh& mesh, Materials materials, const
       r.col(mesh.tets(a, t)) += re.segment<3>(3 * a);
   }
   return r;
+}
+}  // namespace
+
+NodalField internal_forces(const mesh::TetMesh& mesh, Materials materials, const NodalField& u) {
+  return internal_forces(mesh, materials, u, ElementRange(mesh, nullptr));
+}
+
+NodalField internal_forces(const mesh::TetMesh& mesh, Materials materials, const NodalField& u,
+                           const std::vector<Index>& elements) {
+  return internal_forces(mesh, materials, u, ElementRange(mesh, &elements));
 }
 
 }  // namespace fricon::fe

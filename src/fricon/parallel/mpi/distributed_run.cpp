@@ -1,6 +1,7 @@
 // parallel/mpi: driver::run on the ranks of an MPI job (docs/parallel.md, docs/theory.md §3.3).
-//   every rank   mesh, loads, contact discretization (the same on every rank)
-//                -> partition of the tetrahedra -> the entries of its own tetrahedra
+//   every rank   mesh, dofs, contact discretization (the same on every rank; f whole on rank 0)
+//                -> partition of the tetrahedra -> the entries of K and the part of f of its
+//                own tetrahedra
 //   all ranks    one MUMPS factorization (of K, or of [[K, B^T], [B, 0]] with Q as its Schur
 //                complement on rank 0)
 //   rank 0       dual operator -> outer loop of dual QPs -> postprocessing, while the others
@@ -163,7 +164,10 @@ RunResult run_distributed(const driver::Problem& problem, const RunOptions& opti
   std::optional<contact::ContactDiscretization> disc;
   collectively([&] {
     driver::validate(problem);
-    r.model = driver::assemble_loads(problem, rep.times, opts.on_phase_start);
+    // f whole on rank 0 only, for the residuals of the postprocessing; every rank assembles its
+    // part of it below.
+    r.model = rank == 0 ? driver::assemble_loads(problem, rep.times, opts.on_phase_start)
+                        : driver::assemble_dofs(problem, rep.times, opts.on_phase_start);
     if (problem.contact) {
       driver::phase_start(opts, "contact");
       ScopedPhase phase(rep.times, "contact");
@@ -178,9 +182,10 @@ RunResult run_distributed(const driver::Problem& problem, const RunOptions& opti
   const bool with_schur = disc && kind == dual::DualOperatorKind::Schur;
   par.n_schur = with_schur ? disc->n_dual() : 0;
 
-  // @sect: the partition, and each rank's part of K (and B, on rank 0).
+  // @sect: the partition, and each rank's part of K (and B, on rank 0) and of f.
   driver::phase_start(opts, "partition");
   LocalEntries entries;
+  LoadPart load;
   Index n_mine = 0;
   collectively([&] {
     std::vector<Index> mine;
@@ -191,6 +196,7 @@ RunResult run_distributed(const driver::Problem& problem, const RunOptions& opti
     n_mine = static_cast<Index>(mine.size());
     ScopedPhase phase(rep.times, "assembly");
     entries = local_entries(r.model, mine, with_schur && rank == 0 ? &disc->B : nullptr);
+    load = LoadPart::of(driver::partial_load(problem, r.model, mine));
   });
 
   // @sect: one factorization across the ranks.
@@ -206,7 +212,7 @@ RunResult run_distributed(const driver::Problem& problem, const RunOptions& opti
   // @sect: the ranks other than 0 take part in rank 0's solves until it ends the run.
   const CommandChannel channel(world());
   const std::vector<Index> no_contact_dofs;
-  const DistributedSolves solves(*factor, channel, disc ? &disc->B : nullptr, r.model.f,
+  const DistributedSolves solves(*factor, channel, disc ? &disc->B : nullptr, std::move(load),
                                  disc ? disc->dofs : no_contact_dofs);
   if (rank != 0) {
     driver::phase_start(options, "follow");  // (a stop request is rank 0's to act on)

@@ -1,5 +1,7 @@
 #include "fricon/parallel/mpi/distributed_solves.hpp"
 
+#include <algorithm>
+
 #include <fmt/format.h>
 
 #include "fricon/core/error.hpp"
@@ -7,14 +9,6 @@
 namespace fricon::parallel {
 
 namespace {
-
-// x of rank 0 (its size too) on every rank of comm.
-void broadcast(VectorXd& x, MPI_Comm comm) {
-  long size = static_cast<long>(x.size());
-  MPI_Bcast(&size, 1, MPI_LONG, 0, comm);
-  x.conservativeResize(static_cast<Index>(size));
-  MPI_Bcast(x.data(), static_cast<int>(size), MPI_DOUBLE, 0, comm);
-}
 
 // The sum over the ranks of comm, on rank 0.
 void sum_on_rank_0(VectorXd& x, int rank, MPI_Comm comm) {
@@ -27,36 +21,62 @@ void sum_on_rank_0(VectorXd& x, int rank, MPI_Comm comm) {
 
 }  // namespace
 
+LoadPart LoadPart::of(const VectorXd& partial) {
+  LoadPart part;
+  for (Index i = 0; i < partial.size(); ++i)
+    if (partial(i) != 0.0) part.rows.push_back(i);
+  part.values = partial(part.rows);
+  return part;
+}
+
 DistributedSolves::DistributedSolves(const MumpsFactor& factor, const CommandChannel& channel,
-                                     const SparseMatrix* B, const VectorXd& f,
+                                     const SparseMatrix* B, LoadPart load,
                                      const std::vector<Index>& contact_dofs)
-    : factor_(factor), channel_(channel), B_(B), f_(f), contact_dofs_(contact_dofs) {
-  int size = 1;
+    : factor_(factor), channel_(channel), B_(B), contact_dofs_(contact_dofs) {
   MPI_Comm_rank(world(), &rank_);
-  MPI_Comm_size(world(), &size);
   const Index n = factor_.n_free();
-  for (Index i = n * rank_ / size; i < n * (rank_ + 1) / size; ++i)
-    first_rows_.push_back(i);
   contact_position_.assign(static_cast<std::size_t>(n), -1);
   for (std::size_t c = 0; c < contact_dofs_.size(); ++c)
     contact_position_[static_cast<std::size_t>(contact_dofs_[c])] = static_cast<Index>(c);
+  if (rank_ != 0 || contact_dofs_.empty()) {
+    load_rows_ = std::move(load.rows);
+    load_values_ = std::move(load.values);
+    return;
+  }
+  // Rank 0 gives each row once: its load rows and the contact dofs, merged.
+  std::vector<Index> rows = load.rows;
+  rows.insert(rows.end(), contact_dofs_.begin(), contact_dofs_.end());
+  std::sort(rows.begin(), rows.end());
+  rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
+  const auto position = [&rows](Index dof) {
+    return static_cast<Index>(std::lower_bound(rows.begin(), rows.end(), dof) - rows.begin());
+  };
+  load_values_ = VectorXd::Zero(static_cast<Index>(rows.size()));
+  for (std::size_t k = 0; k < load.rows.size(); ++k)
+    load_values_(position(load.rows[k])) = load.values(static_cast<Index>(k));
+  for (Index dof : contact_dofs_)
+    contact_in_load_rows_.push_back(position(dof));
+  load_rows_ = std::move(rows);
 }
 
-const std::vector<Index>& DistributedSolves::rhs_rows() const {
-  return solved_ ? factor_.solution_rows() : first_rows_;
+MatrixXd DistributedSolves::solve(const VectorXd& lambda, bool with_load) const {
+  // Rank 0: (B^T lambda)_j on the contact dofs j (B's columns are the free dofs).
+  VectorXd bt_lambda = VectorXd::Zero(static_cast<Index>(contact_dofs_.size()));
+  if (rank_ == 0 && B_ != nullptr && lambda.size() > 0)
+    for (std::size_t c = 0; c < contact_dofs_.size(); ++c)
+      for (SparseMatrix::InnerIterator it(*B_, contact_dofs_[c]); it; ++it)
+        bt_lambda(static_cast<Index>(c)) += it.value() * lambda(it.row());
+  if (with_load) {
+    MatrixXd rhs = load_values_;
+    for (std::size_t c = 0; c < contact_in_load_rows_.size(); ++c)
+      rhs(contact_in_load_rows_[c], 0) -= bt_lambda(static_cast<Index>(c));
+    return factor_.solve_distributed(load_rows_, std::move(rhs), 1);
+  }
+  if (rank_ != 0) return factor_.solve_distributed({}, MatrixXd(0, 1), 1);
+  return factor_.solve_distributed(contact_dofs_, -bt_lambda, 1);
 }
 
-MatrixXd DistributedSolves::solve(VectorXd& lambda, bool with_load) const {
-  broadcast(lambda, world());
-  const std::vector<Index>& rows = rhs_rows();
-  VectorXd r = with_load ? f_ : VectorXd::Zero(f_.size());
-  if (B_ != nullptr && lambda.size() > 0) r -= B_->transpose() * lambda;
-  MatrixXd mine = factor_.solve_distributed(rows, r(rows), 1);
-  solved_ = true;
-  return mine;
-}
-
-VectorXd DistributedSolves::apply_step(VectorXd x) const {
+VectorXd DistributedSolves::apply_step(const VectorXd& x) const {
   // B K^-1 B^T x = -B (K^-1 (-B^T x)): each rank sums the columns of B at its solution rows.
   const MatrixXd mine = solve(x, false);
   VectorXd y = VectorXd::Zero(B_->rows());
@@ -68,7 +88,7 @@ VectorXd DistributedSolves::apply_step(VectorXd x) const {
   return y;
 }
 
-VectorXd DistributedSolves::contact_step(VectorXd lambda) const {
+VectorXd DistributedSolves::contact_step(const VectorXd& lambda) const {
   const MatrixXd mine = solve(lambda, true);
   // Each contact dof's value comes from the one rank that holds it.
   VectorXd w_c = VectorXd::Zero(static_cast<Index>(contact_dofs_.size()));
@@ -80,7 +100,7 @@ VectorXd DistributedSolves::contact_step(VectorXd lambda) const {
   return w_c;
 }
 
-VectorXd DistributedSolves::displacement_step(VectorXd lambda) const {
+VectorXd DistributedSolves::displacement_step(const VectorXd& lambda) const {
   const MatrixXd mine = solve(lambda, true);
   const std::vector<Index>& rows = factor_.solution_rows();
   int size = 1;

@@ -1,8 +1,9 @@
 #pragma once
 // parallel/mpi: the solves with K that a distributed run's dual operator needs (docs/theory.md
 // §3.3), as collective steps on distributed right-hand sides and solutions (MUMPS ICNTL(20) = 10,
-// ICNTL(21) = 1). Every rank forms its rows of the right-hand side f - B^T lambda from its copy
-// of f and B, and keeps its rows of the solution; only what rank 0 asks for reaches it:
+// ICNTL(21) = 1). Each rank gives the part of f its own tetrahedra contribute (MUMPS sums the
+// rows that several ranks give), rank 0 adds -B^T lambda on the contact dofs, and each rank keeps
+// its rows of the solution; only what rank 0 asks for reaches it:
 //   apply                 Q x = B K^-1 B^T x                n_dual numbers (a sum over ranks)
 //   contact_displacement  w on the contact dofs            one number per contact dof
 //   displacement          w everywhere                      gathered (for the results)
@@ -17,13 +18,20 @@
 
 namespace fricon::parallel {
 
+/// A rank's part of the load vector: the rows its tetrahedra touch and their values [N].
+struct LoadPart {
+  std::vector<Index> rows;  ///< free dofs, ascending
+  VectorXd values;
+  /// The non-zero rows of `partial` (a rank's driver::partial_load).
+  static LoadPart of(const VectorXd& partial);
+};
+
 class DistributedSolves {
  public:
-  /// Every rank, with the same B (n_dual x n_free [m^2]; null without contact), load f over the
-  /// free dofs [N] and contact dofs (the free dofs B touches, for contact_displacement). The
-  /// references must outlive this object.
+  /// Every rank, with the same B (n_dual x n_free [m^2]; null without contact) and contact dofs
+  /// (the free dofs B touches), and its own part of f. The references must outlive this object.
   DistributedSolves(const MumpsFactor& factor, const CommandChannel& channel, const SparseMatrix* B,
-                    const VectorXd& f, const std::vector<Index>& contact_dofs);
+                    LoadPart load, const std::vector<Index>& contact_dofs);
 
   /// Rank 0: Q x = B K^-1 B^T x [m^3/Pa times the unit of x]. Collective with follow().
   VectorXd apply(const VectorXd& x) const;
@@ -42,26 +50,24 @@ class DistributedSolves {
  private:
   enum Command : int { kApply = 0, kContact = 1, kDisplacement = 2 };
 
-  // The steps, on every rank.
-  VectorXd apply_step(VectorXd x) const;
-  VectorXd contact_step(VectorXd lambda) const;
-  VectorXd displacement_step(VectorXd lambda) const;
-  // This rank's rows of K^-1 r (rows solution_rows()), r = f - B^T lambda when with_load, else
-  // -B^T lambda, lambda broadcast from rank 0.
-  MatrixXd solve(VectorXd& lambda, bool with_load) const;
-  // The rows this rank gives of the next right-hand side: a block of dofs at first, then the
-  // rows of its solution (where MUMPS wants them).
-  const std::vector<Index>& rhs_rows() const;
+  // The steps, on every rank (lambda and x are rank 0's; the other ranks pass empty vectors).
+  VectorXd apply_step(const VectorXd& x) const;
+  VectorXd contact_step(const VectorXd& lambda) const;
+  VectorXd displacement_step(const VectorXd& lambda) const;
+  // This rank's rows of K^-1 r (rows solution_rows()) for r = f - B^T lambda (with_load) or
+  // -B^T lambda: this rank's part of f, and on rank 0 the contact dofs' -B^T lambda.
+  MatrixXd solve(const VectorXd& lambda, bool with_load) const;
 
   const MumpsFactor& factor_;
   const CommandChannel& channel_;
   const SparseMatrix* B_;
-  const VectorXd& f_;
   const std::vector<Index>& contact_dofs_;
-  std::vector<Index> first_rows_;
-  std::vector<Index> contact_position_;  // of each free dof in contact_dofs, or -1
-  mutable bool solved_ = false;
   int rank_ = 0;
+  // The rows this rank gives with the load: its part of f and, on rank 0, the contact dofs.
+  std::vector<Index> load_rows_;
+  VectorXd load_values_;
+  std::vector<Index> contact_in_load_rows_;  // rank 0: where each contact dof is in load_rows_
+  std::vector<Index> contact_position_;      // of each free dof in contact_dofs, or -1
 };
 
 }  // namespace fricon::parallel

@@ -251,9 +251,11 @@ MatrixXd MumpsFactor::solve_distributed(const std::vector<Index>& rows, MatrixXd
                "solve_distributed: right-hand sides " << rhs.rows() << " x " << rhs.cols()
                                                       << ", expected " << rows.size() << " x "
                                                       << n_rhs);
-  std::vector<MUMPS_INT> given(rows.size());
+  // A rank that gives no rows still passes allocated arrays (MUMPS checks that they exist).
+  std::vector<MUMPS_INT> given(std::max<std::size_t>(rows.size(), 1), 1);
   for (std::size_t k = 0; k < rows.size(); ++k)
     given[k] = static_cast<MUMPS_INT>(rows[k] + 1);
+  if (rhs.size() == 0) rhs.setZero(1, n_rhs);
   const int n_mine = id.info[22];  // INFO(23): pivots of this rank
   MatrixXd solution(std::max(n_mine, 1), n_rhs);
   std::vector<MUMPS_INT> solution_rows(static_cast<std::size_t>(std::max(n_mine, 1)));
