@@ -49,18 +49,51 @@ std::string region_list(const mesh::TetMesh& mesh) {
   return s;
 }
 
-// Loads on all 3 n_nodes components (fixed ones included), for totals and reactions.
-VectorXd full_load(const Problem& problem, const mesh::TetMesh& mesh, const fe::DofMap& dofs) {
+// The boundary triangles that are faces of the tetrahedra `elements` (each boundary triangle is
+// a face of exactly one tetrahedron), marked over all triangles.
+std::vector<bool> faces_of(const mesh::TetMesh& mesh, const std::vector<Index>& elements) {
+  using Triple = std::array<Index, 3>;
+  const auto sorted = [](Index a, Index b, Index c) {
+    Triple t{a, b, c};
+    std::sort(t.begin(), t.end());
+    return t;
+  };
+  std::map<Triple, Index> boundary;
+  for (Index f = 0; f < mesh.n_faces(); ++f)
+    boundary.emplace(sorted(mesh.faces(0, f), mesh.faces(1, f), mesh.faces(2, f)), f);
+  std::vector<bool> mine(static_cast<size_t>(mesh.n_faces()), false);
+  // Face k of a tetrahedron leaves out its vertex k.
+  for (Index t : elements)
+    for (int k = 0; k < 4; ++k) {
+      const Index v[3] = {mesh.tets((k + 1) % 4, t), mesh.tets((k + 2) % 4, t),
+                          mesh.tets((k + 3) % 4, t)};
+      if (auto it = boundary.find(sorted(v[0], v[1], v[2])); it != boundary.end())
+        mine[static_cast<size_t>(it->second)] = true;
+    }
+  return mine;
+}
+
+// The applied loads (tractions and volume force) over the free dofs of `dofs` from the tetrahedra
+// `elements` and the boundary triangles that are faces of them; of the whole mesh when null.
+// With all 3 n_nodes components as `dofs` it gives the totals and reactions.
+VectorXd applied_load(const Problem& problem, const mesh::TetMesh& mesh, const fe::DofMap& dofs,
+                      const std::vector<Index>* elements = nullptr) {
   VectorXd f = VectorXd::Zero(dofs.n_free());
+  const std::vector<bool> mine = elements ? faces_of(mesh, *elements) : std::vector<bool>{};
   for (size_t i = 0; i < problem.traction.size(); ++i) {
     const auto& t = problem.traction[i];
-    fe::add_traction(
-        mesh, dofs,
-        tagged_faces(mesh, problem, fmt::format("traction[{}].boundary", i), t.boundary), t.value,
-        f);
+    std::vector<Index> faces =
+        tagged_faces(mesh, problem, fmt::format("traction[{}].boundary", i), t.boundary);
+    if (elements)
+      std::erase_if(faces, [&mine](Index face) { return !mine[static_cast<size_t>(face)]; });
+    fe::add_traction(mesh, dofs, faces, t.value, f);
   }
-  if (problem.volume_force.squaredNorm() > 0)
-    fe::add_volume_force(mesh, dofs, problem.volume_force, f);
+  if (problem.volume_force.squaredNorm() > 0) {
+    if (elements)
+      fe::add_volume_force(mesh, dofs, problem.volume_force, f, *elements);
+    else
+      fe::add_volume_force(mesh, dofs, problem.volume_force, f);
+  }
   return f;
 }
 
@@ -83,9 +116,12 @@ void check_rigid_motions(const Problem& problem, const mesh::TetMesh& mesh,
 }
 
 // K_free,fixed times the prescribed displacements [N]: moved to the right-hand side.
-VectorXd prescribed_load(const Model& model) {
+// K_free,fixed times the prescribed displacements, of the tetrahedra `elements` (all when null).
+VectorXd prescribed_load(const Model& model, const std::vector<Index>* elements = nullptr) {
   if (model.prescribed.isZero(0.0)) return VectorXd::Zero(model.dofs.n_free());
-  return model.dofs.from_nodal(fe::internal_forces(model.mesh, model.materials, model.prescribed));
+  return model.dofs.from_nodal(
+      elements ? fe::internal_forces(model.mesh, model.materials, model.prescribed, *elements)
+               : fe::internal_forces(model.mesh, model.materials, model.prescribed));
 }
 
 }  // namespace
@@ -219,7 +255,7 @@ Model assemble(const Problem& problem, PhaseTimes& times, const PhaseCallback& o
     if (parts == Parts::LoadsAndStiffness)
       model.K = fe::assemble_stiffness(model.mesh, model.materials, model.dofs);
     if (parts != Parts::Dofs)
-      model.f = full_load(problem, model.mesh, model.dofs) - prescribed_load(model);
+      model.f = applied_load(problem, model.mesh, model.dofs) - prescribed_load(model);
   }
   return model;
 }
@@ -241,53 +277,10 @@ Model assemble_model(const Problem& problem, PhaseTimes& times,
   return assemble(problem, times, on_phase_start, Parts::LoadsAndStiffness);
 }
 
-namespace {
-
-// The boundary triangles that are faces of the tetrahedra `elements` (each boundary triangle is
-// a face of exactly one tetrahedron), marked over all triangles.
-std::vector<bool> faces_of(const mesh::TetMesh& mesh, const std::vector<Index>& elements) {
-  using Triple = std::array<Index, 3>;
-  const auto sorted = [](Index a, Index b, Index c) {
-    Triple t{a, b, c};
-    std::sort(t.begin(), t.end());
-    return t;
-  };
-  std::map<Triple, Index> boundary;
-  for (Index f = 0; f < mesh.n_faces(); ++f)
-    boundary.emplace(sorted(mesh.faces(0, f), mesh.faces(1, f), mesh.faces(2, f)), f);
-  std::vector<bool> mine(static_cast<size_t>(mesh.n_faces()), false);
-  // Face k of a tetrahedron leaves out its vertex k.
-  for (Index t : elements)
-    for (int k = 0; k < 4; ++k) {
-      const Index v[3] = {mesh.tets((k + 1) % 4, t), mesh.tets((k + 2) % 4, t),
-                          mesh.tets((k + 3) % 4, t)};
-      if (auto it = boundary.find(sorted(v[0], v[1], v[2])); it != boundary.end())
-        mine[static_cast<size_t>(it->second)] = true;
-    }
-  return mine;
-}
-
-}  // namespace
-
 VectorXd partial_load(const Problem& problem, const Model& model,
                       const std::vector<Index>& elements) {
-  const mesh::TetMesh& mesh = model.mesh;
-  VectorXd f = VectorXd::Zero(model.dofs.n_free());
-  const std::vector<bool> mine = faces_of(mesh, elements);
-  for (size_t i = 0; i < problem.traction.size(); ++i) {
-    const auto& t = problem.traction[i];
-    std::vector<Index> faces;
-    for (Index face :
-         tagged_faces(mesh, problem, fmt::format("traction[{}].boundary", i), t.boundary))
-      if (mine[static_cast<size_t>(face)]) faces.push_back(face);
-    fe::add_traction(mesh, model.dofs, faces, t.value, f);
-  }
-  if (problem.volume_force.squaredNorm() > 0)
-    fe::add_volume_force(mesh, model.dofs, problem.volume_force, f, elements);
-  if (!model.prescribed.isZero(0.0))
-    f -= model.dofs.from_nodal(
-        fe::internal_forces(mesh, model.materials, model.prescribed, elements));
-  return f;
+  return applied_load(problem, model.mesh, model.dofs, &elements) -
+         prescribed_load(model, &elements);
 }
 
 VectorXd stiffness_times(const Model& model, const VectorXd& w) {
@@ -330,12 +323,12 @@ Model build_model(const Problem& problem, PhaseTimes& times, const PhaseCallback
 
 Vec3 applied_force_total(const Problem& problem, const mesh::TetMesh& mesh) {
   const fe::DofMap all(mesh.n_nodes());
-  return all.to_nodal(full_load(problem, mesh, all)).rowwise().sum();
+  return all.to_nodal(applied_load(problem, mesh, all)).rowwise().sum();
 }
 
 Vec3 reaction_total(const Model& model, const Problem& problem, const fe::NodalField& u) {
   const fe::DofMap all(model.mesh.n_nodes());
-  const fe::NodalField load = all.to_nodal(full_load(problem, model.mesh, all));
+  const fe::NodalField load = all.to_nodal(applied_load(problem, model.mesh, all));
   const fe::NodalField internal = fe::internal_forces(model.mesh, model.materials, u);
   Vec3 r = Vec3::Zero();
   for (Index a = 0; a < model.mesh.n_nodes(); ++a)
