@@ -1,8 +1,6 @@
 #include "fricon/driver/model.hpp"
 
 #include <algorithm>
-#include <array>
-#include <map>
 
 #include <fmt/format.h>
 
@@ -49,41 +47,19 @@ std::string region_list(const mesh::TetMesh& mesh) {
   return s;
 }
 
-// The boundary triangles that are faces of the tetrahedra `elements` (each boundary triangle is
-// a face of exactly one tetrahedron), marked over all triangles.
-std::vector<bool> faces_of(const mesh::TetMesh& mesh, const std::vector<Index>& elements) {
-  using Triple = std::array<Index, 3>;
-  const auto sorted = [](Index a, Index b, Index c) {
-    Triple t{a, b, c};
-    std::sort(t.begin(), t.end());
-    return t;
-  };
-  std::map<Triple, Index> boundary;
-  for (Index f = 0; f < mesh.n_faces(); ++f)
-    boundary.emplace(sorted(mesh.faces(0, f), mesh.faces(1, f), mesh.faces(2, f)), f);
-  std::vector<bool> mine(static_cast<size_t>(mesh.n_faces()), false);
-  // Face k of a tetrahedron leaves out its vertex k.
-  for (Index t : elements)
-    for (int k = 0; k < 4; ++k) {
-      const Index v[3] = {mesh.tets((k + 1) % 4, t), mesh.tets((k + 2) % 4, t),
-                          mesh.tets((k + 3) % 4, t)};
-      if (auto it = boundary.find(sorted(v[0], v[1], v[2])); it != boundary.end())
-        mine[static_cast<size_t>(it->second)] = true;
-    }
-  return mine;
-}
-
 // The applied loads (tractions and volume force) over the free dofs of `dofs` from the tetrahedra
 // `elements` and the boundary triangles that are faces of them; of the whole mesh when null.
 // With all 3 n_nodes components as `dofs` it gives the totals and reactions.
 VectorXd applied_load(const Problem& problem, const mesh::TetMesh& mesh, const fe::DofMap& dofs,
                       const std::vector<Index>* elements = nullptr) {
   VectorXd f = VectorXd::Zero(dofs.n_free());
-  const std::vector<bool> mine = elements ? faces_of(mesh, *elements) : std::vector<bool>{};
+  const std::vector<bool> mine = elements ? mesh::faces_of(mesh, *elements) : std::vector<bool>{};
   for (size_t i = 0; i < problem.traction.size(); ++i) {
     const auto& t = problem.traction[i];
+    // A part of the mesh (a rank's) may have none of a tag's triangles; the whole mesh must.
     std::vector<Index> faces =
-        tagged_faces(mesh, problem, fmt::format("traction[{}].boundary", i), t.boundary);
+        elements ? mesh.faces_with_tag(t.boundary)
+                 : tagged_faces(mesh, problem, fmt::format("traction[{}].boundary", i), t.boundary);
     if (elements)
       std::erase_if(faces, [&mine](Index face) { return !mine[static_cast<size_t>(face)]; });
     fe::add_traction(mesh, dofs, faces, t.value, f);

@@ -1,7 +1,9 @@
 #include "fricon/mesh/tet_mesh.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
 
 #include <fmt/format.h>
 
@@ -189,6 +191,70 @@ FaceSharing face_sharing(const TetMesh& mesh) {
       ++s.n_overshared;
   });
   return s;
+}
+
+std::vector<bool> faces_of(const TetMesh& mesh, const std::vector<Index>& tets) {
+  using Triple = std::array<Index, 3>;
+  const auto sorted = [](Index a, Index b, Index c) {
+    Triple t{a, b, c};
+    std::sort(t.begin(), t.end());
+    return t;
+  };
+  std::multimap<Triple, Index> boundary;  // a triangle in several tags is several columns
+  for (Index f = 0; f < mesh.n_faces(); ++f)
+    boundary.emplace(sorted(mesh.faces(0, f), mesh.faces(1, f), mesh.faces(2, f)), f);
+  std::vector<bool> mine(static_cast<size_t>(mesh.n_faces()), false);
+  // Face k of a tetrahedron leaves out its vertex k.
+  for (Index t : tets)
+    for (int k = 0; k < 4; ++k) {
+      const auto [first, last] = boundary.equal_range(
+          sorted(mesh.tets((k + 1) % 4, t), mesh.tets((k + 2) % 4, t), mesh.tets((k + 3) % 4, t)));
+      for (auto it = first; it != last; ++it)
+        mine[static_cast<size_t>(it->second)] = true;
+    }
+  return mine;
+}
+
+TetMesh submesh(const TetMesh& mesh, const std::vector<Index>& tets, std::vector<Index>* nodes) {
+  // The nodes of the tetrahedra, ascending, and each one's index in the part.
+  std::vector<Index> local(static_cast<size_t>(mesh.n_nodes()), -1);
+  for (Index t : tets)
+    for (int a = 0; a < 4; ++a)
+      local[static_cast<size_t>(mesh.tets(a, t))] = 0;
+  std::vector<Index> global;
+  for (Index v = 0; v < mesh.n_nodes(); ++v)
+    if (local[static_cast<size_t>(v)] == 0) {
+      local[static_cast<size_t>(v)] = static_cast<Index>(global.size());
+      global.push_back(v);
+    }
+  const auto local_of = [&local](Index v) { return local[static_cast<size_t>(v)]; };
+
+  TetMesh part;
+  part.nodes = mesh.nodes(Eigen::all, global);
+  part.tets.resize(4, static_cast<Index>(tets.size()));
+  for (size_t k = 0; k < tets.size(); ++k)
+    for (int a = 0; a < 4; ++a)
+      part.tets(a, static_cast<Index>(k)) = local_of(mesh.tets(a, tets[k]));
+  if (!mesh.tet_region.empty())
+    for (Index t : tets)
+      part.tet_region.push_back(mesh.region(t));
+  part.region_names = mesh.region_names;
+
+  const std::vector<bool> mine = faces_of(mesh, tets);
+  std::vector<Index> faces;
+  for (Index f = 0; f < mesh.n_faces(); ++f)
+    if (mine[static_cast<size_t>(f)]) faces.push_back(f);
+  part.faces.resize(3, static_cast<Index>(faces.size()));
+  for (size_t k = 0; k < faces.size(); ++k) {
+    const Index f = faces[k];
+    for (int a = 0; a < 3; ++a)
+      part.faces(a, static_cast<Index>(k)) = local_of(mesh.faces(a, f));
+    part.face_tag.push_back(mesh.face_tag[static_cast<size_t>(f)]);
+    if (!mesh.face_entity.empty()) part.face_entity.push_back(mesh.face_entity[static_cast<size_t>(f)]);
+  }
+  part.tag_names = mesh.tag_names;
+  if (nodes != nullptr) *nodes = std::move(global);
+  return part;
 }
 
 Eigen::Matrix<Index, 3, Eigen::Dynamic> boundary_faces_of(const TetMesh& mesh) {

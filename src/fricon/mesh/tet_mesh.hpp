@@ -87,6 +87,19 @@ FaceSharing face_sharing(const TetMesh& mesh);
 /// Extracts the faces that belong to exactly one tetrahedron, oriented outward.
 Eigen::Matrix<Index, 3, Eigen::Dynamic> boundary_faces_of(const TetMesh& mesh);
 
+/// The boundary triangles (columns of mesh.faces) that are faces of the tetrahedra `tets`, marked
+/// over all triangles: each boundary triangle is a face of exactly one tetrahedron, so over a
+/// partition of the tetrahedra every triangle is marked once (each copy of a triangle that
+/// carries several tags).
+std::vector<bool> faces_of(const TetMesh& mesh, const std::vector<Index>& tets);
+
+/// The mesh of the tetrahedra `tets` (ascending indices into mesh.tets) alone: their nodes (in
+/// ascending order of their index in `mesh`, given back in `nodes` when not null), the boundary
+/// triangles that are faces of them (faces_of) with their tags and entities, their regions, and
+/// every tag and region name of `mesh` (so that a part knows the names of the whole).
+TetMesh submesh(const TetMesh& mesh, const std::vector<Index>& tets,
+                std::vector<Index>* nodes = nullptr);
+
 /// Orders every boundary triangle of `mesh` counter-clockwise seen from outside the tetrahedron
 /// it bounds (tetrahedra positively oriented). Returns the index of the first triangle that is no
 /// face of any tetrahedron, or -1 when every one is (the caller names it in its message).
