@@ -126,16 +126,22 @@ TEST(MumpsFactor, DistributedInteriorSolvesOfTheSchurFactor) {
 void expect_distributed_steps(const MumpsFactor& factor, const MatrixXd& K, const MatrixXd& B) {
   const SparseMatrix B_sparse = B.sparseView();
   const VectorXd f = VectorXd::LinSpaced(kN, 1.0, -0.5);
+  // The contact dofs in descending order (position() must not rely on their order), and the
+  // coupling built on rank 0 alone: the others have it from broadcast().
   std::vector<Index> contact_dofs;
-  for (Index j = 0; j < kN; ++j)
+  for (Index j = kN - 1; j >= 0; --j)
     if (B.col(j).squaredNorm() > 0.0) contact_dofs.push_back(j);
+  ContactCoupling contact =
+      world_rank() == 0 ? ContactCoupling::of(B_sparse, contact_dofs) : ContactCoupling{};
+  contact.broadcast(world());
+  ASSERT_EQ(contact.dofs, contact_dofs);
+  ASSERT_EQ(contact.B.rows(), kM);
   const CommandChannel channel(world());
   // Every rank gives f / size on every row: MUMPS sums the rows that several ranks give.
   const int size = world_size();
   std::vector<Index> all_rows(static_cast<std::size_t>(kN));
   std::iota(all_rows.begin(), all_rows.end(), Index{0});
-  const DistributedSolves solves(factor, channel, &B_sparse, LoadPart{all_rows, f / size},
-                                 contact_dofs);
+  const DistributedSolves solves(factor, channel, &contact, LoadPart{all_rows, f / size});
   if (world_rank() != 0) {
     EXPECT_EQ(solves.follow(), 7);
     return;
@@ -149,8 +155,8 @@ void expect_distributed_steps(const MumpsFactor& factor, const MatrixXd& K, cons
   VectorXd w_c = VectorXd::Constant(kN, 99.0);
   solves.contact_displacement(x, w_c);
   for (Index j = 0; j < kN; ++j) {
-    const bool contact = B.col(j).squaredNorm() > 0.0;
-    EXPECT_NEAR(w_c(j), contact ? w(j) : 99.0, kAgree * w.norm()) << "dof " << j;
+    const bool on_contact = B.col(j).squaredNorm() > 0.0;
+    EXPECT_NEAR(w_c(j), on_contact ? w(j) : 99.0, kAgree * w.norm()) << "dof " << j;
   }
   channel.finish(7);
 }

@@ -1,7 +1,9 @@
 // parallel/mpi: driver::run on the ranks of an MPI job (docs/parallel.md, docs/theory.md §3.3).
-//   every rank   mesh, dofs, contact discretization (the same on every rank; f whole on rank 0)
-//                -> partition of the tetrahedra -> the entries of K and the part of f of its
-//                own tetrahedra
+//   rank 0       the whole model without K (mesh, dofs, f for the residuals) and the contact
+//                discretization -> partition of the tetrahedra -> to each rank its part of the
+//                model (its tetrahedra and their nodes, numbered within the part) and to every
+//                rank B on the contact dofs
+//   every rank   the entries of K and the part of f of its own tetrahedra
 //   all ranks    one MUMPS factorization (of K, or of [[K, B^T], [B, 0]] with Q as its Schur
 //                complement on rank 0)
 //   rank 0       dual operator -> outer loop of dual QPs -> postprocessing, while the others
@@ -24,6 +26,7 @@
 #include "fricon/parallel/mpi/mumps_factor.hpp"
 #include "fricon/parallel/mpi/mumps_operator.hpp"
 #include "fricon/parallel/mpi/partition.hpp"
+#include "fricon/parallel/mpi/scatter_model.hpp"
 #include "fricon/parallel/mpi/session.hpp"
 
 namespace fricon::parallel {
@@ -43,20 +46,24 @@ dual::DualOperatorKind operator_kind(dual::DualOperatorKind asked, Index n_dual)
                                    : dual::DualOperatorKind::Implicit;
 }
 
-// The lower triangle of this rank's part of K and, when B is given (rank 0 of a Schur
-// factorization), the block B below K in the augmented matrix.
-LocalEntries local_entries(const driver::Model& m, const std::vector<Index>& mine,
-                           const SparseMatrix* B) {
+// The lower triangle of this rank's part of K (in the whole model's numbering) and, when B is
+// given (rank 0 of a Schur factorization), the block B below K in the augmented matrix.
+LocalEntries local_entries(const driver::ModelPart& part, const SparseMatrix* B) {
   LocalEntries e;
   {
-    const SparseMatrix K_part = fe::assemble_stiffness(m.mesh, m.materials, m.dofs, mine);
+    const driver::Model& m = part.model;
+    const SparseMatrix K_part = fe::assemble_stiffness(m.mesh, m.materials, m.dofs);
     const Index n_lower = (K_part.nonZeros() + K_part.rows()) / 2;
     e.rows.reserve(static_cast<std::size_t>(n_lower));
     e.cols.reserve(static_cast<std::size_t>(n_lower));
     e.values.reserve(static_cast<std::size_t>(n_lower));
+    // global_dof is ascending: the lower triangle of the part is in the lower triangle of K.
+    const std::vector<Index>& global = part.global_dof;
     for (Index j = 0; j < K_part.outerSize(); ++j)
       for (SparseMatrix::InnerIterator it(K_part, j); it; ++it)
-        if (it.row() >= j) e.add(it.row(), j, it.value());
+        if (it.row() >= j)
+          e.add(global[static_cast<std::size_t>(it.row())], global[static_cast<std::size_t>(j)],
+                it.value());
   }
   if (B != nullptr) {
     const Index n_free = B->cols();
@@ -100,6 +107,19 @@ linalg::CholeskyInfo factor_info(const MumpsInfo& m) {
   i.rcond = 0.0;  // MUMPS gives no estimate here
   i.blas_threads = linalg::threads();
   return i;
+}
+
+// What the other ranks need to know of rank 0's model: its number of free dofs and whether it
+// has contact. Collective.
+struct ModelSizes {
+  Index n_free = 0;
+  bool contact = false;
+};
+
+ModelSizes broadcast_sizes(const driver::Model& m, bool contact, MPI_Comm comm) {
+  long sizes[2] = {static_cast<long>(m.dofs.n_free()), contact ? 1 : 0};
+  MPI_Bcast(sizes, 2, MPI_LONG, 0, comm);
+  return {static_cast<Index>(sizes[0]), sizes[1] != 0};
 }
 
 // Every rank's figures, on rank 0. Collective.
@@ -160,44 +180,53 @@ RunResult run_distributed(const driver::Problem& problem, const RunOptions& opti
   par.n_ranks = size;
   par.partition = problem.solver.partition;
 
-  // @sect: every rank: the model without K, and the contact discretization.
+  // @sect: rank 0: the model without K, and the contact discretization; every rank checks
+  // its problem.
   std::optional<contact::ContactDiscretization> disc;
   collectively([&] {
     driver::validate(problem);
-    // f whole on rank 0 only, for the residuals of the postprocessing; every rank assembles its
+    if (rank != 0) return;
+    // f whole on rank 0, for the residuals of the postprocessing; every rank assembles its
     // part of it below.
-    r.model = rank == 0 ? driver::assemble_loads(problem, rep.times, opts.on_phase_start)
-                        : driver::assemble_dofs(problem, rep.times, opts.on_phase_start);
+    r.model = driver::assemble_loads(problem, rep.times, opts.on_phase_start);
     if (problem.contact) {
       driver::phase_start(opts, "contact");
       ScopedPhase phase(rep.times, "contact");
       disc = driver::discretize_contact(problem, r.model.mesh, r.model.dofs);
     }
   });
-  const double model_mib = peak_memory_mib();  // what the replicated input costs this rank
-  const Index n_free = r.model.dofs.n_free();
+  const ModelSizes sizes = broadcast_sizes(r.model, disc.has_value(), world());
+  std::optional<ContactCoupling> contact;
+  if (sizes.contact) {
+    contact = rank == 0 ? ContactCoupling::of(disc->B, disc->dofs) : ContactCoupling{};
+    contact->broadcast(world());
+  }
   const dual::DualOperatorKind kind =
-      disc ? operator_kind(problem.solver.dual_operator, disc->n_dual())
-           : dual::DualOperatorKind::Implicit;
-  const bool with_schur = disc && kind == dual::DualOperatorKind::Schur;
-  par.n_schur = with_schur ? disc->n_dual() : 0;
+      contact ? operator_kind(problem.solver.dual_operator, contact->B.rows())
+              : dual::DualOperatorKind::Implicit;
+  const bool with_schur = contact && kind == dual::DualOperatorKind::Schur;
+  par.n_schur = with_schur ? contact->B.rows() : 0;
 
-  // @sect: the partition, and each rank's part of K (and B, on rank 0) and of f.
+  // @sect: the partition; each rank's part of the model, and its part of K (and B, on rank 0)
+  // and of f.
   driver::phase_start(opts, "partition");
+  driver::ModelPart part;
+  collectively([&] {
+    ScopedPhase phase(rep.times, "partition");
+    const std::vector<int> owner =
+        partition_elements(rank == 0 ? &r.model.mesh : nullptr, par.partition, world());
+    part = scatter_model(problem, rank == 0 ? &r.model : nullptr, owner, world());
+  });
+  const double model_mib = peak_memory_mib();  // what this rank's input costs it
+  const Index n_mine = part.model.mesh.n_tets();
   LocalEntries entries;
   LoadPart load;
-  Index n_mine = 0;
   collectively([&] {
-    std::vector<Index> mine;
-    {
-      ScopedPhase phase(rep.times, "partition");
-      mine = elements_of(partition_elements(r.model.mesh, par.partition, world()), rank);
-    }
-    n_mine = static_cast<Index>(mine.size());
     ScopedPhase phase(rep.times, "assembly");
-    entries = local_entries(r.model, mine, with_schur && rank == 0 ? &disc->B : nullptr);
-    load = LoadPart::of(driver::partial_load(problem, r.model, mine));
+    entries = local_entries(part, with_schur && rank == 0 ? &disc->B : nullptr);
+    load = LoadPart::of(driver::part_load(problem, part), part.global_dof);
   });
+  part = driver::ModelPart{};  // MUMPS has the entries now
 
   // @sect: one factorization across the ranks.
   driver::phase_start(opts, "factorize");
@@ -205,15 +234,13 @@ RunResult run_distributed(const driver::Problem& problem, const RunOptions& opti
   collectively([&] {
     ScopedPhase phase(rep.times, "factorize");
     const std::vector<Index> order = rank == 0 ? free_dof_order(r.model) : std::vector<Index>{};
-    factor = std::make_unique<MumpsFactor>(world(), n_free, par.n_schur, std::move(entries), order,
-                                           memory_limit(problem));
+    factor = std::make_unique<MumpsFactor>(world(), sizes.n_free, par.n_schur, std::move(entries),
+                                           order, memory_limit(problem));
   });
 
   // @sect: the ranks other than 0 take part in rank 0's solves until it ends the run.
   const CommandChannel channel(world());
-  const std::vector<Index> no_contact_dofs;
-  const DistributedSolves solves(*factor, channel, disc ? &disc->B : nullptr, std::move(load),
-                                 disc ? disc->dofs : no_contact_dofs);
+  const DistributedSolves solves(*factor, channel, contact ? &*contact : nullptr, std::move(load));
   if (rank != 0) {
     driver::phase_start(options, "follow");  // (a stop request is rank 0's to act on)
     rep.status = static_cast<driver::Status>(solves.follow());

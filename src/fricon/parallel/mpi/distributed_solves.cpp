@@ -21,23 +21,88 @@ void sum_on_rank_0(VectorXd& x, int rank, MPI_Comm comm) {
 
 }  // namespace
 
-LoadPart LoadPart::of(const VectorXd& partial) {
+LoadPart LoadPart::of(const VectorXd& part_load, const std::vector<Index>& global_dof) {
+  FRICON_CHECK(part_load.size() == static_cast<Index>(global_dof.size()),
+               "a load part of " << part_load.size() << " rows for " << global_dof.size()
+                                 << " dofs");
   LoadPart part;
-  for (Index i = 0; i < partial.size(); ++i)
-    if (partial(i) != 0.0) part.rows.push_back(i);
-  part.values = partial(part.rows);
+  std::vector<Index> local;
+  for (Index i = 0; i < part_load.size(); ++i)
+    if (part_load(i) != 0.0) {
+      local.push_back(i);
+      part.rows.push_back(global_dof[static_cast<std::size_t>(i)]);
+    }
+  part.values = part_load(local);
   return part;
 }
 
+ContactCoupling ContactCoupling::of(const SparseMatrix& B, const std::vector<Index>& dofs) {
+  ContactCoupling c;
+  c.dofs = dofs;
+  std::vector<Eigen::Triplet<Real>> entries;
+  for (std::size_t k = 0; k < dofs.size(); ++k)
+    for (SparseMatrix::InnerIterator it(B, dofs[k]); it; ++it)
+      entries.emplace_back(it.row(), static_cast<Index>(k), it.value());
+  c.B.resize(B.rows(), static_cast<Index>(dofs.size()));
+  c.B.setFromTriplets(entries.begin(), entries.end());
+  c.index();
+  return c;
+}
+
+void ContactCoupling::index() {
+  by_dof_.clear();
+  for (std::size_t k = 0; k < dofs.size(); ++k)
+    by_dof_.emplace_back(dofs[k], static_cast<Index>(k));
+  std::sort(by_dof_.begin(), by_dof_.end());
+}
+
+Index ContactCoupling::position(Index dof) const {
+  const auto it = std::lower_bound(by_dof_.begin(), by_dof_.end(), std::pair<Index, Index>{dof, -1});
+  return it != by_dof_.end() && it->first == dof ? it->second : -1;
+}
+
+void ContactCoupling::broadcast(MPI_Comm comm) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  // The sizes, then the contact dofs and B's compressed columns.
+  long sizes[3] = {static_cast<long>(B.rows()), static_cast<long>(dofs.size()),
+                   static_cast<long>(B.nonZeros())};
+  MPI_Bcast(sizes, 3, MPI_LONG, 0, comm);
+  std::vector<long> dof(dofs.begin(), dofs.end()), start(static_cast<std::size_t>(sizes[1] + 1)),
+      row(static_cast<std::size_t>(sizes[2]));
+  std::vector<double> value(static_cast<std::size_t>(sizes[2]));
+  if (rank == 0) {
+    B.makeCompressed();
+    std::copy(B.outerIndexPtr(), B.outerIndexPtr() + sizes[1] + 1, start.begin());
+    std::copy(B.innerIndexPtr(), B.innerIndexPtr() + sizes[2], row.begin());
+    std::copy(B.valuePtr(), B.valuePtr() + sizes[2], value.begin());
+  } else {
+    dof.resize(static_cast<std::size_t>(sizes[1]));
+  }
+  MPI_Bcast(dof.data(), static_cast<int>(sizes[1]), MPI_LONG, 0, comm);
+  MPI_Bcast(start.data(), static_cast<int>(sizes[1] + 1), MPI_LONG, 0, comm);
+  MPI_Bcast(row.data(), static_cast<int>(sizes[2]), MPI_LONG, 0, comm);
+  MPI_Bcast(value.data(), static_cast<int>(sizes[2]), MPI_DOUBLE, 0, comm);
+  if (rank != 0) {
+    dofs.assign(dof.begin(), dof.end());
+    std::vector<Eigen::Triplet<Real>> entries;
+    for (long c = 0; c < sizes[1]; ++c)
+      for (long k = start[static_cast<std::size_t>(c)]; k < start[static_cast<std::size_t>(c + 1)];
+           ++k)
+        entries.emplace_back(row[static_cast<std::size_t>(k)], c, value[static_cast<std::size_t>(k)]);
+    B.resize(sizes[0], sizes[1]);
+    B.setFromTriplets(entries.begin(), entries.end());
+  }
+  index();
+}
+
 DistributedSolves::DistributedSolves(const MumpsFactor& factor, const CommandChannel& channel,
-                                     const SparseMatrix* B, LoadPart load,
-                                     const std::vector<Index>& contact_dofs)
-    : factor_(factor), channel_(channel), B_(B), contact_dofs_(contact_dofs) {
+                                     const ContactCoupling* contact, LoadPart load)
+    : factor_(factor),
+      channel_(channel),
+      contact_(contact),
+      contact_dofs_(contact ? contact->dofs : no_contact_dofs_) {
   MPI_Comm_rank(world(), &rank_);
-  const Index n = factor_.n_free();
-  contact_position_.assign(static_cast<std::size_t>(n), -1);
-  for (std::size_t c = 0; c < contact_dofs_.size(); ++c)
-    contact_position_[static_cast<std::size_t>(contact_dofs_[c])] = static_cast<Index>(c);
   if (rank_ != 0 || contact_dofs_.empty()) {
     load_rows_ = std::move(load.rows);
     load_values_ = std::move(load.values);
@@ -62,10 +127,8 @@ DistributedSolves::DistributedSolves(const MumpsFactor& factor, const CommandCha
 MatrixXd DistributedSolves::solve(const VectorXd& lambda, bool with_load) const {
   // Rank 0: (B^T lambda)_j on the contact dofs j (B's columns are the free dofs).
   VectorXd bt_lambda = VectorXd::Zero(static_cast<Index>(contact_dofs_.size()));
-  if (rank_ == 0 && B_ != nullptr && lambda.size() > 0)
-    for (std::size_t c = 0; c < contact_dofs_.size(); ++c)
-      for (SparseMatrix::InnerIterator it(*B_, contact_dofs_[c]); it; ++it)
-        bt_lambda(static_cast<Index>(c)) += it.value() * lambda(it.row());
+  if (rank_ == 0 && contact_ != nullptr && lambda.size() > 0)
+    bt_lambda = contact_->B.transpose() * lambda;
   if (with_load) {
     MatrixXd rhs = load_values_;
     for (std::size_t c = 0; c < contact_in_load_rows_.size(); ++c)
@@ -79,11 +142,12 @@ MatrixXd DistributedSolves::solve(const VectorXd& lambda, bool with_load) const 
 VectorXd DistributedSolves::apply_step(const VectorXd& x) const {
   // B K^-1 B^T x = -B (K^-1 (-B^T x)): each rank sums the columns of B at its solution rows.
   const MatrixXd mine = solve(x, false);
-  VectorXd y = VectorXd::Zero(B_->rows());
+  VectorXd y = VectorXd::Zero(contact_->B.rows());
   const std::vector<Index>& rows = factor_.solution_rows();
   for (std::size_t k = 0; k < rows.size(); ++k)
-    for (SparseMatrix::InnerIterator it(*B_, rows[k]); it; ++it)
-      y(it.row()) -= it.value() * mine(static_cast<Index>(k), 0);
+    if (const Index c = contact_->position(rows[k]); c >= 0)
+      for (SparseMatrix::InnerIterator it(contact_->B, c); it; ++it)
+        y(it.row()) -= it.value() * mine(static_cast<Index>(k), 0);
   sum_on_rank_0(y, rank_, world());
   return y;
 }
@@ -94,7 +158,7 @@ VectorXd DistributedSolves::contact_step(const VectorXd& lambda) const {
   VectorXd w_c = VectorXd::Zero(static_cast<Index>(contact_dofs_.size()));
   const std::vector<Index>& rows = factor_.solution_rows();
   for (std::size_t k = 0; k < rows.size(); ++k)
-    if (const Index c = contact_position_[static_cast<std::size_t>(rows[k])]; c >= 0)
+    if (const Index c = contact_->position(rows[k]); c >= 0)
       w_c(c) = mine(static_cast<Index>(k), 0);
   sum_on_rank_0(w_c, rank_, world());
   return w_c;

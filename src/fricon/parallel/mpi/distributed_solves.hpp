@@ -10,6 +10,7 @@
 // Rank 0 calls these; each first sends its command to the other ranks, which run the same step
 // from follow().
 
+#include <utility>
 #include <vector>
 
 #include "fricon/core/types.hpp"
@@ -20,18 +21,36 @@ namespace fricon::parallel {
 
 /// A rank's part of the load vector: the rows its tetrahedra touch and their values [N].
 struct LoadPart {
-  std::vector<Index> rows;  ///< free dofs, ascending
+  std::vector<Index> rows;  ///< free dofs of the whole model, ascending
   VectorXd values;
-  /// The non-zero rows of `partial` (a rank's driver::partial_load).
-  static LoadPart of(const VectorXd& partial);
+  /// The non-zero rows of `part_load` (driver::part_load, over the part's own free dofs), in the
+  /// whole model's numbering `global_dof` (ascending, driver::ModelPart).
+  static LoadPart of(const VectorXd& part_load, const std::vector<Index>& global_dof);
+};
+
+/// What every rank needs of the contact discretization: B on the contact dofs only
+/// (O(contact surface), where B itself has a column per free dof).
+struct ContactCoupling {
+  std::vector<Index> dofs;  ///< the free dofs B touches (contact::ContactDiscretization::dofs)
+  SparseMatrix B;           ///< n_dual x dofs.size(): column c is B's column dofs[c] [m^2]
+  /// From the whole B (n_dual x n_free) and its contact dofs.
+  static ContactCoupling of(const SparseMatrix& B, const std::vector<Index>& dofs);
+  /// The position of free dof `dof` in `dofs`, or -1 when it is not a contact dof.
+  Index position(Index dof) const;
+  /// Rank 0's coupling on every rank of `comm`. Collective.
+  void broadcast(MPI_Comm comm);
+
+ private:
+  void index();
+  std::vector<std::pair<Index, Index>> by_dof_;  // (dof, position), ascending
 };
 
 class DistributedSolves {
  public:
-  /// Every rank, with the same B (n_dual x n_free [m^2]; null without contact) and contact dofs
-  /// (the free dofs B touches), and its own part of f. The references must outlive this object.
-  DistributedSolves(const MumpsFactor& factor, const CommandChannel& channel, const SparseMatrix* B,
-                    LoadPart load, const std::vector<Index>& contact_dofs);
+  /// Every rank, with the same contact coupling (null without contact) and its own part of f.
+  /// The references must outlive this object.
+  DistributedSolves(const MumpsFactor& factor, const CommandChannel& channel,
+                    const ContactCoupling* contact, LoadPart load);
 
   /// Rank 0: Q x = B K^-1 B^T x [m^3/Pa times the unit of x]. Collective with follow().
   VectorXd apply(const VectorXd& x) const;
@@ -60,14 +79,14 @@ class DistributedSolves {
 
   const MumpsFactor& factor_;
   const CommandChannel& channel_;
-  const SparseMatrix* B_;
-  const std::vector<Index>& contact_dofs_;
+  const ContactCoupling* contact_;
+  const std::vector<Index> no_contact_dofs_;
+  const std::vector<Index>& contact_dofs_;  // contact_->dofs, or none
   int rank_ = 0;
   // The rows this rank gives with the load: its part of f and, on rank 0, the contact dofs.
   std::vector<Index> load_rows_;
   VectorXd load_values_;
   std::vector<Index> contact_in_load_rows_;  // rank 0: where each contact dof is in load_rows_
-  std::vector<Index> contact_position_;      // of each free dof in contact_dofs, or -1
 };
 
 }  // namespace fricon::parallel

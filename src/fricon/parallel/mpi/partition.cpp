@@ -39,7 +39,13 @@ struct FaceSide {
   bool operator<(const FaceSide& o) const { return key < o.key || (key == o.key && tet < o.tet); }
 };
 
-std::vector<std::vector<Index>> dual_graph(const mesh::TetMesh& mesh) {
+// The dual graph in compressed rows: the neighbours of tetrahedron t are
+// adj[start[t] .. start[t + 1]), ascending.
+struct DualGraph {
+  std::vector<PetscInt> start, adj;
+};
+
+DualGraph dual_graph(const mesh::TetMesh& mesh) {
   std::vector<FaceSide> sides;
   sides.reserve(static_cast<std::size_t>(4 * mesh.n_tets()));
   for (Index t = 0; t < mesh.n_tets(); ++t)
@@ -52,36 +58,93 @@ std::vector<std::vector<Index>> dual_graph(const mesh::TetMesh& mesh) {
       sides.push_back({k, t});
     }
   std::sort(sides.begin(), sides.end());
-  std::vector<std::vector<Index>> adj(static_cast<std::size_t>(mesh.n_tets()));
+  std::vector<std::vector<Index>> neighbours(static_cast<std::size_t>(mesh.n_tets()));
   for (std::size_t i = 0; i + 1 < sides.size(); ++i)
     if (sides[i].key == sides[i + 1].key) {
-      adj[static_cast<std::size_t>(sides[i].tet)].push_back(sides[i + 1].tet);
-      adj[static_cast<std::size_t>(sides[i + 1].tet)].push_back(sides[i].tet);
+      neighbours[static_cast<std::size_t>(sides[i].tet)].push_back(sides[i + 1].tet);
+      neighbours[static_cast<std::size_t>(sides[i + 1].tet)].push_back(sides[i].tet);
     }
-  return adj;
+  DualGraph g;
+  g.start.push_back(0);
+  for (auto& n : neighbours) {
+    std::sort(n.begin(), n.end());
+    g.adj.insert(g.adj.end(), n.begin(), n.end());
+    g.start.push_back(static_cast<PetscInt>(g.adj.size()));
+  }
+  return g;
 }
 
-std::vector<int> graph_partition(const mesh::TetMesh& mesh, MPI_Comm comm, int rank, int size) {
-  const Index n = mesh.n_tets();
-  const Index lo = block_begin(n, rank, size), hi = block_begin(n, rank + 1, size);
-  const std::vector<std::vector<Index>> adj = dual_graph(mesh);
-  // MatCreateMPIAdj takes ownership of arrays allocated with PetscMalloc.
-  PetscInt *ia = nullptr, *ja = nullptr;
-  Index n_edges = 0;
-  for (Index t = lo; t < hi; ++t)
-    n_edges += static_cast<Index>(adj[static_cast<std::size_t>(t)].size());
-  check(PetscMalloc1(hi - lo + 1, &ia), "PetscMalloc1");
-  check(PetscMalloc1(std::max<Index>(n_edges, 1), &ja), "PetscMalloc1");
-  ia[0] = 0;
-  for (Index t = lo; t < hi; ++t) {
-    const auto& a = adj[static_cast<std::size_t>(t)];
-    std::copy(a.begin(), a.end(), ja + ia[t - lo]);
-    std::sort(ja + ia[t - lo], ja + ia[t - lo] + a.size());
-    ia[t - lo + 1] = ia[t - lo] + static_cast<PetscInt>(a.size());
+void check_mpi(int code, const char* what) {
+  if (code != MPI_SUCCESS)
+    throw Error(fmt::format("partitioning the mesh: {} failed (MPI error {})", what, code));
+}
+
+// The counts and offsets of the blocks of `n` items by rank, as MPI's v-collectives take them.
+struct Blocks {
+  std::vector<int> counts, offsets;
+};
+
+Blocks tet_blocks(Index n, int size) {
+  Blocks b;
+  for (int r = 0; r < size; ++r) {
+    b.offsets.push_back(static_cast<int>(block_begin(n, r, size)));
+    b.counts.push_back(static_cast<int>(block_begin(n, r + 1, size) - block_begin(n, r, size)));
   }
+  return b;
+}
+
+// This rank's rows of the dual graph, scattered from rank 0's whole graph, in the arrays that
+// MatCreateMPIAdj takes (allocated with PetscMalloc: the matrix owns them).
+struct AdjacencyRows {
+  PetscInt* ia = nullptr;
+  PetscInt* ja = nullptr;
+};
+
+AdjacencyRows scatter_rows(const DualGraph* g, Index n, MPI_Comm comm, int rank, int size) {
+  const Blocks rows = tet_blocks(n, size);
+  const int n_mine = rows.counts[static_cast<std::size_t>(rank)];
+  // The degree of each tetrahedron, then the neighbours, block by block.
+  std::vector<PetscInt> degree;
+  Blocks edges;
+  if (rank == 0) {
+    for (Index t = 0; t < n; ++t)
+      degree.push_back(g->start[static_cast<std::size_t>(t + 1)] -
+                       g->start[static_cast<std::size_t>(t)]);
+    for (int r = 0; r < size; ++r) {
+      const auto lo = static_cast<std::size_t>(rows.offsets[static_cast<std::size_t>(r)]);
+      const auto hi = lo + static_cast<std::size_t>(rows.counts[static_cast<std::size_t>(r)]);
+      edges.offsets.push_back(static_cast<int>(g->start[lo]));
+      edges.counts.push_back(static_cast<int>(g->start[hi] - g->start[lo]));
+    }
+  }
+  std::vector<PetscInt> my_degree(static_cast<std::size_t>(n_mine));
+  check_mpi(MPI_Scatterv(degree.data(), rows.counts.data(), rows.offsets.data(), MPIU_INT,
+                         my_degree.data(), n_mine, MPIU_INT, 0, comm),
+            "MPI_Scatterv");
+  AdjacencyRows a;
+  check(PetscMalloc1(n_mine + 1, &a.ia), "PetscMalloc1");
+  a.ia[0] = 0;
+  for (int k = 0; k < n_mine; ++k)
+    a.ia[k + 1] = a.ia[k] + my_degree[static_cast<std::size_t>(k)];
+  check(PetscMalloc1(std::max<PetscInt>(a.ia[n_mine], 1), &a.ja), "PetscMalloc1");
+  check_mpi(MPI_Scatterv(rank == 0 ? g->adj.data() : nullptr, edges.counts.data(),
+                         edges.offsets.data(), MPIU_INT, a.ja, static_cast<int>(a.ia[n_mine]),
+                         MPIU_INT, 0, comm),
+            "MPI_Scatterv");
+  return a;
+}
+
+std::vector<int> graph_partition(const mesh::TetMesh* mesh, Index n, MPI_Comm comm, int rank,
+                                 int size) {
+  const Blocks rows = tet_blocks(n, size);
+  AdjacencyRows a;
+  {
+    const DualGraph g = rank == 0 ? dual_graph(*mesh) : DualGraph{};
+    a = scatter_rows(rank == 0 ? &g : nullptr, n, comm, rank, size);
+  }
+  const int n_mine = rows.counts[static_cast<std::size_t>(rank)];
   Mat graph = nullptr;
-  check(MatCreateMPIAdj(comm, static_cast<PetscInt>(hi - lo), static_cast<PetscInt>(n), ia, ja,
-                        nullptr, &graph),
+  check(MatCreateMPIAdj(comm, n_mine, static_cast<PetscInt>(n), a.ia, a.ja, nullptr, &graph),
         "MatCreateMPIAdj");
   MatPartitioning part = nullptr;
   IS parts = nullptr;
@@ -92,37 +155,33 @@ std::vector<int> graph_partition(const mesh::TetMesh& mesh, MPI_Comm comm, int r
   check(MatPartitioningApply(part, &parts), "MatPartitioningApply");
   const PetscInt* mine = nullptr;
   check(ISGetIndices(parts, &mine), "ISGetIndices");
-  std::vector<int> local(mine, mine + (hi - lo));
+  std::vector<int> local(mine, mine + n_mine);
   check(ISRestoreIndices(parts, &mine), "ISRestoreIndices");
   ISDestroy(&parts);
   MatPartitioningDestroy(&part);
   MatDestroy(&graph);
-  // Every rank gets the whole owner array (the mesh is on every rank too).
-  std::vector<int> counts(static_cast<std::size_t>(size)), starts(static_cast<std::size_t>(size));
-  for (int r = 0; r < size; ++r) {
-    starts[static_cast<std::size_t>(r)] = static_cast<int>(block_begin(n, r, size));
-    counts[static_cast<std::size_t>(r)] =
-        static_cast<int>(block_begin(n, r + 1, size) - block_begin(n, r, size));
-  }
-  std::vector<int> owner(static_cast<std::size_t>(n));
-  if (MPI_Allgatherv(local.data(), static_cast<int>(local.size()), MPI_INT, owner.data(),
-                     counts.data(), starts.data(), MPI_INT, comm) != MPI_SUCCESS)
-    throw Error("partitioning the mesh: MPI_Allgatherv failed");
+  // Rank 0 gathers the owners: it gives each rank its part of the model.
+  std::vector<int> owner(rank == 0 ? static_cast<std::size_t>(n) : 0);
+  check_mpi(MPI_Gatherv(local.data(), n_mine, MPI_INT, owner.data(), rows.counts.data(),
+                        rows.offsets.data(), MPI_INT, 0, comm),
+            "MPI_Gatherv");
   return owner;
 }
 
 }  // namespace
 
-std::vector<int> partition_elements(const mesh::TetMesh& mesh, PartitionKind kind, MPI_Comm comm) {
+std::vector<int> partition_elements(const mesh::TetMesh* mesh, PartitionKind kind, MPI_Comm comm) {
   int rank = 0, size = 1;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
-  if (size == 1) return std::vector<int>(static_cast<std::size_t>(mesh.n_tets()), 0);
+  long n = rank == 0 ? static_cast<long>(mesh->n_tets()) : 0;
+  check_mpi(MPI_Bcast(&n, 1, MPI_LONG, 0, comm), "MPI_Bcast");
+  if (size == 1) return std::vector<int>(static_cast<std::size_t>(n), 0);
   switch (kind) {
     case PartitionKind::Graph:
-      return graph_partition(mesh, comm, rank, size);
+      return graph_partition(mesh, n, comm, rank, size);
     case PartitionKind::Blocks:
-      return blocks(mesh.n_tets(), size);
+      return rank == 0 ? blocks(n, size) : std::vector<int>{};
   }
   throw Error("partition_elements: invalid partition kind");
 }

@@ -12,11 +12,12 @@
 
 namespace fricon::parallel {
 
-/// The owner rank (0 .. size-1) of every tetrahedron of `mesh`, the same array on every rank.
-/// Graph: PETSc's MatPartitioning (PT-Scotch) on the dual graph (tetrahedra sharing a face),
-/// each rank giving the rows of its block of tetrahedra; Blocks: consecutive blocks in mesh
-/// order. Collective over `comm`; every rank must hold the same mesh.
-std::vector<int> partition_elements(const mesh::TetMesh& mesh, PartitionKind kind, MPI_Comm comm);
+/// The owner rank (0 .. size-1) of every tetrahedron of `mesh`, on rank 0 (empty on the others).
+/// Graph: PETSc's MatPartitioning (PT-Scotch) on the dual graph (tetrahedra sharing a face):
+/// rank 0 builds the graph and gives each rank the rows of a block of tetrahedra, PT-Scotch
+/// partitions it across the ranks, and rank 0 gathers the owners. Blocks: consecutive blocks in
+/// mesh order. Collective over `comm`; `mesh` is read on rank 0 only (the others pass null).
+std::vector<int> partition_elements(const mesh::TetMesh* mesh, PartitionKind kind, MPI_Comm comm);
 
 /// The tetrahedra that `owner` gives to `rank`, ascending.
 std::vector<Index> elements_of(const std::vector<int>& owner, int rank);
