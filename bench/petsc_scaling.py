@@ -9,8 +9,8 @@ For each mesh parameter n of the paper's brick (3n x n x n cubes, 5 tetrahedra e
 and prints, from each run's report.json: wall time in all and per phase, the factor's entries
 and operations, the outer iterations, the peak resident memory of every rank (getrusage, as the
 run reports it; for cholmod, of the process, measured by this script the same way) and the
-memory MUMPS allocated on every rank (and each rank's peak once the replicated input, mesh, f and
-contact discretization, is built); then the ratios measured in the same run: petsc 1 rank /
+memory MUMPS allocated on every rank (and each rank's peak once its input is built: on rank 0
+the whole model, mesh, f and contact discretization, on the others their part of the mesh); then the ratios measured in the same run: petsc 1 rank /
 cholmod (time), and the peak memory per rank of P ranks / 1 rank.
 Each run solves the paper's problem (param = 6e4, g = 2e7) with fricon's default tolerances.
 Results go to a temporary folder that is removed at the end.
@@ -51,8 +51,8 @@ def describe(label, rep):
         model = ", ".join(f"{x['model_memory_mib']:.0f}" for x in par["ranks"])
         tets = ", ".join(str(x["n_tets"]) for x in par["ranks"])
         mem = (f"peak memory per rank [MiB] {memory}; MUMPS per rank [MiB] {mumps}; tets per rank "
-               f"{tets}\n  {'':<10} peak memory per rank with the replicated input (mesh, f, "
-               f"contact) built [MiB] {model}\n  {'':<10} MUMPS analysis {par['analysis_s']:.2f} s (rank 0), numerical "
+               f"{tets}\n  {'':<10} peak memory per rank with its input built (rank 0: "
+               f"the whole model; others: their part) [MiB] {model}\n  {'':<10} MUMPS analysis {par['analysis_s']:.2f} s (rank 0), numerical "
                f"factorization {par['factorization_s']:.2f} s; BLAS threads per rank "
                f"{rep['factor']['blas_threads']}")
     else:

@@ -124,6 +124,12 @@ def serial_and_distributed(fricon, mpi, problem, out, ranks, extra=()):
     if sum(x["n_tets"] for x in par["ranks"]) != report["n_tets"]:
         sys.exit(f"FAIL: the ranks assembled {[x['n_tets'] for x in par['ranks']]} tetrahedra, "
                  f"the mesh has {report['n_tets']}")
+    # Only rank 0 holds the whole mesh: the others the nodes of their own tetrahedra.
+    held = [x["n_nodes"] for x in par["ranks"]]
+    if held[0] != report["n_nodes"] or any(not 0 < h < report["n_nodes"] for h in held[1:]) \
+            or sum(held[1:]) > report["n_nodes"] * (ranks - 1) / ranks * 1.5:
+        sys.exit(f"FAIL: the ranks hold {held} nodes of the mesh's {report['n_nodes']}: "
+                 "rank 0 all, the others only those of their tetrahedra")
     for x in par["ranks"]:
         if not (0 < x["model_memory_mib"] <= x["peak_memory_mib"] and x["mumps_estimate_mib"] > 0):
             sys.exit(f"FAIL: a rank's memory figures are inconsistent: {x}")

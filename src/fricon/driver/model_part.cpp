@@ -9,8 +9,8 @@ namespace fricon::driver {
 fe::DofMap part_dofs(const std::vector<bool>& fixed, const std::vector<Index>& global_dof) {
   fe::DofMap dofs(fixed);
   FRICON_CHECK(dofs.n_free() == static_cast<Index>(global_dof.size()),
-               "a part of the model has " << dofs.n_free() << " free dofs and "
-                                          << global_dof.size() << " global numbers");
+               "a part of the model has " << dofs.n_free() << " free dofs and " << global_dof.size()
+                                          << " global numbers");
   return dofs;
 }
 

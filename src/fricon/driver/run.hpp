@@ -21,12 +21,15 @@ enum class Status { Converged, NotConverged };
 
 /// One rank of a distributed run (backend "petsc").
 struct RankReport {
-  Index n_tets = 0;               ///< tetrahedra this rank assembled
+  Index n_tets = 0;  ///< tetrahedra this rank assembled
+  /// Nodes of the mesh this rank holds: all on rank 0, the nodes of its tetrahedra elsewhere.
+  Index n_nodes = 0;
   double peak_memory_mib = 0;     ///< peak resident memory of the process [MiB]
   double mumps_memory_mib = 0;    ///< memory MUMPS allocated for the factorization here [MiB]
   double mumps_estimate_mib = 0;  ///< what MUMPS's analysis estimated for it [MiB]
-  /// Peak resident memory once the replicated input (mesh, loads, contact discretization) was
-  /// built, before the assembly and factorization [MiB].
+  /// Peak resident memory once the rank's input was built, before the assembly and
+  /// factorization [MiB]: on rank 0 the whole model (mesh, loads, contact discretization), on
+  /// the others their part of it (their tetrahedra and nodes, B on the contact dofs).
   double model_memory_mib = 0;
 };
 

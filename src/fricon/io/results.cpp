@@ -119,6 +119,7 @@ void add_parallel_report(const driver::ParallelReport& p, nlohmann::json& j) {
   nlohmann::json ranks = nlohmann::json::array();
   for (const auto& r : p.ranks)
     ranks.push_back({{"n_tets", r.n_tets},
+                     {"n_nodes", r.n_nodes},
                      {"peak_memory_mib", r.peak_memory_mib},
                      {"mumps_memory_mib", r.mumps_memory_mib},
                      {"mumps_estimate_mib", r.mumps_estimate_mib},

@@ -503,10 +503,10 @@ std::vector<Index> nested_dissection(const std::vector<SparseIndex>& start,
   common.error_handler = nullptr;
   std::vector<SuiteSparse_long> order;
   try {
-    order = compressed_nested_dissection(
-        {n, reinterpret_cast<const SuiteSparse_long*>(start.data()),
-         reinterpret_cast<const SuiteSparse_long*>(adjacent.data())},
-        &common);
+    order =
+        compressed_nested_dissection({n, reinterpret_cast<const SuiteSparse_long*>(start.data()),
+                                      reinterpret_cast<const SuiteSparse_long*>(adjacent.data())},
+                                     &common);
   } catch (...) {
     cholmod_l_finish(&common);
     throw;

@@ -250,7 +250,8 @@ TetMesh submesh(const TetMesh& mesh, const std::vector<Index>& tets, std::vector
     for (int a = 0; a < 3; ++a)
       part.faces(a, static_cast<Index>(k)) = local_of(mesh.faces(a, f));
     part.face_tag.push_back(mesh.face_tag[static_cast<size_t>(f)]);
-    if (!mesh.face_entity.empty()) part.face_entity.push_back(mesh.face_entity[static_cast<size_t>(f)]);
+    if (!mesh.face_entity.empty())
+      part.face_entity.push_back(mesh.face_entity[static_cast<size_t>(f)]);
   }
   part.tag_names = mesh.tag_names;
   if (nodes != nullptr) *nodes = std::move(global);

@@ -97,9 +97,8 @@ TEST(PartialLoad, NoTetrahedraGiveNoLoad) {
 TEST(ModelPart, PartsOfAnySplitSumToTheWholeStiffnessAndLoad) {
   const Loads l;
   const Index n = l.model.mesh.n_tets();
-  for (const auto& parts :
-       {l.split(3, [](Index t) { return static_cast<int>(t % 3); }),
-        l.split(2, [n](Index t) { return t < n / 2 ? 0 : 1; })}) {
+  for (const auto& parts : {l.split(3, [](Index t) { return static_cast<int>(t % 3); }),
+                            l.split(2, [n](Index t) { return t < n / 2 ? 0 : 1; })}) {
     std::vector<Eigen::Triplet<Real>> K_entries;
     VectorXd f = VectorXd::Zero(l.model.dofs.n_free());
     Index n_tets = 0;

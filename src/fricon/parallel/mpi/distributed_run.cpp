@@ -123,18 +123,19 @@ ModelSizes broadcast_sizes(const driver::Model& m, bool contact, MPI_Comm comm) 
 }
 
 // Every rank's figures, on rank 0. Collective.
-std::vector<driver::RankReport> gather_ranks(Index n_tets, double model_mib, const MumpsInfo& info,
-                                             int rank, int size) {
-  constexpr int kFigures = 5;
-  const double mine[kFigures] = {static_cast<double>(n_tets), peak_memory_mib(), info.memory_mib,
-                                 info.estimate_mib, model_mib};
+std::vector<driver::RankReport> gather_ranks(Index n_tets, Index n_nodes, double model_mib,
+                                             const MumpsInfo& info, int rank, int size) {
+  constexpr int kFigures = 6;
+  const double mine[kFigures] = {
+      static_cast<double>(n_tets), peak_memory_mib(), info.memory_mib,
+      info.estimate_mib,           model_mib,         static_cast<double>(n_nodes)};
   std::vector<double> all(static_cast<std::size_t>(kFigures * size));
   MPI_Gather(mine, kFigures, MPI_DOUBLE, all.data(), kFigures, MPI_DOUBLE, 0, world());
   std::vector<driver::RankReport> ranks;
   if (rank != 0) return ranks;
   for (int r = 0; r < size; ++r) {
     const double* a = &all[static_cast<std::size_t>(kFigures * r)];
-    ranks.push_back({static_cast<Index>(a[0]), a[1], a[2], a[3], a[4]});
+    ranks.push_back({static_cast<Index>(a[0]), static_cast<Index>(a[5]), a[1], a[2], a[3], a[4]});
   }
   return ranks;
 }
@@ -219,6 +220,7 @@ RunResult run_distributed(const driver::Problem& problem, const RunOptions& opti
   });
   const double model_mib = peak_memory_mib();  // what this rank's input costs it
   const Index n_mine = part.model.mesh.n_tets();
+  const Index n_nodes_held = rank == 0 ? r.model.mesh.n_nodes() : part.model.mesh.n_nodes();
   LocalEntries entries;
   LoadPart load;
   collectively([&] {
@@ -244,7 +246,7 @@ RunResult run_distributed(const driver::Problem& problem, const RunOptions& opti
   if (rank != 0) {
     driver::phase_start(options, "follow");  // (a stop request is rank 0's to act on)
     rep.status = static_cast<driver::Status>(solves.follow());
-    par.ranks = gather_ranks(n_mine, model_mib, factor->info(), rank, size);
+    par.ranks = gather_ranks(n_mine, n_nodes_held, model_mib, factor->info(), rank, size);
     rep.parallel = par;
     return r;
   }
@@ -262,7 +264,7 @@ RunResult run_distributed(const driver::Problem& problem, const RunOptions& opti
     throw;
   }
   channel.finish(static_cast<int>(rep.status));
-  par.ranks = gather_ranks(n_mine, model_mib, factor->info(), rank, size);
+  par.ranks = gather_ranks(n_mine, n_nodes_held, model_mib, factor->info(), rank, size);
   rep.parallel = par;
   rep.time_s = total.seconds();
   return r;

@@ -22,9 +22,9 @@ void sum_on_rank_0(VectorXd& x, int rank, MPI_Comm comm) {
 }  // namespace
 
 LoadPart LoadPart::of(const VectorXd& part_load, const std::vector<Index>& global_dof) {
-  FRICON_CHECK(part_load.size() == static_cast<Index>(global_dof.size()),
-               "a load part of " << part_load.size() << " rows for " << global_dof.size()
-                                 << " dofs");
+  FRICON_CHECK(
+      part_load.size() == static_cast<Index>(global_dof.size()),
+      "a load part of " << part_load.size() << " rows for " << global_dof.size() << " dofs");
   LoadPart part;
   std::vector<Index> local;
   for (Index i = 0; i < part_load.size(); ++i)
@@ -57,7 +57,8 @@ void ContactCoupling::index() {
 }
 
 Index ContactCoupling::position(Index dof) const {
-  const auto it = std::lower_bound(by_dof_.begin(), by_dof_.end(), std::pair<Index, Index>{dof, -1});
+  const auto it =
+      std::lower_bound(by_dof_.begin(), by_dof_.end(), std::pair<Index, Index>{dof, -1});
   return it != by_dof_.end() && it->first == dof ? it->second : -1;
 }
 
@@ -89,7 +90,8 @@ void ContactCoupling::broadcast(MPI_Comm comm) {
     for (long c = 0; c < sizes[1]; ++c)
       for (long k = start[static_cast<std::size_t>(c)]; k < start[static_cast<std::size_t>(c + 1)];
            ++k)
-        entries.emplace_back(row[static_cast<std::size_t>(k)], c, value[static_cast<std::size_t>(k)]);
+        entries.emplace_back(row[static_cast<std::size_t>(k)], c,
+                             value[static_cast<std::size_t>(k)]);
     B.resize(sizes[0], sizes[1]);
     B.setFromTriplets(entries.begin(), entries.end());
   }

@@ -127,10 +127,10 @@ AdjacencyRows scatter_rows(const DualGraph* g, Index n, MPI_Comm comm, int rank,
   for (int k = 0; k < n_mine; ++k)
     a.ia[k + 1] = a.ia[k] + my_degree[static_cast<std::size_t>(k)];
   check(PetscMalloc1(std::max<PetscInt>(a.ia[n_mine], 1), &a.ja), "PetscMalloc1");
-  check_mpi(MPI_Scatterv(rank == 0 ? g->adj.data() : nullptr, edges.counts.data(),
-                         edges.offsets.data(), MPIU_INT, a.ja, static_cast<int>(a.ia[n_mine]),
-                         MPIU_INT, 0, comm),
-            "MPI_Scatterv");
+  check_mpi(
+      MPI_Scatterv(rank == 0 ? g->adj.data() : nullptr, edges.counts.data(), edges.offsets.data(),
+                   MPIU_INT, a.ja, static_cast<int>(a.ia[n_mine]), MPIU_INT, 0, comm),
+      "MPI_Scatterv");
   return a;
 }
 

@@ -128,8 +128,8 @@ driver::ModelPart unpack(const std::vector<char>& bytes) {
   r.get_matrix(part.model.prescribed);
   part.global_dof = r.get<Index>();
   FRICON_CHECK(r.at_end(), "a part of the model has bytes left over");
-  part.model.dofs = driver::part_dofs(std::vector<bool>(fixed.begin(), fixed.end()),
-                                      part.global_dof);
+  part.model.dofs =
+      driver::part_dofs(std::vector<bool>(fixed.begin(), fixed.end()), part.global_dof);
   return part;
 }
 
