@@ -18,6 +18,9 @@ augmented matrix) and a different dual operator:
                           and the message of rank 1, printed once; no hang
   failing_write           rank 0 cannot write its results after the solve: every rank ends
                           with its exit code (3, as a serial run's)
+  failing_model           bad input that only rank 0 can find (it alone builds the whole model:
+                          a contact boundary the mesh does not have): every rank ends with its
+                          error (seen with FRICON_RANK_OUTPUT=all) and exit code 1, printed once
   failing_factorization   the factorization cannot run within solver.memory_per_rank: every
                           rank ends with the same error (seen with FRICON_RANK_OUTPUT=all) and
                           exit code 1, printed once normally; nothing is written
@@ -155,6 +158,21 @@ def expect_error(cmd, fragments, label, code=1, prefix="fricon: error:"):
     return errors[0][len(prefix):].strip()
 
 
+def on_every_rank(cmd, message, ranks=2):
+    """Runs cmd with every rank's own output kept: each rank must end with `message`, exit 1."""
+    r = subprocess.run(cmd, capture_output=True, text=True, timeout=TIMEOUT_S,
+                       env={**os.environ, "FRICON_RANK_OUTPUT": "all"})
+    if r.returncode != 1 or r.stderr.count(message) != ranks:
+        sys.exit(f"FAIL: every rank should end with {message!r} and exit code 1; exit code "
+                 f"{r.returncode}, stderr:\n{r.stderr}")
+    print(f"ok   all {ranks} ranks end with the same error")
+
+
+def nothing_written(folder):
+    if folder.exists() and any(folder.iterdir()):
+        sys.exit(f"FAIL: a failed run wrote {sorted(p.name for p in folder.iterdir())}")
+
+
 def stop_signal(fricon, mpi, brick, outdir):
     # The implicit operator and a tight QP keep the run in its QP steps for many seconds.
     cmd = mpirun(mpi, 2) + [fricon, "solve", str(brick), *PETSC, "--set", "mesh.cells=[18,6,6]",
@@ -231,8 +249,7 @@ def main():
                *good, "--set", "material.young=-1"]
         expect_error(cmd, ["rank 1:", "material.young", "expected a positive number"],
                      "a bad value on rank 1 ends both ranks")
-        if (out / "r").exists() and any((out / "r").iterdir()):
-            sys.exit(f"FAIL: a failed run wrote {sorted(p.name for p in (out / 'r').iterdir())}")
+        nothing_written(out / "r")
     elif case == "failing_write":
         blocker = out / "not-a-folder"
         blocker.write_text("a file where the results folder should be\n")
@@ -248,14 +265,17 @@ def main():
                      "MUMPS's analysis estimates", "run on more ranks"]
         message = expect_error(cmd, fragments, "the factorization fails on every rank: one message")
         # Every rank's own output (the two ranks' lines may interleave): the same message twice.
-        r = subprocess.run(cmd, capture_output=True, text=True, timeout=TIMEOUT_S,
-                           env={**os.environ, "FRICON_RANK_OUTPUT": "all"})
-        if r.returncode != 1 or r.stderr.count(message) != 2:
-            sys.exit(f"FAIL: every rank should end with {message!r} and exit code 1; exit code "
-                     f"{r.returncode}, stderr:\n{r.stderr}")
-        print("ok   both ranks end with the same error")
-        if (out / "f").exists() and any((out / "f").iterdir()):
-            sys.exit(f"FAIL: a failed run wrote {sorted(p.name for p in (out / 'f').iterdir())}")
+        on_every_rank(cmd, message)
+        nothing_written(out / "f")
+    elif case == "failing_model":
+        cmd = mpirun(mpi, 2) + [fricon, "solve", str(brick), *PETSC, "--set",
+                                "contact.boundary=nowhere", "-q", "-o", str(out / "m")]
+        message = expect_error(cmd, ["contact.boundary", "nowhere"],
+                               "bad input found by rank 0 alone ends both ranks: one message")
+        if message.startswith("rank "):
+            sys.exit(f"FAIL: rank 0's error is given as another rank's: {message!r}")
+        on_every_rank(cmd, message)
+        nothing_written(out / "m")
     elif case == "stop_signal":
         stop_signal(fricon, mpi, brick, out / "s")
     elif case == "cholmod_under_mpirun":

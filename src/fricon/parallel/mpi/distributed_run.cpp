@@ -122,13 +122,58 @@ ModelSizes broadcast_sizes(const driver::Model& m, bool contact, MPI_Comm comm) 
   return {static_cast<Index>(sizes[0]), sizes[1] != 0};
 }
 
+// B on the contact dofs, from rank 0's discretization to every rank (none without contact).
+// Collective.
+std::optional<ContactCoupling> share_contact(
+    const std::optional<contact::ContactDiscretization>& disc, bool contact, int rank) {
+  if (!contact) return std::nullopt;
+  ContactCoupling c = rank == 0 ? ContactCoupling::of(disc->B, disc->dofs) : ContactCoupling{};
+  c.broadcast(world());
+  return c;
+}
+
+// What a rank gives MUMPS of K and f, from its own part of the model, and what it held.
+struct RankShare {
+  LocalEntries entries;  // of K (and B, on rank 0 of a Schur factorization)
+  LoadPart load;         // of f
+  Index n_tets = 0;      // of its part
+  Index n_nodes = 0;     // held: all on rank 0, its part's elsewhere
+  double model_mib = 0;  // its peak once its input was built
+};
+
+// The partition, each rank's part of the model from rank 0 (`whole`, null elsewhere), and the
+// part's share of K and f (phases "partition", "assembly"). Collective.
+RankShare assemble_share(const driver::Problem& problem, const driver::Model* whole,
+                         const SparseMatrix* B, PartitionKind partition, PhaseTimes& times) {
+  RankShare share;
+  driver::ModelPart part;
+  collectively([&] {
+    ScopedPhase phase(times, "partition");
+    const std::vector<int> owner =
+        partition_elements(whole ? &whole->mesh : nullptr, partition, world());
+    part = scatter_model(problem, whole, owner, world());
+  });
+  share.model_mib = peak_memory_mib();
+  share.n_tets = part.model.mesh.n_tets();
+  share.n_nodes = whole ? whole->mesh.n_nodes() : part.model.mesh.n_nodes();
+  collectively([&] {
+    ScopedPhase phase(times, "assembly");
+    share.entries = local_entries(part, B);
+    share.load = LoadPart::of(driver::part_load(problem, part), part.global_dof);
+  });
+  return share;  // (the part is freed: MUMPS gets the entries)
+}
+
 // Every rank's figures, on rank 0. Collective.
-std::vector<driver::RankReport> gather_ranks(Index n_tets, Index n_nodes, double model_mib,
-                                             const MumpsInfo& info, int rank, int size) {
+std::vector<driver::RankReport> gather_ranks(const RankShare& share, const MumpsInfo& info,
+                                             int rank, int size) {
   constexpr int kFigures = 6;
-  const double mine[kFigures] = {
-      static_cast<double>(n_tets), peak_memory_mib(), info.memory_mib,
-      info.estimate_mib,           model_mib,         static_cast<double>(n_nodes)};
+  const double mine[kFigures] = {static_cast<double>(share.n_tets),
+                                 peak_memory_mib(),
+                                 info.memory_mib,
+                                 info.estimate_mib,
+                                 share.model_mib,
+                                 static_cast<double>(share.n_nodes)};
   std::vector<double> all(static_cast<std::size_t>(kFigures * size));
   MPI_Gather(mine, kFigures, MPI_DOUBLE, all.data(), kFigures, MPI_DOUBLE, 0, world());
   std::vector<driver::RankReport> ranks;
@@ -197,11 +242,7 @@ RunResult run_distributed(const driver::Problem& problem, const RunOptions& opti
     }
   });
   const ModelSizes sizes = broadcast_sizes(r.model, disc.has_value(), world());
-  std::optional<ContactCoupling> contact;
-  if (sizes.contact) {
-    contact = rank == 0 ? ContactCoupling::of(disc->B, disc->dofs) : ContactCoupling{};
-    contact->broadcast(world());
-  }
+  const std::optional<ContactCoupling> contact = share_contact(disc, sizes.contact, rank);
   const dual::DualOperatorKind kind =
       contact ? operator_kind(problem.solver.dual_operator, contact->B.rows())
               : dual::DualOperatorKind::Implicit;
@@ -211,24 +252,9 @@ RunResult run_distributed(const driver::Problem& problem, const RunOptions& opti
   // @sect: the partition; each rank's part of the model, and its part of K (and B, on rank 0)
   // and of f.
   driver::phase_start(opts, "partition");
-  driver::ModelPart part;
-  collectively([&] {
-    ScopedPhase phase(rep.times, "partition");
-    const std::vector<int> owner =
-        partition_elements(rank == 0 ? &r.model.mesh : nullptr, par.partition, world());
-    part = scatter_model(problem, rank == 0 ? &r.model : nullptr, owner, world());
-  });
-  const double model_mib = peak_memory_mib();  // what this rank's input costs it
-  const Index n_mine = part.model.mesh.n_tets();
-  const Index n_nodes_held = rank == 0 ? r.model.mesh.n_nodes() : part.model.mesh.n_nodes();
-  LocalEntries entries;
-  LoadPart load;
-  collectively([&] {
-    ScopedPhase phase(rep.times, "assembly");
-    entries = local_entries(part, with_schur && rank == 0 ? &disc->B : nullptr);
-    load = LoadPart::of(driver::part_load(problem, part), part.global_dof);
-  });
-  part = driver::ModelPart{};  // MUMPS has the entries now
+  RankShare share =
+      assemble_share(problem, rank == 0 ? &r.model : nullptr,
+                     with_schur && rank == 0 ? &disc->B : nullptr, par.partition, rep.times);
 
   // @sect: one factorization across the ranks.
   driver::phase_start(opts, "factorize");
@@ -236,17 +262,18 @@ RunResult run_distributed(const driver::Problem& problem, const RunOptions& opti
   collectively([&] {
     ScopedPhase phase(rep.times, "factorize");
     const std::vector<Index> order = rank == 0 ? free_dof_order(r.model) : std::vector<Index>{};
-    factor = std::make_unique<MumpsFactor>(world(), sizes.n_free, par.n_schur, std::move(entries),
-                                           order, memory_limit(problem));
+    factor = std::make_unique<MumpsFactor>(world(), sizes.n_free, par.n_schur,
+                                           std::move(share.entries), order, memory_limit(problem));
   });
 
   // @sect: the ranks other than 0 take part in rank 0's solves until it ends the run.
   const CommandChannel channel(world());
-  const DistributedSolves solves(*factor, channel, contact ? &*contact : nullptr, std::move(load));
+  const DistributedSolves solves(*factor, channel, contact ? &*contact : nullptr,
+                                 std::move(share.load));
   if (rank != 0) {
     driver::phase_start(options, "follow");  // (a stop request is rank 0's to act on)
     rep.status = static_cast<driver::Status>(solves.follow());
-    par.ranks = gather_ranks(n_mine, n_nodes_held, model_mib, factor->info(), rank, size);
+    par.ranks = gather_ranks(share, factor->info(), rank, size);
     rep.parallel = par;
     return r;
   }
@@ -264,7 +291,7 @@ RunResult run_distributed(const driver::Problem& problem, const RunOptions& opti
     throw;
   }
   channel.finish(static_cast<int>(rep.status));
-  par.ranks = gather_ranks(n_mine, n_nodes_held, model_mib, factor->info(), rank, size);
+  par.ranks = gather_ranks(share, factor->info(), rank, size);
   rep.parallel = par;
   rep.time_s = total.seconds();
   return r;

@@ -186,11 +186,14 @@ std::vector<int> partition_elements(const mesh::TetMesh* mesh, PartitionKind kin
   throw Error("partition_elements: invalid partition kind");
 }
 
-std::vector<Index> elements_of(const std::vector<int>& owner, int rank) {
-  std::vector<Index> mine;
-  for (std::size_t t = 0; t < owner.size(); ++t)
-    if (owner[t] == rank) mine.push_back(static_cast<Index>(t));
-  return mine;
+std::vector<std::vector<Index>> elements_by_rank(const std::vector<int>& owner, int size) {
+  std::vector<std::vector<Index>> elements(static_cast<std::size_t>(size));
+  for (std::size_t t = 0; t < owner.size(); ++t) {
+    FRICON_CHECK(owner[t] >= 0 && owner[t] < size,
+                 "tetrahedron " << t << " given to rank " << owner[t] << " of " << size);
+    elements[static_cast<std::size_t>(owner[t])].push_back(static_cast<Index>(t));
+  }
+  return elements;
 }
 
 }  // namespace fricon::parallel

@@ -19,7 +19,7 @@ namespace fricon::parallel {
 /// mesh order. Collective over `comm`; `mesh` is read on rank 0 only (the others pass null).
 std::vector<int> partition_elements(const mesh::TetMesh* mesh, PartitionKind kind, MPI_Comm comm);
 
-/// The tetrahedra that `owner` gives to `rank`, ascending.
-std::vector<Index> elements_of(const std::vector<int>& owner, int rank);
+/// The tetrahedra that `owner` gives to each rank 0 .. size-1, ascending, in one pass.
+std::vector<std::vector<Index>> elements_by_rank(const std::vector<int>& owner, int size);
 
 }  // namespace fricon::parallel

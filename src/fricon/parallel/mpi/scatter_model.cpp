@@ -177,17 +177,23 @@ driver::ModelPart scatter_model(const driver::Problem& problem, const driver::Mo
     part.model.materials = driver::make_materials(problem, part.model.mesh);
     return part;
   }
-  for (int to = 1; to < size; ++to) {
-    try {
-      send(pack(driver::model_part(*whole, elements_of(owner, to))), to, comm);
-    } catch (...) {
-      const long failed = kFailed;
-      for (int r = to; r < size; ++r)
-        MPI_Send(&failed, 1, MPI_LONG, r, kTag, comm);
-      throw;
+  // Rank 0: the other ranks' parts one at a time, then its own.
+  std::vector<std::vector<Index>> elements;
+  int to = 1;
+  try {
+    elements = elements_by_rank(owner, size);
+    for (; to < size; ++to) {
+      auto& theirs = elements[static_cast<std::size_t>(to)];
+      send(pack(driver::model_part(*whole, theirs)), to, comm);
+      std::vector<Index>().swap(theirs);  // sent: free it
     }
+  } catch (...) {
+    const long failed = kFailed;  // to the ranks still waiting for their part
+    for (; to < size; ++to)
+      MPI_Send(&failed, 1, MPI_LONG, to, kTag, comm);
+    throw;
   }
-  return driver::model_part(*whole, elements_of(owner, 0));
+  return driver::model_part(*whole, elements[0]);
 }
 
 }  // namespace fricon::parallel
