@@ -47,29 +47,22 @@ std::string region_list(const mesh::TetMesh& mesh) {
   return s;
 }
 
-// The applied loads (tractions and volume force) over the free dofs of `dofs` from the tetrahedra
-// `elements` and the boundary triangles that are faces of them; of the whole mesh when null.
-// With all 3 n_nodes components as `dofs` it gives the totals and reactions.
+// The applied loads (tractions and volume force) over the free dofs of `dofs`. With all
+// 3 n_nodes components as `dofs` it gives the totals and reactions.
 VectorXd applied_load(const Problem& problem, const mesh::TetMesh& mesh, const fe::DofMap& dofs,
-                      const std::vector<Index>* elements = nullptr) {
+                      Extent extent = Extent::Whole) {
   VectorXd f = VectorXd::Zero(dofs.n_free());
-  const std::vector<bool> mine = elements ? mesh::faces_of(mesh, *elements) : std::vector<bool>{};
   for (size_t i = 0; i < problem.traction.size(); ++i) {
     const auto& t = problem.traction[i];
-    // A part of the mesh (a rank's) may have none of a tag's triangles; the whole mesh must.
-    std::vector<Index> faces =
-        elements ? mesh.faces_with_tag(t.boundary)
-                 : tagged_faces(mesh, problem, fmt::format("traction[{}].boundary", i), t.boundary);
-    if (elements)
-      std::erase_if(faces, [&mine](Index face) { return !mine[static_cast<size_t>(face)]; });
+    // A part of the body (a rank's) may hold none of a tag's triangles; the whole body must.
+    const std::vector<Index> faces =
+        extent == Extent::Part
+            ? mesh.faces_with_tag(t.boundary)
+            : tagged_faces(mesh, problem, fmt::format("traction[{}].boundary", i), t.boundary);
     fe::add_traction(mesh, dofs, faces, t.value, f);
   }
-  if (problem.volume_force.squaredNorm() > 0) {
-    if (elements)
-      fe::add_volume_force(mesh, dofs, problem.volume_force, f, *elements);
-    else
-      fe::add_volume_force(mesh, dofs, problem.volume_force, f);
-  }
+  if (problem.volume_force.squaredNorm() > 0)
+    fe::add_volume_force(mesh, dofs, problem.volume_force, f);
   return f;
 }
 
@@ -92,12 +85,9 @@ void check_rigid_motions(const Problem& problem, const mesh::TetMesh& mesh,
 }
 
 // K_free,fixed times the prescribed displacements [N]: moved to the right-hand side.
-// K_free,fixed times the prescribed displacements, of the tetrahedra `elements` (all when null).
-VectorXd prescribed_load(const Model& model, const std::vector<Index>* elements = nullptr) {
+VectorXd prescribed_load(const Model& model) {
   if (model.prescribed.isZero(0.0)) return VectorXd::Zero(model.dofs.n_free());
-  return model.dofs.from_nodal(
-      elements ? fe::internal_forces(model.mesh, model.materials, model.prescribed, *elements)
-               : fe::internal_forces(model.mesh, model.materials, model.prescribed));
+  return model.dofs.from_nodal(fe::internal_forces(model.mesh, model.materials, model.prescribed));
 }
 
 }  // namespace
@@ -212,10 +202,8 @@ mesh::TetMesh make_mesh(const Problem& problem) {
 
 namespace {
 
-enum class Parts { Dofs, Loads, LoadsAndStiffness };
-
 Model assemble(const Problem& problem, PhaseTimes& times, const PhaseCallback& on_phase_start,
-               Parts parts) {
+               bool with_stiffness) {
   Model model;
   if (on_phase_start) on_phase_start("mesh");
   {
@@ -228,35 +216,26 @@ Model assemble(const Problem& problem, PhaseTimes& times, const PhaseCallback& o
     ScopedPhase phase(times, "assembly");
     model.dofs = make_dofs(problem, model.mesh);
     model.prescribed = make_prescribed(problem, model.mesh);
-    if (parts == Parts::LoadsAndStiffness)
-      model.K = fe::assemble_stiffness(model.mesh, model.materials, model.dofs);
-    if (parts != Parts::Dofs)
-      model.f = applied_load(problem, model.mesh, model.dofs) - prescribed_load(model);
+    if (with_stiffness) model.K = fe::assemble_stiffness(model.mesh, model.materials, model.dofs);
+    model.f = load_vector(problem, model, Extent::Whole);
   }
   return model;
 }
 
 }  // namespace
 
-Model assemble_dofs(const Problem& problem, PhaseTimes& times,
-                    const PhaseCallback& on_phase_start) {
-  return assemble(problem, times, on_phase_start, Parts::Dofs);
-}
-
 Model assemble_loads(const Problem& problem, PhaseTimes& times,
                      const PhaseCallback& on_phase_start) {
-  return assemble(problem, times, on_phase_start, Parts::Loads);
+  return assemble(problem, times, on_phase_start, false);
 }
 
 Model assemble_model(const Problem& problem, PhaseTimes& times,
                      const PhaseCallback& on_phase_start) {
-  return assemble(problem, times, on_phase_start, Parts::LoadsAndStiffness);
+  return assemble(problem, times, on_phase_start, true);
 }
 
-VectorXd partial_load(const Problem& problem, const Model& model,
-                      const std::vector<Index>& elements) {
-  return applied_load(problem, model.mesh, model.dofs, &elements) -
-         prescribed_load(model, &elements);
+VectorXd load_vector(const Problem& problem, const Model& model, Extent extent) {
+  return applied_load(problem, model.mesh, model.dofs, extent) - prescribed_load(model);
 }
 
 VectorXd stiffness_times(const Model& model, const VectorXd& w) {

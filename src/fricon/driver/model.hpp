@@ -64,18 +64,16 @@ using PhaseCallback = std::function<void(const std::string& phase)>;
 Model assemble_loads(const Problem& problem, PhaseTimes& times,
                      const PhaseCallback& on_phase_start = {});
 
-/// The model without K and f: mesh, materials, dofs and prescribed displacements (phases "mesh",
-/// "assembly"), for a rank of a distributed run that assembles only its part of f
-/// (partial_load). Throws as assemble_model.
-Model assemble_dofs(const Problem& problem, PhaseTimes& times,
-                    const PhaseCallback& on_phase_start = {});
+/// Whether a model is the whole body or a part of it (a rank's tetrahedra as a model of their
+/// own, driver::model_part).
+enum class Extent { Whole, Part };
 
-/// The part of f [N] (over the free dofs) that the tetrahedra `elements` contribute: their volume
-/// forces and prescribed-displacement coupling, and the tractions on the boundary triangles that
-/// are faces of them. Over a partition of the tetrahedra the parts sum to Model::f. Reads the
-/// mesh, materials, dofs and prescribed displacements of `model` (not its f).
-VectorXd partial_load(const Problem& problem, const Model& model,
-                      const std::vector<Index>& elements);
+/// The load vector f [N] over the free dofs of `model`, from its mesh, materials, dofs and
+/// prescribed displacements (not its f): the tractions and volume force minus K_free,fixed times
+/// the prescribed displacements. The parts of a partition of the tetrahedra, mapped to the whole
+/// model's dofs, sum to the whole model's f. Throws InputError when a traction's boundary has no
+/// triangle in the Whole mesh (a Part may hold none of them).
+VectorXd load_vector(const Problem& problem, const Model& model, Extent extent);
 
 /// The model up to the factorization: mesh, material, dofs, K and f (phases "mesh",
 /// "assembly"). Throws InputError when a boundary tag named by the problem does not exist on the

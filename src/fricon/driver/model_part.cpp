@@ -1,7 +1,5 @@
 #include "fricon/driver/model_part.hpp"
 
-#include <numeric>
-
 #include "fricon/core/error.hpp"
 
 namespace fricon::driver {
@@ -29,12 +27,6 @@ ModelPart model_part(const Model& whole, const std::vector<Index>& elements) {
   part.model.dofs = part_dofs(fixed, part.global_dof);
   if (whole.prescribed.cols() > 0) part.model.prescribed = whole.prescribed(Eigen::all, nodes);
   return part;
-}
-
-VectorXd part_load(const Problem& problem, const ModelPart& part) {
-  std::vector<Index> all(static_cast<size_t>(part.model.mesh.n_tets()));
-  std::iota(all.begin(), all.end(), Index{0});
-  return partial_load(problem, part.model, all);
 }
 
 }  // namespace fricon::driver

@@ -2,7 +2,8 @@
 // driver: a part of the model, made of some of its tetrahedra: what one rank of a distributed run
 // holds and assembles (docs/parallel.md). A part is itself a Model (its own mesh, dofs and
 // prescribed displacements, numbered within the part), with the number in the whole model of
-// each of its free dofs; K and f of the whole are the sums of the parts' K and f, mapped.
+// each of its free dofs; K and f of the whole are the sums of the parts' K and f (load_vector with
+// Extent::Part), mapped.
 
 #include <vector>
 
@@ -26,10 +27,5 @@ ModelPart model_part(const Model& whole, const std::vector<Index>& elements);
 /// The dofs of a part's mesh: `fixed[3 * node + c]` as in the whole model, with the check that
 /// their count agrees with `global_dof`. Throws Error when it does not.
 fe::DofMap part_dofs(const std::vector<bool>& fixed, const std::vector<Index>& global_dof);
-
-/// The part's share of f [N] over its own free dofs: partial_load of all its tetrahedra (the
-/// tractions of the boundary triangles it holds, its volume forces and prescribed-displacement
-/// coupling). Mapped by global_dof and summed over a partition, the parts give Model::f.
-VectorXd part_load(const Problem& problem, const ModelPart& part);
 
 }  // namespace fricon::driver

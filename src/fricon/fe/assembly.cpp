@@ -14,30 +14,13 @@ Eigen::Matrix<Real, 3, 4> tet_vertices(const mesh::TetMesh& mesh, Index t) {
   return x;
 }
 
-namespace {
-
-// The tetrahedra assembled: all, or a subset (a rank's own, in a distributed run).
-class ElementRange {
- public:
-  ElementRange(const mesh::TetMesh& mesh, const std::vector<Index>* subset)
-      : n_(subset ? static_cast<Index>(subset->size()) : mesh.n_tets()), subset_(subset) {}
-  Index size() const { return n_; }
-  Index operator[](Index k) const { return subset_ ? (*subset_)[static_cast<size_t>(k)] : k; }
-
- private:
-  Index n_;
-  const std::vector<Index>* subset_;
-};
-
-NodeGraph graph_of(const mesh::TetMesh& mesh, const ElementRange& elements) {
+NodeGraph node_graph(const mesh::TetMesh& mesh) {
   const Index n = mesh.n_nodes();
   std::vector<std::vector<Index>> lists(static_cast<size_t>(n));
-  for (Index k = 0; k < elements.size(); ++k) {
-    const Index t = elements[k];
+  for (Index t = 0; t < mesh.n_tets(); ++t)
     for (int a = 0; a < 4; ++a)
       for (int b = 0; b < 4; ++b)
         lists[mesh.tets(a, t)].push_back(mesh.tets(b, t));
-  }
   NodeGraph g;
   g.start.assign(static_cast<size_t>(n + 1), 0);
   for (Index i = 0; i < n; ++i) {
@@ -54,13 +37,9 @@ NodeGraph graph_of(const mesh::TetMesh& mesh, const ElementRange& elements) {
   return g;
 }
 
-}  // namespace
-
-namespace {
-
-SparseMatrix assemble(const mesh::TetMesh& mesh, Materials materials, const DofMap& dofs,
-                      const ElementRange& elements) {
-  const NodeGraph graph = graph_of(mesh, elements);
+SparseMatrix assemble_stiffness(const mesh::TetMesh& mesh, Materials materials,
+                                const DofMap& dofs) {
+  const NodeGraph graph = node_graph(mesh);
   const Index n = dofs.n_free();
 
   // Pattern: column dof(b, d) holds rows dof(a, c) for the neighbours a of b, in increasing
@@ -97,8 +76,7 @@ SparseMatrix assemble(const mesh::TetMesh& mesh, Materials materials, const DofM
   // Values: add each element matrix into the pattern, locating rows by binary search.
   const SparseIndex* rows = K.innerIndexPtr();
   Real* values = K.valuePtr();
-  for (Index k = 0; k < elements.size(); ++k) {
-    const Index t = elements[k];
+  for (Index t = 0; t < mesh.n_tets(); ++t) {
     const ElementMatrix Ke =
         element_stiffness(tet_vertices(mesh, t), material_of(materials, mesh, t));
     Index local_dof[12];
@@ -121,22 +99,6 @@ SparseMatrix assemble(const mesh::TetMesh& mesh, Materials materials, const DofM
     }
   }
   return K;
-}
-
-}  // namespace
-
-NodeGraph node_graph(const mesh::TetMesh& mesh) {
-  return graph_of(mesh, ElementRange(mesh, nullptr));
-}
-
-SparseMatrix assemble_stiffness(const mesh::TetMesh& mesh, Materials materials,
-                                const DofMap& dofs) {
-  return assemble(mesh, materials, dofs, ElementRange(mesh, nullptr));
-}
-
-SparseMatrix assemble_stiffness(const mesh::TetMesh& mesh, Materials materials, const DofMap& dofs,
-                                const std::vector<Index>& elements) {
-  return assemble(mesh, materials, dofs, ElementRange(mesh, &elements));
 }
 
 namespace {
@@ -176,26 +138,13 @@ void add_traction_p1(const mesh::TetMesh& mesh, const DofMap& dofs, const std::v
   }
 }
 
-namespace {
-void add_volume_force(const mesh::TetMesh& mesh, const DofMap& dofs, const Vec3& b, VectorXd& f,
-                      const ElementRange& elements) {
+void add_volume_force(const mesh::TetMesh& mesh, const DofMap& dofs, const Vec3& b, VectorXd& f) {
   check_load_vector(dofs, f);
-  for (Index k = 0; k < elements.size(); ++k) {
-    const Index t = elements[k];
+  for (Index t = 0; t < mesh.n_tets(); ++t) {
     const Vec3 share = std::abs(mesh::tet_volume(mesh, t)) / 4.0 * b;
     for (int a = 0; a < 4; ++a)
       add_nodal(dofs, mesh.tets(a, t), share, f);
   }
-}
-}  // namespace
-
-void add_volume_force(const mesh::TetMesh& mesh, const DofMap& dofs, const Vec3& b, VectorXd& f) {
-  add_volume_force(mesh, dofs, b, f, ElementRange(mesh, nullptr));
-}
-
-void add_volume_force(const mesh::TetMesh& mesh, const DofMap& dofs, const Vec3& b, VectorXd& f,
-                      const std::vector<Index>& elements) {
-  add_volume_force(mesh, dofs, b, f, ElementRange(mesh, &elements));
 }
 
 void add_volume_force_p1(const mesh::TetMesh& mesh, const DofMap& dofs, const NodalField& b,
@@ -211,12 +160,9 @@ void add_volume_force_p1(const mesh::TetMesh& mesh, const DofMap& dofs, const No
   }
 }
 
-namespace {
-NodalField internal_forces(const mesh::TetMesh& mesh, Materials materials, const NodalField& u,
-                           const ElementRange& elements) {
+NodalField internal_forces(const mesh::TetMesh& mesh, Materials materials, const NodalField& u) {
   NodalField r = NodalField::Zero(3, mesh.n_nodes());
-  for (Index k = 0; k < elements.size(); ++k) {
-    const Index t = elements[k];
+  for (Index t = 0; t < mesh.n_tets(); ++t) {
     Eigen::Matrix<Real, 12, 1> ue;
     for (int a = 0; a < 4; ++a)
       ue.segment<3>(3 * a) = u.col(mesh.tets(a, t));
@@ -226,16 +172,6 @@ NodalField internal_forces(const mesh::TetMesh& mesh, Materials materials, const
       r.col(mesh.tets(a, t)) += re.segment<3>(3 * a);
   }
   return r;
-}
-}  // namespace
-
-NodalField internal_forces(const mesh::TetMesh& mesh, Materials materials, const NodalField& u) {
-  return internal_forces(mesh, materials, u, ElementRange(mesh, nullptr));
-}
-
-NodalField internal_forces(const mesh::TetMesh& mesh, Materials materials, const NodalField& u,
-                           const std::vector<Index>& elements) {
-  return internal_forces(mesh, materials, u, ElementRange(mesh, &elements));
 }
 
 }  // namespace fricon::fe

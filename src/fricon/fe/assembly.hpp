@@ -17,11 +17,6 @@ using NodalField = Eigen::Matrix<Real, 3, Eigen::Dynamic>;
 /// the sparsity of the node graph (every pair of nodes sharing a tetrahedron). Positive definite
 /// when the Dirichlet conditions remove the rigid motions.
 SparseMatrix assemble_stiffness(const mesh::TetMesh& mesh, Materials materials, const DofMap& dofs);
-/// The part of K that the tetrahedra `elements` contribute (n_free x n_free, both triangles):
-/// the sum of these parts over a partition of the mesh is K. A rank of a distributed run
-/// assembles its own elements with it (parallel/mpi/).
-SparseMatrix assemble_stiffness(const mesh::TetMesh& mesh, Materials materials, const DofMap& dofs,
-                                const std::vector<Index>& elements);
 /// One material everywhere.
 inline SparseMatrix assemble_stiffness(const mesh::TetMesh& mesh, const Material& material,
                                        const DofMap& dofs) {
@@ -41,10 +36,6 @@ void add_traction_p1(const mesh::TetMesh& mesh, const DofMap& dofs, const std::v
 /// Adds the load of a constant volume force b [N/m^3]: each vertex receives |T|/4 b.
 void add_volume_force(const mesh::TetMesh& mesh, const DofMap& dofs, const Vec3& b, VectorXd& f);
 
-/// The same over the tetrahedra `elements` only (a rank's part in a distributed run).
-void add_volume_force(const mesh::TetMesh& mesh, const DofMap& dofs, const Vec3& b, VectorXd& f,
-                      const std::vector<Index>& elements);
-
 /// Adds the load of a P1 volume force with nodal values b (3 x n_nodes) [N/m^3], integrated exactly
 /// with the tetrahedron mass matrix |T|/20 (1 + delta_ab).
 void add_volume_force_p1(const mesh::TetMesh& mesh, const DofMap& dofs, const NodalField& b,
@@ -53,9 +44,6 @@ void add_volume_force_p1(const mesh::TetMesh& mesh, const DofMap& dofs, const No
 /// Nodal forces [N] of the stiffness on all 3 n_nodes components (fixed ones included): the
 /// internal force K_full u for a displacement field given at the nodes. Used for reactions.
 NodalField internal_forces(const mesh::TetMesh& mesh, Materials materials, const NodalField& u);
-/// The internal forces of the tetrahedra `elements` only: summed over a partition, the above.
-NodalField internal_forces(const mesh::TetMesh& mesh, Materials materials, const NodalField& u,
-                           const std::vector<Index>& elements);
 
 /// The node graph of the mesh in CSR arrays: node a's neighbours (the nodes sharing a
 /// tetrahedron with it, a itself included) are adj[start[a] .. start[a+1]), ascending.

@@ -1,14 +1,14 @@
-// The parts of the model that the ranks of a distributed run assemble from their own tetrahedra:
-// driver::partial_load (a subset of the whole mesh) and driver::model_part (the subset as a model
-// of its own, numbered within the part). Their f and K, mapped to the whole model and summed,
-// are the whole model's, for every kind of load (tractions, a volume force, the coupling to
-// prescribed displacements), however the tetrahedra are split.
+// driver::model_part, the parts of the model that the ranks of a distributed run assemble from
+// their own tetrahedra (each a model of its own, numbered within the part). Their f and K, mapped
+// to the whole model and summed, are the whole model's, for every kind of load (tractions, a volume
+// force, the coupling to prescribed displacements), however the tetrahedra are split.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <numeric>
 #include <vector>
 
+#include "fricon/core/error.hpp"
 #include "fricon/driver/model_part.hpp"
 #include "fricon/fe/assembly.hpp"
 #include "fricon/io/problem_file.hpp"
@@ -46,7 +46,7 @@ value = [0.0, 2.0e6, 0.0]
 )";
 
 struct Loads {
-  Problem problem = io::parse_problem(kProblem, "partial_load_test.toml");
+  Problem problem = io::parse_problem(kProblem, "model_part_test.toml");
   Model model;
   Loads() {
     PhaseTimes times;
@@ -60,36 +60,33 @@ struct Loads {
       parts[static_cast<size_t>(part_of(t))].push_back(t);
     return parts;
   }
-  // The sum of the parts over the split of the tetrahedra by part_of(t) in [0, n_parts).
-  template <class PartOf>
-  VectorXd sum_of_parts(int n_parts, PartOf part_of) const {
-    VectorXd sum = VectorXd::Zero(model.dofs.n_free());
-    for (const auto& p : split(n_parts, part_of))
-      sum += partial_load(problem, model, p);
-    return sum;
-  }
 };
 
-TEST(PartialLoad, AllTetrahedraGiveTheWholeLoad) {
+TEST(ModelPart, AllTetrahedraAreTheWholeModel) {
   const Loads l;
   std::vector<Index> all(static_cast<size_t>(l.model.mesh.n_tets()));
   std::iota(all.begin(), all.end(), Index{0});
-  const VectorXd f = partial_load(l.problem, l.model, all);
+  const ModelPart part = model_part(l.model, all);
+  std::vector<Index> every_dof(static_cast<size_t>(l.model.dofs.n_free()));
+  std::iota(every_dof.begin(), every_dof.end(), Index{0});
+  EXPECT_EQ(part.global_dof, every_dof);
+  const VectorXd f = load_vector(l.problem, part.model, Extent::Part);
   EXPECT_LT((f - l.model.f).norm(), kRoundoff * l.model.f.norm());
 }
 
-TEST(PartialLoad, PartsOfAnySplitSumToTheWholeLoad) {
+// A part may hold no triangle of a traction's boundary; the whole body may not.
+TEST(ModelPart, APartWithoutATractionsTrianglesHasNoTraction) {
   const Loads l;
-  const Index n = l.model.mesh.n_tets();
-  const VectorXd interleaved = l.sum_of_parts(3, [](Index t) { return static_cast<int>(t % 3); });
-  const VectorXd blocks = l.sum_of_parts(2, [n](Index t) { return t < n / 2 ? 0 : 1; });
-  EXPECT_LT((interleaved - l.model.f).norm(), kRoundoff * l.model.f.norm());
-  EXPECT_LT((blocks - l.model.f).norm(), kRoundoff * l.model.f.norm());
-}
-
-TEST(PartialLoad, NoTetrahedraGiveNoLoad) {
-  const Loads l;
-  EXPECT_EQ(partial_load(l.problem, l.model, {}).norm(), 0.0);
+  Index inner = -1;  // a tetrahedron without boundary triangles (a cube's central one)
+  for (Index t = 0; t < l.model.mesh.n_tets() && inner < 0; ++t) {
+    const std::vector<bool> faces = mesh::faces_of(l.model.mesh, {t});
+    if (std::none_of(faces.begin(), faces.end(), [](bool b) { return b; })) inner = t;
+  }
+  ASSERT_GE(inner, 0);
+  const ModelPart part = model_part(l.model, {inner});
+  ASSERT_EQ(part.model.mesh.n_faces(), 0);
+  EXPECT_NO_THROW(load_vector(l.problem, part.model, Extent::Part));
+  EXPECT_THROW(load_vector(l.problem, part.model, Extent::Whole), InputError);
 }
 
 // A part of the model on its own: its K and f, mapped by global_dof and summed over the parts,
@@ -115,7 +112,7 @@ TEST(ModelPart, PartsOfAnySplitSumToTheWholeStiffnessAndLoad) {
         for (SparseMatrix::InnerIterator it(K_part, j); it; ++it)
           K_entries.emplace_back(global[static_cast<size_t>(it.row())],
                                  global[static_cast<size_t>(j)], it.value());
-      const VectorXd f_part = part_load(l.problem, part);
+      const VectorXd f_part = load_vector(l.problem, part.model, Extent::Part);
       for (size_t k = 0; k < global.size(); ++k)
         f(global[k]) += f_part(static_cast<Index>(k));
     }

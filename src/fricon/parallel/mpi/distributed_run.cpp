@@ -159,7 +159,8 @@ RankShare assemble_share(const driver::Problem& problem, const driver::Model* wh
   collectively([&] {
     ScopedPhase phase(times, "assembly");
     share.entries = local_entries(part, B);
-    share.load = LoadPart::of(driver::part_load(problem, part), part.global_dof);
+    share.load = LoadPart::of(driver::load_vector(problem, part.model, driver::Extent::Part),
+                              part.global_dof);
   });
   return share;  // (the part is freed: MUMPS gets the entries)
 }

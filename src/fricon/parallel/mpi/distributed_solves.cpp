@@ -19,6 +19,12 @@ void sum_on_rank_0(VectorXd& x, int rank, MPI_Comm comm) {
     MPI_Reduce(x.data(), nullptr, n, MPI_DOUBLE, MPI_SUM, 0, comm);
 }
 
+// The contact dofs of a run without contact.
+const std::vector<Index>& no_dofs() {
+  static const std::vector<Index> none;
+  return none;
+}
+
 }  // namespace
 
 LoadPart LoadPart::of(const VectorXd& part_load, const std::vector<Index>& global_dof) {
@@ -103,7 +109,7 @@ DistributedSolves::DistributedSolves(const MumpsFactor& factor, const CommandCha
     : factor_(factor),
       channel_(channel),
       contact_(contact),
-      contact_dofs_(contact ? contact->dofs : no_contact_dofs_) {
+      contact_dofs_(contact ? contact->dofs : no_dofs()) {
   MPI_Comm_rank(world(), &rank_);
   if (rank_ != 0 || contact_dofs_.empty()) {
     load_rows_ = std::move(load.rows);

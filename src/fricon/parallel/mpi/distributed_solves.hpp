@@ -23,8 +23,8 @@ namespace fricon::parallel {
 struct LoadPart {
   std::vector<Index> rows;  ///< free dofs of the whole model, ascending
   VectorXd values;
-  /// The non-zero rows of `part_load` (driver::part_load, over the part's own free dofs), in the
-  /// whole model's numbering `global_dof` (ascending, driver::ModelPart).
+  /// The non-zero rows of `part_load` (driver::load_vector of a part, over its own free dofs), in
+  /// the whole model's numbering `global_dof` (ascending, driver::ModelPart).
   static LoadPart of(const VectorXd& part_load, const std::vector<Index>& global_dof);
 };
 
@@ -80,7 +80,6 @@ class DistributedSolves {
   const MumpsFactor& factor_;
   const CommandChannel& channel_;
   const ContactCoupling* contact_;
-  const std::vector<Index> no_contact_dofs_;
   const std::vector<Index>& contact_dofs_;  // contact_->dofs, or none
   int rank_ = 0;
   // The rows this rank gives with the load: its part of f and, on rank 0, the contact dofs.
