@@ -186,6 +186,7 @@ RunResult run_outer(const Case& k, qp::MpgpVariant v) {
   fricon::PhaseTimes times;
   const auto bounds = fricon::driver::make_slip_bounds(o.problem, o.model.mesh, o.disc, *o.law);
   fricon::driver::TrescaMap map(o.model.dofs, o.disc, *o.Q, *bounds, *o.law,
+                                qp::BlockScaling::identity(o.disc.n_dual()),
                                 options(k, v, so.qp_rtol), so.warm_start, times);
   RunResult res;
   VectorXd phi = VectorXd::Zero(o.disc.surface.n_nodes());

@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "fricon/contact/dual_scaling.hpp"
 #include "fricon/contact/radii.hpp"
 #include "fricon/core/error.hpp"
 #include "fricon/driver/tresca_map.hpp"
@@ -58,13 +59,32 @@ ContactReport describe(const Problem& problem, const contact::ContactDiscretizat
   return rep;
 }
 
-// ||Q|| by power iteration; a stop request ends it (there is no iterate to return yet).
-Real estimate_norm_Q(const dual::DualOperator& Q, const RunOptions& options) {
-  const qp::Operator apply = [&Q, &options](const VectorXd& x, VectorXd& y) {
+// ||D Q D|| by power iteration (D = I for ||Q||); a stop request ends it (there is no iterate
+// to return yet).
+Real estimate_norm_Q(const dual::DualOperator& Q, const qp::BlockScaling& D,
+                     const RunOptions& options) {
+  const qp::Operator product = Q.as_qp_operator();
+  const qp::Operator scaled = D.scaled(product);
+  const qp::Operator apply = [&scaled, &options](const VectorXd& x, VectorXd& y) {
     if (stop_requested(options)) throw Interrupted("interrupted while estimating ||Q||");
-    Q.apply(x, y);
+    scaled(x, y);
   };
   return qp::estimate_norm(apply, Q.size(), kPowerIterations, kPowerTolerance);
+}
+
+// The change of variables of the dual QP (theory.md §4.5): per patch the factor of
+// contact::patch_scale_factors, on its bound and its disc alike.
+qp::BlockScaling dual_scaling(const Problem& problem, const Model& m,
+                              const contact::ContactDiscretization& disc,
+                              const qp::SeparableConstraints& layout) {
+  if (problem.solver.dual_scaling == contact::DualScaling::None)
+    return qp::BlockScaling::identity(disc.n_dual());
+  const VectorXd d =
+      contact::patch_scale_factors(m.mesh, disc.surface, disc.patches, m.materials);
+  VectorXd per_block(2 * d.size());
+  for (Index p = 0; p < d.size(); ++p)
+    per_block(2 * p) = per_block(2 * p + 1) = d(p);
+  return qp::BlockScaling::per_block(layout, per_block);
 }
 
 qp::MpgpOptions qp_options(const SolverOptions& so, Real norm_Q, const RunOptions& options) {
@@ -138,8 +158,8 @@ VectorXd certify(const contact::ContactDiscretization& disc, const dual::DualOpe
                      << dof << ": " << w_c(dof) << ") disagrees with the full solve (" << w(dof)
                      << ")");
   g = disc.B * (Q.u0() - w) - Q.h();
-  const qp::KktScales scales = qp::default_kkt_scales(map.lambda(), Q.h(), map.constraints());
-  rep.kkt = qp::kkt_residuals(map.lambda(), g, map.constraints(), scales.x, scales.g);
+  rep.kkt = qp::scaled_kkt_residuals(map.lambda(), g, Q.h(), map.constraints(), map.scaling(),
+                                     qp::StopReference::Resisted);
   return w;
 }
 
@@ -257,14 +277,21 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m,
   out.report = describe(problem, disc, Q, *law);
   ContactReport& rep = out.report;
 
-  // @sect: ||Q|| for the QP's fixed step length, then the map Psi on the state.
+  // @sect: the scaled dual and its norm for the QP's fixed step length (||Q|| itself for the
+  // Coulomb residual), then the map Psi on the state.
+  const qp::BlockScaling scaling = dual_scaling(
+      problem, m, disc, qp::SeparableConstraints::contact_layout(disc.n_patches()));
   {
     ScopedPhase phase(times, "dual");
-    rep.norm_Q = estimate_norm_Q(Q, options);
+    rep.norm_Q = estimate_norm_Q(Q, qp::BlockScaling::identity(Q.size()), options);
+    rep.norm_Q_scaled = problem.solver.dual_scaling == contact::DualScaling::None
+                            ? rep.norm_Q
+                            : estimate_norm_Q(Q, scaling, options);
   }
   const auto bounds = make_slip_bounds(problem, m.mesh, disc, *law);
-  TrescaMap map(m.dofs, disc, Q, *bounds, *law, qp_options(problem.solver, rep.norm_Q, options),
-                problem.solver.warm_start, times);
+  TrescaMap map(m.dofs, disc, Q, *bounds, *law, scaling,
+                qp_options(problem.solver, rep.norm_Q_scaled, options), problem.solver.warm_start,
+                times);
   if (options.keep_first_dual) out.first_dual = first_dual_problem(problem, disc, Q, map);
 
   // @sect: successive approximations (theory.md §5), from the zero state (phi = 0, and for

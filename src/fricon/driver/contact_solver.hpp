@@ -69,6 +69,9 @@ struct ContactReport {
   Index n_inactive_multipliers = 0;
   std::string radius_integration;  ///< how the radii were integrated
   Real norm_Q = 0.0;               ///< power-method estimate of ||Q|| [m^3/Pa]
+  /// Power-method estimate of ||D Q D|| (theory.md §4.5; = norm_Q without scaling), whose
+  /// reciprocal sets the QP's fixed step length [dimensionless with the patch factors].
+  Real norm_Q_scaled = 0.0;
   /// How the partition was made stable (ContactDiscretization::partition_note; may be empty).
   std::string partition_note;
   outer::Termination termination = outer::Termination::IterationLimit;

@@ -15,6 +15,7 @@
 #include <string_view>
 #include <vector>
 
+#include "fricon/contact/dual_scaling.hpp"
 #include "fricon/contact/friction_law.hpp"
 #include "fricon/contact/patches.hpp"
 #include "fricon/contact/slip_bounds.hpp"
@@ -140,6 +141,9 @@ struct SolverOptions {
   /// lengths, 5-10x fewer products with Q on the paper's problems) or paper (the paper's plain
   /// MPGP, which reproduces its n_mult).
   qp::MpgpVariant qp_variant = qp::MpgpVariant::BarzilaiBorwein;
+  /// [solver.dual_scaling] the change of variables of the dual QP (theory.md §4.5): patch (one
+  /// factor per patch from its area and material) or none.
+  contact::DualScaling dual_scaling = contact::DualScaling::Patch;
   /// [solver.backend] where K is factored: CHOLMOD on one process, or MUMPS on the ranks of an
   /// MPI job (docs/parallel.md).
   parallel::Backend backend = parallel::Backend::Cholmod;

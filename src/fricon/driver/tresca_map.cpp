@@ -4,23 +4,32 @@
 
 #include <fmt/format.h>
 
+#include "fricon/core/error.hpp"
+
 namespace fricon::driver {
 
 TrescaMap::TrescaMap(const fe::DofMap& dofs, const contact::ContactDiscretization& discretization,
                      const dual::DualOperator& Q, const contact::SlipBounds& bounds,
-                     const contact::FrictionLaw& law, const qp::MpgpOptions& qp, bool warm_start,
-                     PhaseTimes& times)
+                     const contact::FrictionLaw& law, const qp::BlockScaling& scaling,
+                     const qp::MpgpOptions& qp, bool warm_start, PhaseTimes& times)
     : dofs_(dofs),
       disc_(discretization),
       Q_(Q),
       bounds_(bounds),
       law_(law),
+      scaling_(scaling),
       qp_(qp),
       warm_start_(warm_start),
       times_(times),
       apply_Q_(Q.as_qp_operator()),
       constraints_(qp::SeparableConstraints::contact_layout(discretization.n_patches())),
       lambda_(VectorXd::Zero(discretization.n_dual())) {}
+
+void TrescaMap::set_lambda(const VectorXd& lambda) {
+  FRICON_CHECK(lambda.size() == lambda_.size(),
+               "lambda of " << lambda.size() << " for " << lambda_.size() << " multipliers");
+  lambda_ = lambda;
+}
 
 std::vector<outer::StateBlock> TrescaMap::layout() const {
   std::vector<outer::StateBlock> blocks{{"phi", disc_.surface.n_nodes()}};
@@ -45,7 +54,7 @@ outer::StepResult TrescaMap::apply(int k, const VectorXd& state, VectorXd& image
   if (!warm_start_) lambda_.setZero();
   {
     ScopedPhase phase(times_, "qp");
-    last_qp_ = qp::solve_mpgp(apply_Q_, Q_.h(), constraints_, qp_, lambda_);
+    last_qp_ = qp::solve_mpgp_scaled(apply_Q_, Q_.h(), constraints_, scaling_, qp_, lambda_);
   }
   // @sect: the displacement on the contact surface, and its tangential slip.
   {

@@ -18,18 +18,20 @@
 #include "fricon/outer/outer_loop.hpp"
 #include "fricon/qp/constraints.hpp"
 #include "fricon/qp/mpgp.hpp"
+#include "fricon/qp/scaling.hpp"
 
 namespace fricon::driver {
 
 class TrescaMap final : public outer::FixedPointMap {
  public:
-  /// Every reference must outlive the map. `qp` carries the QP's tolerance, limit, variant,
-  /// ||Q|| and monitor; `warm_start` false starts every QP from zero. Phases "qp" and
-  /// "recovery" are timed into `times`.
+  /// Every reference must outlive the map. Each QP is solved in the variables scaled by
+  /// `scaling` (theory.md §4.5; qp::BlockScaling::identity for none); `qp` carries the QP's
+  /// tolerance, limit, variant, ||D Q D|| and monitor; `warm_start` false starts every QP from
+  /// zero. Phases "qp" and "recovery" are timed into `times`.
   TrescaMap(const fe::DofMap& dofs, const contact::ContactDiscretization& discretization,
             const dual::DualOperator& Q, const contact::SlipBounds& bounds,
-            const contact::FrictionLaw& law, const qp::MpgpOptions& qp, bool warm_start,
-            PhaseTimes& times);
+            const contact::FrictionLaw& law, const qp::BlockScaling& scaling,
+            const qp::MpgpOptions& qp, bool warm_start, PhaseTimes& times);
 
   /// {"phi": surface nodes}, and for Coulomb {"lambda_n": patches} after it.
   std::vector<outer::StateBlock> layout() const override;
@@ -48,6 +50,9 @@ class TrescaMap final : public outer::FixedPointMap {
   const VectorXd& w() const { return w_; }
   const qp::MpgpReport& last_qp() const { return last_qp_; }
   const qp::SeparableConstraints& constraints() const { return constraints_; }
+  const qp::BlockScaling& scaling() const { return scaling_; }
+  /// Starts the next QP from these multipliers [Pa] (a warm start from another solve).
+  void set_lambda(const VectorXd& lambda);
 
  private:
   const fe::DofMap& dofs_;
@@ -55,6 +60,7 @@ class TrescaMap final : public outer::FixedPointMap {
   const dual::DualOperator& Q_;
   const contact::SlipBounds& bounds_;
   const contact::FrictionLaw& law_;
+  const qp::BlockScaling& scaling_;
   qp::MpgpOptions qp_;
   bool warm_start_;
   PhaseTimes& times_;

@@ -288,6 +288,7 @@ void validate_solver(const Problem& p) {
   check_enum(p, s.dual_operator);
   check_enum(p, s.acceleration);
   check_enum(p, s.qp_variant);
+  check_enum(p, s.dual_scaling);
   check_enum(p, s.backend);
   check_enum(p, s.partition);
   if (s.backend == parallel::Backend::Petsc && !parallel::petsc_available())

@@ -69,6 +69,7 @@ void add_contact_report(const driver::ContactReport& c, nlohmann::json& j) {
                   {"radius_integration", c.radius_integration},
                   {"contraction_ratio", c.contraction_ratio},
                   {"norm_Q", c.norm_Q},
+                  {"norm_Q_scaled", c.norm_Q_scaled},
                   {"fixed_point_residual", c.fixed_point_residual},
                   {"history", history}};
   if (!c.partition_note.empty()) j["partition_note"] = c.partition_note;

@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -213,6 +215,34 @@ std::vector<bool> faces_of(const TetMesh& mesh, const std::vector<Index>& tets) 
         mine[static_cast<size_t>(it->second)] = true;
     }
   return mine;
+}
+
+std::vector<Index> tets_of_faces(const TetMesh& mesh, const std::vector<Index>& faces) {
+  // The triangles' vertex sets, sorted, with their positions; only tetrahedra with three
+  // vertices on them are looked up.
+  std::vector<std::pair<FaceKey, size_t>> wanted;
+  std::vector<bool> on_faces(static_cast<size_t>(mesh.n_nodes()), false);
+  for (size_t k = 0; k < faces.size(); ++k) {
+    const Index f = faces[k];
+    wanted.emplace_back(sorted_face(mesh.faces(0, f), mesh.faces(1, f), mesh.faces(2, f)), k);
+    for (int v = 0; v < 3; ++v)
+      on_faces[static_cast<size_t>(mesh.faces(v, f))] = true;
+  }
+  std::sort(wanted.begin(), wanted.end());
+  std::vector<Index> tet(faces.size(), -1);
+  for (Index t = 0; t < mesh.n_tets(); ++t) {
+    int marked = 0;
+    for (int a = 0; a < 4; ++a)
+      marked += on_faces[static_cast<size_t>(mesh.tets(a, t))] ? 1 : 0;
+    if (marked < 3) continue;
+    for (const auto& lf : kTetFace) {
+      const FaceKey key = sorted_face(mesh.tets(lf[0], t), mesh.tets(lf[1], t), mesh.tets(lf[2], t));
+      auto it = std::lower_bound(wanted.begin(), wanted.end(), std::make_pair(key, size_t{0}));
+      for (; it != wanted.end() && it->first == key; ++it)
+        tet[it->second] = t;
+    }
+  }
+  return tet;
 }
 
 TetMesh submesh(const TetMesh& mesh, const std::vector<Index>& tets, std::vector<Index>* nodes) {

@@ -93,6 +93,10 @@ Eigen::Matrix<Index, 3, Eigen::Dynamic> boundary_faces_of(const TetMesh& mesh);
 /// carries several tags).
 std::vector<bool> faces_of(const TetMesh& mesh, const std::vector<Index>& tets);
 
+/// For each of the boundary triangles `faces` (columns of mesh.faces), the tetrahedron it is a
+/// face of, or -1 if it is a face of none.
+std::vector<Index> tets_of_faces(const TetMesh& mesh, const std::vector<Index>& faces);
+
 /// The mesh of the tetrahedra `tets` (ascending indices into mesh.tets) alone: their nodes (in
 /// ascending order of their index in `mesh`, given back in `nodes` when not null), the boundary
 /// triangles that are faces of them (faces_of) with their tags and entities, their regions, and

@@ -52,13 +52,13 @@ void MpgpOptions::validate() const {
 std::string MpgpReport::brief() const {
   if (variant == MpgpVariant::Paper) {
     return fmt::format(
-        "MPGP {}: {} it ({} cg, {} exp, {} prop), {} products (+{} power), |gP|/|b| = {:.3e}",
+        "MPGP {}: {} it ({} cg, {} exp, {} prop), {} products (+{} power), |gP|/|r| = {:.3e}",
         enum_name(termination), iterations, n_cg, n_expansion, n_proportioning, n_products,
         n_power_products, rel_gp);
   }
   return fmt::format(
       "MPGP[{}] {}: {} it ({} cg, {} exp, {} prop; {} fallback, {} refresh), {} products (+{} "
-      "power), |gP|/|b| = {:.3e}",
+      "power), |gP|/|r| = {:.3e}",
       enum_name(variant), enum_name(termination), iterations, n_cg, n_expansion, n_proportioning,
       n_fallbacks, n_refreshes, n_products, n_power_products, rel_gp);
 }
@@ -84,12 +84,29 @@ std::string MpgpReport::full() const {
        fmt::format("{:.6e} ({})", norm_A_used, norm_A_estimated ? "power iteration" : "given"));
   line("alpha_bar_used", fmt::format("{:.6e}", alpha_bar_used));
   line("norm_b", fmt::format("{:.6e}", norm_b));
+  line("reference_norm", fmt::format("{:.6e}", reference_norm));
   line("norm_gp", fmt::format("{:.6e}", norm_gp));
   line("rel_gp", fmt::format("{:.6e}", rel_gp));
   line("objective", fmt::format("{:.15e}", objective));
   line("n_objective_increases", std::to_string(n_objective_increases));
   line("seconds", fmt::format("{:.6f}", seconds));
   return s;
+}
+
+Eigen::VectorXd resisted_part(const Eigen::VectorXd& b, const SeparableConstraints& c) {
+  FRICON_CHECK(b.size() == c.size(), "b has " << b.size() << " entries for " << c.size());
+  Eigen::VectorXd r(b.size());
+  for (std::size_t k = 0; k < c.blocks.size(); ++k) {
+    const Index o = c.blocks[k].offset;
+    if (c.blocks[k].kind == BlockKind::Bound) {
+      r(o) = std::max(b(o), 0.0);
+    } else {
+      const bool pinned = c.radius(static_cast<Index>(k)) == 0.0;
+      r(o) = pinned ? 0.0 : b(o);
+      r(o + 1) = pinned ? 0.0 : b(o + 1);
+    }
+  }
+  return r;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -250,8 +267,9 @@ Mpgp::Mpgp(const Operator& A, const Eigen::VectorXd& b, const SeparableConstrain
       bb_(opt.variant == MpgpVariant::BarzilaiBorwein),
       abar_(rep.alpha_bar_used),
       x_scale_(
-          std::max({x.lpNorm<Eigen::Infinity>(), c.max_radius(), rep.norm_b / rep.norm_A_used})),
-      threshold_(std::max(opt.rel_tolerance * rep.norm_b, opt.abs_tolerance)),
+          std::max({x.lpNorm<Eigen::Infinity>(), c.max_radius(),
+                    rep.reference_norm / rep.norm_A_used})),
+      threshold_(std::max(opt.rel_tolerance * rep.reference_norm, opt.abs_tolerance)),
       gamma2_(opt.gamma * opt.gamma),
       kern_(c, opt.active_tolerance * x_scale_, opt.active_tolerance, abar_),
       // The spectral trial lengths start from alpha_bar. Every such length lies in
@@ -435,9 +453,10 @@ std::optional<Stop> Mpgp::stop_test() {
   if (done >= opt_.max_iterations) {
     return Stop{
         Termination::MaxIterations,
-        fmt::format("reached max_iterations = {} with ||g^P|| / ||b|| = {:.3e} (target "
+        fmt::format("reached max_iterations = {} with ||g^P|| / ||r|| = {:.3e} (target "
                     "{:.3e})",
-                    opt_.max_iterations, norm_gp() / rep_.norm_b, threshold_ / rep_.norm_b)};
+                    opt_.max_iterations, norm_gp() / rep_.reference_norm,
+                    threshold_ / rep_.reference_norm)};
   }
   return std::nullopt;
 }
@@ -478,7 +497,7 @@ void Mpgp::finish(const Stop& stop) {
   rep_.termination = stop.termination;
   rep_.message = stop.message;
   rep_.norm_gp = norm_gp();
-  rep_.rel_gp = rep_.norm_gp / rep_.norm_b;
+  rep_.rel_gp = rep_.norm_gp / rep_.reference_norm;
   rep_.objective = objective();
 }
 
@@ -498,26 +517,32 @@ void check_inputs(const Operator& A, const Eigen::VectorXd& b, const SeparableCo
   if (!x.allFinite()) throw InputError("solve_mpgp: the initial guess x has non-finite entries");
 }
 
-// b = 0: q(x) = x^T A x / 2 >= 0 = q(0) and 0 is feasible, so x = 0, checked by one product.
-void solve_zero_rhs(const Operator& A, const Eigen::VectorXd& b, Eigen::VectorXd& x,
-                    MpgpReport& rep) {
+// b_R = 0 (b = 0 in particular): q(x) = x^T A x / 2 - b^T x >= 0 = q(0) on Omega, since there
+// b^T x <= 0 (b_i <= 0 on the bounds, x_i >= 0; b = 0 on the discs that are not pinned), and 0 is
+// feasible, so x = 0, checked by one product.
+void solve_zero_rhs(const Operator& A, const Eigen::VectorXd& b, const SeparableConstraints& c,
+                    Eigen::VectorXd& x, MpgpReport& rep) {
   x.setZero();
   Eigen::VectorXd g(x.size());
   A(x, g);
   ++rep.n_products;
   FRICON_CHECK(g.size() == x.size(),
                "operator returned a vector of size " << g.size() << ", expected " << x.size());
+  if (g.norm() != 0.0) {
+    rep.termination = Termination::NumericalFailure;
+    rep.message = fmt::format("A 0 has norm {}: A is not linear", g.norm());
+    rep.norm_gp = rep.rel_gp = g.norm();
+    return;
+  }
   g -= b;
-  rep.norm_gp = g.norm();  // every block is at an interior point or a pinned disc: g^P = g
+  // At x = 0 a bound is active with g_i = -b_i >= 0 and a disc is pinned or has g_i = 0, so
+  // g^P = b_R = 0.
+  rep.norm_gp = resisted_part(b, c).norm();
   rep.rel_gp = rep.norm_gp;
   rep.objective = 0.0;
-  if (rep.norm_gp == 0.0) {
-    rep.termination = Termination::Converged;
-    rep.message = "b = 0: the solution is x = 0";
-  } else {
-    rep.termination = Termination::NumericalFailure;
-    rep.message = fmt::format("b = 0 but A 0 has norm {}: A is not linear", rep.norm_gp);
-  }
+  rep.termination = Termination::Converged;
+  rep.message = rep.norm_b == 0.0 ? "b = 0: the solution is x = 0"
+                                  : "b_R = 0 (no constraint resists b): the solution is x = 0";
 }
 
 // ||A|| (given, or estimated by power iteration) and alpha_bar = step_factor / ||A||.
@@ -546,8 +571,10 @@ MpgpReport solve_mpgp(const Operator& A, const Eigen::VectorXd& b, const Separab
   MpgpReport rep;
   rep.variant = opt.variant;
   rep.norm_b = b.norm();
-  if (rep.norm_b == 0.0) {
-    solve_zero_rhs(A, b, x, rep);
+  rep.reference_norm =
+      opt.reference == StopReference::Whole ? rep.norm_b : resisted_part(b, c).norm();
+  if (rep.reference_norm == 0.0) {
+    solve_zero_rhs(A, b, c, x, rep);
   } else {
     set_step_length(A, c.size(), opt, rep);
     c.project(x);  // line 1: start from the projection of the initial guess

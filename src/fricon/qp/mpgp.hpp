@@ -71,6 +71,23 @@ enum class MpgpVariant {
   BarzilaiBorwein,
 };
 
+/// The norm that the relative stopping test ||g^P|| <= rel_tolerance ||r|| refers to
+/// (docs/theory.md §4.2).
+enum class StopReference {
+  /// r = b, the paper's test [HL09, §6].
+  Whole,
+  /// r = b_R, the part of b that the constraints resist (resisted_part below): b on the discs of
+  /// positive radius, max(b_i, 0) on the bounds. A bound with b_i <= 0 is satisfied at x = 0 by
+  /// itself (a patch with a gap the free displacement does not close), so however large such
+  /// entries are they do not loosen the test. Where every b_i of the bounds is positive (the
+  /// paper's brick) it is the paper's test. Default.
+  Resisted,
+};
+
+/// b_R of StopReference::Resisted: per block, b itself on a disc of positive radius, 0 on a
+/// pinned disc, max(b_i, 0) on a bound. x = 0 solves the QP when b_R = 0.
+Eigen::VectorXd resisted_part(const Eigen::VectorXd& b, const SeparableConstraints& c);
+
 }  // namespace fricon::qp
 
 FRICON_ENUM_NAMES(fricon::qp::Termination, "termination", {qp::Termination::Converged, "converged"},
@@ -99,8 +116,12 @@ struct MpgpIteration {
 struct MpgpOptions {
   /// The algorithm. Default BarzilaiBorwein (the program's default); Paper is the reference.
   MpgpVariant variant = MpgpVariant::BarzilaiBorwein;
-  /// Stop when ||g^P|| <= rel_tolerance * ||b||_2. Default 1e-6 ([HL09]); range >= 0.
+  /// Stop when ||g^P|| <= rel_tolerance * ||r||_2, r given by `reference`. Default 1e-6
+  /// ([HL09]); range >= 0.
   double rel_tolerance = 1e-6;
+  /// What the relative test refers to. Default Resisted (the paper's ||b|| where every bound's
+  /// b_i is positive).
+  StopReference reference = StopReference::Resisted;
   /// ... or when ||g^P|| <= abs_tolerance (same unit as b). Default 0 (off); range >= 0.
   double abs_tolerance = 0.0;
   /// Cap on the number of steps. Default 100000; range >= 0.
@@ -156,8 +177,10 @@ struct MpgpReport {
   double norm_A_used = 0.0;       ///< ||A|| behind alpha_bar (given or estimated)
   double alpha_bar_used = 0.0;    ///< step_factor / norm_A_used
   double norm_b = 0.0;            ///< ||b||_2
-  double norm_gp = 0.0;           ///< final ||g^P||_2
-  double rel_gp = 0.0;            ///< norm_gp / norm_b (norm_gp itself if b = 0)
+  /// ||r||_2 of the stopping test (MpgpOptions::reference): ||b||_2 or ||b_R||_2.
+  double reference_norm = 0.0;
+  double norm_gp = 0.0;  ///< final ||g^P||_2
+  double rel_gp = 0.0;   ///< norm_gp / reference_norm (norm_gp itself if the reference is 0)
   double objective = 0.0;         ///< final q(x)
   /// Steps that increased q by more than rounding (expected 0; > 0 hints at a too large
   /// alpha_bar, e.g. an underestimated norm_A).
@@ -177,8 +200,8 @@ struct MpgpReport {
 /// Throws fricon::InputError on invalid options or constraints, size mismatches, or non-finite
 /// entries in b, x or the radii, and fricon::NumericalError if ||A|| comes out <= 0 or
 /// non-finite. Numerical trouble during the iteration is reported as NumericalFailure instead.
-/// If b = 0 the solution is x = 0 (0 lies in Omega); it is returned at once, after the initial
-/// gradient, without estimating ||A||.
+/// If b = 0, or b_R = 0 with StopReference::Resisted, the solution is x = 0 (0 lies in Omega); it
+/// is returned at once, after the initial gradient, without estimating ||A||.
 MpgpReport solve_mpgp(const Operator& A, const Eigen::VectorXd& b, const SeparableConstraints& c,
                       const MpgpOptions& opt, Eigen::VectorXd& x);
 

@@ -714,6 +714,7 @@ TEST(MpgpRegression, CountsAndIteratesArePinned) {
       MpgpOptions opt;
       opt.variant = variant;
       opt.rel_tolerance = k.rel_tolerance;
+      opt.reference = StopReference::Whole;  // the test the counts were pinned with
       Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
       if (k.infeasible_start) {
         std::mt19937 rng(7);
