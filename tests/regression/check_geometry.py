@@ -10,6 +10,8 @@
     touched (no pressure anywhere); made level at zero gap, it gives the paper brick's answer.
   - wheel: two materials by region; a stiffer hub carries a larger force for the same prescribed
     displacement, and the Coulomb certificate holds.
+  - hertz and wheel at the default tolerances: every patch pressure within 0.1 % of the peak of
+    the same problem solved to qp_rtol = 1e-13 (a run the certificate passes is that accurate).
 Usage: check_geometry.py FRICON EXAMPLES_DIR OUTDIR
 """
 import csv
@@ -38,8 +40,18 @@ def solve(toml, name, *sets):
     return report, patches
 
 
+def check_against_tight(name, toml, patches, *sets):
+    """The patch pressures of a default run against those of qp_rtol = 1e-13."""
+    _, tight = solve(toml, name + "-tight", "solver.qp_rtol=1e-13", *sets)
+    peak = max(p["lambda_n"] for p in tight)
+    worst = max(abs(a["lambda_n"] - b["lambda_n"]) for a, b in zip(patches, tight)) / peak
+    print(f"{name}: default tolerance against 1e-13: worst patch {worst:.2e} of the peak")
+    assert worst <= 1e-3, (name, worst)
+
+
 def check_hertz():
     report, patches = solve(examples / "hertz-hemisphere.toml", "hertz")
+    check_against_tight("hertz", examples / "hertz-hemisphere.toml", patches)
     radius, young, poisson = 0.05, 2.0e11, 0.3  # as in hertz-hemisphere.geo/.toml
     e_star = young / (1.0 - poisson**2)
     force = sum(p["lambda_n"] * p["area"] for p in patches)
@@ -99,7 +111,8 @@ def check_tilted_plane():
 
 def check_wheel():
     toml = examples / "wheel.toml"
-    soft, _ = solve(toml, "wheel")
+    soft, soft_patches = solve(toml, "wheel")
+    check_against_tight("wheel", toml, soft_patches)
     stiff, _ = solve(toml, "wheel-stiff-hub", "material.1.young=2.1e11")
     assert soft["coulomb"]["residual"] <= soft["coulomb"]["bound"], soft["coulomb"]
     regions = {r["name"]: r for r in soft["regions"]}
