@@ -69,6 +69,11 @@ void print_summary(const fricon::driver::RunResult& result, const std::filesyste
     fmt::print("  contact       '{}': {} patches, n_dual = {}, {} contact nodes, {} friction {}\n",
                c.boundary, c.n_patches, c.n_dual, c.n_contact_nodes, fricon::enum_name(c.model),
                c.friction_law);
+    if (c.search_rounds > 0)
+      fmt::print(
+          "  search        {} of {} patches in the QP, {} left out (none penetrates), {} {}\n",
+          c.n_candidate_patches, c.n_patches, c.n_patches - c.n_candidate_patches, c.search_rounds,
+          c.search_rounds == 1 ? "round" : "rounds");
     fmt::print("  outer loop    {} iterations ({}), err(k):", c.outer_iterations,
                fricon::enum_name(c.termination));
     for (double e : c.err_history)

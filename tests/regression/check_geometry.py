@@ -10,6 +10,8 @@
     touched (no pressure anywhere); made level at zero gap, it gives the paper brick's answer.
   - wheel: two materials by region; a stiffer hub carries a larger force for the same prescribed
     displacement, and the Coulomb certificate holds.
+  - hertz with the contact search (the default) and without it (contact_search = "off"): the
+    same patch pressures to 1e-4 of the peak, with patches left out of the QP.
   - hertz and wheel at the default tolerances: every patch pressure within 0.1 % of the peak of
     the same problem solved to qp_rtol = 1e-13 (a run the certificate passes is that accurate).
 Usage: check_geometry.py FRICON EXAMPLES_DIR OUTDIR
@@ -52,6 +54,15 @@ def check_against_tight(name, toml, patches, *sets):
 def check_hertz():
     report, patches = solve(examples / "hertz-hemisphere.toml", "hertz")
     check_against_tight("hertz", examples / "hertz-hemisphere.toml", patches)
+    assert 0 < report["n_candidate_patches"] < len(patches), report["n_candidate_patches"]
+    assert report["search_rounds"] >= 1, report["search_rounds"]
+    _, every = solve(examples / "hertz-hemisphere.toml", "hertz-every-patch",
+                     'solver.contact_search="off"')
+    peak = max(p["lambda_n"] for p in every)
+    worst = max(abs(a["lambda_n"] - b["lambda_n"]) for a, b in zip(patches, every)) / peak
+    print(f"hertz: {report['n_candidate_patches']} of {len(patches)} patches in the QP; "
+          f"against every patch: worst patch {worst:.2e} of the peak")
+    assert worst <= 1e-4, worst
     radius, young, poisson = 0.05, 2.0e11, 0.3  # as in hertz-hemisphere.geo/.toml
     e_star = young / (1.0 - poisson**2)
     force = sum(p["lambda_n"] * p["area"] for p in patches)

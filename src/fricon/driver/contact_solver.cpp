@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "fricon/contact/candidates.hpp"
 #include "fricon/contact/dual_scaling.hpp"
 #include "fricon/contact/radii.hpp"
 #include "fricon/core/error.hpp"
@@ -79,8 +80,7 @@ qp::BlockScaling dual_scaling(const Problem& problem, const Model& m,
                               const qp::SeparableConstraints& layout) {
   if (problem.solver.dual_scaling == contact::DualScaling::None)
     return qp::BlockScaling::identity(disc.n_dual());
-  const VectorXd d =
-      contact::patch_scale_factors(m.mesh, disc.surface, disc.patches, m.materials);
+  const VectorXd d = contact::patch_scale_factors(m.mesh, disc.surface, disc.patches, m.materials);
   VectorXd per_block(2 * d.size());
   for (Index p = 0; p < d.size(); ++p)
     per_block(2 * p) = per_block(2 * p + 1) = d(p);
@@ -161,6 +161,34 @@ VectorXd certify(const contact::ContactDiscretization& disc, const dual::DualOpe
   rep.kkt = qp::scaled_kkt_residuals(map.lambda(), g, Q.h(), map.constraints(), map.scaling(),
                                      qp::StopReference::Resisted);
   return w;
+}
+
+// The result on every patch of a contact search (theory.md §2.7): the patches left out with
+// zero multipliers and radii, the gradient g = c - B w of the whole QP through the displacement w
+// of the whole body, and the certificate over every patch.
+struct WholeResult {
+  VectorXd lambda, radius, g;
+};
+
+WholeResult cover_left_out(const Problem& problem, const Model& m, const PatchSelection& selection,
+                           const dual::DualOperator& Q, const TrescaMap& map, const VectorXd& w,
+                           ContactReport& rep) {
+  const contact::ContactDiscretization& whole = selection.whole;
+  const Index n = whole.n_patches();
+  WholeResult r;
+  r.lambda = contact::expand_to_patches(map.lambda(), selection.patches, n, 3);
+  r.radius = contact::expand_to_patches(map.radius(), selection.patches, n, 1);
+  r.g = whole.offset - whole.B * w;
+  const VectorXd h = whole.B * Q.u0() - whole.offset;
+  qp::SeparableConstraints c = qp::SeparableConstraints::contact_layout(n);
+  c.set_disc_radii(r.radius);
+  const qp::BlockScaling D = dual_scaling(problem, m, whole, c);
+  rep.kkt = qp::scaled_kkt_residuals(r.lambda, r.g, h, c, D, qp::StopReference::Resisted);
+  rep.n_candidate_patches = rep.n_patches;
+  rep.n_patches = n;
+  rep.n_dual = whole.n_dual();
+  rep.search_rounds = selection.round;
+  return r;
 }
 
 // The paper's measures and the surface fields of the result.
@@ -271,16 +299,17 @@ outer::OuterOptions outer_options(const SolverOptions& so) {
 ContactOutcome solve_contact(const Problem& problem, const Model& m,
                              const contact::ContactDiscretization& disc,
                              const dual::DualOperator& Q, PhaseTimes& times,
-                             const RunOptions& options) {
+                             const RunOptions& options, const PatchSelection* selection) {
   ContactOutcome out;
   const auto law = contact::make_friction_law(problem.contact->friction);
   out.report = describe(problem, disc, Q, *law);
   ContactReport& rep = out.report;
+  rep.n_candidate_patches = disc.n_patches();
 
   // @sect: the scaled dual and its norm for the QP's fixed step length (||Q|| itself for the
   // Coulomb residual), then the map Psi on the state.
-  const qp::BlockScaling scaling = dual_scaling(
-      problem, m, disc, qp::SeparableConstraints::contact_layout(disc.n_patches()));
+  const qp::BlockScaling scaling =
+      dual_scaling(problem, m, disc, qp::SeparableConstraints::contact_layout(disc.n_patches()));
   {
     ScopedPhase phase(times, "dual");
     rep.norm_Q = estimate_norm_Q(Q, qp::BlockScaling::identity(Q.size()), options);
@@ -299,28 +328,34 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m,
   VectorXd state = VectorXd::Zero(state_size(map));
   const outer::OuterReport loop = successive_approximations(map, state, problem, rep, options);
 
-  // @sect: the displacement of the whole body, once, and the certificate of the last iterate.
+  // @sect: the displacement of the whole body, once, and the certificate of the last iterate
+  // (over every patch, those a contact search left out too).
   VectorXd g;
   {
     ScopedPhase phase(times, "recovery");
     out.w = certify(disc, Q, map, rep, g);
   }
+  const contact::ContactDiscretization& whole = selection ? selection->whole : disc;
+  WholeResult result{map.lambda(), map.radius(), std::move(g)};
+  if (selection) result = cover_left_out(problem, m, *selection, Q, map, out.w, rep);
   {
     ScopedPhase phase(times, "postprocess");
-    out.fields.lambda = map.lambda();
-    out.fields.radius = map.radius();
-    measure(m, disc, *law, map.lambda(), out);
-    classify_patches(*bounds, map.radius(), out);
-    if (bounds->uses_pressure())
+    const auto whole_bounds = selection ? make_slip_bounds(problem, m.mesh, whole, *law) : nullptr;
+    const contact::SlipBounds& result_bounds = selection ? *whole_bounds : *bounds;
+    out.fields.lambda = result.lambda;
+    out.fields.radius = result.radius;
+    measure(m, whole, *law, result.lambda, out);
+    classify_patches(result_bounds, result.radius, out);
+    if (result_bounds.uses_pressure())
       rep.coulomb_residual =
-          qp::coulomb_residual(map.lambda(), g, out.fields.coefficient, 1.0 / rep.norm_Q);
+          qp::coulomb_residual(result.lambda, result.g, out.fields.coefficient, 1.0 / rep.norm_Q);
   }
   conclude(loop, out);
   rep.n_kinv = Q.n_kinv();
-  out.fields.surface = disc.surface;
-  out.fields.patches = disc.patches;
-  out.fields.slip_bound = disc.slip_bound;
-  out.fields.gap = disc.gap;
+  out.fields.surface = whole.surface;
+  out.fields.patches = whole.patches;
+  out.fields.slip_bound = whole.slip_bound;
+  out.fields.gap = whole.gap;
   out.fields.phi = map.slips(state);
   return out;
 }

@@ -60,6 +60,11 @@ struct ContactReport {
   dual::DualOperatorKind dual_operator = dual::DualOperatorKind::Auto;  ///< the one used
   Index n_patches = 0;
   Index n_dual = 0;  ///< 3 n_patches (the paper's n_d)
+  /// Patches in the last QP (theory.md §2.7): n_patches without a contact search.
+  Index n_candidate_patches = 0;
+  /// Solves of the contact search: 1 when the first candidates were enough, 1 more for each
+  /// growth of the set; 0 without a search.
+  int search_rounds = 0;
   Index n_surface_nodes = 0;
   Index n_contact_nodes = 0;         ///< surface nodes whose normal displacement is free
   Real stability_ratio = 0.0;        ///< sigma_min / sigma_max of B (condition (5.1))
@@ -151,14 +156,25 @@ struct ContactOutcome {
   std::optional<qp::DualProblem> first_dual;  ///< if RunOptions::keep_first_dual
 };
 
+/// A contact search's view of a solve (theory.md §2.7): the discretization of every patch and
+/// the patches of the one solved (contact::restrict_to_patches of it).
+struct PatchSelection {
+  const contact::ContactDiscretization& whole;
+  const std::vector<Index>& patches;  ///< increasing indices into whole's patches
+  int round = 1;                      ///< the search's solve this is (ContactReport::search_rounds)
+};
+
 /// Runs the contact solve for `problem.contact` on the factored model with the contact
 /// discretization `disc` and the dual operator `Q` built on them; phases are timed into `times`
-/// ("dual", "qp", "recovery", "postprocess"). Non-convergence (including a failed certificate)
-/// is returned, not thrown.
+/// ("dual", "qp", "recovery", "postprocess"). With a `selection`, `disc` is the part of
+/// selection->whole on its patches, and the outcome is that of the whole: the patches left out
+/// with zero multipliers, the certificate and the measures over every patch. Non-convergence
+/// (including a failed certificate) is returned, not thrown.
 ContactOutcome solve_contact(const Problem& problem, const Model& model,
                              const contact::ContactDiscretization& disc,
                              const dual::DualOperator& Q, PhaseTimes& times,
-                             const RunOptions& options = {});
+                             const RunOptions& options = {},
+                             const PatchSelection* selection = nullptr);
 
 /// The slip bounds of the problem's friction model on the discretization.
 std::unique_ptr<contact::SlipBounds> make_slip_bounds(const Problem& problem,

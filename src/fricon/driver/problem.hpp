@@ -15,6 +15,7 @@
 #include <string_view>
 #include <vector>
 
+#include "fricon/contact/candidates.hpp"
 #include "fricon/contact/dual_scaling.hpp"
 #include "fricon/contact/friction_law.hpp"
 #include "fricon/contact/patches.hpp"
@@ -144,6 +145,14 @@ struct SolverOptions {
   /// [solver.dual_scaling] the change of variables of the dual QP (theory.md §4.5): patch (one
   /// factor per patch from its area and material) or none.
   contact::DualScaling dual_scaling = contact::DualScaling::Patch;
+  /// [solver.contact_search] which patches enter the dual QP (theory.md §2.7): gap (the
+  /// candidates that the free displacement brings within contact_search_margin of closing, grown
+  /// until no patch left out penetrates) or off (every patch). Tresca with a positive slip
+  /// bound, which acts without pressure, and backend petsc use every patch.
+  contact::ContactSearch contact_search = contact::ContactSearch::Gap;
+  /// [solver.contact_search_margin] a patch is a first candidate when its gap at the free
+  /// displacement is at most this many times the deepest free penetration, >= 0.
+  Real contact_search_margin = 0.0;
   /// [solver.backend] where K is factored: CHOLMOD on one process, or MUMPS on the ranks of an
   /// MPI job (docs/parallel.md).
   parallel::Backend backend = parallel::Backend::Cholmod;

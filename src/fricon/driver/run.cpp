@@ -24,11 +24,11 @@ std::function<void()> interrupt_poll(const RunOptions& options) {
   };
 }
 
-VectorXd solve_with_operator(const Problem& problem, const contact::ContactDiscretization& disc,
-                             const dual::DualOperator& Q, const RunOptions& options, RunResult& r) {
+namespace {
+
+// The outcome's contact part into the run's result; returns the displacement over the free dofs.
+VectorXd adopt(ContactOutcome&& c, RunResult& r) {
   RunReport& rep = r.report;
-  phase_start(options, "outer loop");
-  ContactOutcome c = solve_contact(problem, r.model, disc, Q, rep.times, options);
   r.first_dual = std::move(c.first_dual);
   rep.status = c.converged ? Status::Converged : Status::NotConverged;
   rep.message = c.message;
@@ -37,6 +37,85 @@ VectorXd solve_with_operator(const Problem& problem, const contact::ContactDiscr
   rep.contact = std::move(c.report);
   r.contact = std::move(c.fields);
   return std::move(c.w);
+}
+
+}  // namespace
+
+VectorXd solve_with_operator(const Problem& problem, const contact::ContactDiscretization& disc,
+                             const dual::DualOperator& Q, const RunOptions& options, RunResult& r) {
+  phase_start(options, "outer loop");
+  return adopt(solve_contact(problem, r.model, disc, Q, r.report.times, options), r);
+}
+
+bool search_applies(const Problem& problem, const contact::ContactDiscretization& disc) {
+  if (problem.solver.contact_search == contact::ContactSearch::Off) return false;
+  // A positive Tresca bound g F acts without pressure: every patch resists sliding.
+  const ContactOptions& c = *problem.contact;
+  const bool frictionless =
+      c.friction.law == contact::FrictionLawKind::Constant && c.friction.value == 0.0;
+  const bool tresca_everywhere = c.model == contact::FrictionModel::Tresca && !frictionless &&
+                                 disc.slip_bound.size() > 0 && disc.slip_bound.maxCoeff() > 0.0;
+  return !tresca_everywhere;
+}
+
+VectorXd solve_with_search(const Problem& problem, const contact::ContactDiscretization& disc,
+                           const RunOptions& options, RunResult& r,
+                           const std::vector<Index>* first_candidates) {
+  const Model& m = r.model;
+  // @sect: the free displacement and the first candidates (theory.md §2.7).
+  VectorXd u0;
+  std::vector<Index> candidates;
+  Real tolerance = 0.0;
+  {
+    ScopedPhase phase(r.report.times, "dual");
+    u0 = m.factor.solve(m.f);
+    const VectorXd free_penetration = contact::mean_penetration(disc, u0);
+    candidates = first_candidates ? *first_candidates
+                                  : contact::initial_candidates(
+                                        free_penetration, problem.solver.contact_search_margin);
+    tolerance = problem.solver.qp_rtol * free_penetration.cwiseAbs().maxCoeff();
+  }
+  // @sect: solve on the candidates, add the left-out patches that penetrate, again until none
+  // does (after kMaxSearchRounds growths, with every patch). The counts of the report are
+  // those of every round (and of the solve for u0).
+  long earlier_products = 0, earlier_qp_iterations = 0, earlier_kinv = 1;
+  for (int round = 1;; ++round) {
+    phase_start(options, "dual");
+    const contact::ContactDiscretization part = contact::restrict_to_patches(disc, candidates);
+    std::unique_ptr<dual::DualOperator> Q;
+    {
+      ScopedPhase phase(r.report.times, "dual");
+      const dual::DualInput input{m.factor,     part.B, m.f, part.dofs, interrupt_poll(options),
+                                  &part.offset, &u0};
+      Q = dual::make_dual_operator(problem.solver.dual_operator, input);
+    }
+    phase_start(options, "outer loop");
+    const PatchSelection selection{disc, candidates, round};
+    ContactOutcome c = solve_contact(problem, m, part, *Q, r.report.times, options, &selection);
+    std::vector<Index> added =
+        contact::penetrating_patches(contact::mean_penetration(disc, c.w), candidates, tolerance);
+    // A round that left out a pressing patch fails its certificate over every patch: that
+    // failure is what the growth repairs; any other is the answer.
+    const bool grow =
+        !added.empty() && !stop_requested(options) &&
+        (c.converged || c.report.termination == outer::Termination::CertificateFailed);
+    if (!grow) {
+      c.report.n_mult += earlier_products;
+      c.report.qp_iterations += earlier_qp_iterations;
+      c.report.n_kinv += earlier_kinv;
+      return adopt(std::move(c), r);
+    }
+    earlier_products += c.report.n_mult;
+    earlier_qp_iterations += c.report.qp_iterations;
+    earlier_kinv += c.report.n_kinv;
+    if (round >= kMaxSearchRounds) {
+      added.clear();
+      for (Index p = 0; p < disc.n_patches(); ++p)
+        added.push_back(p);
+      candidates.clear();
+    }
+    candidates = contact::merge_patches(candidates, added);
+  }
 }
 
 namespace {
@@ -55,6 +134,13 @@ VectorXd solve_with_contact(const Problem& problem, const contact::ContactDiscre
     Q = dual::make_dual_operator(problem.solver.dual_operator, input);
   }
   return solve_with_operator(problem, disc, *Q, options, r);
+}
+
+// With contact: on every patch, or on those of the contact search.
+VectorXd solve_contact_problem(const Problem& problem, const contact::ContactDiscretization& disc,
+                               const RunOptions& options, RunResult& r) {
+  return search_applies(problem, disc) ? solve_with_search(problem, disc, options, r)
+                                       : solve_with_contact(problem, disc, options, r);
 }
 
 // Without contact: one solve with the factor of K.
@@ -137,7 +223,7 @@ RunResult run(const Problem& problem, const RunOptions& options) {
   if (stop_requested(options)) throw Interrupted("interrupted before the solve");
 
   // @sect: the displacement: one solve, or the outer loop of dual QPs.
-  const VectorXd u = disc ? solve_with_contact(problem, *disc, options, r) : solve_elastic(r);
+  const VectorXd u = disc ? solve_contact_problem(problem, *disc, options, r) : solve_elastic(r);
 
   // @sect: fields and the self-check of the result.
   finish_run(problem, u, options, r);

@@ -19,6 +19,23 @@ std::function<void()> interrupt_poll(const RunOptions& options);
 VectorXd solve_with_operator(const Problem& problem, const contact::ContactDiscretization& disc,
                              const dual::DualOperator& Q, const RunOptions& options, RunResult& r);
 
+/// After this many growths of the contact search's candidates, the next solve takes every patch.
+inline constexpr int kMaxSearchRounds = 8;
+
+/// Whether the contact search leaves patches out (theory.md §2.7): solver.contact_search is not
+/// off, and no patch resists without pressure (Tresca with a positive slip bound).
+bool search_applies(const Problem& problem, const contact::ContactDiscretization& disc);
+
+/// The outer loop of dual QPs on the patches of the contact search (theory.md §2.7): the first
+/// candidates (contact::initial_candidates of the free displacement, or `first_candidates` if
+/// given: increasing patch indices), then one more solve with the left-out patches that
+/// penetrate added, until none does. Builds the dual operator of each set (phase "dual"), fills
+/// the contact part of r.report (over every patch) and r.contact, and returns the displacement
+/// over the free dofs.
+VectorXd solve_with_search(const Problem& problem, const contact::ContactDiscretization& disc,
+                           const RunOptions& options, RunResult& r,
+                           const std::vector<Index>* first_candidates = nullptr);
+
 /// The model's sizes in the report (nodes, tetrahedra, free dofs).
 void report_sizes(const Model& model, RunReport& report);
 

@@ -289,6 +289,9 @@ void validate_solver(const Problem& p) {
   check_enum(p, s.acceleration);
   check_enum(p, s.qp_variant);
   check_enum(p, s.dual_scaling);
+  check_enum(p, s.contact_search);
+  check_real(p, "solver.contact_search_margin", s.contact_search_margin, "a number >= 0",
+             s.contact_search_margin >= 0.0);
   check_enum(p, s.backend);
   check_enum(p, s.partition);
   if (s.backend == parallel::Backend::Petsc && !parallel::petsc_available())

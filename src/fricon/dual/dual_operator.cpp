@@ -39,6 +39,10 @@ void DualOperator::set_free_solution(VectorXd u0, const SparseMatrix& B, const V
 }
 
 FactorDualOperator::FactorDualOperator(const DualInput& input) : in_(input) {
+  if (in_.free_solution != nullptr) {
+    set_free_solution(*in_.free_solution, in_.B, in_.offset);
+    return;
+  }
   set_free_solution(in_.factor.solve(in_.f), in_.B, in_.offset);
   ++n_kinv_;
 }

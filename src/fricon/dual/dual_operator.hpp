@@ -48,6 +48,8 @@ struct DualInput {
   /// c [m^3], the constant part of the constraints B w <= c (normal rows: the initial gap; see
   /// contact::ContactDiscretization::offset), so that h = B K^-1 f - c; null: zero.
   const VectorXd* offset = nullptr;
+  /// u0 = K^-1 f if already solved (the contact search's), else null: the operator solves it.
+  const VectorXd* free_solution = nullptr;
 };
 
 /// The dual problem's operator, whatever factors K: CHOLMOD here (FactorDualOperator), MUMPS

@@ -22,6 +22,8 @@ nlohmann::json vec3(const Vec3& v) {
 // history.
 void add_contact_report(const driver::ContactReport& c, nlohmann::json& j) {
   j.update({{"n_dual", c.n_dual},
+            {"n_candidate_patches", c.n_candidate_patches},
+            {"search_rounds", c.search_rounds},
             {"outer_iterations", c.outer_iterations},
             {"n_mult", c.n_mult},
             {"qp_iterations", c.qp_iterations},
