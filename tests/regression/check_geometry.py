@@ -12,6 +12,8 @@
     displacement, and the Coulomb certificate holds.
   - hertz with the contact search (the default) and without it (contact_search = "off"): the
     same patch pressures to 1e-4 of the peak, with patches left out of the QP.
+  - hertz with the scaled dual (the default) and without it (dual_scaling = "none"): the same
+    patch pressures to 2e-4 of the peak (each is within 1e-4 of the tight solve).
   - hertz and wheel at the default tolerances: every patch pressure within 0.1 % of the peak of
     the same problem solved to qp_rtol = 1e-13 (a run the certificate passes is that accurate).
 Usage: check_geometry.py FRICON EXAMPLES_DIR OUTDIR
@@ -63,6 +65,11 @@ def check_hertz():
     print(f"hertz: {report['n_candidate_patches']} of {len(patches)} patches in the QP; "
           f"against every patch: worst patch {worst:.2e} of the peak")
     assert worst <= 1e-4, worst
+    _, unscaled = solve(examples / "hertz-hemisphere.toml", "hertz-unscaled",
+                        'solver.dual_scaling="none"')
+    worst = max(abs(a["lambda_n"] - b["lambda_n"]) for a, b in zip(patches, unscaled)) / peak
+    print(f"hertz: scaled against unscaled dual: worst patch {worst:.2e} of the peak")
+    assert worst <= 2e-4, worst
     radius, young, poisson = 0.05, 2.0e11, 0.3  # as in hertz-hemisphere.geo/.toml
     e_star = young / (1.0 - poisson**2)
     force = sum(p["lambda_n"] * p["area"] for p in patches)
