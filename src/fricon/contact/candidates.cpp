@@ -52,12 +52,14 @@ std::vector<Index> merge_patches(const std::vector<Index>& candidates,
 
 namespace {
 
-// The rows 3p, 3p+1, 3p+2 of m for the patches p of subset, in its order.
-SparseMatrix patch_rows(const SparseMatrix& m, const std::vector<Index>& subset) {
+// The rows 3p, 3p+1, 3p+2 of m (only 3p for PatchRows::Normal, the others zero) for the patches p
+// of subset, in its order.
+SparseMatrix patch_rows(const SparseMatrix& m, const std::vector<Index>& subset, PatchRows kept) {
   std::vector<Eigen::Triplet<Real>> entries;
   const Eigen::SparseMatrix<Real, Eigen::RowMajor> rows(m);
+  const Index n_kept = kept == PatchRows::Normal ? 1 : 3;
   for (size_t i = 0; i < subset.size(); ++i)
-    for (Index k = 0; k < 3; ++k)
+    for (Index k = 0; k < n_kept; ++k)
       for (Eigen::SparseMatrix<Real, Eigen::RowMajor>::InnerIterator it(rows, 3 * subset[i] + k);
            it; ++it)
         entries.emplace_back(static_cast<Index>(3 * i) + k, it.col(), it.value());
@@ -69,7 +71,7 @@ SparseMatrix patch_rows(const SparseMatrix& m, const std::vector<Index>& subset)
 }  // namespace
 
 ContactDiscretization restrict_to_patches(const ContactDiscretization& disc,
-                                          const std::vector<Index>& subset) {
+                                          const std::vector<Index>& subset, PatchRows rows) {
   for (size_t i = 0; i < subset.size(); ++i)
     FRICON_CHECK(
         subset[i] >= 0 && subset[i] < disc.n_patches() && (i == 0 || subset[i - 1] < subset[i]),
@@ -92,8 +94,9 @@ ContactDiscretization restrict_to_patches(const ContactDiscretization& disc,
     sub.patches.area(i) = disc.patches.area(p);
     sub.patches.centroid.col(i) = disc.patches.centroid.col(p);
     sub.offset.segment<3>(3 * i) = disc.offset.segment<3>(3 * p);
+    if (rows == PatchRows::Normal) sub.offset.segment<2>(3 * i + 1).setZero();
   }
-  sub.B = patch_rows(disc.B, subset);
+  sub.B = patch_rows(disc.B, subset, rows);
   return sub;
 }
 

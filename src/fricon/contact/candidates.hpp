@@ -46,11 +46,20 @@ std::vector<Index> penetrating_patches(const VectorXd& penetration,
 std::vector<Index> merge_patches(const std::vector<Index>& candidates,
                                  const std::vector<Index>& added);
 
+/// Which rows of B a restricted discretization keeps.
+enum class PatchRows {
+  All,     ///< normal and tangential
+  Normal,  ///< the normal rows; the tangential ones are zero (frictionless: their multipliers
+           ///< are pinned at 0, and a zero row costs nothing when Q is formed)
+};
+
 /// The part of `disc` on the patches `subset` (increasing, distinct, in range): the same surface,
 /// gap, slip bounds, contact dofs and stability report; the patches and the rows of B and of
-/// the offset of the subset, in its order.
+/// the offset of the subset, in its order (with PatchRows::Normal the tangential rows of B and
+/// of the offset are zero).
 ContactDiscretization restrict_to_patches(const ContactDiscretization& disc,
-                                          const std::vector<Index>& subset);
+                                          const std::vector<Index>& subset,
+                                          PatchRows rows = PatchRows::All);
 
 /// x of the subset's multipliers (3 per patch of `subset`) placed in a vector over every patch
 /// of `n_patches` (3 per patch), zero elsewhere; `per_patch` 1 for one value per patch.

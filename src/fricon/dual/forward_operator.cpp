@@ -4,11 +4,22 @@
 // Inside the outer loop the displacement is recovered on that reach only (solve_on_reach).
 #include "fricon/dual/dual_operator.hpp"
 
+#include <algorithm>
+#include <vector>
+
 #include "fricon/linalg/blas.hpp"
 
 namespace fricon::dual {
 
 namespace {
+
+Index nonzero_rows(const SparseMatrix& B) {
+  std::vector<char> used(static_cast<size_t>(B.rows()), 0);
+  for (Index j = 0; j < B.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(B, j); it; ++it)
+      if (it.value() != 0.0) used[static_cast<size_t>(it.row())] = 1;
+  return static_cast<Index>(std::count(used.begin(), used.end(), 1));
+}
 
 class ForwardOperator final : public FactorDualOperator {
  public:
@@ -16,7 +27,7 @@ class ForwardOperator final : public FactorDualOperator {
       : FactorDualOperator(input),
         Q_(in_.factor.inverse_gram(SparseMatrix(in_.B.transpose()), in_.poll)),
         reach_(in_.factor.reach(in_.contact_dofs)) {
-    n_kinv_ += in_.B.rows();
+    n_kinv_ += nonzero_rows(in_.B);  // a zero row is carried nowhere
   }
   DualOperatorKind kind() const override { return DualOperatorKind::Forward; }
   const MatrixXd* dense() const override { return &Q_; }
