@@ -42,7 +42,8 @@ test-sanitize: deps
 	  LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp \
 	  ctest --test-dir $(SAN_BUILD) -L "unit|leak|sanitize" --output-on-failure -j $(CTEST_JOBS)
 
-# BENCH_LARGE=1 adds n = 24, 32, 48 to the contact benchmark (minutes, several GiB) and the
+# BENCH_LARGE=1 adds n = 24, 32, 48 to the contact benchmark (minutes, several GiB), the Hertz
+# refinement study with the contact-against-no-contact ratios (bench/hertz_bench.py) and the
 # PETSc backend's strong scaling at n = 32, 48 (bench/petsc_scaling.py, docs/parallel.md); the Coulomb
 # runs at those sizes: build/bench/contact_bench --model coulomb 24 32 48 (10 min, 14 GiB).
 bench: build
@@ -53,6 +54,9 @@ bench: build
 	@if [ -x $(BUILD)/bench/fclib_compare ]; then echo "== fclib_compare"; $(BUILD)/bench/fclib_compare; fi
 	@if [ -n "$(BENCH_LARGE)" ] && $(BUILD)/apps/fricon/fricon --version | grep -q petsc; then \
 	  /usr/bin/python3 bench/petsc_scaling.py $(BUILD)/apps/fricon/fricon; fi
+	@echo "== bench/wheel_bench.py"; /usr/bin/python3 bench/wheel_bench.py $(BUILD)/apps/fricon/fricon
+	@if [ -n "$(BENCH_LARGE)" ]; then echo "== bench/hertz_bench.py"; \
+	  /usr/bin/python3 bench/hertz_bench.py $(BUILD)/apps/fricon/fricon; fi
 	@echo "== bench/python_study.py"; PYTHONPATH=$(BUILD)/python /usr/bin/python3 bench/python_study.py \
 	  $(BUILD)/apps/fricon/fricon
 
