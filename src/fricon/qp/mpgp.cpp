@@ -253,10 +253,10 @@ class Mpgp {
   bool proportional() const;
   StepResult cg_or_expansion_step();
   StepResult cg_step(double a_cg, double pAp);
-  StepResult expansion_step(double a_f, double a_cg, double pAp);
+  StepResult expansion_step(double a_f, double a_cg);
   StepResult fixed_expansion(double a_f);
   StepResult optimal_expansion(double a_f);
-  StepResult projected_cg_expansion(double a_f, double a_cg, double pAp);
+  StepResult projected_cg_expansion(double a_f, double a_cg);
   void move_to_boundary(double a_f);
   StepResult proportioning_step();
   std::optional<double> projected_gradient_move(const Eigen::VectorXd& v);
@@ -344,7 +344,7 @@ StepResult Mpgp::cg_or_expansion_step() {
                                    pAp, a_cg));
   }
   const double a_f = kern_.max_feasible_step(s_.x, s_.p);
-  return a_cg <= a_f ? cg_step(a_cg, pAp) : expansion_step(a_f, a_cg, pAp);
+  return a_cg <= a_f ? cg_step(a_cg, pAp) : expansion_step(a_f, a_cg);
 }
 
 // Lines 7-8: the CG step inside the feasible set, g updated recursively, and the next conjugate
@@ -362,12 +362,12 @@ StepResult Mpgp::cg_step(double a_cg, double pAp) {
 }
 
 // Lines 10-12, with the move that MpgpOptions::expansion chooses; CG restarts from phi.
-StepResult Mpgp::expansion_step(double a_f, double a_cg, double pAp) {
+StepResult Mpgp::expansion_step(double a_f, double a_cg) {
   switch (opt_.expansion) {
     case MpgpExpansion::Optimal:
       return optimal_expansion(a_f);
     case MpgpExpansion::ProjectedCG:
-      return projected_cg_expansion(a_f, a_cg, pAp);
+      return projected_cg_expansion(a_f, a_cg);
     case MpgpExpansion::Fixed:
       break;
   }
@@ -400,7 +400,8 @@ StepResult Mpgp::fixed_expansion(double a_f) {
 // up to the largest feasible step along -gr; there q decreases (factor <= 2) and g - a A gr is
 // the gradient. Beyond it the point is projected and g recomputed (1 product); should q then
 // exceed q(x_b), the move is x_b - alpha_bar gr = P(x_b - alpha_bar phi), Paper's fixed-length
-// move, whose gradient g_b - alpha_bar A gr is known (no product).
+// move, whose gradient g_b - alpha_bar A gr is known (no product). BarzilaiBorwein's trial length
+// stays as it was (updated with gr, it gave more products on the paper's brick).
 StepResult Mpgp::optimal_expansion(double a_f) {
   move_to_boundary(a_f);
   s_.allocate_expansion_work();
@@ -418,7 +419,6 @@ StepResult Mpgp::optimal_expansion(double a_f) {
     return failed('e',
                   "expansion step: A is not positive definite along the reduced free gradient");
   }
-  if (bb_) s_.spectral.update(gr.squaredNorm(), grAgr, Agr.squaredNorm());
   const double a = opt_.expansion_length_factor * g_gr / grAgr;
   if (a <= kern_.max_feasible_step(s_.x, gr)) {
     s_.x.noalias() -= a * gr;
@@ -446,8 +446,9 @@ StepResult Mpgp::optimal_expansion(double a_f) {
 
 // MpgpExpansion::ProjectedCG (PERMON's "projcg"): the whole CG step x := P(x - a_cg p), past the
 // boundary, then g recomputed (1 product). Should q increase, x and g are restored and the step
-// is the Fixed one (1 more product).
-StepResult Mpgp::projected_cg_expansion(double a_f, double a_cg, double pAp) {
+// is the Fixed one (1 more product). BarzilaiBorwein's trial length stays as it was (updated with
+// p, it gave more products on the paper's brick).
+StepResult Mpgp::projected_cg_expansion(double a_f, double a_cg) {
   s_.allocate_expansion_work();
   s_.x_saved = s_.x;
   s_.g_saved = s_.g;
@@ -461,7 +462,6 @@ StepResult Mpgp::projected_cg_expansion(double a_f, double a_cg, double pAp) {
     s_.g = s_.g_saved;
     return fixed_expansion(a_f);  // A p is still in s_.Ap
   }
-  if (bb_) s_.spectral.update(s_.p.squaredNorm(), pAp, s_.Ap.squaredNorm());
   split_and_restart();
   return taken('e', a_cg);
 }

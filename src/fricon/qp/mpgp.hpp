@@ -77,16 +77,20 @@ enum class MpgpVariant {
 /// iterate feasible, restarts CG from the free gradient afterwards and never increases q: a move
 /// that would is replaced by a fixed-length one (MpgpReport::n_expansion_fallbacks).
 /// Measured (bench/expansion_bench.cpp; products with A to ||g^P|| <= 1e-6 / 1e-8 ||b_R||, each QP
-/// scaled per contact as `fricon dual solve` scales it; docs/theory.md §4.2): on the QPs of graded
-/// meshes, where expansions are frequent, the other moves save products. Graded wheel (Coulomb,
-/// first step), BarzilaiBorwein: Fixed 70/75, Optimal 37/41, ProjectedCG 47/51 (Paper: 103/108,
-/// 36/40, 48/51); graded Hertz: 46/56, 52/61, 49/58 (Paper: 74/84, 51/60, 48/57). On the paper's
-/// brick (n = 16), where proportioning steps dominate, Optimal costs more (534/907 against
-/// 307/630; its length is nearly always cut by the projection, so 3 products a step) and
-/// ProjectedCG less (302/525). With PERMON's length factor 2 Optimal overshoots and falls back
-/// often (Hertz 98/107, wheel 48/53). BarzilaiBorwein with ProjectedCG needs the fewest products
-/// over the three and is the default of `fricon dual solve` (driver::LocalSolveOptions); Fixed
-/// stays the default here, as Paper with Fixed is the paper's algorithm.
+/// scaled per contact as `fricon dual solve` scales it; docs/theory.md §4.2), BarzilaiBorwein with
+/// Fixed / Optimal / ProjectedCG: on the frictionless QPs of graded meshes, where expansions are a
+/// large share of the steps, the graded wheel (first Coulomb step) needs 70/75, 37/41, 47/51 and
+/// the graded Hertz hemisphere 46/56, 52/61, 49/58 (Paper: 103/108, 36/40, 48/51 and 74/84,
+/// 51/60, 48/57); on the paper's brick (n = 16, Tresca), where proportioning steps dominate,
+/// 307/630, 372/730, 271/470 (Optimal's length is nearly always cut by the projection, so 3
+/// products a step). With PERMON's length factor 2 Optimal overshoots and falls back often (Hertz
+/// 98/107, wheel 48/53). Over these three QPs ProjectedCG with BarzilaiBorwein needs the fewest
+/// products, and is the default of `fricon dual solve` (driver::LocalSolveOptions). In whole runs
+/// of `fricon solve`'s successive approximations, warm-started, it is not better: the wheel's six
+/// Coulomb steps take 2799, 2710 and 5036 products (the later, frictional QPs are dominated by
+/// proportioning steps, and after ProjectedCG's expansions the 4th and 5th QP need 1459 and 1168 of
+/// them against 349 and 94), the brick's about as many with Fixed as with ProjectedCG. Fixed
+/// stays the default here (and Paper with Fixed is the paper's algorithm).
 enum class MpgpExpansion {
   /// The variant's own projected free-gradient move from the boundary point: x := P(x - alpha_bar
   /// phi) and g recomputed (Paper), or the spectral move along phi (BarzilaiBorwein, §4.3).
@@ -157,7 +161,7 @@ struct MpgpOptions {
   /// The algorithm. Default BarzilaiBorwein (the program's default); Paper is the reference.
   MpgpVariant variant = MpgpVariant::BarzilaiBorwein;
   /// The move of an expansion step after it reached the boundary (MpgpExpansion). Default Fixed
-  /// (the algorithm as it was; the measured best with BarzilaiBorwein is ProjectedCG).
+  /// (the algorithm as it was; ProjectedCG needs fewer products on single QPs, not in whole runs).
   MpgpExpansion expansion = MpgpExpansion::Fixed;
   /// MpgpExpansion::Optimal: the multiple of the line-search length along the reduced free
   /// gradient (PERMON's alpha_user, whose default is 2). Default 1; range (0, 2] (with <= 2 a
