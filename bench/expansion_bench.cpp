@@ -21,14 +21,16 @@
 // (qp::kkt_residuals, default scales, g = Q l - h recomputed) and ||l - l_ref|| / ||l_ref||
 // against the first combination's solution at the same tol.
 //
-// Table 2, "whole run" (the brick only, --no-run to skip): the successive approximations of
-// theory.md §5 by the driver's own map and outer loop (QP warm-started, tolerance 1e-6, outer
-// tolerance 1e-4): outer iterations, QP iterations and products over the run (the paper's
-// n_mult), QP time (median of --reps runs).
+// Table 2, "whole run" (the brick, and the problem files given with --run; --no-run to skip):
+// the successive approximations of theory.md §5 by the driver's own map and outer loop, scaled
+// as the driver scales (solver.dual_scaling; the brick's patches get equal factors), QP
+// warm-started, the problem's tolerances (the brick's: QP 1e-6, outer 1e-4): outer iterations, QP
+// iterations and products over the run (the paper's n_mult), QP time (median of --reps runs).
 //
 //   build/bench/expansion_bench [FILE.dual ...] [--n 4,8,12,16] [--variants paper,bb]
 //                               [--expansions fixed,opt,projcg] [--factor 1] [--tol 1e-6,1e-8]
-//                               [--reps 3] [--no-run] [--scaling diagonal|area|none]
+//                               [--reps 3] [--no-run] [--run PROBLEM.toml ...] [--verbose]
+//                               [--scaling diagonal|area|none]
 
 #include <algorithm>
 #include <cmath>
@@ -41,11 +43,13 @@
 #include <fmt/format.h>
 #include <Eigen/Dense>
 
+#include "fricon/contact/dual_scaling.hpp"
 #include "fricon/core/error.hpp"
 #include "fricon/driver/contact_solver.hpp"
 #include "fricon/driver/local_solve.hpp"
 #include "fricon/driver/tresca_map.hpp"
 #include "fricon/io/dual_dump.hpp"
+#include "fricon/io/problem_file.hpp"
 #include "fricon/linalg/blas.hpp"
 #include "fricon/outer/outer_loop.hpp"
 #include "fricon/qp/kkt.hpp"
@@ -85,6 +89,7 @@ struct Settings {
   std::vector<double> tols = {1e-6, 1e-8};
   int reps = 3;
   bool run = true;
+  bool verbose = false;  // print every QP of the whole runs
   Scaling scaling = Scaling::Diagonal;
 
   std::vector<Combination> combinations() const {
@@ -103,6 +108,8 @@ struct Case {
   std::unique_ptr<qp::BlockScaling> D;
   double norm_DQD = 0.0;
   std::unique_ptr<fricon::bench::PaperDual> outer;  // what the outer loop needs; null for files
+  std::unique_ptr<qp::BlockScaling> D_run;          // the driver's scaling of the outer loop
+  double norm_run = 0.0;                            // ||D_run Q D_run||
 
   qp::Operator A() const {
     // As the driver applies a dense Q (BLAS dsymv).
@@ -175,13 +182,13 @@ double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
-qp::MpgpOptions options(const Case& k, const Settings& s, Combination m, double tol) {
+qp::MpgpOptions options(double norm, const Settings& s, Combination m, double tol) {
   qp::MpgpOptions o;
   o.variant = m.variant;
   o.expansion = m.expansion;
   o.expansion_length_factor = s.factor;
   o.rel_tolerance = tol;
-  o.norm_A = k.norm_DQD;
+  o.norm_A = norm;
   return o;
 }
 
@@ -194,7 +201,7 @@ void single_qp(const Case& k, const Settings& s) {
   for (const double tol : s.tols) {
     VectorXd l_ref;
     for (const Combination m : s.combinations()) {
-      const auto opt = options(k, s, m, tol);
+      const auto opt = options(k.norm_DQD, s, m, tol);
       std::vector<double> ms;
       qp::MpgpReport rep;
       VectorXd l;
@@ -217,7 +224,33 @@ void single_qp(const Case& k, const Settings& s) {
 }
 
 // ------------------------------------------------------------------------------------------
-// Table 2: the whole outer loop, warm-started (the brick).
+// Table 2: the whole outer loop, warm-started, scaled as the driver scales (solver.dual_scaling:
+// contact::patch_scale_factors, or none).
+
+void prepare_run(Case& k) {
+  const fricon::bench::PaperDual& o = *k.outer;
+  const Index m = o.disc.n_patches();
+  if (o.problem.solver.dual_scaling == fricon::contact::DualScaling::None) {
+    k.D_run = std::make_unique<qp::BlockScaling>(qp::BlockScaling::identity(3 * m));
+  } else {
+    const VectorXd d = fricon::contact::patch_scale_factors(o.model.mesh, o.disc.surface,
+                                                            o.disc.patches, o.model.materials);
+    VectorXd per_block(2 * m);
+    for (Index p = 0; p < m; ++p)
+      per_block(2 * p) = per_block(2 * p + 1) = d(p);
+    k.D_run = std::make_unique<qp::BlockScaling>(
+        qp::BlockScaling::per_block(qp::SeparableConstraints::contact_layout(m), per_block));
+  }
+  k.norm_run = qp::estimate_norm(k.D_run->scaled(o.Q->as_qp_operator()), 3 * m, 200, 1e-10);
+}
+
+Case run_case(const fs::path& p) {
+  Case k;
+  k.name = p.stem().string();
+  k.outer = fricon::bench::problem_dual(fricon::io::read_problem(p.string()));
+  prepare_run(k);
+  return k;
+}
 
 struct RunResult {
   int outer = 0;
@@ -231,15 +264,20 @@ RunResult run_outer(const Case& k, const Settings& s, Combination m) {
   const auto& so = o.problem.solver;
   fricon::PhaseTimes times;
   const auto bounds = fricon::driver::make_slip_bounds(o.problem, o.model.mesh, o.disc, *o.law);
-  fricon::driver::TrescaMap map(o.model.dofs, o.disc, *o.Q, *bounds, *o.law, *k.D,
-                                options(k, s, m, so.qp_rtol), so.warm_start, times);
+  fricon::driver::TrescaMap map(o.model.dofs, o.disc, *o.Q, *bounds, *o.law, *k.D_run,
+                                options(k.norm_run, s, m, so.qp_rtol), so.warm_start, times);
   RunResult res;
-  VectorXd phi = VectorXd::Zero(o.disc.surface.n_nodes());
-  const auto rep = fricon::outer::iterate(map, phi, fricon::driver::outer_options(so),
+  Index n_state = 0;  // phi, and lambda_n for Coulomb
+  for (const auto& block : map.layout())
+    n_state += block.size;
+  VectorXd state = VectorXd::Zero(n_state);
+  const auto rep = fricon::outer::iterate(map, state, fricon::driver::outer_options(so),
                                           [&](const fricon::outer::OuterIteration&) {
                                             res.iterations += map.last_qp().iterations;
                                             res.products += map.last_qp().n_products;
                                             res.qp_ms += 1e3 * map.last_qp().seconds;
+                                            if (s.verbose)
+                                              fmt::print("  {}\n", map.last_qp().brief());
                                           });
   res.outer = rep.iterations;
   res.converged = rep.converged();
@@ -265,7 +303,7 @@ void whole_run(const Case& k, const Settings& s) {
 int main(int argc, char** argv) {
   try {
     Settings s;
-    std::vector<fs::path> dumps;
+    std::vector<fs::path> dumps, runs;
     std::vector<Index> ns = {4, 8, 12, 16};
     for (int i = 1; i < argc; ++i) {
       const std::string a = argv[i];
@@ -273,7 +311,11 @@ int main(int argc, char** argv) {
         if (i + 1 >= argc) throw fricon::InputError(fmt::format("{} needs a value", a));
         return argv[++i];
       };
-      if (a == "--n") {
+      if (a == "--run") {
+        runs.emplace_back(value());
+        while (i + 1 < argc && std::string(argv[i + 1]).rfind("--", 0) != 0)
+          runs.emplace_back(argv[++i]);
+      } else if (a == "--n") {
         ns = fricon::bench::parse_list<Index>(value(),
                                               [](const std::string& t) { return std::stol(t); });
       } else if (a == "--variants") {
@@ -289,6 +331,8 @@ int main(int argc, char** argv) {
             value(), [](const std::string& t) { return std::stod(t); });
       } else if (a == "--reps") {
         s.reps = std::max(1, std::stoi(value()));
+      } else if (a == "--verbose") {
+        s.verbose = true;
       } else if (a == "--no-run") {
         s.run = false;
       } else if (a == "--scaling") {
@@ -307,7 +351,7 @@ int main(int argc, char** argv) {
             "usage: expansion_bench [FILE.dual ...] [--n 4,8,12,16] [--variants paper,bb]\n"
             "                       [--expansions fixed,opt,projcg] [--factor 1] [--tol "
             "1e-6,1e-8]\n"
-            "                       [--reps 3] [--no-run]\n"
+            "                       [--reps 3] [--no-run] [--run PROBLEM.toml ...] [--verbose]\n"
             "                       [--scaling diagonal|area|none]\n");
         return 0;
       } else if (a.rfind("--", 0) == 0) {
@@ -334,6 +378,7 @@ int main(int argc, char** argv) {
     std::vector<Case> cases;
     for (const Index n : ns) {
       cases.push_back(paper_case(n, s));
+      prepare_run(cases.back());
       single_qp(cases.back(), s);
     }
     for (const auto& p : dumps) {
@@ -341,11 +386,13 @@ int main(int argc, char** argv) {
       single_qp(k, s);
     }
 
-    if (s.run) {
+    for (const auto& p : runs)
+      cases.push_back(run_case(p));
+    if (s.run && !cases.empty()) {
       fmt::print(
-          "\nWhole run (the brick): successive approximations as in the driver (warm starts, QP "
-          "tol 1e-6, outer tol 1e-4); products = n_mult of the run; QP time = median of {} "
-          "runs.\n\n",
+          "\nWhole run: successive approximations as in the driver (warm starts, the problem's QP "
+          "and outer tolerances: for the brick 1e-6 and 1e-4; scaled as solver.dual_scaling "
+          "says); products = n_mult of the run; QP time = median of {} runs.\n\n",
           s.reps);
       fmt::print("{:<10} {:<14} {:>5} {:>8} {:>8} {:>9}  {}\n", "problem", "variant/exp", "outer",
                  "qp iters", "n_mult", "QP[ms]", "status");
