@@ -1,11 +1,12 @@
 #pragma once
-// Shared by the QP benchmarks (qp_variants_bench, siconos_compare): the paper's brick built
-// through the library exactly as `fricon solve` builds it (contact discretization, factor of K,
-// the forward dual operator), with the dual problem of its first outer iteration (phi = 0); and
-// the parsing of comma-separated option values.
+// Shared by the QP benchmarks (qp_variants_bench, expansion_bench, siconos_compare): the paper's
+// brick (or any problem) built through the library exactly as `fricon solve` builds it (contact
+// discretization, factor of K, the forward dual operator), with the dual problem of its first
+// outer iteration (phi = 0); and the parsing of comma-separated option values.
 #include <memory>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <fmt/format.h>
@@ -29,10 +30,11 @@ struct PaperDual {
   VectorXd radius;                        ///< disc radii at phi = 0 [Pa]
 };
 
-/// The paper's brick for mesh parameter n, param = 6e4, at its first outer iteration.
-inline std::unique_ptr<PaperDual> paper_dual(Index n) {
+/// Any problem with a [contact] section, built as `fricon solve` builds it, at its first outer
+/// iteration.
+inline std::unique_ptr<PaperDual> problem_dual(driver::Problem problem) {
   auto d = std::make_unique<PaperDual>();
-  d->problem = driver::paper_problem(n, 6e4);
+  d->problem = std::move(problem);
   PhaseTimes times;
   d->model = driver::assemble_model(d->problem, times);
   d->disc = driver::discretize_contact(d->problem, d->model.mesh, d->model.dofs);
@@ -44,6 +46,11 @@ inline std::unique_ptr<PaperDual> paper_dual(Index n) {
   d->radius = contact::patch_radii(d->model.mesh, d->disc.surface, d->disc.patches, *d->law,
                                    VectorXd::Zero(d->disc.surface.n_nodes()), d->disc.slip_bound);
   return d;
+}
+
+/// The paper's brick for mesh parameter n, param = 6e4, at its first outer iteration.
+inline std::unique_ptr<PaperDual> paper_dual(Index n) {
+  return problem_dual(driver::paper_problem(n, 6e4));
 }
 
 /// "a,b,c" -> {convert("a"), convert("b"), convert("c")}; throws InputError on an empty list.

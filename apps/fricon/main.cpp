@@ -413,7 +413,9 @@ int paper(const PaperOptions& o) {
 struct DualSolveOptions {
   std::string file, out;
   double tol = 1e-8;
-  std::string variant = "bb";
+  std::string variant{fricon::enum_name(fricon::driver::LocalSolveOptions{}.variant)};
+  std::string expansion{fricon::enum_name(fricon::driver::LocalSolveOptions{}.expansion)};
+  bool no_scaling = false;
 };
 
 // `fricon dual solve FILE`: a local frictional contact problem of another code (FCLIB, or
@@ -425,6 +427,8 @@ int dual_solve(const DualSolveOptions& o) {
   so.residual_tol = o.tol;
   so.merit_tol = o.tol;
   so.variant = fricon::parse_enum<fricon::qp::MpgpVariant>(o.variant);
+  so.expansion = fricon::parse_enum<fricon::qp::MpgpExpansion>(o.expansion);
+  so.scaling = !o.no_scaling;
   if (p.is_coulomb())
     so.merit = [&p](const fricon::VectorXd& r, const fricon::VectorXd& u) {
       return fricon::io::fclib_merit(p, r, u);
@@ -434,6 +438,10 @@ int dual_solve(const DualSolveOptions& o) {
   fmt::print("  problem     {}, {} contacts (m = {}), nnz(W) = {}, ||W|| = {:.3e}\n",
              p.is_coulomb() ? "Coulomb" : "Tresca", p.n_contacts(), p.q.size(), p.W.nonZeros(),
              s.norm_W);
+  fmt::print("  QP          MPGP {}, expansion {}, {}\n", fricon::enum_name(so.variant),
+             fricon::enum_name(so.expansion),
+             so.scaling ? fmt::format("scaled per contact (||D W D|| = {:.3e})", s.norm_W_scaled)
+                        : std::string("not scaled"));
   fmt::print("  iterations  {} outer ({}), {} QP iterations, {} products with W\n",
              s.outer_iterations, fricon::enum_name(s.termination), s.qp_iterations, s.n_products);
   fmt::print("  residual    natural map {:.2e}", s.residual);
@@ -607,8 +615,15 @@ void define_dual(CLI::App& app, CommandLine& cl) {
   cmd->add_option("--out,-o", cl.dual.out, "Write the problem and its solution as an FCLIB file");
   cmd->add_option("--tol", cl.dual.tol, "Solved when the natural-map residual is below this")
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--qp-variant", cl.dual.variant, "MPGP variant: bb (default) or paper")
-      ->check(CLI::IsMember(enum_names<fricon::qp::MpgpVariant>()));
+  cmd->add_option("--qp-variant", cl.dual.variant, "MPGP variant: bb or paper")
+      ->check(CLI::IsMember(enum_names<fricon::qp::MpgpVariant>()))
+      ->capture_default_str();
+  cmd->add_option("--qp-expansion", cl.dual.expansion,
+                  "MPGP expansion move: fixed, opt or projcg (theory.md §4.2)")
+      ->check(CLI::IsMember(enum_names<fricon::qp::MpgpExpansion>()))
+      ->capture_default_str();
+  cmd->add_flag("--no-scaling", cl.dual.no_scaling,
+                "Solve each QP in the given variables instead of scaled per contact");
 }
 
 void define_mesh(CLI::App& app, CommandLine& cl) {

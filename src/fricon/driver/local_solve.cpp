@@ -50,13 +50,18 @@ void check_problem(const qp::LocalProblem& p) {
 // mu_R r_n^(k-1)(R), the first step the frictionless problem (theory.md §5.6).
 class LocalCoulombMap final : public outer::FixedPointMap {
  public:
-  LocalCoulombMap(const qp::LocalProblem& p, const qp::Operator& W, const qp::MpgpOptions& o,
-                  LocalSolution& s)
-      : p_(p), W_(W), o_(o), s_(s), c_(qp::SeparableConstraints::contact_layout(p.n_contacts())) {}
+  LocalCoulombMap(const qp::LocalProblem& p, const qp::Operator& W, const qp::BlockScaling& D,
+                  const qp::MpgpOptions& o, LocalSolution& s)
+      : p_(p),
+        W_(W),
+        D_(D),
+        o_(o),
+        s_(s),
+        c_(qp::SeparableConstraints::contact_layout(p.n_contacts())) {}
   std::vector<outer::StateBlock> layout() const override { return {{"r_n", p_.n_contacts()}}; }
   outer::StepResult apply(int k, const VectorXd& r_n, VectorXd& image) override {
     c_.set_disc_radii(p_.mu.cwiseProduct(r_n.cwiseMax(0.0)));
-    const qp::MpgpReport q = qp::solve_mpgp(W_, -p_.q, c_, o_, s_.r);
+    const qp::MpgpReport q = qp::solve_mpgp_scaled(W_, -p_.q, c_, D_, o_, s_.r);
     s_.qp_iterations += q.iterations;
     s_.n_products += q.n_products;
     image.resize(p_.n_contacts());
@@ -73,17 +78,18 @@ class LocalCoulombMap final : public outer::FixedPointMap {
  private:
   const qp::LocalProblem& p_;
   const qp::Operator& W_;
+  const qp::BlockScaling& D_;
   qp::MpgpOptions o_;
   LocalSolution& s_;
   qp::SeparableConstraints c_;
 };
 
 // One Tresca QP with the given thresholds.
-void solve_tresca(const qp::LocalProblem& p, const qp::Operator& W, const qp::MpgpOptions& o,
-                  LocalSolution& s) {
+void solve_tresca(const qp::LocalProblem& p, const qp::Operator& W, const qp::BlockScaling& D,
+                  const qp::MpgpOptions& o, LocalSolution& s) {
   auto c = qp::SeparableConstraints::contact_layout(p.n_contacts());
   c.set_disc_radii(p.threshold);
-  const qp::MpgpReport q = qp::solve_mpgp(W, -p.q, c, o, s.r);
+  const qp::MpgpReport q = qp::solve_mpgp_scaled(W, -p.q, c, D, o, s.r);
   s.qp_iterations += q.iterations;
   s.n_products += q.n_products;
   s.outer_iterations += 1;
@@ -93,9 +99,9 @@ void solve_tresca(const qp::LocalProblem& p, const qp::Operator& W, const qp::Mp
     s.reason = fmt::format("the QP did not converge: {}", q.message);
 }
 
-void solve_coulomb(const qp::LocalProblem& p, const qp::Operator& W, const qp::MpgpOptions& o,
-                   Real outer_tol, int outer_max, LocalSolution& s) {
-  LocalCoulombMap map(p, W, o, s);
+void solve_coulomb(const qp::LocalProblem& p, const qp::Operator& W, const qp::BlockScaling& D,
+                   const qp::MpgpOptions& o, Real outer_tol, int outer_max, LocalSolution& s) {
+  LocalCoulombMap map(p, W, D, o, s);
   outer::OuterOptions oo;
   oo.tol = outer_tol;
   oo.max_iterations = outer_max;
@@ -129,18 +135,19 @@ void explain_singular(const qp::LocalProblem& p, LocalSolution& s) {
 }
 
 // One attempt at the given tolerances, from the reactions s.r holds; then the certificate.
-void attempt(const qp::LocalProblem& p, const qp::Operator& W, const LocalSolveOptions& options,
-             Real qp_rtol, Real outer_tol, LocalSolution& s) {
+void attempt(const qp::LocalProblem& p, const qp::Operator& W, const qp::BlockScaling& D,
+             const LocalSolveOptions& options, Real qp_rtol, Real outer_tol, LocalSolution& s) {
   qp::MpgpOptions o;
   o.variant = options.variant;
+  o.expansion = options.expansion;
   o.rel_tolerance = qp_rtol;
   o.max_iterations = options.qp_max;
-  o.norm_A = s.norm_W;
+  o.norm_A = s.norm_W_scaled;
   s.reason.clear();
   if (p.is_coulomb()) {
-    solve_coulomb(p, W, o, outer_tol, options.outer_max, s);
+    solve_coulomb(p, W, D, o, outer_tol, options.outer_max, s);
   } else {
-    solve_tresca(p, W, o, s);
+    solve_tresca(p, W, D, o, s);
   }
   s.u = p.W * s.r + p.q;
   const Real alpha = 1.0 / s.norm_W;
@@ -150,6 +157,20 @@ void attempt(const qp::LocalProblem& p, const qp::Operator& W, const LocalSolveO
 }
 
 }  // namespace
+
+qp::BlockScaling contact_scaling(const VectorXd& diagonal) {
+  if (diagonal.size() % 3 != 0)
+    throw InputError(
+        fmt::format("contact_scaling: {} diagonal entries are not 3 per contact", diagonal.size()));
+  const Index nc = diagonal.size() / 3;
+  VectorXd factor(2 * nc);
+  for (Index a = 0; a < nc; ++a) {
+    const Real mean = diagonal.segment<3>(3 * a).mean();
+    const Real d = mean > 0.0 && std::isfinite(mean) ? 1.0 / std::sqrt(mean) : 1.0;
+    factor(2 * a) = factor(2 * a + 1) = d;
+  }
+  return qp::BlockScaling::per_block(qp::SeparableConstraints::contact_layout(nc), factor);
+}
 
 LocalSolution solve_local(const qp::LocalProblem& p, const LocalSolveOptions& options) {
   const Stopwatch watch;
@@ -162,16 +183,26 @@ LocalSolution solve_local(const qp::LocalProblem& p, const LocalSolveOptions& op
     s.reason = "W is zero";
     return s;
   }
+  // @sect: the scaled variables, and ||D W D|| behind MPGP's step length.
+  const qp::BlockScaling D =
+      options.scaling ? contact_scaling(p.W.diagonal()) : qp::BlockScaling::identity(p.q.size());
+  s.norm_W_scaled = options.scaling ? qp::estimate_norm(D.scaled(W), p.q.size(), kPowerIterations,
+                                                        kPowerTolerance)
+                                    : s.norm_W;
+  if (!(s.norm_W_scaled > 0.0)) {
+    s.reason = "D W D is zero";
+    return s;
+  }
   // @sect: solve, and refine while another code's merit is not yet met.
   Real qp_rtol = options.qp_rtol, outer_tol = options.outer_tol;
-  attempt(p, W, options, qp_rtol, outer_tol, s);
+  attempt(p, W, D, options, qp_rtol, outer_tol, s);
   while (s.termination == outer::Termination::Converged &&
          (s.merit > options.merit_tol || s.residual > options.residual_tol) &&
          s.refinements < options.refinements) {
     qp_rtol *= kRefinementFactor;
     outer_tol *= kRefinementFactor;
     ++s.refinements;
-    attempt(p, W, options, qp_rtol, outer_tol, s);
+    attempt(p, W, D, options, qp_rtol, outer_tol, s);
   }
   // @sect: the certificate, whatever the iterations said.
   const bool certified = s.residual <= options.residual_tol && s.merit <= options.merit_tol;

@@ -47,20 +47,34 @@ void MpgpOptions::validate() const {
           "active_tolerance", active_tolerance, "in [0, 1e-3]");
   require(enum_is_valid(variant), "variant", static_cast<int>(variant),
           "an MpgpVariant enumerator");
+  require(enum_is_valid(expansion), "expansion", static_cast<int>(expansion),
+          "an MpgpExpansion enumerator");
+  require(std::isfinite(expansion_length_factor) && expansion_length_factor > 0.0 &&
+              expansion_length_factor <= 2.0,
+          "expansion_length_factor", expansion_length_factor, "in (0, 2]");
 }
 
 std::string MpgpReport::brief() const {
+  // Paper with the Fixed expansion prints as before the expansion choice existed.
+  const std::string exp = expansion == MpgpExpansion::Fixed
+                              ? std::string()
+                              : fmt::format(", exp {}", enum_name(expansion));
+  const std::string exp_fallbacks = expansion == MpgpExpansion::Fixed
+                                        ? std::string()
+                                        : fmt::format("; {} exp fallback", n_expansion_fallbacks);
   if (variant == MpgpVariant::Paper) {
+    const std::string name = exp.empty() ? "MPGP" : fmt::format("MPGP[paper{}]", exp);
     return fmt::format(
-        "MPGP {}: {} it ({} cg, {} exp, {} prop), {} products (+{} power), |gP|/|r| = {:.3e}",
-        enum_name(termination), iterations, n_cg, n_expansion, n_proportioning, n_products,
-        n_power_products, rel_gp);
+        "{} {}: {} it ({} cg, {} exp, {} prop{}), {} products (+{} power), |gP|/|r| = {:.3e}", name,
+        enum_name(termination), iterations, n_cg, n_expansion, n_proportioning, exp_fallbacks,
+        n_products, n_power_products, rel_gp);
   }
   return fmt::format(
-      "MPGP[{}] {}: {} it ({} cg, {} exp, {} prop; {} fallback, {} refresh), {} products (+{} "
+      "MPGP[{}{}] {}: {} it ({} cg, {} exp, {} prop; {} fallback, {} refresh{}), {} products (+{} "
       "power), |gP|/|r| = {:.3e}",
-      enum_name(variant), enum_name(termination), iterations, n_cg, n_expansion, n_proportioning,
-      n_fallbacks, n_refreshes, n_products, n_power_products, rel_gp);
+      enum_name(variant), exp, enum_name(termination), iterations, n_cg, n_expansion,
+      n_proportioning, n_fallbacks, n_refreshes, exp_fallbacks, n_products, n_power_products,
+      rel_gp);
 }
 
 std::string MpgpReport::full() const {
@@ -72,12 +86,15 @@ std::string MpgpReport::full() const {
   line("termination", std::string(enum_name(termination)));
   line("message", message);
   line("variant", std::string(enum_name(variant)));
+  line("expansion", std::string(enum_name(expansion)));
   line("iterations", std::to_string(iterations));
   line("n_cg", std::to_string(n_cg));
   line("n_expansion", std::to_string(n_expansion));
   line("n_proportioning", std::to_string(n_proportioning));
   line("n_fallbacks", std::to_string(n_fallbacks));
   line("n_refreshes", std::to_string(n_refreshes));
+  line("n_expansion_products", std::to_string(n_expansion_products));
+  line("n_expansion_fallbacks", std::to_string(n_expansion_fallbacks));
   line("n_products", std::to_string(n_products));
   line("n_power_products", std::to_string(n_power_products));
   line("norm_A_used",
@@ -173,13 +190,24 @@ struct MpgpState {
         beta(x.size()),
         spectral(trial_length) {}
 
-  Eigen::VectorXd& x;    ///< the iterate (the caller's vector), feasible
-  Eigen::VectorXd g;     ///< the gradient A x - b, recomputed or updated recursively
-  Eigen::VectorXd p;     ///< the CG direction; also the direction d of a spectral move
-  Eigen::VectorXd Ap;    ///< A p
-  Eigen::VectorXd phi;   ///< the free gradient at x (docs/theory.md §4.1)
-  Eigen::VectorXd beta;  ///< the chopped gradient at x
-  Split split;           ///< ||g^P||^2, ||phi||^2, ||beta||^2 and phitilde^T phi at x
+  /// The work vectors of the Optimal and ProjectedCG expansions (allocated at their first use).
+  void allocate_expansion_work() {
+    if (x_saved.size() == x.size()) return;
+    x_saved.resize(x.size());
+    g_saved.resize(x.size());
+    gr.resize(x.size());
+  }
+
+  Eigen::VectorXd& x;       ///< the iterate (the caller's vector), feasible
+  Eigen::VectorXd g;        ///< the gradient A x - b, recomputed or updated recursively
+  Eigen::VectorXd p;        ///< the CG direction; also the direction d of a spectral move
+  Eigen::VectorXd Ap;       ///< A p
+  Eigen::VectorXd phi;      ///< the free gradient at x (docs/theory.md §4.1)
+  Eigen::VectorXd beta;     ///< the chopped gradient at x
+  Eigen::VectorXd x_saved;  ///< x (and g_saved its g) before an expansion move that may fall back
+  Eigen::VectorXd g_saved;
+  Eigen::VectorXd gr;  ///< the reduced free gradient (direction of the Optimal expansion)
+  Split split;         ///< ||g^P||^2, ||phi||^2, ||beta||^2 and phitilde^T phi at x
   /// True while g has been updated recursively (g -= a A p) since the last product A x and the
   /// stopping test must be certified with a recomputed g (BarzilaiBorwein; Paper accepts the
   /// recursive gradient, as [HL09] does).
@@ -225,7 +253,11 @@ class Mpgp {
   bool proportional() const;
   StepResult cg_or_expansion_step();
   StepResult cg_step(double a_cg, double pAp);
-  StepResult expansion_step(double a_f);
+  StepResult expansion_step(double a_f, double a_cg);
+  StepResult fixed_expansion(double a_f);
+  StepResult optimal_expansion(double a_f);
+  StepResult projected_cg_expansion(double a_f, double a_cg);
+  void move_to_boundary(double a_f);
   StepResult proportioning_step();
   std::optional<double> projected_gradient_move(const Eigen::VectorXd& v);
   std::optional<double> spectral_move(const Eigen::VectorXd& v);
@@ -266,9 +298,8 @@ Mpgp::Mpgp(const Operator& A, const Eigen::VectorXd& b, const SeparableConstrain
       rep_(rep),
       bb_(opt.variant == MpgpVariant::BarzilaiBorwein),
       abar_(rep.alpha_bar_used),
-      x_scale_(
-          std::max({x.lpNorm<Eigen::Infinity>(), c.max_radius(),
-                    rep.reference_norm / rep.norm_A_used})),
+      x_scale_(std::max(
+          {x.lpNorm<Eigen::Infinity>(), c.max_radius(), rep.reference_norm / rep.norm_A_used})),
       threshold_(std::max(opt.rel_tolerance * rep.reference_norm, opt.abs_tolerance)),
       gamma2_(opt.gamma * opt.gamma),
       kern_(c, opt.active_tolerance * x_scale_, opt.active_tolerance, abar_),
@@ -285,9 +316,11 @@ void Mpgp::run() {
   record('s', 0.0);
   while (true) {
     if (std::optional<Stop> stop = stop_test()) return finish(*stop);  // line 3
-    const StepResult step = proportional() ? cg_or_expansion_step()    // line 4; lines 5-12
-                                           : proportioning_step();     // lines 14-15
+    const long products_before = rep_.n_products;
+    const StepResult step = proportional() ? cg_or_expansion_step()  // line 4; lines 5-12
+                                           : proportioning_step();   // lines 14-15
     count(step.kind);  // a failed step is counted too: its product was spent
+    if (step.kind == 'e') rep_.n_expansion_products += rep_.n_products - products_before;
     if (step.failure) return finish({Termination::NumericalFailure, *step.failure});
     record(step.kind, step.alpha);
   }
@@ -311,7 +344,7 @@ StepResult Mpgp::cg_or_expansion_step() {
                                    pAp, a_cg));
   }
   const double a_f = kern_.max_feasible_step(s_.x, s_.p);
-  return a_cg <= a_f ? cg_step(a_cg, pAp) : expansion_step(a_f);
+  return a_cg <= a_f ? cg_step(a_cg, pAp) : expansion_step(a_f, a_cg);
 }
 
 // Lines 7-8: the CG step inside the feasible set, g updated recursively, and the next conjugate
@@ -328,12 +361,30 @@ StepResult Mpgp::cg_step(double a_cg, double pAp) {
   return taken('c', a_cg);
 }
 
-// Lines 10-12: to the boundary along -p (step a_f), then a projected move along the free gradient
-// there (1 more product), and CG restarts from phi.
-StepResult Mpgp::expansion_step(double a_f) {
+// Lines 10-12, with the move that MpgpOptions::expansion chooses; CG restarts from phi.
+StepResult Mpgp::expansion_step(double a_f, double a_cg) {
+  switch (opt_.expansion) {
+    case MpgpExpansion::Optimal:
+      return optimal_expansion(a_f);
+    case MpgpExpansion::ProjectedCG:
+      return projected_cg_expansion(a_f, a_cg);
+    case MpgpExpansion::Fixed:
+      break;
+  }
+  return fixed_expansion(a_f);
+}
+
+// Line 10: x := x - a_f p, on the boundary, g updated recursively, and the split there.
+void Mpgp::move_to_boundary(double a_f) {
   s_.x.noalias() -= a_f * s_.p;
   s_.g.noalias() -= a_f * s_.Ap;
   s_.split = kern_.split(s_.x, s_.g, s_.phi, s_.beta);  // phi at the boundary point
+}
+
+// MpgpExpansion::Fixed, lines 10-12: to the boundary along -p (step a_f), then a projected move
+// along the free gradient there (1 more product).
+StepResult Mpgp::fixed_expansion(double a_f) {
+  move_to_boundary(a_f);
   if (!projected_gradient_move(s_.phi)) {
     return failed('e',
                   "expansion step: A is not positive definite along the projected "
@@ -341,6 +392,78 @@ StepResult Mpgp::expansion_step(double a_f) {
   }
   split_and_restart();
   return taken('e', a_f);
+}
+
+// MpgpExpansion::Optimal (PERMON's "opt" length): from the boundary point x_b, the move along
+// gr = phitilde_{alpha_bar}(x_b) of length a = factor g^T gr / gr^T A gr (1 product, A gr), the
+// line-search minimiser along -gr for factor 1. x_b - t gr is feasible for t <= alpha_bar, and
+// up to the largest feasible step along -gr; there q decreases (factor <= 2) and g - a A gr is
+// the gradient. Beyond it the point is projected and g recomputed (1 product); should q then
+// exceed q(x_b), the move is x_b - alpha_bar gr = P(x_b - alpha_bar phi), Paper's fixed-length
+// move, whose gradient g_b - alpha_bar A gr is known (no product). BarzilaiBorwein's trial length
+// stays as it was (updated with gr, it gave more products on the paper's brick).
+StepResult Mpgp::optimal_expansion(double a_f) {
+  move_to_boundary(a_f);
+  s_.allocate_expansion_work();
+  Eigen::VectorXd& gr = s_.gr;
+  Eigen::VectorXd& Agr = s_.Ap;  // A p is no longer needed
+  kern_.reduced_free_gradient(s_.x, s_.g, gr);
+  const double g_gr = s_.g.dot(gr);  // >= ||gr||^2
+  if (!(g_gr > 0.0)) {               // gr = 0: no free block left to move
+    split_and_restart();
+    return taken('e', a_f);
+  }
+  multiply(gr, Agr);
+  const double grAgr = gr.dot(Agr);
+  if (!(grAgr > 0.0) || !std::isfinite(grAgr)) {
+    return failed('e',
+                  "expansion step: A is not positive definite along the reduced free gradient");
+  }
+  const double a = opt_.expansion_length_factor * g_gr / grAgr;
+  if (a <= kern_.max_feasible_step(s_.x, gr)) {
+    s_.x.noalias() -= a * gr;
+    s_.g.noalias() -= a * Agr;
+    c_.project(s_.x);  // only removes rounding-level infeasibility
+    s_.recursive = bb_;
+  } else {
+    s_.x_saved = s_.x;
+    s_.g_saved = s_.g;
+    const double q_boundary = objective();
+    s_.x.noalias() -= a * gr;
+    c_.project(s_.x);
+    refresh_gradient();
+    if (objective() > q_boundary) {
+      ++rep_.n_expansion_fallbacks;
+      s_.x = s_.x_saved - abar_ * gr;
+      s_.g = s_.g_saved - abar_ * Agr;
+      c_.project(s_.x);  // only removes rounding-level infeasibility
+      s_.recursive = bb_;
+    }
+  }
+  split_and_restart();
+  return taken('e', a_f);
+}
+
+// MpgpExpansion::ProjectedCG (PERMON's "projcg"): the whole CG step x := P(x - a_cg p), past the
+// boundary, then g recomputed (1 product). Should q increase, x and g are restored and the step
+// is the Fixed one (1 more product). BarzilaiBorwein's trial length stays as it was (updated with
+// p, it gave more products on the paper's brick).
+StepResult Mpgp::projected_cg_expansion(double a_f, double a_cg) {
+  s_.allocate_expansion_work();
+  s_.x_saved = s_.x;
+  s_.g_saved = s_.g;
+  const double q_before = objective();
+  s_.x.noalias() -= a_cg * s_.p;
+  c_.project(s_.x);
+  refresh_gradient();
+  if (objective() > q_before) {
+    ++rep_.n_expansion_fallbacks;
+    s_.x = s_.x_saved;
+    s_.g = s_.g_saved;
+    return fixed_expansion(a_f);  // A p is still in s_.Ap
+  }
+  split_and_restart();
+  return taken('e', a_cg);
 }
 
 // Lines 14-15: the proportioning step 14(b), a projected move along the whole gradient
@@ -451,12 +574,11 @@ std::optional<Stop> Mpgp::stop_test() {
                 fmt::format("stopped by the monitor after {} iterations", done)};
   }
   if (done >= opt_.max_iterations) {
-    return Stop{
-        Termination::MaxIterations,
-        fmt::format("reached max_iterations = {} with ||g^P|| / ||r|| = {:.3e} (target "
-                    "{:.3e})",
-                    opt_.max_iterations, norm_gp() / rep_.reference_norm,
-                    threshold_ / rep_.reference_norm)};
+    return Stop{Termination::MaxIterations,
+                fmt::format("reached max_iterations = {} with ||g^P|| / ||r|| = {:.3e} (target "
+                            "{:.3e})",
+                            opt_.max_iterations, norm_gp() / rep_.reference_norm,
+                            threshold_ / rep_.reference_norm)};
   }
   return std::nullopt;
 }
@@ -570,6 +692,7 @@ MpgpReport solve_mpgp(const Operator& A, const Eigen::VectorXd& b, const Separab
   check_inputs(A, b, c, opt, x);
   MpgpReport rep;
   rep.variant = opt.variant;
+  rep.expansion = opt.expansion;
   rep.norm_b = b.norm();
   rep.reference_norm =
       opt.reference == StopReference::Whole ? rep.norm_b : resisted_part(b, c).norm();

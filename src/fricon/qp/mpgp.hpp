@@ -11,7 +11,8 @@
 // beta (active blocks) (§4.1):
 //   'c'  conjugate gradient step on the free blocks, if it stays feasible      (1 product)
 //   'e'  expansion: go to the boundary along the CG direction, then take a projected
-//        free-gradient step of fixed length alpha_bar                           (2 products)
+//        free-gradient step of fixed length alpha_bar (MpgpOptions::expansion
+//        chooses others: MpgpExpansion below)                                   (2 products)
 //   'p'  proportioning, when beta dominates the reduced free gradient: the projected gradient
 //        step x := P(x - alpha_bar g)                                           (1 product)
 // alpha_bar = step_factor / ||A|| with ||A|| given or estimated by power iteration. With
@@ -50,10 +51,9 @@ enum class Termination {
 /// The algorithm solve_mpgp runs. Both variants keep the iterates feasible, stop on the same test
 /// and decrease q monotonically (up to rounding). Measured on the paper's problems
 /// (bench/qp_variants_bench.cpp): BarzilaiBorwein needs 5 to 10 times fewer products than Paper.
-/// PERMON's "opt" expansion length, the projected-CG expansion, the MPRGP proportioning step along
-/// beta, the proportionality test with phi^T phi and the spectral projected gradient method
-/// without CG were measured too and gave no gain (expansions are rare here: the active circles
-/// make proportioning steps dominate).
+/// The MPRGP proportioning step along beta, the proportionality test with phi^T phi and the
+/// spectral projected gradient method without CG were measured too and gave no gain. The
+/// expansion step's move is chosen apart from the variant (MpgpExpansion below).
 enum class MpgpVariant {
   /// The algorithm of [HL09] (docs/theory.md §4.2): CG, expansion and proportioning steps with the
   /// fixed length alpha_bar. It reproduces the paper's product counts n_mult (Table 1, `fricon
@@ -69,6 +69,46 @@ enum class MpgpVariant {
   /// Paper's fixed-length one. CG steps as in Paper, so it stays as fast as Paper where CG
   /// dominates (few active blocks). Default.
   BarzilaiBorwein,
+};
+
+/// How an expansion step continues once it has reached the boundary of Omega along the CG
+/// direction -p (docs/theory.md §4.2): PERMON's expansion types and lengths
+/// (-qps_mpgp_expansion_type, -qps_mpgp_expansion_length_type; [KHC+20]). Every choice keeps the
+/// iterate feasible, restarts CG from the free gradient afterwards and never increases q: a move
+/// that would is replaced by a fixed-length one (MpgpReport::n_expansion_fallbacks).
+/// Measured (bench/expansion_bench.cpp; products with A to ||g^P|| <= 1e-6 / 1e-8 ||b_R||, each QP
+/// scaled per contact as `fricon dual solve` scales it; docs/theory.md §4.2), BarzilaiBorwein with
+/// Fixed / Optimal / ProjectedCG: on the frictionless QPs of graded meshes, where expansions are a
+/// large share of the steps, the graded wheel (first Coulomb step) needs 70/75, 37/41, 47/51 and
+/// the graded Hertz hemisphere 46/56, 52/61, 49/58 (Paper: 103/108, 36/40, 48/51 and 74/84,
+/// 51/60, 48/57); on the paper's brick (n = 16, Tresca), where proportioning steps dominate,
+/// 307/630, 372/730, 271/470 (Optimal's length is nearly always cut by the projection, so 3
+/// products a step). With PERMON's length factor 2 Optimal overshoots and falls back often (Hertz
+/// 98/107, wheel 48/53). Over these three QPs ProjectedCG with BarzilaiBorwein needs the fewest
+/// products, and is the default of `fricon dual solve` (driver::LocalSolveOptions). In whole runs
+/// of `fricon solve`'s successive approximations, warm-started, it is not better: the wheel's six
+/// Coulomb steps take 2799, 2710 and 5036 products (the later, frictional QPs are dominated by
+/// proportioning steps, and after ProjectedCG's expansions the 4th and 5th QP need 1459 and 1168 of
+/// them against 349 and 94), the brick's about as many with Fixed as with ProjectedCG. Fixed
+/// stays the default here (and Paper with Fixed is the paper's algorithm).
+enum class MpgpExpansion {
+  /// The variant's own projected free-gradient move from the boundary point: x := P(x - alpha_bar
+  /// phi) and g recomputed (Paper), or the spectral move along phi (BarzilaiBorwein, §4.3).
+  /// 2 products per expansion step (A p and the move's). Today's step of both variants; Paper with
+  /// Fixed is the algorithm that reproduces the paper's counts.
+  Fixed,
+  /// PERMON's "opt" length: along the reduced free gradient gr = phitilde_{alpha_bar} at the
+  /// boundary point, of length a = expansion_length_factor (gr^T g) / (gr^T A gr) (the exact line
+  /// search along -gr times the factor; 1 more product, A gr), then projected onto Omega and g
+  /// recomputed (1 more product; saved when x - a gr is feasible, since then g - a A gr is exact).
+  /// If the projected point has a larger q than the boundary point, the move is the fixed-length
+  /// one x - alpha_bar gr (= P(x - alpha_bar phi)), whose gradient g - alpha_bar A gr needs no
+  /// product. 2 or 3 products per expansion step (1 if gr = 0).
+  Optimal,
+  /// PERMON's "projcg": the whole CG step x := P(x - a_cg p), past the boundary, projected onto
+  /// Omega, and g recomputed (1 more product). If that point has a larger q than x before the
+  /// step, the step is redone as Fixed from x (1 more product). 2 or 3 products per expansion step.
+  ProjectedCG,
 };
 
 /// The norm that the relative stopping test ||g^P|| <= rel_tolerance ||r|| refers to
@@ -98,6 +138,10 @@ FRICON_ENUM_NAMES(fricon::qp::Termination, "termination", {qp::Termination::Conv
 FRICON_ENUM_NAMES(fricon::qp::MpgpVariant, "solver.qp_variant", {qp::MpgpVariant::Paper, "paper"},
                   {qp::MpgpVariant::BarzilaiBorwein, "bb"});
 
+FRICON_ENUM_NAMES(fricon::qp::MpgpExpansion, "solver.qp_expansion",
+                  {qp::MpgpExpansion::Fixed, "fixed"}, {qp::MpgpExpansion::Optimal, "opt"},
+                  {qp::MpgpExpansion::ProjectedCG, "projcg"});
+
 namespace fricon::qp {
 
 /// One completed iteration (or the starting point, step 's'), as passed to the monitor.
@@ -107,15 +151,22 @@ struct MpgpIteration {
   double norm_gp = 0;    ///< ||g^P(x)||_2 after the step
   double norm_phi = 0;   ///< ||phi(x)||_2 after the step
   double norm_beta = 0;  ///< ||beta(x)||_2 after the step
-  double alpha = 0;      ///< step length: a_cg ('c'), feasible step a_f ('e'), alpha_bar ('p'),
-                         ///< or for a spectral move ('p' of BarzilaiBorwein) t times the trial
-                         ///< length; 0 for 's'
+  double alpha = 0;      ///< step length: a_cg ('c'), feasible step a_f ('e'; a_cg for a
+                         ///< ProjectedCG expansion), alpha_bar ('p'), or for a spectral move
+                         ///< ('p' of BarzilaiBorwein) t times the trial length; 0 for 's'
   double objective = 0;  ///< q(x) after the step
 };
 
 struct MpgpOptions {
   /// The algorithm. Default BarzilaiBorwein (the program's default); Paper is the reference.
   MpgpVariant variant = MpgpVariant::BarzilaiBorwein;
+  /// The move of an expansion step after it reached the boundary (MpgpExpansion). Default Fixed
+  /// (the algorithm as it was; ProjectedCG needs fewer products on single QPs, not in whole runs).
+  MpgpExpansion expansion = MpgpExpansion::Fixed;
+  /// MpgpExpansion::Optimal: the multiple of the line-search length along the reduced free
+  /// gradient (PERMON's alpha_user, whose default is 2). Default 1; range (0, 2] (with <= 2 a
+  /// feasible move does not increase q).
+  double expansion_length_factor = 1.0;
   /// Stop when ||g^P|| <= rel_tolerance * ||r||_2, r given by `reference`. Default 1e-6
   /// ([HL09]); range >= 0.
   double rel_tolerance = 1e-6;
@@ -155,8 +206,9 @@ struct MpgpOptions {
 
 struct MpgpReport {
   Termination termination = Termination::NumericalFailure;
-  std::string message;                       ///< one sentence: why the solver stopped
-  MpgpVariant variant = MpgpVariant::Paper;  ///< the algorithm that ran
+  std::string message;                             ///< one sentence: why the solver stopped
+  MpgpVariant variant = MpgpVariant::Paper;        ///< the algorithm that ran
+  MpgpExpansion expansion = MpgpExpansion::Fixed;  ///< its expansion move
   /// Steps taken = n_cg + n_expansion + n_proportioning.
   int iterations = 0;
   int n_cg = 0;
@@ -168,9 +220,16 @@ struct MpgpReport {
   /// Gradients recomputed as A x - b (one product each) to certify the stopping test where the
   /// gradient had been updated recursively (BarzilaiBorwein only).
   int n_refreshes = 0;
-  /// Products with A made by the iteration, the initial gradient included. Paper:
-  /// 1 + n_cg + 2 n_expansion + n_proportioning; BarzilaiBorwein adds n_refreshes. Power-method
-  /// products are not included.
+  /// Products with A made by the expansion steps, A p included: 2 n_expansion with
+  /// MpgpExpansion::Fixed; 2 or 3 per step with the others (Optimal: 1 where the free gradient
+  /// vanishes at the boundary point, so that there is nothing to move).
+  long n_expansion_products = 0;
+  /// Expansion moves (Optimal, ProjectedCG) that would have increased q, replaced by the
+  /// fixed-length one.
+  int n_expansion_fallbacks = 0;
+  /// Products with A made by the iteration, the initial gradient included:
+  /// 1 + n_cg + n_expansion_products + n_proportioning + n_refreshes (n_refreshes = 0 for Paper;
+  /// n_expansion_products = 2 n_expansion for Fixed). Power-method products are not included.
   long n_products = 0;
   long n_power_products = 0;  ///< products spent estimating ||A|| (0 if MpgpOptions::norm_A > 0)
   bool norm_A_estimated = false;  ///< true if norm_A_used comes from the power method
@@ -179,9 +238,9 @@ struct MpgpReport {
   double norm_b = 0.0;            ///< ||b||_2
   /// ||r||_2 of the stopping test (MpgpOptions::reference): ||b||_2 or ||b_R||_2.
   double reference_norm = 0.0;
-  double norm_gp = 0.0;  ///< final ||g^P||_2
-  double rel_gp = 0.0;   ///< norm_gp / reference_norm (norm_gp itself if the reference is 0)
-  double objective = 0.0;         ///< final q(x)
+  double norm_gp = 0.0;    ///< final ||g^P||_2
+  double rel_gp = 0.0;     ///< norm_gp / reference_norm (norm_gp itself if the reference is 0)
+  double objective = 0.0;  ///< final q(x)
   /// Steps that increased q by more than rounding (expected 0; > 0 hints at a too large
   /// alpha_bar, e.g. an underestimated norm_A).
   int n_objective_increases = 0;
@@ -189,7 +248,7 @@ struct MpgpReport {
   std::vector<MpgpIteration> history;  ///< filled if MpgpOptions::record_history
 
   /// One line: termination, iterations, products, relative ||g^P|| (and the variant if not
-  /// Paper).
+  /// Paper, the expansion if not Fixed).
   std::string brief() const;
   /// Aligned multi-line block with every counter and norm.
   std::string full() const;

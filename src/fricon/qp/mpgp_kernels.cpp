@@ -70,6 +70,38 @@ Split Kernels::split(const Eigen::VectorXd& x, const Eigen::VectorXd& g, Eigen::
   return s;
 }
 
+void Kernels::reduced_free_gradient(const Eigen::VectorXd& x, const Eigen::VectorXd& g,
+                                    Eigen::VectorXd& gr) const {
+  const double abar = alpha_bar_;
+  for (std::size_t k = 0; k < c_.blocks.size(); ++k) {
+    const Index o = c_.blocks[k].offset;
+    if (c_.blocks[k].kind == BlockKind::Bound) {
+      const double xi = x(o);
+      const double gi = g(o);
+      // The same tests and formula as split(): (x - max(x - abar g, 0)) / abar on a free bound.
+      gr(o) = xi <= tol_bound_ ? 0.0 : (gi > 0.0 ? std::min(gi, xi / abar) : gi);
+      continue;
+    }
+    const double rho = c_.radius(static_cast<Index>(k));
+    const double x1 = x(o), x2 = x(o + 1);
+    const double nx = norm2(x1, x2);
+    if (rho == 0.0 || nx >= (1.0 - tol_disc_) * rho) {  // pinned or active
+      gr(o) = gr(o + 1) = 0.0;
+      continue;
+    }
+    const double g1 = g(o), g2 = g(o + 1);
+    const double y1 = x1 - abar * g1, y2 = x2 - abar * g2;
+    const double ny = norm2(y1, y2);
+    if (ny <= rho) {
+      gr(o) = g1;
+      gr(o + 1) = g2;
+    } else {  // (x - P_disc(x - abar g)) / abar
+      gr(o) = (x1 - rho * y1 / ny) / abar;
+      gr(o + 1) = (x2 - rho * y2 / ny) / abar;
+    }
+  }
+}
+
 double Kernels::rounding_scale(const Eigen::VectorXd& x, const Eigen::VectorXd& g) const {
   double sum = 0.0;
   for (const Block& blk : c_.blocks) {

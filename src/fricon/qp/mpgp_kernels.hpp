@@ -3,6 +3,8 @@
 //
 //   Kernels::split              the gradient split g^P = phi + beta and its norms (docs/theory.md
 //                               §4.1)
+//   Kernels::reduced_free_gradient  the vector phitilde_{alpha_bar} (the Optimal expansion's
+//                               direction)
 //   Kernels::rounding_scale     the rounding level of g^T d for a projected direction d
 //   Kernels::max_feasible_step  the longest feasible step along -p (the CG step's a_f)
 //   SpectralLength              the Barzilai-Borwein trial length of the bb variant (§4.3)
@@ -36,6 +38,12 @@ class Kernels {
   /// whose gradient parts are all 0).
   Split split(const Eigen::VectorXd& x, const Eigen::VectorXd& g, Eigen::VectorXd& phi,
               Eigen::VectorXd& beta) const;
+
+  /// Fills gr with the reduced free gradient phitilde_{alpha_bar}(x) = (x - P(x - alpha_bar
+  /// phi)) / alpha_bar for g at x (docs/theory.md §4.1), with the active sets of split(): 0 on
+  /// active blocks; x - t gr is feasible for t in [0, alpha_bar] and g^T gr >= ||gr||^2.
+  void reduced_free_gradient(const Eigen::VectorXd& x, const Eigen::VectorXd& g,
+                             Eigen::VectorXd& gr) const;
 
   /// Sum over the blocks of ||g_i|| ||x_i||: the scale of the rounding error of g^T d for a
   /// projected direction d (each d_i is exact only to about eps ||x_i||).

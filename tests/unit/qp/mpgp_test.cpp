@@ -30,26 +30,45 @@ MpgpOptions tight() {
 }
 
 const std::vector<MpgpVariant> kVariants = {MpgpVariant::Paper, MpgpVariant::BarzilaiBorwein};
+const std::vector<MpgpExpansion> kExpansions = {MpgpExpansion::Fixed, MpgpExpansion::Optimal,
+                                                MpgpExpansion::ProjectedCG};
 
-// The tests that check solutions, counters and failures run once per variant: inside them,
-// options() and tight() carry the variant.
-class MpgpVariants : public ::testing::TestWithParam<MpgpVariant> {
+// An algorithm of solve_mpgp: a variant with an expansion move.
+struct Algorithm {
+  MpgpVariant variant;
+  MpgpExpansion expansion;
+};
+
+std::vector<Algorithm> all_algorithms() {
+  std::vector<Algorithm> out;
+  for (const auto v : kVariants)
+    for (const auto e : kExpansions)
+      out.push_back({v, e});
+  return out;
+}
+
+// The tests that check solutions, counters and failures run once per variant and expansion:
+// inside them, options() and tight() carry both.
+class MpgpVariants : public ::testing::TestWithParam<Algorithm> {
  protected:
   MpgpOptions options() const {
     MpgpOptions o;
-    o.variant = GetParam();
+    o.variant = GetParam().variant;
+    o.expansion = GetParam().expansion;
     return o;
   }
   MpgpOptions tight() const {
     MpgpOptions o = qp::tight();
-    o.variant = GetParam();
+    o.variant = GetParam().variant;
+    o.expansion = GetParam().expansion;
     return o;
   }
 };
 
-INSTANTIATE_TEST_SUITE_P(All, MpgpVariants, ::testing::ValuesIn(kVariants),
-                         [](const ::testing::TestParamInfo<MpgpVariant>& param_info) {
-                           return std::string(enum_name(param_info.param));
+INSTANTIATE_TEST_SUITE_P(All, MpgpVariants, ::testing::ValuesIn(all_algorithms()),
+                         [](const ::testing::TestParamInfo<Algorithm>& param_info) {
+                           return std::string(enum_name(param_info.param.variant)) + "_" +
+                                  std::string(enum_name(param_info.param.expansion));
                          });
 
 SeparableConstraints all_bounds(Index n) {
@@ -119,6 +138,10 @@ TEST(MpgpOptions, ValidateRejectsOutOfRangeFields) {
       bad([](MpgpOptions& o) { o.active_tolerance = -1e-12; }),
       bad([](MpgpOptions& o) { o.active_tolerance = 0.5; }),
       bad([](MpgpOptions& o) { o.variant = static_cast<MpgpVariant>(9); }),
+      bad([](MpgpOptions& o) { o.expansion = static_cast<MpgpExpansion>(9); }),
+      bad([](MpgpOptions& o) { o.expansion_length_factor = 0.0; }),
+      bad([](MpgpOptions& o) { o.expansion_length_factor = 2.5; }),
+      bad([](MpgpOptions& o) { o.expansion_length_factor = NAN; }),
   };
   for (const auto& o : cases)
     EXPECT_THROW(o.validate(), InputError);
@@ -149,6 +172,20 @@ TEST(MpgpEnums, SpellingsRoundTrip) {
     FAIL();
   } catch (const InputError& e) {
     EXPECT_STREQ(e.what(), "solver.qp_variant = \"spg\" is not one of \"paper\", \"bb\"");
+  }
+  EXPECT_EQ(enum_name(MpgpExpansion::Fixed), "fixed");
+  EXPECT_EQ(enum_name(MpgpExpansion::Optimal), "opt");
+  EXPECT_EQ(enum_name(MpgpExpansion::ProjectedCG), "projcg");
+  for (auto e : kExpansions) {
+    EXPECT_EQ(parse_enum<MpgpExpansion>(enum_name(e)), e);
+  }
+  EXPECT_EQ(MpgpOptions{}.expansion, MpgpExpansion::Fixed);  // today's algorithm
+  try {
+    parse_enum<MpgpExpansion>("bb");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(),
+                 "solver.qp_expansion = \"bb\" is not one of \"fixed\", \"opt\", \"projcg\"");
   }
 }
 
@@ -327,6 +364,84 @@ TEST(Mpgp, SpectralMovesFallBackToFixedStepsAtTheRoundingLevel) {
   EXPECT_LE(kkt(p.M, p.b, x, p.c).max(), 1e-12) << rep.full();
 }
 
+// A = I, b = (1, -1), x0 = (0.5, 0.5), both bounds: g = (-0.5, 1.5) = phi = p, a_cg = 1 and
+// a_f = 0.5 / 1.5 = 1/3 < a_cg, so the first step is an expansion. At the boundary point
+// x_b = (2/3, 0), g_b = (-1/3, 1): the second bound is active (beta = 0), gr = phi = (-1/3, 0).
+// Optimal: a = g^T gr / gr^T gr = 1 and x_b - gr = (1, 0) is feasible (no projection, 2 products);
+// ProjectedCG: P(x0 - p) = P(1, -1) = (1, 0) and g recomputed (2 products). Both land on the
+// solution (1, 0) in one step; Fixed (alpha_bar = 1.95) goes to (2/3 + 0.65, 0) and needs more.
+TEST(Mpgp, OptimalAndProjectedCgExpansionsMatchHandComputation) {
+  const Eigen::MatrixXd M = Eigen::Matrix2d::Identity();
+  const Eigen::Vector2d b(1.0, -1.0);
+  for (const auto variant : kVariants) {
+    for (const auto expansion : {MpgpExpansion::Optimal, MpgpExpansion::ProjectedCG}) {
+      auto opt = tight();
+      opt.variant = variant;
+      opt.expansion = expansion;
+      opt.norm_A = 1.0;
+      opt.record_history = true;
+      Eigen::VectorXd x = Eigen::Vector2d(0.5, 0.5);
+      const auto rep = solve_mpgp(dense_operator(M), b, all_bounds(2), opt, x);
+      const std::string where = std::string(enum_name(expansion)) + "\n" + rep.full();
+      ASSERT_EQ(rep.termination, Termination::Converged) << where;
+      ASSERT_EQ(rep.iterations, 1) << where;
+      EXPECT_EQ(rep.history[1].step, 'e') << where;
+      EXPECT_DOUBLE_EQ(rep.history[1].alpha, expansion == MpgpExpansion::Optimal ? 1.0 / 3.0 : 1.0);
+      EXPECT_EQ(rep.n_expansion_products, 2) << where;
+      EXPECT_EQ(rep.n_expansion_fallbacks, 0) << where;
+      EXPECT_LE((x - Eigen::Vector2d(1.0, 0.0)).norm(), 1e-15) << x.transpose();
+      EXPECT_NEAR(rep.objective, -0.5, 1e-15);
+    }
+  }
+  auto opt = tight();
+  opt.variant = MpgpVariant::Paper;
+  opt.norm_A = 1.0;
+  opt.max_iterations = 1;
+  Eigen::VectorXd x = Eigen::Vector2d(0.5, 0.5);
+  solve_mpgp(dense_operator(M), b, all_bounds(2), opt, x);
+  EXPECT_LE((x - Eigen::Vector2d(2.0 / 3.0 + 0.65, 0.0)).norm(), 1e-15) << x.transpose();
+}
+
+// A move that would increase q is replaced by the fixed-length one. With the length factor 2
+// (PERMON's default) the Optimal move overshoots by construction, so fallbacks occur, and
+// ProjectedCG's steps past the boundary raise q on these problems too; along every history q still
+// decreases and the solution is the Fixed expansion's.
+TEST(Mpgp, ExpansionMovesThatWouldIncreaseQFallBack) {
+  for (const auto variant : kVariants) {
+    for (const auto& [expansion, factor] :
+         {std::pair{MpgpExpansion::Optimal, 2.0}, std::pair{MpgpExpansion::ProjectedCG, 1.0}}) {
+      int fallbacks = 0;
+      for (unsigned seed = 1; seed <= 10; ++seed) {
+        const Problem p = random_contact_problem(20, 1000.0, 4000 + seed);
+        auto opt = tight();
+        opt.variant = variant;
+        opt.expansion = expansion;
+        opt.expansion_length_factor = factor;
+        opt.record_history = true;
+        Eigen::VectorXd x = Eigen::VectorXd::Zero(p.b.size());
+        const auto rep = solve_mpgp(dense_operator(p.M), p.b, p.c, opt, x);
+        const std::string where = std::string(enum_name(variant)) + "/" +
+                                  std::string(enum_name(expansion)) + " seed " +
+                                  std::to_string(seed) + "\n" + rep.full();
+        ASSERT_EQ(rep.termination, Termination::Converged) << where;
+        fallbacks += rep.n_expansion_fallbacks;
+        for (std::size_t k = 1; k < rep.history.size(); ++k) {
+          EXPECT_LE(rep.history[k].objective,
+                    rep.history[k - 1].objective + 1e-13 * std::abs(rep.history[k].objective))
+              << where << "step " << k;
+        }
+        EXPECT_EQ(rep.n_objective_increases, 0) << where;
+        auto fixed = tight();
+        fixed.variant = variant;
+        Eigen::VectorXd x_fixed = Eigen::VectorXd::Zero(p.b.size());
+        solve_mpgp(dense_operator(p.M), p.b, p.c, fixed, x_fixed);
+        EXPECT_LE((x - x_fixed).norm(), 1e-10 * p.b.norm()) << where;
+      }
+      EXPECT_GT(fallbacks, 0) << enum_name(variant) << "/" << enum_name(expansion);
+    }
+  }
+}
+
 // ---------------------------------------------------------------------------------------------
 // Random contact-layout problems
 
@@ -375,6 +490,28 @@ TEST_P(MpgpVariants, RandomContactProblemsMatchReferenceSolver) {
     EXPECT_LE(q, q_ref + 1e-12 * std::abs(q_ref)) << "n " << p.b.size() << " cond " << rc.cond;
     EXPECT_LE((x - ref).norm(), 1e-8 * std::max(1.0, ref.norm()))
         << "n " << p.b.size() << " cond " << rc.cond;
+  }
+}
+
+// Each expansion move solves the random problems to the same point as the variant's Fixed move, to
+// the tolerance, and that point satisfies the KKT conditions computed here from the matrix.
+TEST_P(MpgpVariants, RandomContactProblemsAgreeWithTheFixedExpansion) {
+  for (const auto& rc : random_cases()) {
+    const Problem p = random_contact_problem(rc.n_patches, rc.cond, rc.seed + 3000);
+    auto fixed = tight();
+    fixed.expansion = MpgpExpansion::Fixed;
+    Eigen::VectorXd x_fixed = Eigen::VectorXd::Zero(p.b.size());
+    ASSERT_EQ(solve_mpgp(dense_operator(p.M), p.b, p.c, fixed, x_fixed).termination,
+              Termination::Converged);
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(p.b.size());
+    const auto rep = solve_mpgp(dense_operator(p.M), p.b, p.c, tight(), x);
+    const std::string where = "n " + std::to_string(3 * rc.n_patches) + " cond " +
+                              std::to_string(rc.cond) + "\n" + rep.full();
+    ASSERT_EQ(rep.termination, Termination::Converged) << where;
+    // ||x - x*|| <= ||g^P|| / lambda_min, lambda_min = 3 here, for both solutions.
+    EXPECT_LE((x - x_fixed).norm(), 1e-10 * p.b.norm()) << where;
+    EXPECT_LE(kkt(p.M, p.b, x, p.c).max(), 1e-9) << where;
+    EXPECT_EQ(rep.n_objective_increases, 0) << where;
   }
 }
 
@@ -504,13 +641,21 @@ TEST_P(MpgpVariants, ProductCountMatchesOperatorCalls) {
     EXPECT_GT(rep.n_cg, 0);
     EXPECT_GT(rep.n_expansion, 0);
     EXPECT_GT(rep.n_proportioning, 0);
-    long expected = 1 + rep.n_cg + 2L * rep.n_expansion + rep.n_proportioning;
+    long expected = 1 + rep.n_cg + rep.n_expansion_products + rep.n_proportioning;
     if (opt.variant == MpgpVariant::Paper) {
       EXPECT_EQ(rep.n_fallbacks + rep.n_refreshes, 0);
     } else {
       expected += rep.n_refreshes;
     }
     EXPECT_EQ(rep.n_products, expected) << rep.full();
+    EXPECT_EQ(rep.expansion, opt.expansion);
+    if (opt.expansion == MpgpExpansion::Fixed) {
+      EXPECT_EQ(rep.n_expansion_products, 2L * rep.n_expansion);
+      EXPECT_EQ(rep.n_expansion_fallbacks, 0);
+    } else {
+      EXPECT_GE(rep.n_expansion_products, rep.n_expansion);
+      EXPECT_LE(rep.n_expansion_products, 3L * rep.n_expansion);
+    }
     EXPECT_EQ(calls, rep.n_products + rep.n_power_products);
     EXPECT_EQ(rep.norm_A_estimated, !given_norm);
     if (given_norm) {
@@ -713,6 +858,7 @@ TEST(MpgpRegression, CountsAndIteratesArePinned) {
          {std::pair{MpgpVariant::Paper, &paper}, std::pair{MpgpVariant::BarzilaiBorwein, &bb}}) {
       MpgpOptions opt;
       opt.variant = variant;
+      opt.expansion = MpgpExpansion::Fixed;  // the expansion the counts were pinned with
       opt.rel_tolerance = k.rel_tolerance;
       opt.reference = StopReference::Whole;  // the test the counts were pinned with
       Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
