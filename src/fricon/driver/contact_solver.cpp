@@ -90,6 +90,7 @@ qp::BlockScaling dual_scaling(const Problem& problem, const Model& m,
 qp::MpgpOptions qp_options(const SolverOptions& so, Real norm_Q, const RunOptions& options) {
   qp::MpgpOptions o;
   o.variant = so.qp_variant;
+  o.expansion = so.qp_expansion;
   o.rel_tolerance = so.qp_rtol;
   o.max_iterations = so.qp_max;
   o.norm_A = norm_Q;

@@ -24,6 +24,7 @@ Problem paper_problem(Index n, Real param) {
   p.solver.outer_tol = 1e-4;
   p.solver.qp_rtol = 1e-6;
   p.solver.qp_variant = qp::MpgpVariant::Paper;  // the paper's plain MPGP, so that n_mult compares
+  p.solver.qp_expansion = qp::MpgpExpansion::Fixed;
   p.output.dir = fmt::format("results/paper-n{}-param{:g}", n, param);
   return p;
 }

@@ -142,6 +142,10 @@ struct SolverOptions {
   /// lengths, 5-10x fewer products with Q on the paper's problems) or paper (the paper's plain
   /// MPGP, which reproduces its n_mult).
   qp::MpgpVariant qp_variant = qp::MpgpVariant::BarzilaiBorwein;
+  /// [solver.qp_expansion] the move of MPGP's expansion step (theory.md §4.2): fixed (the
+  /// paper's fixed length), opt (PERMON's exact line search along the free gradient) or projcg
+  /// (the full CG step, projected). Measured in docs/benchmarks.md: fixed wins on whole runs.
+  qp::MpgpExpansion qp_expansion = qp::MpgpExpansion::Fixed;
   /// [solver.dual_scaling] the change of variables of the dual QP (theory.md §4.5): patch (one
   /// factor per patch from its area and material) or none.
   contact::DualScaling dual_scaling = contact::DualScaling::Patch;

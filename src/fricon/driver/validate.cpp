@@ -288,6 +288,7 @@ void validate_solver(const Problem& p) {
   check_enum(p, s.dual_operator);
   check_enum(p, s.acceleration);
   check_enum(p, s.qp_variant);
+  check_enum(p, s.qp_expansion);
   check_enum(p, s.dual_scaling);
   check_enum(p, s.contact_search);
   check_real(p, "solver.contact_search_margin", s.contact_search_margin, "a number >= 0",

@@ -565,7 +565,7 @@ void read_solver(const Context& ctx, const Field& f, driver::SolverOptions& s) {
   const TableReader t(
       ctx, f, "a table [solver]",
       {"outer_tol", "outer_max", "qp_rtol", "qp_max", "warm_start", "dual_operator", "acceleration",
-       "anderson_depth", "qp_variant", "dual_scaling", "contact_search", "contact_search_margin",
+       "anderson_depth", "qp_variant", "qp_expansion", "dual_scaling", "contact_search", "contact_search_margin",
        "backend", "partition", "memory_per_rank"});
   if (auto k = t.find("outer_tol")) s.outer_tol = get_real(ctx, *k, "a positive number");
   if (auto k = t.find("outer_max")) s.outer_max = get_int<int>(ctx, *k, "an integer >= 1");
@@ -575,6 +575,7 @@ void read_solver(const Context& ctx, const Field& f, driver::SolverOptions& s) {
   if (auto k = t.find("dual_operator")) s.dual_operator = get_enum<dual::DualOperatorKind>(ctx, *k);
   if (auto k = t.find("acceleration")) s.acceleration = get_enum<outer::Acceleration>(ctx, *k);
   if (auto k = t.find("qp_variant")) s.qp_variant = get_enum<qp::MpgpVariant>(ctx, *k);
+  if (auto k = t.find("qp_expansion")) s.qp_expansion = get_enum<qp::MpgpExpansion>(ctx, *k);
   if (auto k = t.find("dual_scaling")) s.dual_scaling = get_enum<contact::DualScaling>(ctx, *k);
   if (auto k = t.find("contact_search"))
     s.contact_search = get_enum<contact::ContactSearch>(ctx, *k);
@@ -1017,6 +1018,7 @@ nlohmann::json to_json(const driver::Problem& p) {
                  {"acceleration", enum_name(s.acceleration)},
                  {"anderson_depth", s.anderson_depth},
                  {"qp_variant", enum_name(s.qp_variant)},
+                 {"qp_expansion", enum_name(s.qp_expansion)},
                  {"dual_scaling", enum_name(s.dual_scaling)},
                  {"contact_search", enum_name(s.contact_search)},
                  {"contact_search_margin", s.contact_search_margin},
