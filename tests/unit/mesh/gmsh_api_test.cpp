@@ -1,8 +1,9 @@
-// Tests of the loading of libgmsh at run time: the installed library found by its SONAME, and the
-// messages when a library is missing or is not Gmsh's.
+// Tests of the loading of libgmsh at run time: not before the first use, the installed library
+// found by its SONAME, and the messages when a library is missing or is not Gmsh's.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -12,12 +13,35 @@ using namespace fricon::mesh;
 
 namespace {
 
+// Whether a library whose path contains `name` is mapped into this process.
+bool is_mapped(const std::string& name) {
+  std::ifstream maps("/proc/self/maps");
+  std::string line;
+  while (std::getline(maps, line))
+    if (line.find(name) != std::string::npos) return true;
+  return false;
+}
+
 void expect_contains(const std::string& text, const std::vector<std::string>& parts) {
   for (const auto& part : parts)
     EXPECT_NE(text.find(part), std::string::npos) << "'" << part << "' not in: " << text;
 }
 
 }  // namespace
+
+// In a fresh process (the "threadsafe" death test runs this test alone in a new run of the test
+// program) libgmsh is not mapped until the first use loads it.
+TEST(GmshApiDeathTest, LoadsTheLibraryOnFirstUseOnly) {
+  GTEST_FLAG_SET(death_test_style, "threadsafe");
+  EXPECT_EXIT(
+      {
+        const bool mapped_before = is_mapped("libgmsh");
+        const bool loaded = gmsh_api::load_error().empty();
+        const bool mapped_after = is_mapped("libgmsh");
+        std::exit(!mapped_before && loaded && mapped_after ? 0 : 1);
+      },
+      ::testing::ExitedWithCode(0), "");
+}
 
 TEST(GmshApi, LoadsTheInstalledLibraryBySoname) {
   EXPECT_NE(std::string(gmsh_api::library_name()).find("libgmsh.so."), std::string::npos)
