@@ -20,13 +20,30 @@ target_link_libraries(fricon_cholmod INTERFACE ${CHOLMOD_LIBRARY} ${AMD_LIBRARY}
                       ${COLAMD_LIBRARY} ${CCOLAMD_LIBRARY} ${SUITESPARSE_CONFIG_LIBRARY}
                       ${OPENBLAS_LIBRARY})
 
-# Gmsh 4.x (Debian: libgmsh-dev) ships no CMake config either: its C++ API reads and writes the MSH
-# files and meshes .geo files (src/fricon/mesh/gmsh_file.cpp).
-find_path(GMSH_INCLUDE_DIR gmsh.h REQUIRED)
+# Gmsh 4.x (Debian: libgmsh-dev) ships no CMake config either. It reads and writes the MSH files
+# and meshes .geo files through its C API (src/fricon/mesh/gmsh_api.cpp), but is not linked:
+# libgmsh brings ~70 more libraries (OpenCASCADE, FLTK, ...) whose loading and initialisation were
+# most of the start-up time of every run, so it is opened with dlopen when the first Gmsh file is
+# read or written. CMake finds the library only for the name to open, its SONAME (a run that reads
+# Gmsh files needs the Debian package of that name, libgmsh4.8; GMSH_SONAME overrides it).
+find_path(GMSH_INCLUDE_DIR gmshc.h REQUIRED)
 find_library(GMSH_LIBRARY gmsh REQUIRED)
+if(NOT GMSH_SONAME)
+  execute_process(COMMAND ${CMAKE_OBJDUMP} -p ${GMSH_LIBRARY} OUTPUT_VARIABLE _gmsh_dynamic
+                  ERROR_QUIET RESULT_VARIABLE _gmsh_objdump)
+  if(_gmsh_objdump EQUAL 0 AND _gmsh_dynamic MATCHES "SONAME +([^ \r\n]+)")
+    set(_gmsh_soname ${CMAKE_MATCH_1})
+  else()  # no objdump or no SONAME: the file the link name points to
+    file(REAL_PATH ${GMSH_LIBRARY} _gmsh_file)
+    get_filename_component(_gmsh_soname ${_gmsh_file} NAME)
+  endif()
+  set(GMSH_SONAME ${_gmsh_soname} CACHE STRING "The file name of libgmsh that fricon loads")
+endif()
+message(STATUS "Gmsh: ${GMSH_SONAME} (${GMSH_LIBRARY}), loaded on first use")
 add_library(fricon_gmsh INTERFACE)
 target_include_directories(fricon_gmsh SYSTEM INTERFACE ${GMSH_INCLUDE_DIR})
-target_link_libraries(fricon_gmsh INTERFACE ${GMSH_LIBRARY})
+target_compile_definitions(fricon_gmsh INTERFACE FRICON_GMSH_SONAME="${GMSH_SONAME}")
+target_link_libraries(fricon_gmsh INTERFACE ${CMAKE_DL_LIBS})
 
 # muparser (Debian: libmuparser-dev) evaluates the friction law "expression"
 # (src/fricon/contact/friction_law.cpp); it ships a pkg-config file only.

@@ -15,15 +15,18 @@
 #include <vector>
 
 #include <fmt/format.h>
-#include <gmsh.h>
 
 #include "fricon/core/error.hpp"
+#include "fricon/mesh/gmsh_api.hpp"
 
 namespace fricon::mesh {
 
 namespace {
 
 namespace fs = std::filesystem;
+// The Gmsh API, through libgmsh loaded on first use (gmsh_api.hpp): the calls read as those of
+// Gmsh's C++ API.
+namespace gmsh = gmsh_api;
 
 // Gmsh element types (Gmsh reference manual, "MSH file format": elm-type).
 constexpr int kGmshTriangle = 2;
@@ -35,6 +38,13 @@ constexpr int kNodesPerTet = 4;
 constexpr Real kDegenerateVolume = 1e-12;
 
 // @sect: the Gmsh session.
+
+// Throws E naming `source` when libgmsh cannot be loaded (the first call loads it).
+template <class E>
+void require_gmsh_library(const std::string& source) {
+  if (const std::string& why = gmsh_api::load_error(); !why.empty())
+    throw E(fmt::format("{}: cannot use Gmsh: {}", source, why));
+}
 
 // The message of the exception in flight, whatever Gmsh threw.
 std::string current_exception_message() {
@@ -506,6 +516,7 @@ TetMesh read_gmsh(const std::filesystem::path& file, std::optional<Real> size_fa
   if (size_factor && !(*size_factor > 0.0 && std::isfinite(*size_factor)))
     throw InputError(
         fmt::format("{}: the mesh size factor {} must be a positive number", source, *size_factor));
+  require_gmsh_library<InputError>(source);
   GmshSession session(source);
   load_model(session, file, size_factor);
   TetMesh mesh;
@@ -531,6 +542,7 @@ void write_gmsh(const std::filesystem::path& file, const TetMesh& mesh, int msh_
   if (file.extension() != ".msh")
     throw InputError(fmt::format("{}: a Gmsh mesh file name must end in .msh", target));
   check_mesh(mesh, "write_gmsh");
+  require_gmsh_library<Error>(target);
   std::error_code ec;
   if (!file.parent_path().empty()) fs::create_directories(file.parent_path(), ec);
   const fs::path temporary = temporary_beside(file);

@@ -1,5 +1,7 @@
 #pragma once
-// mesh: meshes of Gmsh, read and written through the Gmsh C++ API (libgmsh).
+// mesh: meshes of Gmsh, read and written through the Gmsh API of libgmsh, which is not linked but
+// loaded when the first Gmsh file is read or written (gmsh_api.hpp): a run without Gmsh files does
+// not pay its start-up.
 //
 // A Gmsh model maps onto a TetMesh as follows:
 //   - the 4-node tetrahedra of all volumes are the tetrahedra; a physical group of dimension 3 is
@@ -36,8 +38,9 @@ namespace fricon::mesh {
 /// element, a volume element other than a 4-node tetrahedron (second order, hexahedra, prisms,
 /// pyramids), a tagged surface element other than a 3-node triangle, an inverted or degenerate
 /// tetrahedron, a node of no tetrahedron, a tagged triangle that is no face of a tetrahedron, or
-/// a face shared by three or more tetrahedra (a non-conforming mesh); and for a size_factor given
-/// with an MSH file or not positive. Finally runs check_mesh.
+/// a face shared by three or more tetrahedra (a non-conforming mesh); for a size_factor given
+/// with an MSH file or not positive; and if libgmsh cannot be loaded (naming the library, its
+/// Debian package and the loader's message). Finally runs check_mesh.
 TetMesh read_gmsh(const std::filesystem::path& file, std::optional<Real> size_factor = {});
 
 /// MSH format versions write_gmsh can write.
@@ -54,7 +57,8 @@ inline constexpr int kMsh41 = 41;
 ///
 /// The file is written atomically (a temporary file in the same folder, then renamed); the
 /// folder is created if needed. Throws InputError for a bad version or file name, fricon::Error
-/// naming the file if Gmsh or the file system fails.
+/// naming the file if libgmsh cannot be loaded (as read_gmsh says) or Gmsh or the file system
+/// fails.
 void write_gmsh(const std::filesystem::path& file, const TetMesh& mesh, int msh_version = kMsh41,
                 bool binary = false);
 
