@@ -12,7 +12,7 @@ packages=(
   libtomlplusplus-dev libcli11-dev nlohmann-json3-dev libfmt-dev
   # the problems of other codes: FCLIB (HDF5)
   libfclib-dev
-  # meshes of other tools: the Gmsh C++ API (MSH files, .geo meshed on the fly)
+  # meshes of other tools: the Gmsh API (its C API, opened at run time) (MSH files, .geo meshed on the fly)
   libgmsh-dev
   # friction laws written as formulas in problem files (law = "expression")
   libmuparser-dev
