@@ -3,8 +3,9 @@
   - hertz-hemisphere: a frictionless elastic hemisphere pressed on the plane; for the total force P
     the run reports, Hertz's contact radius a = (3 P R / (4 E*))^(1/3) and pressure
     p(r) = p0 sqrt(1 - r^2/a^2), p0 = 3 P / (2 pi a^2): the radius from the pressure's second
-    moment (a^2 = 5/2 int p r^2 / int p for Hertz's p) within 5 %, the largest patch pressure
-    within 10 % of p0, the pressure profile within 12 % in L1; the reaction of the pressed top
+    moment (a^2 = 5/2 int p r^2 / int p for Hertz's p) within 3 %, the largest patch pressure
+    within 4 % of p0, the pressure profile within 8 % in L1 (the coarsest mesh of the refinement
+    study of bench/hertz_bench.py); the reaction of the pressed top
     balances P.
   - tilted-plane: the brick over a tilted plane with a gap; moved far below, the plane is never
     touched (no pressure anywhere); made level at zero gap, it gives the paper brick's answer.
@@ -89,9 +90,11 @@ def check_hertz():
     print(f"hertz: P = {force:.4e} N, a = {a:.4e} m, a_h = {a_h:.4e} m ({a_h / a - 1:+.2%}), "
           f"p0 = {p0:.4e} Pa, max lambda_n = {p_max:.4e} Pa ({p_max / p0 - 1:+.2%}), "
           f"L1 profile error {l1:.2%}")
-    assert abs(a_h / a - 1.0) <= 0.05, (a_h, a)
-    assert abs(p_max / p0 - 1.0) <= 0.10, (p_max, p0)
-    assert l1 <= 0.12, l1
+    # The coarsest mesh of the refinement study (bench/hertz_bench.py, docs/benchmarks.md:
+    # -1.4 %, +2.3 %, 6.9 %), with room for rounding; the finer meshes converge to Hertz's.
+    assert abs(a_h / a - 1.0) <= 0.03, (a_h, a)
+    assert abs(p_max / p0 - 1.0) <= 0.04, (p_max, p0)
+    assert l1 <= 0.08, l1
     reaction = report["reaction_force"]
     assert abs(reaction[2] + force) <= 1e-8 * force, (reaction, force)
 
