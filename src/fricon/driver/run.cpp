@@ -91,9 +91,10 @@ VectorXd solve_with_search(const Problem& problem, const contact::ContactDiscret
   // those of every round (and of the solve for u0).
   long earlier_products = 0, earlier_qp_iterations = 0, earlier_kinv = 1;
   // Without friction every radius is 0 and the tangential multipliers stay 0: their rows of B
-  // need not enter Q (a third of the rows to form).
-  const contact::PatchRows rows =
-      frictionless(problem, disc) ? contact::PatchRows::Normal : contact::PatchRows::All;
+  // need not enter Q (a third of the rows to form); a dumped QP keeps them (a Q without zero
+  // rows, for other solvers).
+  const bool normal_rows = frictionless(problem, disc) && !options.keep_first_dual;
+  const contact::PatchRows rows = normal_rows ? contact::PatchRows::Normal : contact::PatchRows::All;
   for (int round = 1;; ++round) {
     phase_start(options, "dual");
     const contact::ContactDiscretization part =
