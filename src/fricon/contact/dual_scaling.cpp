@@ -9,7 +9,7 @@ namespace fricon::contact {
 
 Real indentation_modulus(const fe::Material& material) {
   const fe::Voigt6& D = material.D;
-  const Real normal = (D(0, 0) + D(1, 1) + D(2, 2)) / 3.0;       // lambda + 2 mu
+  const Real normal = (D(0, 0) + D(1, 1) + D(2, 2)) / 3.0;        // lambda + 2 mu
   const Real off_diagonal = (D(0, 1) + D(0, 2) + D(1, 2)) / 3.0;  // lambda
   const Real mu = 0.5 * (normal - off_diagonal);
   // E / (1 - nu^2) = 2 mu / (1 - nu) = 4 mu (lambda + mu) / (lambda + 2 mu)

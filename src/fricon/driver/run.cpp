@@ -94,7 +94,8 @@ VectorXd solve_with_search(const Problem& problem, const contact::ContactDiscret
   // need not enter Q (a third of the rows to form); a dumped QP keeps them (a Q without zero
   // rows, for other solvers).
   const bool normal_rows = frictionless(problem, disc) && !options.keep_first_dual;
-  const contact::PatchRows rows = normal_rows ? contact::PatchRows::Normal : contact::PatchRows::All;
+  const contact::PatchRows rows =
+      normal_rows ? contact::PatchRows::Normal : contact::PatchRows::All;
   for (int round = 1;; ++round) {
     phase_start(options, "dual");
     const contact::ContactDiscretization part =

@@ -565,8 +565,8 @@ void read_solver(const Context& ctx, const Field& f, driver::SolverOptions& s) {
   const TableReader t(
       ctx, f, "a table [solver]",
       {"outer_tol", "outer_max", "qp_rtol", "qp_max", "warm_start", "dual_operator", "acceleration",
-       "anderson_depth", "qp_variant", "qp_expansion", "dual_scaling", "contact_search", "contact_search_margin",
-       "backend", "partition", "memory_per_rank"});
+       "anderson_depth", "qp_variant", "qp_expansion", "dual_scaling", "contact_search",
+       "contact_search_margin", "backend", "partition", "memory_per_rank"});
   if (auto k = t.find("outer_tol")) s.outer_tol = get_real(ctx, *k, "a positive number");
   if (auto k = t.find("outer_max")) s.outer_max = get_int<int>(ctx, *k, "an integer >= 1");
   if (auto k = t.find("qp_rtol")) s.qp_rtol = get_real(ctx, *k, "a number in (0, 1)");

@@ -236,7 +236,8 @@ std::vector<Index> tets_of_faces(const TetMesh& mesh, const std::vector<Index>& 
       marked += on_faces[static_cast<size_t>(mesh.tets(a, t))] ? 1 : 0;
     if (marked < 3) continue;
     for (const auto& lf : kTetFace) {
-      const FaceKey key = sorted_face(mesh.tets(lf[0], t), mesh.tets(lf[1], t), mesh.tets(lf[2], t));
+      const FaceKey key =
+          sorted_face(mesh.tets(lf[0], t), mesh.tets(lf[1], t), mesh.tets(lf[2], t));
       auto it = std::lower_bound(wanted.begin(), wanted.end(), std::make_pair(key, size_t{0}));
       for (; it != wanted.end() && it->first == key; ++it)
         tet[it->second] = t;

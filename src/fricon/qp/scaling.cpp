@@ -15,13 +15,14 @@ BlockScaling BlockScaling::identity(Index n) {
 
 BlockScaling BlockScaling::per_block(const SeparableConstraints& c, const Eigen::VectorXd& factor) {
   if (factor.size() != static_cast<Index>(c.blocks.size()))
-    throw InputError(fmt::format("BlockScaling: {} factors for {} blocks", factor.size(),
-                                 c.blocks.size()));
+    throw InputError(
+        fmt::format("BlockScaling: {} factors for {} blocks", factor.size(), c.blocks.size()));
   Eigen::VectorXd d(c.size());
   for (std::size_t k = 0; k < c.blocks.size(); ++k) {
     const double f = factor(static_cast<Index>(k));
     if (!(std::isfinite(f) && f > 0.0))
-      throw InputError(fmt::format("BlockScaling: the factor of block {} is {}; expected > 0", k, f));
+      throw InputError(
+          fmt::format("BlockScaling: the factor of block {} is {}; expected > 0", k, f));
     d.segment(c.blocks[k].offset, block_size(c.blocks[k].kind)).setConstant(f);
   }
   return BlockScaling(std::move(d));
@@ -64,7 +65,8 @@ KktResiduals scaled_kkt_residuals(const Eigen::VectorXd& x, const Eigen::VectorX
   const Eigen::VectorXd b_scaled = D.dual_to_scaled(b);
   const Eigen::VectorXd r =
       reference == StopReference::Whole ? b_scaled : resisted_part(b_scaled, c_scaled);
-  double scale_x = std::max(y.size() > 0 ? y.lpNorm<Eigen::Infinity>() : 0.0, c_scaled.max_radius());
+  double scale_x =
+      std::max(y.size() > 0 ? y.lpNorm<Eigen::Infinity>() : 0.0, c_scaled.max_radius());
   double scale_g = r.norm();
   if (!(scale_x > 0.0)) scale_x = 1.0;
   if (!(scale_g > 0.0)) scale_g = 1.0;
