@@ -105,7 +105,7 @@ void print_summary(const fricon::driver::RunResult& result, const std::filesyste
         c.max_lambda_n, c.max_lambda_t, c.total_normal_force);
   }
   fmt::print("  max |u|       {:.6e} m\n", r.max_displacement);
-  fmt::print("  equilibrium   |applied + contact + reactions| / |applied| = {:.2e}\n",
+  fmt::print("  equilibrium   |applied + contact + reactions| / largest of the three = {:.2e}\n",
              r.equilibrium_residual);
   fmt::print("  residual      ||K u - f|| / ||f|| = {:.2e}\n", r.linear_residual);
   fmt::print("  results       {}\n", dir.string());

@@ -58,7 +58,9 @@ struct RunReport {
   Vec3 reaction_force = Vec3::Zero();  ///< sum of reactions at fixed dofs [N]
   Vec3 contact_force =
       Vec3::Zero();  ///< sum of contact forces on the body [N] (zero without contact)
-  /// |applied + contact + reaction| / |applied|: global equilibrium, round-off if all is well.
+  /// |applied + contact + reaction| / the largest of the three (not zero for a run driven by a
+  /// prescribed displacement, which has no applied load): global equilibrium, round-off if all is
+  /// well.
   Real equilibrium_residual = 0.0;
   Real linear_residual = 0.0;              ///< ||K u - (f - B^T lambda)|| / ||f||
   std::optional<ContactReport> contact;    ///< present when the problem has a [contact] section
