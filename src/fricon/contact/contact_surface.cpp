@@ -23,6 +23,8 @@ constexpr Real kNormalShareTolerance = 1e-12;
 // plane (relative to the surface's extent) is on it.
 constexpr Real kFlatTolerance = 1e-9;
 constexpr Real kGapRoundoff = 1e-12;
+// A face whose outward normal has at most this component towards the obstacle does not face it.
+constexpr Real kFacingTolerance = 1e-8;
 
 /// The surface's triangles and nodes, and each triangle's vertices as positions in `nodes`.
 ContactSurface surface_of_tag(const mesh::TetMesh& mesh, const std::string& tag,
@@ -104,6 +106,21 @@ void mark_fixed_components(const fe::DofMap& dofs, ContactSurface& s, const std:
                     where, s.tag));
 }
 
+/// With an obstacle: some triangle of the surface must face it (its outward normal a positive
+/// component along n); a surface that faces away (a body's top against a plane below it) could
+/// never touch and would solve silently without contact.
+void require_facing_obstacle(const mesh::TetMesh& mesh, const ContactSurface& s,
+                             const std::string& where) {
+  for (Index f : s.faces)
+    if (mesh::face_normal(mesh, f).dot(s.n) > kFacingTolerance) return;
+  throw InputError(fmt::format(
+      "{}: contact.boundary: no triangle of the surface '{}' faces the obstacle (every outward "
+      "normal n_f has n_f . ({:.3g}, {:.3g}, {:.3g}) <= 0, the direction towards the plane): the "
+      "body could never touch it; check the tag, and the direction of contact.obstacle.normal, "
+      "which points out of the obstacle towards the body",
+      where, s.tag, s.n(0) + 0.0, s.n(1) + 0.0, s.n(2) + 0.0));  // + 0.0: no "-0"
+}
+
 }  // namespace
 
 ContactSurface make_contact_surface(const mesh::TetMesh& mesh, const fe::DofMap& dofs,
@@ -112,6 +129,7 @@ ContactSurface make_contact_surface(const mesh::TetMesh& mesh, const fe::DofMap&
   ContactSurface s = surface_of_tag(mesh, tag, where);
   check_manifold(mesh, s, where);
   s.n = obstacle ? Vec3(-obstacle->normal.normalized()) : flat_surface_normal(mesh, s, where);
+  if (obstacle) require_facing_obstacle(mesh, s, where);
   const Vec3 e = std::abs(s.n(0)) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
   s.t1 = (e - e.dot(s.n) * s.n).normalized();
   s.t2 = s.t1.cross(s.n);

@@ -57,7 +57,9 @@ struct ContactSurface {
 /// The contact surface of boundary `tag` against `obstacle` (absent: the plane of the surface
 /// itself). Throws InputError naming `where` (the position of the contact.boundary key) if the
 /// tag does not exist, the surface is not a manifold (an edge in three or more of its
-/// triangles), it is not flat while no obstacle is given, or no node of it can move along n.
+/// triangles), it is not flat while no obstacle is given, no triangle of it faces a given
+/// obstacle (outward normal with a positive component along n), or no node of it can move
+/// along n.
 ContactSurface make_contact_surface(const mesh::TetMesh& mesh, const fe::DofMap& dofs,
                                     const std::string& tag, const std::string& where,
                                     const std::optional<Plane>& obstacle = std::nullopt);
