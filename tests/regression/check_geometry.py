@@ -15,6 +15,9 @@
     same patch pressures to 1e-4 of the peak, with patches left out of the QP.
   - hertz with the scaled dual (the default) and without it (dual_scaling = "none"): the same
     patch pressures to 2e-4 of the peak (each is within 1e-4 of the tight solve).
+  - hertz drawn in millimetres (a copy of the .geo with every length times 1000) read with
+    [mesh] unit = "mm": the total force of the metre run to 1 % (Gmsh meshes the scaled drawing
+    a little differently).
   - hertz and wheel at the default tolerances: every patch pressure within 0.1 % of the peak of
     the same problem solved to qp_rtol = 1e-13 (a run the certificate passes is that accurate).
 Usage: check_geometry.py FRICON EXAMPLES_DIR OUTDIR
@@ -97,6 +100,27 @@ def check_hertz():
     assert l1 <= 0.08, l1
     reaction = report["reaction_force"]
     assert abs(reaction[2] + force) <= 1e-8 * force, (reaction, force)
+    check_millimetres(report)
+
+
+def check_millimetres(metre_report):
+    geo = (examples / "hertz-hemisphere.geo").read_text()
+    for old, new in (("R = 0.05;", "R = 50;"), ("h_tip = 0.0003;", "h_tip = 0.3;"),
+                     ("h_far = 0.015;", "h_far = 15;"), ("1e-6", "1e-3"),
+                     ("DistMin = 0.005", "DistMin = 5"), ("DistMax = 0.03", "DistMax = 30")):
+        assert old in geo, old
+        geo = geo.replace(old, new)
+    folder = out / "hertz-mm-input"
+    folder.mkdir(parents=True, exist_ok=True)
+    (folder / "hertz-mm.geo").write_text(geo)
+    toml = (examples / "hertz-hemisphere.toml").read_text()
+    old = 'file = "hertz-hemisphere.geo"'
+    assert old in toml
+    (folder / "hertz-mm.toml").write_text(toml.replace(old, 'file = "hertz-mm.geo"\nunit = "mm"'))
+    report, _ = solve(folder / "hertz-mm.toml", "hertz-mm")
+    force, reference = report["total_normal_force"], metre_report["total_normal_force"]
+    print(f"hertz in mm: normal force {force:.4e} N against {reference:.4e} N in m")
+    assert abs(force / reference - 1.0) <= 0.01, (force, reference)
 
 
 def check_tilted_plane():

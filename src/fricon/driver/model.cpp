@@ -179,7 +179,9 @@ mesh::TetMesh make_brick_mesh(const Problem& problem) {
 /// position of mesh.file.
 mesh::TetMesh read_gmsh_mesh(const Problem& problem) {
   try {
-    return mesh::read_gmsh(problem.mesh.file, problem.mesh.size_factor);
+    mesh::TetMesh mesh = mesh::read_gmsh(problem.mesh.file, problem.mesh.size_factor);
+    mesh.nodes *= metres_per(problem.mesh.unit);  // a uniform scaling keeps every check
+    return mesh;
   } catch (const InputError& e) {
     throw InputError(fmt::format("{}: mesh.file: {}", problem.where("mesh.file"), e.what()));
   }

@@ -1,10 +1,12 @@
 #include "fricon/driver/problem.hpp"
 
+#include "fricon/core/error.hpp"
+
 namespace fricon::driver {
 
 std::span<const std::string_view> mesh_parameters(MeshKind kind) {
   static constexpr std::string_view kBrick[] = {"size", "cells"};
-  static constexpr std::string_view kGmsh[] = {"file", "size_factor"};
+  static constexpr std::string_view kGmsh[] = {"file", "size_factor", "unit"};
   switch (kind) {
     case MeshKind::Brick:
       return kBrick;
@@ -14,6 +16,18 @@ std::span<const std::string_view> mesh_parameters(MeshKind kind) {
       return {};
   }
   return {};
+}
+
+Real metres_per(LengthUnit unit) {
+  switch (unit) {
+    case LengthUnit::Metre:
+      return 1.0;
+    case LengthUnit::Centimetre:
+      return 1e-2;
+    case LengthUnit::Millimetre:
+      return 1e-3;
+  }
+  throw Error("metres_per: invalid length unit");
 }
 
 std::string Problem::where(std::string_view key) const {

@@ -41,6 +41,16 @@ enum class MeshKind {
   Arrays,  ///< a mesh given by code (MeshOptions::given; fricon.Mesh in Python), not by a file
 };
 
+/// The length unit of a mesh file's coordinates ([mesh] unit); fricon computes in metres.
+enum class LengthUnit {
+  Metre,       ///< "m" (default)
+  Centimetre,  ///< "cm"
+  Millimetre,  ///< "mm" (CAD and Gmsh models are often drawn in millimetres)
+};
+
+/// Metres per unit: 1, 0.01, 0.001.
+Real metres_per(LengthUnit unit);
+
 /// The keys of [mesh] that `kind` uses (besides kind).
 std::span<const std::string_view> mesh_parameters(MeshKind kind);
 
@@ -55,6 +65,9 @@ struct MeshOptions {
   std::string file;
   /// [mesh.size_factor] Gmsh's Mesh.MeshSizeFactor for a .geo file, > 0 (gmsh, optional).
   std::optional<Real> size_factor;
+  /// [mesh.unit] the unit of the file's coordinates (gmsh): they are multiplied by
+  /// metres_per(unit) on reading. Default metres.
+  LengthUnit unit = LengthUnit::Metre;
   /// The mesh itself (arrays): built and checked by code (mesh::mesh_from_arrays), shared, never
   /// modified; required for kind = arrays, unused otherwise.
   std::shared_ptr<const mesh::TetMesh> given;
@@ -209,5 +222,7 @@ void validate(const Problem& problem);
 
 FRICON_ENUM_NAMES(fricon::driver::MeshKind, "mesh.kind", {driver::MeshKind::Brick, "brick"},
                   {driver::MeshKind::Gmsh, "gmsh"}, {driver::MeshKind::Arrays, "arrays"});
+FRICON_ENUM_NAMES(fricon::driver::LengthUnit, "mesh.unit", {driver::LengthUnit::Metre, "m"},
+                  {driver::LengthUnit::Centimetre, "cm"}, {driver::LengthUnit::Millimetre, "mm"});
 FRICON_ENUM_NAMES(fricon::driver::ObstacleKind, "contact.obstacle.kind",
                   {driver::ObstacleKind::Plane, "plane"});

@@ -87,6 +87,7 @@ void validate_gmsh(const Problem& p) {
     fail_expected(p, "mesh.file", "a Gmsh file name (.msh or .geo)", "\"\" (mesh.kind = \"gmsh\")");
   if (m.size_factor)
     check_real(p, "mesh.size_factor", *m.size_factor, "a positive number", *m.size_factor > 0.0);
+  check_enum(p, m.unit);
 }
 
 void validate_mesh(const Problem& p) {

@@ -367,6 +367,7 @@ void read_mesh(const Context& ctx, const Field& f, driver::MeshOptions& m) {
     m.given = ctx.code->mesh;
   }
   if (auto k = t.find("size_factor")) m.size_factor = get_real(ctx, *k, "a positive number");
+  if (auto k = t.find("unit")) m.unit = get_enum<driver::LengthUnit>(ctx, *k);
 }
 
 /// What to do instead, for a key of [material] that `model` does not use.
@@ -956,6 +957,7 @@ nlohmann::json to_json(const driver::Problem& p) {
     case driver::MeshKind::Gmsh:
       j["mesh"]["file"] = p.mesh.file;
       if (p.mesh.size_factor) j["mesh"]["size_factor"] = *p.mesh.size_factor;
+      j["mesh"]["unit"] = enum_name(p.mesh.unit);
       break;
     case driver::MeshKind::Arrays:  // the mesh itself is in the results, not in the problem
       break;
