@@ -43,7 +43,7 @@ Row measure(long n, const std::string& mode, const std::string& variant, const s
   driver::Problem p = driver::paper_problem(n, 6e4);
   p.contact->model = parse_enum<contact::FrictionModel>(model);
   p.solver.dual_operator = parse_enum<dual::DualOperatorKind>(mode);
-  p.solver.qp_variant = parse_enum<qp::MpgpVariant>(variant);
+  p.solver.qp.variant = parse_enum<qp::MpgpVariant>(variant);
   for (int k = 0; k < repeat; ++k) {
     {
       Stopwatch watch;
@@ -72,7 +72,7 @@ Row measure(long n, const std::string& mode, const std::string& variant, const s
     r.converged = rep.status == driver::Status::Converged;
     std::snprintf(r.mode, sizeof r.mode, "%s", std::string(enum_name(c.dual_operator)).c_str());
     std::snprintf(r.variant, sizeof r.variant, "%s",
-                  std::string(enum_name(p.solver.qp_variant)).c_str());
+                  std::string(enum_name(p.solver.qp.variant)).c_str());
   }
   r.peak_mib = fricon::bench::peak_mib();
   return r;
@@ -83,7 +83,7 @@ Row measure(long n, const std::string& mode, const std::string& variant, const s
 int main(int argc, char** argv) {
   std::vector<long> sizes;
   std::string mode = "auto";
-  std::string variant(fricon::enum_name(fricon::driver::SolverOptions{}.qp_variant));
+  std::string variant(fricon::enum_name(fricon::driver::SolverOptions{}.qp.variant));
   std::string model = "tresca";
   int repeat = 0;  // 0: 3 up to n = 16, 1 beyond
   for (int i = 1; i < argc; ++i) {

@@ -265,13 +265,13 @@ RunResult run_outer(const Case& k, const Settings& s, Combination m) {
   fricon::PhaseTimes times;
   const auto bounds = fricon::driver::make_slip_bounds(o.problem, o.model.mesh, o.disc, *o.law);
   fricon::driver::TrescaMap map(o.model.dofs, o.disc, *o.Q, *bounds, *o.law, *k.D_run,
-                                options(k.norm_run, s, m, so.qp_rtol), so.warm_start, times);
+                                options(k.norm_run, s, m, so.qp.rel_tolerance), so.warm_start, times);
   RunResult res;
   Index n_state = 0;  // phi, and lambda_n for Coulomb
   for (const auto& block : map.layout())
     n_state += block.size;
   VectorXd state = VectorXd::Zero(n_state);
-  const auto rep = fricon::outer::iterate(map, state, fricon::driver::outer_options(so),
+  const auto rep = fricon::outer::iterate(map, state, so.outer,
                                           [&](const fricon::outer::OuterIteration&) {
                                             res.iterations += map.last_qp().iterations;
                                             res.products += map.last_qp().n_products;

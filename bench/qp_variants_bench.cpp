@@ -187,10 +187,10 @@ RunResult run_outer(const Case& k, qp::MpgpVariant v) {
   const auto bounds = fricon::driver::make_slip_bounds(o.problem, o.model.mesh, o.disc, *o.law);
   fricon::driver::TrescaMap map(o.model.dofs, o.disc, *o.Q, *bounds, *o.law,
                                 qp::BlockScaling::identity(o.disc.n_dual()),
-                                options(k, v, so.qp_rtol), so.warm_start, times);
+                                options(k, v, so.qp.rel_tolerance), so.warm_start, times);
   RunResult res;
   VectorXd phi = VectorXd::Zero(o.disc.surface.n_nodes());
-  const auto rep = fricon::outer::iterate(map, phi, fricon::driver::outer_options(so),
+  const auto rep = fricon::outer::iterate(map, phi, so.outer,
                                           [&](const fricon::outer::OuterIteration&) {
                                             res.iterations += map.last_qp().iterations;
                                             res.products += map.last_qp().n_products;

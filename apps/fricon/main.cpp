@@ -367,7 +367,7 @@ bool print_paper_table(const std::string& title, const std::vector<fricon::drive
     fricon::driver::Problem problem = fricon::driver::paper_problem(row.n, row.param);
     problem.solver.dual_operator =
         fricon::parse_enum<fricon::dual::DualOperatorKind>(o.dual_operator);
-    problem.solver.qp_rtol = o.qp_rtol;
+    problem.solver.qp.rel_tolerance = o.qp_rtol;
     const fricon::driver::RunResult r = fricon::driver::run(problem);
     const auto& c = *r.report.contact;
     const bool sizes_equal = r.report.n_primal == row.n_p && c.n_dual == row.n_d;

@@ -28,8 +28,8 @@ Problem tilted_coulomb_brick() {
   // z = -1e-5 - 2e-3 x [m] (nearly).
   p.contact->obstacle =
       ObstacleOptions{ObstacleKind::Plane, Vec3(0.0, 0.0, -1.0e-5), Vec3(2.0e-3, 0.0, 1.0)};
-  p.solver.qp_rtol = 1e-10;
-  p.solver.outer_tol = 1e-8;
+  p.solver.qp.rel_tolerance = 1e-10;
+  p.solver.outer.tol = 1e-8;
   return p;
 }
 

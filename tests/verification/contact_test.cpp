@@ -72,7 +72,7 @@ VectorXd fista(const MatrixXd& Q, const VectorXd& h, const VectorXd& rho) {
 }
 
 Problem tight(Problem p) {
-  p.solver.qp_rtol = 1e-10;
+  p.solver.qp.rel_tolerance = 1e-10;
   return p;
 }
 
@@ -162,7 +162,7 @@ TEST(PaperBrick, ReturnedSlipIsAFixedPointOfPsi) {
   // Converge the outer loop tightly, then apply Psi once more independently: radii from the
   // returned slip, the dual QP by FISTA on the dense Q, w recovered, phi = ||w_t||.
   Problem p = tight(paper_problem(4, 6e4));
-  p.solver.outer_tol = 1e-9;
+  p.solver.outer.tol = 1e-9;
   const RunResult r = run(p);
   ASSERT_EQ(r.report.status, Status::Converged) << r.report.message;
   const auto& c = *r.contact;
@@ -207,7 +207,7 @@ TEST(ContactColumn, FrictionlessColumnUnderGravityCarriesHalfItsWeight) {
   c.friction.law = contact::FrictionLawKind::Constant;
   c.friction.value = 0.0;
   p.contact = c;
-  p.solver.qp_rtol = 1e-12;
+  p.solver.qp.rel_tolerance = 1e-12;
   const RunResult r = run(p);
   ASSERT_EQ(r.report.status, Status::Converged) << r.report.message;
   const auto& f = *r.contact;
@@ -250,9 +250,9 @@ TEST(PaperBrick, AndersonMixingReachesTheSameFixedPoint) {
   // The accelerated outer loop must converge to the same slip and multipliers (to the outer
   // tolerance), in no more iterations than the plain successive approximations.
   Problem plain = tight(paper_problem(4, 6e4));
-  plain.solver.outer_tol = 1e-8;
+  plain.solver.outer.tol = 1e-8;
   Problem accelerated = plain;
-  accelerated.solver.acceleration = outer::Acceleration::Anderson;
+  accelerated.solver.outer.acceleration = outer::Acceleration::Anderson;
   const RunResult a = run(plain), b = run(accelerated);
   ASSERT_EQ(b.report.status, Status::Converged) << b.report.message;
   EXPECT_LE(b.report.contact->outer_iterations, a.report.contact->outer_iterations);
@@ -263,7 +263,7 @@ TEST(PaperBrick, AndersonMixingReachesTheSameFixedPoint) {
 TEST(PaperBrick, BarzilaiBorweinVariantGivesTheSameSolutionWithFewerProducts) {
   Problem paper = tight(paper_problem(4, 6e4));
   Problem fast = paper;
-  fast.solver.qp_variant = qp::MpgpVariant::BarzilaiBorwein;
+  fast.solver.qp.variant = qp::MpgpVariant::BarzilaiBorwein;
   const RunResult a = run(paper), b = run(fast);
   ASSERT_EQ(b.report.status, Status::Converged) << b.report.message;
   EXPECT_LT(b.report.contact->kkt.max(), 1e-9);
@@ -282,7 +282,7 @@ TEST(PaperBrick, AnOuterLoopThatDoesNotContractStopsAndSaysSo) {
   p.contact->friction.law = contact::FrictionLawKind::Table;
   p.contact->friction.t = {1.0e-5, 1.1e-5};
   p.contact->friction.f = {0.0, 3.0};
-  p.solver.outer_max = 50;
+  p.solver.outer.max_iterations = 50;
   const RunResult r = run(p);
   EXPECT_EQ(r.report.status, Status::NotConverged);
   EXPECT_EQ(r.report.contact->termination, outer::Termination::Stalled);
@@ -337,7 +337,7 @@ TEST(Certificate, ARunWhoseFinalKktResidualsExceedTheBoundIsNotConverged) {
   ASSERT_TRUE(good.converged) << good.message;
   EXPECT_EQ(good.report.termination, outer::Termination::Converged);
   EXPECT_LE(good.report.kkt.max(), good.report.kkt_bound);
-  EXPECT_EQ(good.report.kkt_bound, kCertificateFactor * b.problem.solver.qp_rtol);
+  EXPECT_EQ(good.report.kkt_bound, kCertificateFactor * b.problem.solver.qp.rel_tolerance);
 
   const SkewedOperator skewed(b.input());
   const ContactOutcome bad = solve_contact(b.problem, b.model, b.disc, skewed, times);
@@ -363,7 +363,7 @@ TEST(Symmetry, AHalfBrickOnARollerReproducesTheFullModelOnItsHalf) {
   // the same mesh and patches on the half, and the roller meets the contact face along an edge
   // whose nodes keep their x and z components (they remain contact nodes).
   Problem full = tight(paper_problem(4, 6e4));
-  full.solver.outer_tol = 1e-9;
+  full.solver.outer.tol = 1e-9;
   Problem half = full;
   half.mesh.size = {3.0, 0.5, 1.0};
   half.mesh.cells = {12, 2, 4};

@@ -40,7 +40,7 @@ Problem column() {
                  {"y1", {false, true, false}}};
   p.volume_force = Vec3(0, 0, -7.8e4);
   p.contact = ContactOptions{};
-  p.solver.qp_rtol = 1e-12;
+  p.solver.qp.rel_tolerance = 1e-12;
   return p;
 }
 
@@ -93,7 +93,7 @@ TEST(Coulomb, WithoutFrictionItIsTheFrictionlessProblem) {
   Problem frictionless = paper_problem(4, 6e4);
   frictionless.contact->friction.law = contact::FrictionLawKind::Constant;
   frictionless.contact->friction.value = 0.0;
-  frictionless.solver.qp_rtol = 1e-10;
+  frictionless.solver.qp.rel_tolerance = 1e-10;
   const Problem c = coulomb(frictionless, 0.0);
   const RunResult a = run(frictionless), b = run(c);
   ASSERT_EQ(b.report.status, Status::Converged) << b.report.message;
@@ -124,8 +124,8 @@ TEST(Coulomb, EveryFixedPointReturnedSatisfiesTheCoulombConditions) {
   for (const bool paper_law : {false, true}) {
     Problem p = coulomb(paper_problem(4, 6e4), 0.3);
     if (paper_law) p.contact->friction.law = contact::FrictionLawKind::Paper;
-    p.solver.qp_rtol = 1e-10;
-    p.solver.outer_tol = 1e-8;
+    p.solver.qp.rel_tolerance = 1e-10;
+    p.solver.outer.tol = 1e-8;
     const RunResult r = run(p);
     ASSERT_EQ(r.report.status, Status::Converged) << r.report.message;
     const ContactReport& c = *r.report.contact;
@@ -141,14 +141,14 @@ TEST(Coulomb, EveryFixedPointReturnedSatisfiesTheCoulombConditions) {
     // The loop iterated on slips and pressures, and stopped on both.
     ASSERT_EQ(c.state_blocks, (std::vector<std::string>{"phi", "lambda_n"}));
     for (Real e : c.block_history.back())
-      EXPECT_LE(e, p.solver.outer_tol);
+      EXPECT_LE(e, p.solver.outer.tol);
   }
 }
 
 TEST(Coulomb, ATrescaStartReachesTheSameFixedPoint) {
   Problem p = coulomb(paper_problem(4, 6e4), 0.3);
-  p.solver.qp_rtol = 1e-10;
-  p.solver.outer_tol = 1e-9;
+  p.solver.qp.rel_tolerance = 1e-10;
+  p.solver.outer.tol = 1e-9;
   Problem started = p;
   started.contact->start_slip_bound = 3.0e7;
   const RunResult a = run(p), b = run(started);

@@ -43,7 +43,7 @@ TEST(DualScaling, PatchFactorsAreTheHalfSpaceFormulaOfAreaAndModulus) {
 
 TEST(DualScaling, ScaledAndUnscaledSolvesGiveTheSameMultipliersOnThePaperBrick) {
   Problem p = paper_problem(4, 6e4);
-  p.solver.qp_rtol = 1e-10;
+  p.solver.qp.rel_tolerance = 1e-10;
   const RunResult scaled = run(with_scaling(p, contact::DualScaling::Patch));
   const RunResult plain = run(with_scaling(p, contact::DualScaling::None));
   ASSERT_EQ(scaled.report.status, Status::Converged) << scaled.report.message;
@@ -57,7 +57,7 @@ TEST(DualScaling, OnTheUniformBrickThePaperCountsMoveByRoundingOnly) {
   // Equal patches get equal factors: the scaled QP is the unscaled one times a constant, so the
   // paper variant takes the same steps up to rounding (theory.md §4.5).
   Problem p = paper_problem(6, 6e4);
-  p.solver.qp_variant = qp::MpgpVariant::Paper;
+  p.solver.qp.variant = qp::MpgpVariant::Paper;
   const RunResult scaled = run(with_scaling(p, contact::DualScaling::Patch));
   const RunResult plain = run(with_scaling(p, contact::DualScaling::None));
   ASSERT_EQ(scaled.report.status, Status::Converged) << scaled.report.message;

@@ -23,7 +23,7 @@ const std::vector<Real> kPaperKinks = {1e-5, 1e-5 + 2.0 / 6e4};
 
 Problem tight_paper_problem() {
   Problem p = paper_problem(4, 6e4);
-  p.solver.qp_rtol = 1e-11;
+  p.solver.qp.rel_tolerance = 1e-11;
   return p;
 }
 

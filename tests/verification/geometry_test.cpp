@@ -30,8 +30,8 @@ constexpr Real kGap = 2e-5;  // [m]
 /// (the chessboard) so that a rotated copy gets the same partition.
 Problem brick_over_plane() {
   Problem p = paper_problem(4, 6e4);
-  p.solver.qp_rtol = 1e-10;
-  p.solver.outer_tol = 1e-8;
+  p.solver.qp.rel_tolerance = 1e-10;
+  p.solver.outer.tol = 1e-8;
   p.contact->patches = contact::PatchKind::Mesh;
   p.contact->obstacle = ObstacleOptions{ObstacleKind::Plane, Vec3(0, 0, -kGap), Vec3(0, 0, 1)};
   return p;
@@ -162,8 +162,8 @@ TEST(Geometry, AGapIsTakenUpByAPrescribedApproach) {
   p.contact->friction.law = contact::FrictionLawKind::Constant;
   p.contact->friction.value = 0.2;
   p.contact->obstacle = ObstacleOptions{ObstacleKind::Plane, Vec3::Zero(), Vec3(0, 0, 1)};
-  p.solver.qp_rtol = 1e-10;
-  p.solver.outer_tol = 1e-8;
+  p.solver.qp.rel_tolerance = 1e-10;
+  p.solver.outer.tol = 1e-8;
   Problem q = p;
   q.contact->obstacle->point = Vec3(0, 0, -kGapDown);
   q.dirichlet[0].value = Vec3(0, 0, -kDelta - kGapDown);

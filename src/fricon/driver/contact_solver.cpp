@@ -54,9 +54,9 @@ ContactReport describe(const Problem& problem, const contact::ContactDiscretizat
   rep.n_inactive_multipliers = disc.stability.n_inactive;
   rep.radius_integration = contact::radius_integration(law);
   rep.partition_note = disc.partition_note;
-  rep.kkt_bound = kCertificateFactor * problem.solver.qp_rtol;
-  rep.coulomb_bound =
-      kCoulombCertificateFactor * std::max(problem.solver.outer_tol, problem.solver.qp_rtol);
+  rep.kkt_bound = kCertificateFactor * problem.solver.qp.rel_tolerance;
+  rep.coulomb_bound = kCoulombCertificateFactor *
+                      std::max(problem.solver.outer.tol, problem.solver.qp.rel_tolerance);
   return rep;
 }
 
@@ -88,11 +88,7 @@ qp::BlockScaling dual_scaling(const Problem& problem, const Model& m,
 }
 
 qp::MpgpOptions qp_options(const SolverOptions& so, Real norm_Q, const RunOptions& options) {
-  qp::MpgpOptions o;
-  o.variant = so.qp_variant;
-  o.expansion = so.qp_expansion;
-  o.rel_tolerance = so.qp_rtol;
-  o.max_iterations = so.qp_max;
+  qp::MpgpOptions o = so.qp;
   o.norm_A = norm_Q;
   o.monitor = [&options](const qp::MpgpIteration& it) {
     if (stop_requested(options)) return false;
@@ -134,7 +130,7 @@ outer::OuterReport successive_approximations(TrescaMap& map, VectorXd& phi, cons
     if (options.on_outer_iteration) options.on_outer_iteration(it);
   };
   const outer::OuterReport o =
-      outer::iterate(map, phi, outer_options(problem.solver), monitor, options.stop_requested);
+      outer::iterate(map, phi, problem.solver.outer, monitor, options.stop_requested);
   rep.termination = o.termination;
   rep.outer_iterations = o.iterations;
   rep.err_history = o.err_history;
@@ -286,15 +282,6 @@ std::unique_ptr<contact::SlipBounds> make_slip_bounds(const Problem& problem,
       return contact::make_coulomb_bounds(mesh, disc, law, problem.contact->start_slip_bound);
   }
   throw Error("make_slip_bounds: invalid friction model");
-}
-
-outer::OuterOptions outer_options(const SolverOptions& so) {
-  outer::OuterOptions o;
-  o.tol = so.outer_tol;
-  o.max_iterations = so.outer_max;
-  o.acceleration = so.acceleration;
-  o.anderson_depth = so.anderson_depth;
-  return o;
 }
 
 ContactOutcome solve_contact(const Problem& problem, const Model& m,

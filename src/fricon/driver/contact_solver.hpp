@@ -182,9 +182,6 @@ std::unique_ptr<contact::SlipBounds> make_slip_bounds(const Problem& problem,
                                                       const contact::ContactDiscretization& disc,
                                                       const contact::FrictionLaw& law);
 
-/// The outer loop's options from the problem's [solver] section.
-outer::OuterOptions outer_options(const SolverOptions& solver);
-
 }  // namespace fricon::driver
 
 FRICON_ENUM_NAMES(fricon::driver::PatchState, "patch state",

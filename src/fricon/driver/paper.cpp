@@ -21,10 +21,10 @@ Problem paper_problem(Index n, Real param) {
   c.friction.law = contact::FrictionLawKind::Paper;
   c.friction.param = param;
   p.contact = c;
-  p.solver.outer_tol = 1e-4;
-  p.solver.qp_rtol = 1e-6;
-  p.solver.qp_variant = qp::MpgpVariant::Paper;  // the paper's plain MPGP, so that n_mult compares
-  p.solver.qp_expansion = qp::MpgpExpansion::Fixed;
+  p.solver.outer.tol = 1e-4;
+  p.solver.qp.rel_tolerance = 1e-6;
+  p.solver.qp.variant = qp::MpgpVariant::Paper;  // the paper's plain MPGP, so that n_mult compares
+  p.solver.qp.expansion = qp::MpgpExpansion::Fixed;
   p.output.dir = fmt::format("results/paper-n{}-param{:g}", n, param);
   return p;
 }

@@ -24,7 +24,7 @@
 #include "fricon/core/types.hpp"
 #include "fricon/dual/dual_operator_kind.hpp"
 #include "fricon/fe/material.hpp"
-#include "fricon/outer/acceleration.hpp"
+#include "fricon/outer/outer_loop.hpp"
 #include "fricon/parallel/backend.hpp"
 #include "fricon/qp/mpgp.hpp"
 
@@ -138,47 +138,24 @@ struct ContactOptions {
   FrictionOptions friction;  ///< [contact.friction]
 };
 
-/// [solver]
+/// [solver] (driver/problem_options.cpp documents each key, its range and default).
 struct SolverOptions {
-  Real outer_tol = 1.0e-4;  ///< [solver.outer_tol] err(k) threshold of the outer loop, > 0
-  int outer_max = 50;       ///< [solver.outer_max] maximum outer iterations, >= 1
-  Real qp_rtol = 1.0e-6;    ///< [solver.qp_rtol] QP stops when ||g^P|| <= qp_rtol ||h||, (0, 1)
-  int qp_max = 100000;      ///< [solver.qp_max] maximum QP iterations per outer step, >= 1
-  bool warm_start = true;   ///< [solver.warm_start] start each QP from the previous multipliers
-  /// [solver.dual_operator] how Q = B K^-1 B^T is applied (theory.md §3.3).
-  dual::DualOperatorKind dual_operator = dual::DualOperatorKind::Auto;
-  /// [solver.acceleration] of the successive approximations (theory.md §5.3).
-  outer::Acceleration acceleration = outer::Acceleration::None;
-  /// [solver.anderson_depth] previous iterates Anderson mixing uses, in [1, 20].
-  int anderson_depth = 1;
-  /// [solver.qp_variant] inner QP algorithm (theory.md §4): bb (MPGP with Barzilai-Borwein
-  /// lengths, 5-10x fewer products with Q on the paper's problems) or paper (the paper's plain
-  /// MPGP, which reproduces its n_mult).
-  qp::MpgpVariant qp_variant = qp::MpgpVariant::BarzilaiBorwein;
-  /// [solver.qp_expansion] the move of MPGP's expansion step (theory.md §4.2): fixed (the
-  /// paper's fixed length), opt (PERMON's exact line search along the free gradient) or projcg
-  /// (the full CG step, projected). Measured in docs/benchmarks.md: fixed wins on whole runs.
-  qp::MpgpExpansion qp_expansion = qp::MpgpExpansion::Fixed;
-  /// [solver.dual_scaling] the change of variables of the dual QP (theory.md §4.5): patch (one
-  /// factor per patch from its area and material) or none.
-  contact::DualScaling dual_scaling = contact::DualScaling::Patch;
-  /// [solver.contact_search] which patches enter the dual QP (theory.md §2.7): gap (the
-  /// candidates that the free displacement brings within contact_search_margin of closing, grown
-  /// until no patch left out penetrates) or off (every patch). Tresca with a positive slip
-  /// bound, which acts without pressure, and backend petsc use every patch.
-  contact::ContactSearch contact_search = contact::ContactSearch::Gap;
-  /// [solver.contact_search_margin] a patch is a first candidate when its gap at the free
-  /// displacement is at most this many times the deepest free penetration, >= 0.
-  Real contact_search_margin = 0.0;
-  /// [solver.backend] where K is factored: CHOLMOD on one process, or MUMPS on the ranks of an
-  /// MPI job (docs/parallel.md).
-  parallel::Backend backend = parallel::Backend::Cholmod;
-  /// [solver.partition] how a distributed run splits the tetrahedra among its ranks.
-  parallel::PartitionKind partition = parallel::PartitionKind::Graph;
-  /// [solver.memory_per_rank] with backend petsc: the most memory the factorization may take on
-  /// one rank [MiB], > 0; absent: no limit. A run whose MUMPS estimate exceeds it stops before
-  /// factorizing (docs/parallel.md).
-  std::optional<Real> memory_per_rank;
+  /// The successive approximations (theory.md §5): [solver.outer_tol] tol, [solver.outer_max]
+  /// max_iterations, [solver.acceleration], [solver.anderson_depth]; the loop takes them as
+  /// they are.
+  outer::OuterOptions outer;
+  /// Each QP (theory.md §4): [solver.qp_rtol] rel_tolerance, [solver.qp_max] max_iterations,
+  /// [solver.qp_variant] variant, [solver.qp_expansion] expansion. Its other fields are settings
+  /// for code only; the driver sets norm_A and the monitor of each solve.
+  qp::MpgpOptions qp;
+  bool warm_start = true;                                               ///< [solver.warm_start]
+  dual::DualOperatorKind dual_operator = dual::DualOperatorKind::Auto;  ///< [solver.dual_operator]
+  contact::DualScaling dual_scaling = contact::DualScaling::Patch;      ///< [solver.dual_scaling]
+  contact::ContactSearch contact_search = contact::ContactSearch::Gap;  ///< [solver.contact_search]
+  Real contact_search_margin = 0.0;                        ///< [solver.contact_search_margin]
+  parallel::Backend backend = parallel::Backend::Cholmod;  ///< [solver.backend]
+  parallel::PartitionKind partition = parallel::PartitionKind::Graph;  ///< [solver.partition]
+  std::optional<Real> memory_per_rank;  ///< [solver.memory_per_rank] [MiB]; absent: no limit
 };
 
 /// [output]

@@ -84,7 +84,7 @@ VectorXd solve_with_search(const Problem& problem, const contact::ContactDiscret
     candidates = first_candidates ? *first_candidates
                                   : contact::initial_candidates(
                                         free_penetration, problem.solver.contact_search_margin);
-    tolerance = problem.solver.qp_rtol * free_penetration.cwiseAbs().maxCoeff();
+    tolerance = problem.solver.qp.rel_tolerance * free_penetration.cwiseAbs().maxCoeff();
   }
   // @sect: solve on the candidates, add the left-out patches that penetrate, again until none
   // does (after kMaxSearchRounds growths, with every patch). The counts of the report are

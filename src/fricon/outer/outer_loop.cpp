@@ -13,18 +13,13 @@
 namespace fricon::outer {
 
 void OuterOptions::validate() const {
-  auto require = [](bool ok, const char* field, auto value, const char* range) {
-    if (!ok)
-      throw InputError(
-          fmt::format("OuterOptions::{} = {} is out of range: expected {}", field, value, range));
-  };
-  require(std::isfinite(tol) && tol > 0.0, "tol", tol, "a finite number > 0");
-  require(max_iterations >= 1, "max_iterations", max_iterations, ">= 1");
-  require(enum_is_valid(acceleration), "acceleration", static_cast<int>(acceleration),
-          "an Acceleration enumerator");
-  require(anderson_depth >= 1 && anderson_depth <= 20, "anderson_depth", anderson_depth,
-          "in [1, 20]");
-  require(stall_window >= 1, "stall_window", stall_window, ">= 1");
+  require("OuterOptions::tol", tol, kOuterTolRange);
+  require("OuterOptions::max_iterations", max_iterations, kOuterMaxRange);
+  if (!enum_is_valid(acceleration))
+    throw InputError(fmt::format("OuterOptions::acceleration: expected {}, got {}",
+                                 enum_choices<Acceleration>(), static_cast<int>(acceleration)));
+  require("OuterOptions::anderson_depth", anderson_depth, kAndersonDepthRange);
+  require("OuterOptions::stall_window", stall_window, integer_at_least(1));
 }
 
 Real relative_change(const VectorXd& now, const VectorXd& before) {

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "fricon/core/enum_names.hpp"
+#include "fricon/core/range.hpp"
 #include "fricon/core/types.hpp"
 #include "fricon/outer/acceleration.hpp"
 
@@ -32,11 +33,16 @@ enum class Termination {
   CertificateFailed,  ///< converged, but the optimality residuals of the result are too large
 };
 
+/// The ranges of OuterOptions' fields; the problem file's [solver] keys use the same.
+inline constexpr Range kOuterTolRange = positive();
+inline constexpr Range kOuterMaxRange = integer_at_least(1);
+inline constexpr Range kAndersonDepthRange = integer_in(1, 20);
+
 struct OuterOptions {
-  Real tol = 1.0e-4;        ///< stop when err(k) <= tol; > 0 and finite
-  int max_iterations = 50;  ///< >= 1
+  Real tol = 1.0e-4;        ///< stop when err(k) <= tol; kOuterTolRange
+  int max_iterations = 50;  ///< kOuterMaxRange
   Acceleration acceleration = Acceleration::None;
-  int anderson_depth = 1;  ///< previous iterates Anderson mixing uses, in [1, 20]
+  int anderson_depth = 1;  ///< previous iterates Anderson mixing uses; kAndersonDepthRange
   /// Iterations without a new smallest err(k) after which the loop is stalled; >= 1.
   int stall_window = 4;
 

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "fricon/core/error.hpp"
+#include "fricon/core/range.hpp"
 #include "fricon/core/timer.hpp"
 #include "fricon/qp/mpgp_kernels.hpp"
 
@@ -17,41 +18,22 @@ namespace fricon::qp {
 // ---------------------------------------------------------------------------------------------
 // Options and report
 
-namespace {
-
-template <typename T>
-void require(bool ok, const char* field, T value, const char* range) {
-  if (!ok) {
-    throw InputError(
-        fmt::format("MpgpOptions::{} = {} is out of range: expected {}", field, value, range));
-  }
-}
-
-}  // namespace
-
 void MpgpOptions::validate() const {
-  require(std::isfinite(rel_tolerance) && rel_tolerance >= 0.0, "rel_tolerance", rel_tolerance,
-          ">= 0");
-  require(std::isfinite(abs_tolerance) && abs_tolerance >= 0.0, "abs_tolerance", abs_tolerance,
-          ">= 0");
-  require(max_iterations >= 0, "max_iterations", max_iterations, ">= 0");
-  require(std::isfinite(gamma) && gamma > 0.0, "gamma", gamma, "> 0");
-  require(std::isfinite(step_factor) && step_factor > 0.0 && step_factor <= 2.0, "step_factor",
-          step_factor, "in (0, 2]");
-  require(std::isfinite(norm_A) && norm_A >= 0.0, "norm_A", norm_A,
-          ">= 0 (0 = estimate by power iteration)");
-  require(power_iterations >= 1, "power_iterations", power_iterations, ">= 1");
-  require(std::isfinite(power_tolerance) && power_tolerance > 0.0, "power_tolerance",
-          power_tolerance, "> 0");
-  require(std::isfinite(active_tolerance) && active_tolerance >= 0.0 && active_tolerance <= 1e-3,
-          "active_tolerance", active_tolerance, "in [0, 1e-3]");
-  require(enum_is_valid(variant), "variant", static_cast<int>(variant),
-          "an MpgpVariant enumerator");
-  require(enum_is_valid(expansion), "expansion", static_cast<int>(expansion),
-          "an MpgpExpansion enumerator");
-  require(std::isfinite(expansion_length_factor) && expansion_length_factor > 0.0 &&
-              expansion_length_factor <= 2.0,
-          "expansion_length_factor", expansion_length_factor, "in (0, 2]");
+  require("MpgpOptions::rel_tolerance", rel_tolerance, non_negative());
+  require("MpgpOptions::abs_tolerance", abs_tolerance, non_negative());
+  require("MpgpOptions::max_iterations", max_iterations, integer_at_least(0));
+  require("MpgpOptions::gamma", gamma, positive());
+  require("MpgpOptions::step_factor", step_factor, Range{false, 0.0, 2.0, true, false, {}});
+  require("MpgpOptions::norm_A (0 = estimate by power iteration)", norm_A, non_negative());
+  require("MpgpOptions::power_iterations", power_iterations, integer_at_least(1));
+  require("MpgpOptions::power_tolerance", power_tolerance, positive());
+  require("MpgpOptions::active_tolerance", active_tolerance,
+          Range{false, 0.0, 1e-3, false, false, {}});
+  if (!enum_is_valid(variant) || !enum_is_valid(expansion))
+    throw InputError(fmt::format("MpgpOptions: variant {} or expansion {} is not an enumerator",
+                                 static_cast<int>(variant), static_cast<int>(expansion)));
+  require("MpgpOptions::expansion_length_factor", expansion_length_factor,
+          Range{false, 0.0, 2.0, true, false, {}});
 }
 
 std::string MpgpReport::brief() const {

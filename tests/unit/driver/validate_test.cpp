@@ -257,29 +257,29 @@ std::vector<BadCase> contact_cases() {
 
 std::vector<BadCase> solver_and_output_cases() {
   return {
-      {"OuterTolZero", [](Problem& p) { p.solver.outer_tol = 0.0; },
+      {"OuterTolZero", [](Problem& p) { p.solver.outer.tol = 0.0; },
        "<memory>: solver.outer_tol: expected a positive number, got 0.0"},
-      {"OuterTolNan", [](Problem& p) { p.solver.outer_tol = kNan; },
+      {"OuterTolNan", [](Problem& p) { p.solver.outer.tol = kNan; },
        "<memory>: solver.outer_tol: expected a positive number, got nan (numbers must be finite)"},
-      {"OuterMaxZero", [](Problem& p) { p.solver.outer_max = 0; },
+      {"OuterMaxZero", [](Problem& p) { p.solver.outer.max_iterations = 0; },
        "<memory>: solver.outer_max: expected an integer >= 1, got 0"},
-      {"QpRtolZero", [](Problem& p) { p.solver.qp_rtol = 0.0; },
+      {"QpRtolZero", [](Problem& p) { p.solver.qp.rel_tolerance = 0.0; },
        "<memory>: solver.qp_rtol: expected a number in (0, 1), got 0.0"},
-      {"QpRtolOne", [](Problem& p) { p.solver.qp_rtol = 1.0; },
+      {"QpRtolOne", [](Problem& p) { p.solver.qp.rel_tolerance = 1.0; },
        "<memory>: solver.qp_rtol: expected a number in (0, 1), got 1.0"},
-      {"QpMaxNegative", [](Problem& p) { p.solver.qp_max = -3; },
+      {"QpMaxNegative", [](Problem& p) { p.solver.qp.max_iterations = -3; },
        "<memory>: solver.qp_max: expected an integer >= 1, got -3"},
-      {"AndersonDepthZero", [](Problem& p) { p.solver.anderson_depth = 0; },
+      {"AndersonDepthZero", [](Problem& p) { p.solver.outer.anderson_depth = 0; },
        "<memory>: solver.anderson_depth: expected an integer in [1, 20], got 0"},
-      {"AndersonDepth21", [](Problem& p) { p.solver.anderson_depth = 21; },
+      {"AndersonDepth21", [](Problem& p) { p.solver.outer.anderson_depth = 21; },
        "<memory>: solver.anderson_depth: expected an integer in [1, 20], got 21"},
       {"DualOperatorCast",
        [](Problem& p) { p.solver.dual_operator = static_cast<dual::DualOperatorKind>(42); },
        "<memory>: solver.dual_operator: expected one of \"auto\"", true},
       {"AccelerationCast",
-       [](Problem& p) { p.solver.acceleration = static_cast<outer::Acceleration>(42); },
+       [](Problem& p) { p.solver.outer.acceleration = static_cast<outer::Acceleration>(42); },
        "<memory>: solver.acceleration: expected one of \"none\"", true},
-      {"QpVariantCast", [](Problem& p) { p.solver.qp_variant = static_cast<qp::MpgpVariant>(42); },
+      {"QpVariantCast", [](Problem& p) { p.solver.qp.variant = static_cast<qp::MpgpVariant>(42); },
        "<memory>: solver.qp_variant: expected one of", true},
       {"OutputDirEmpty", [](Problem& p) { p.output.dir.clear(); },
        "<memory>: output.dir: expected a non-empty folder name, got \"\""},
@@ -351,9 +351,9 @@ TEST(Validate, NamesThePositionOfTheKeyOrOfItsTable) {
   p.dirichlet.push_back({"z0", {true, true, true}});
   EXPECT_THAT(error_of(p), HasSubstr("f.toml:20:2: contact.boundary: contact and Dirichlet"));
   p.dirichlet.pop_back();
-  p.solver.qp_max = 0;
+  p.solver.qp.max_iterations = 0;
   EXPECT_EQ(error_of(p), "--set solver.qp_max=0: solver.qp_max: expected an integer >= 1, got 0");
-  p.solver.qp_max = 1;
+  p.solver.qp.max_iterations = 1;
   p.output.dir.clear();
   EXPECT_THAT(error_of(p), HasSubstr("f.toml: output.dir: "));  // no position: the source
 }

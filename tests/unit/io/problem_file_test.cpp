@@ -65,9 +65,9 @@ TEST(ProblemFile, PaperBrickExample) {
   EXPECT_EQ(enum_name(p.contact->patches), "chessboard");
   EXPECT_EQ(enum_name(p.contact->friction.law), "paper");
   EXPECT_DOUBLE_EQ(p.contact->friction.param, 6.0e4);
-  EXPECT_DOUBLE_EQ(p.solver.outer_tol, 1.0e-4);
-  EXPECT_EQ(p.solver.outer_max, 50);
-  EXPECT_DOUBLE_EQ(p.solver.qp_rtol, 1.0e-6);
+  EXPECT_DOUBLE_EQ(p.solver.outer.tol, 1.0e-4);
+  EXPECT_EQ(p.solver.outer.max_iterations, 50);
+  EXPECT_DOUBLE_EQ(p.solver.qp.rel_tolerance, 1.0e-6);
   EXPECT_EQ(p.output.dir, "results/paper-brick");
 }
 
@@ -117,10 +117,10 @@ TEST(ProblemFile, DefaultsApply) {
   EXPECT_TRUE(p.dirichlet.empty());
   EXPECT_TRUE(p.traction.empty());
   EXPECT_FALSE(p.contact.has_value());
-  EXPECT_EQ(p.solver.outer_tol, d.solver.outer_tol);
-  EXPECT_EQ(p.solver.outer_max, d.solver.outer_max);
-  EXPECT_EQ(p.solver.qp_rtol, d.solver.qp_rtol);
-  EXPECT_EQ(p.solver.qp_max, d.solver.qp_max);
+  EXPECT_EQ(p.solver.outer.tol, d.solver.outer.tol);
+  EXPECT_EQ(p.solver.outer.max_iterations, d.solver.outer.max_iterations);
+  EXPECT_EQ(p.solver.qp.rel_tolerance, d.solver.qp.rel_tolerance);
+  EXPECT_EQ(p.solver.qp.max_iterations, d.solver.qp.max_iterations);
   EXPECT_EQ(p.solver.warm_start, d.solver.warm_start);
   EXPECT_EQ(p.solver.dual_operator, d.solver.dual_operator);
   EXPECT_EQ(p.output.dir, d.output.dir);
@@ -169,8 +169,8 @@ dual_operator = "schur"
   EXPECT_EQ(enum_name(p.contact->friction.law), "table");
   EXPECT_EQ(p.contact->friction.t, (std::vector<Real>{0, 1e-5, 2e-5}));
   EXPECT_EQ(p.contact->friction.f, (std::vector<Real>{0.5, 0.3, 0.2}));
-  EXPECT_EQ(p.solver.outer_max, 3);
-  EXPECT_EQ(p.solver.qp_max, 10);
+  EXPECT_EQ(p.solver.outer.max_iterations, 3);
+  EXPECT_EQ(p.solver.qp.max_iterations, 10);
   EXPECT_FALSE(p.solver.warm_start);
   EXPECT_EQ(enum_name(p.solver.dual_operator), "schur");
 
@@ -636,7 +636,7 @@ TEST(ProblemFilePositions, ProblemModifiedInCodeNamesTheFilePosition) {
   EXPECT_THAT(validate_error(p), HasSubstr("t.toml:9:1: contact.boundary: contact and Dirichlet"));
   p.dirichlet.pop_back();
   // A table that the file lacks: the file.
-  p.solver.qp_max = 0;
+  p.solver.qp.max_iterations = 0;
   EXPECT_EQ(validate_error(p), "t.toml: solver.qp_max: expected an integer >= 1, got 0");
 }
 

@@ -30,8 +30,8 @@ Coulomb fricon_coulomb(contact::FrictionLawKind law) {
   p.contact->model = contact::FrictionModel::Coulomb;
   p.contact->friction.law = law;
   p.contact->friction.value = 0.3;
-  p.solver.qp_rtol = 1e-12;
-  p.solver.outer_tol = 1e-11;
+  p.solver.qp.rel_tolerance = 1e-12;
+  p.solver.outer.tol = 1e-11;
   driver::RunOptions o;
   o.keep_first_dual = true;  // Q and h are those of every outer iteration
   const driver::RunResult r = driver::run(p, o);
