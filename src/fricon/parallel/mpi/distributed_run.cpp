@@ -28,6 +28,7 @@
 #include "fricon/parallel/mpi/partition.hpp"
 #include "fricon/parallel/mpi/scatter_model.hpp"
 #include "fricon/parallel/mpi/session.hpp"
+#include "fricon/parallel/mpi/test_fault.hpp"
 
 namespace fricon::parallel {
 
@@ -158,6 +159,7 @@ RankShare assemble_share(const driver::Problem& problem, const driver::Model* wh
   share.n_nodes = whole ? whole->mesh.n_nodes() : part.model.mesh.n_nodes();
   collectively([&] {
     ScopedPhase phase(times, "assembly");
+    test_fault("assembly");
     share.entries = local_entries(part, B);
     share.load = LoadPart::of(driver::load_vector(problem, part.model, driver::Extent::Part),
                               part.global_dof);
@@ -175,6 +177,7 @@ std::vector<driver::RankReport> gather_ranks(const RankShare& share, const Mumps
                                  info.estimate_mib,
                                  share.model_mib,
                                  static_cast<double>(share.n_nodes)};
+  test_fault("gather");
   std::vector<double> all(static_cast<std::size_t>(kFigures * size));
   MPI_Gather(mine, kFigures, MPI_DOUBLE, all.data(), kFigures, MPI_DOUBLE, 0, world());
   std::vector<driver::RankReport> ranks;
@@ -231,6 +234,7 @@ RunResult run_distributed(const driver::Problem& problem, const RunOptions& opti
   // its problem.
   std::optional<contact::ContactDiscretization> disc;
   collectively([&] {
+    test_fault("model");
     driver::validate(problem);
     if (rank != 0) return;
     // f whole on rank 0, for the residuals of the postprocessing; every rank assembles its
@@ -243,6 +247,7 @@ RunResult run_distributed(const driver::Problem& problem, const RunOptions& opti
     }
   });
   const ModelSizes sizes = broadcast_sizes(r.model, disc.has_value(), world());
+  test_fault("share");
   const std::optional<ContactCoupling> contact = share_contact(disc, sizes.contact, rank);
   const dual::DualOperatorKind kind =
       contact ? operator_kind(problem.solver.dual_operator, contact->B.rows())
@@ -268,6 +273,7 @@ RunResult run_distributed(const driver::Problem& problem, const RunOptions& opti
   });
 
   // @sect: the ranks other than 0 take part in rank 0's solves until it ends the run.
+  test_fault("setup");
   const CommandChannel channel(world());
   const DistributedSolves solves(*factor, channel, contact ? &*contact : nullptr,
                                  std::move(share.load));

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "fricon/core/error.hpp"
+#include "fricon/parallel/mpi/test_fault.hpp"
 
 namespace fricon::parallel {
 
@@ -148,6 +149,7 @@ MatrixXd DistributedSolves::solve(const VectorXd& lambda, bool with_load) const 
 }
 
 VectorXd DistributedSolves::apply_step(const VectorXd& x) const {
+  test_fault("solve");
   // B K^-1 B^T x = -B (K^-1 (-B^T x)): each rank sums the columns of B at its solution rows.
   const MatrixXd mine = solve(x, false);
   VectorXd y = VectorXd::Zero(contact_->B.rows());
@@ -161,6 +163,7 @@ VectorXd DistributedSolves::apply_step(const VectorXd& x) const {
 }
 
 VectorXd DistributedSolves::contact_step(const VectorXd& lambda) const {
+  test_fault("solve");
   const MatrixXd mine = solve(lambda, true);
   // Each contact dof's value comes from the one rank that holds it.
   VectorXd w_c = VectorXd::Zero(static_cast<Index>(contact_dofs_.size()));
@@ -173,6 +176,7 @@ VectorXd DistributedSolves::contact_step(const VectorXd& lambda) const {
 }
 
 VectorXd DistributedSolves::displacement_step(const VectorXd& lambda) const {
+  test_fault("solve");
   const MatrixXd mine = solve(lambda, true);
   const std::vector<Index>& rows = factor_.solution_rows();
   int size = 1;
@@ -198,11 +202,13 @@ VectorXd DistributedSolves::displacement_step(const VectorXd& lambda) const {
 }
 
 VectorXd DistributedSolves::apply(const VectorXd& x) const {
+  test_fault("outer");
   channel_.send(kApply);
   return apply_step(x);
 }
 
 void DistributedSolves::contact_displacement(const VectorXd& lambda, VectorXd& w) const {
+  test_fault("outer");
   channel_.send(kContact);
   const VectorXd w_c = contact_step(lambda);
   w.conservativeResize(factor_.n_free());
@@ -211,6 +217,7 @@ void DistributedSolves::contact_displacement(const VectorXd& lambda, VectorXd& w
 }
 
 VectorXd DistributedSolves::displacement(const VectorXd& lambda) const {
+  test_fault("outer");
   channel_.send(kDisplacement);
   return displacement_step(lambda);
 }

@@ -9,6 +9,7 @@
 
 #include "fricon/core/error.hpp"
 #include "fricon/core/timer.hpp"
+#include "fricon/parallel/mpi/test_fault.hpp"
 
 namespace fricon::parallel {
 
@@ -205,6 +206,7 @@ MumpsFactor::MumpsFactor(MPI_Comm comm, Index n_free, Index n_schur, LocalEntrie
   m.initialize(comm_, n_free + n_schur, n_schur > 0);
   // From here a failure is seen by every rank (INFOG is global): each releases MUMPS and throws.
   try {
+    test_fault("analysis");
     m.give_entries(entries);
     if (n_schur > 0) m.request_schur(n_schur, rank_, schur_);
     const bool given_order = m.give_order(order, n_free, rank_, comm_);
@@ -213,6 +215,7 @@ MumpsFactor::MumpsFactor(MPI_Comm comm, Index n_free, Index n_schur, LocalEntrie
     check_phase(m.id, "analysis");
     const double analysis_s = analysis.seconds();
     check_estimate(m.id, limit);
+    test_fault("factorize");
     const Stopwatch factorization;
     m.factorize(limit);
     double given = static_cast<double>(entries.size());
@@ -233,6 +236,7 @@ MumpsFactor::MumpsFactor(MPI_Comm comm, Index n_free, Index n_schur, LocalEntrie
     m.call(kJobEnd);
     throw;
   }
+  test_fault("schur");
   // The entries are no longer needed (no iterative refinement): free them now.
   m.release_entries();
   entries = LocalEntries{};

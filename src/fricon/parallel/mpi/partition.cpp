@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "fricon/core/error.hpp"
+#include "fricon/parallel/mpi/test_fault.hpp"
 
 namespace fricon::parallel {
 
@@ -142,6 +143,7 @@ std::vector<int> graph_partition(const mesh::TetMesh* mesh, Index n, MPI_Comm co
     const DualGraph g = rank == 0 ? dual_graph(*mesh) : DualGraph{};
     a = scatter_rows(rank == 0 ? &g : nullptr, n, comm, rank, size);
   }
+  test_fault("partition");
   const int n_mine = rows.counts[static_cast<std::size_t>(rank)];
   Mat graph = nullptr;
   check(MatCreateMPIAdj(comm, n_mine, static_cast<PetscInt>(n), a.ia, a.ja, nullptr, &graph),

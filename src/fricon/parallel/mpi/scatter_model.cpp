@@ -10,6 +10,7 @@
 
 #include "fricon/core/error.hpp"
 #include "fricon/parallel/mpi/partition.hpp"
+#include "fricon/parallel/mpi/test_fault.hpp"
 
 namespace fricon::parallel {
 
@@ -173,6 +174,7 @@ driver::ModelPart scatter_model(const driver::Problem& problem, const driver::Mo
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
   if (rank != 0) {
+    test_fault("scatter");
     driver::ModelPart part = unpack(receive(comm));
     part.model.materials = driver::make_materials(problem, part.model.mesh);
     return part;
