@@ -55,8 +55,10 @@ TOL = 1e-8
 TIMEOUT_S = 240
 # A run with an injected fault ends in seconds (the brick on 2 ranks): longer is a hang.
 FAULT_TIMEOUT_S = 60
-# Seconds given to mpirun, on SIGTERM, to end its ranks before the whole group is killed.
+# Seconds given to mpirun, on SIGTERM, to end its ranks before the whole group is killed, and
+# to the job's processes to be gone once mpirun has ended; polled every POLL_S seconds.
 KILL_GRACE_S = 10
+POLL_S = 0.1
 # How each injected fault must end (tests/regression/CMakeLists.txt runs these cases):
 # "agreed": every rank learns the error and rank 0 prints it once (exit code 1 for a
 # NumericalError, 3 for an internal error); "abort": the failing rank prints it and ends the job
@@ -280,11 +282,11 @@ def run_with_deadline(cmd, env, marker):
         sys.exit(f"FAIL: HANG: {' '.join(cmd)} did not end within {FAULT_TIMEOUT_S} s "
                  f"(killed)\nstderr:\n{stderr}")
     left = []
-    for _ in range(KILL_GRACE_S * 10):  # orted's children may take a moment to be reaped
+    for _ in range(int(KILL_GRACE_S / POLL_S)):  # the ranks may take a moment to be reaped
         left = processes_with(marker)
         if not left:
             break
-        time.sleep(0.1)
+        time.sleep(POLL_S)
     if left:
         for pid, _ in left:
             os.kill(pid, signal.SIGKILL)
