@@ -27,6 +27,15 @@ augmented matrix) and a different dual operator:
   stop_signal             SIGUSR1 to mpirun during the outer loop: every rank stops, rank 0
                           writes the last iterate (*.not-converged.*), exit code 2
   cholmod_under_mpirun    backend cholmod on 2 ranks is refused once, with the fix
+  fault-PHASE-RANK-KIND   a fault injected on one rank in one phase of the run (the test-only
+                          FRICON_TEST_FAULT=PHASE:RANK:KIND, docs/parallel.md) on 2 ranks: every
+                          rank ends within FAULT_TIMEOUT_S (no process of the job is left) with
+                          the message; a failure the ranks agree on is printed once by rank 0
+                          with the exit code of its kind (FAULTS), one inside a step that all
+                          ranks take together by the failing rank, which ends the job
+                          (MPI_Abort, exit code 3)
+  fault-single            the same fault in a job of one rank without mpirun: an ordinary error
+  fault-malformed         a malformed FRICON_TEST_FAULT is refused, naming it
 Agreement: the same number of outer iterations and err(k) to 1e-8; multipliers (per patch) to
 1e-8 of the largest; contact-node displacements and the penetration measures to 1e-8 of max |u|;
 forces, max |u| and max von Mises to 1e-8 relative.
@@ -44,6 +53,33 @@ TIGHT = ["--set", "solver.qp_rtol=1e-12", "--set", "solver.outer_tol=1e-10"]
 PETSC = ["--set", "solver.backend=petsc"]
 TOL = 1e-8
 TIMEOUT_S = 240
+# A run with an injected fault ends in seconds (the brick on 2 ranks): longer is a hang.
+FAULT_TIMEOUT_S = 60
+# Seconds given to mpirun, on SIGTERM, to end its ranks before the whole group is killed, and
+# to the job's processes to be gone once mpirun has ended; polled every POLL_S seconds.
+KILL_GRACE_S = 10
+POLL_S = 0.1
+# How each injected fault must end (tests/regression/CMakeLists.txt runs these cases):
+# "agreed": every rank learns the error and rank 0 prints it once (exit code 1 for a
+# NumericalError, 3 for an internal error); "abort": the failing rank prints it and ends the job
+# with MPI_Abort (exit code 3), since the others wait for it inside a collective step.
+FAULTS = {
+    "model-1-bad_alloc": "agreed",      # validation / rank 0's model
+    "share-1-bad_alloc": "abort",       # sizes and B broadcast to every rank
+    "partition-1-bad_alloc": "abort",   # PT-Scotch on the distributed dual graph
+    "scatter-1-bad_alloc": "abort",     # receiving the part of the model from rank 0
+    "assembly-1-numerical": "agreed",   # element matrices of the rank's part
+    "analysis-1-bad_alloc": "agreed",   # preparing the MUMPS input, before its analysis
+    "factorize-1-bad_alloc": "abort",   # between MUMPS's analysis and its factorization
+    "schur-1-generic": "agreed",        # after the factorization (rank 0 completes S)
+    "setup-1-bad_alloc": "agreed",      # the distributed solves' right-hand side rows
+    "outer-0-numerical": "agreed",      # rank 0 alone, between two distributed solves
+    "solve-1-numerical": "abort",       # inside a distributed solve, following rank 0
+    "solve-1-bad_alloc": "abort",
+    "solve-0-bad_alloc": "abort",       # inside a distributed solve, on rank 0's side
+    "gather-1-generic": "abort",        # the ranks' figures gathered for the report
+}
+KIND_EXIT_CODE = {"numerical": 1, "bad_alloc": 3, "generic": 3}
 
 
 def mpirun(mpi, ranks):
@@ -141,8 +177,8 @@ def serial_and_distributed(fricon, mpi, problem, out, ranks, extra=()):
     agree(f"{problem.name} {' '.join(extra)} on {ranks} rank(s) = serial", serial, distributed)
 
 
-def expect_error(cmd, fragments, label, code=1, prefix="fricon: error:"):
-    r = subprocess.run(cmd, capture_output=True, text=True, timeout=TIMEOUT_S)
+def expect_error(cmd, fragments, label, code=1, prefix="fricon: error:", env=None):
+    r = subprocess.run(cmd, capture_output=True, text=True, timeout=TIMEOUT_S, env=env)
     errors = [line for line in r.stderr.splitlines() if line.startswith(prefix)]
     problems = []
     if r.returncode != code:
@@ -208,6 +244,89 @@ def stop_signal(fricon, mpi, brick, outdir):
             sys.exit(f"FAIL: SIGUSR1: {name} missing")
     print(f"ok   SIGUSR1 to mpirun: the last iterate (outer iteration {r['outer_iterations']}) "
           f"written, exit code 2")
+
+
+def processes_with(marker):
+    """The processes (pid, command line) whose command line contains `marker`."""
+    found = []
+    for proc in pathlib.Path("/proc").iterdir():
+        if not proc.name.isdigit() or int(proc.name) == os.getpid():
+            continue
+        try:
+            cmdline = (proc / "cmdline").read_bytes().replace(b"\0", b" ").decode(errors="replace")
+        except OSError:
+            continue
+        if marker in cmdline:
+            found.append((int(proc.name), cmdline.strip()))
+    return found
+
+
+def run_with_deadline(cmd, env, marker):
+    """Runs cmd in its own process group; a run longer than FAULT_TIMEOUT_S fails the test (after
+    mpirun, then the whole group, is killed); so does any process of the job (its command line
+    contains `marker`) left after mpirun ended. Returns (exit code, stderr)."""
+    t0 = time.time()
+    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            env=env, start_new_session=True)
+    try:
+        _, stderr = proc.communicate(timeout=FAULT_TIMEOUT_S)
+    except subprocess.TimeoutExpired:
+        proc.terminate()  # mpirun ends its ranks on SIGTERM
+        try:
+            _, stderr = proc.communicate(timeout=KILL_GRACE_S)
+        except subprocess.TimeoutExpired:
+            os.killpg(proc.pid, signal.SIGKILL)
+            _, stderr = proc.communicate()
+        for pid, _ in processes_with(marker):  # ranks outside the group
+            os.kill(pid, signal.SIGKILL)
+        sys.exit(f"FAIL: HANG: {' '.join(cmd)} did not end within {FAULT_TIMEOUT_S} s "
+                 f"(killed)\nstderr:\n{stderr}")
+    left = []
+    for _ in range(int(KILL_GRACE_S / POLL_S)):  # the ranks may take a moment to be reaped
+        left = processes_with(marker)
+        if not left:
+            break
+        time.sleep(POLL_S)
+    if left:
+        for pid, _ in left:
+            os.kill(pid, signal.SIGKILL)
+        sys.exit(f"FAIL: processes of the job left after mpirun ended: {left}\nstderr:\n{stderr}")
+    print(f"     ended in {time.time() - t0:.1f} s with exit code {proc.returncode}")
+    return proc.returncode, stderr
+
+
+def injected_fault(fricon, mpi, brick, out, fault):
+    """A fault injected on one rank of 2 (fault = PHASE-RANK-KIND, FAULTS says how it ends)."""
+    phase, rank, kind = fault.split("-")
+    value = f"{phase}:{rank}:{kind}"
+    folder = out / "f"  # unique to this case: the marker of its processes
+    cmd = mpirun(mpi, 2) + [fricon, "solve", str(brick), *PETSC, "-q", "-o", str(folder)]
+    code, stderr = run_with_deadline(cmd, {**os.environ, "FRICON_TEST_FAULT": value}, str(folder))
+    message = f"injected fault FRICON_TEST_FAULT={value}"
+    if rank != "0" or FAULTS[fault] == "abort":  # (rank 0's agreed error is printed as it is)
+        message = f"rank {rank}: {message}"
+    if FAULTS[fault] == "abort":
+        expected_code, prefix = 3, "fricon: internal error: "
+    else:
+        expected_code = KIND_EXIT_CODE[kind]
+        prefix = "fricon: error: " if expected_code == 1 else "fricon: internal error: "
+    lines = [line for line in stderr.splitlines() if line.startswith("fricon:")]
+    if FAULTS[fault] == "abort":
+        # The ranks that mpirun ends on MPI_Abort (SIGTERM) may say they were interrupted.
+        lines = [line for line in lines if line != "fricon: interrupted (no iterate to write yet)"]
+    problems = []
+    if code != expected_code:
+        problems.append(f"exit code {code}, expected {expected_code}")
+    if len(lines) != 1 or not lines[0].startswith(prefix + message):
+        problems.append(f"expected one line of fricon's starting {prefix + message!r}, got "
+                        f"{lines}")
+    if FAULTS[fault] == "agreed" and "MPI_ABORT" in stderr:
+        problems.append("the ranks should agree on this failure, not abort")
+    if problems:
+        sys.exit(f"FAIL {fault} ({FAULTS[fault]}): " + "; ".join(problems) +
+                 f"\nstderr:\n{stderr}")
+    nothing_written(folder)
+    print(f"ok   {value}: {FAULTS[fault]}, every rank ended, exit code {code}: {lines[0]}")
 
 
 def main():
@@ -278,6 +397,21 @@ def main():
         nothing_written(out / "m")
     elif case == "stop_signal":
         stop_signal(fricon, mpi, brick, out / "s")
+    elif case.startswith("fault-") and case[len("fault-"):] in FAULTS:
+        injected_fault(fricon, mpi, brick, out, case[len("fault-"):])
+    elif case == "fault-single":
+        # One rank without mpirun: nobody waits, the fault is an ordinary error.
+        expect_error([fricon, "solve", str(brick), *PETSC, "-q", "-o", str(out / "f")],
+                     ["injected fault FRICON_TEST_FAULT=solve:0:bad_alloc"],
+                     "a fault in a job of one rank is an ordinary error", code=3,
+                     prefix="fricon: internal error:",
+                     env={**os.environ, "FRICON_TEST_FAULT": "solve:0:bad_alloc"})
+    elif case == "fault-malformed":
+        expect_error(mpirun(mpi, 2) + [fricon, "solve", str(brick), *PETSC, "-q", "-o",
+                                        str(out / "f")],
+                     ["FRICON_TEST_FAULT=solve:one:bad_alloc", "expected <phase>:<rank>:<kind>"],
+                     "a malformed FRICON_TEST_FAULT is refused",
+                     env={**os.environ, "FRICON_TEST_FAULT": "solve:one:bad_alloc"})
     elif case == "cholmod_under_mpirun":
         expect_error(mpirun(mpi, 2) + [fricon, "solve", str(brick), "-q", "-o", str(out / "c")],
                      ["solver.backend", "runs on one process", "--set solver.backend=petsc"],

@@ -13,7 +13,10 @@ namespace fricon::parallel {
 /// (solver.partition) and gives the entries to one MUMPS factorization; rank 0 runs the dual
 /// QPs and the outer loop on Q and returns the whole result, the same as driver::run's. The
 /// other ranks serve rank 0's solves and return a result whose report holds only the status
-/// (and report.parallel->rank). An error on any rank is thrown on every rank, the same.
+/// (and report.parallel->rank). An error on any rank is thrown on every rank, the same, or,
+/// where the ranks cannot agree on it (a rank failing inside a step of collective calls), the
+/// failing rank prints it and ends the job: MPI_Abort, exit code 3 (docs/parallel.md, "When a
+/// rank fails").
 driver::RunResult run_distributed(const driver::Problem& problem,
                                   const driver::RunOptions& options);
 

@@ -55,8 +55,8 @@ int CommandChannel::follow(const std::function<void(int, int)>& handle) const {
         return message[1];
       case kFail: {
         ErrorPacket error;
-        broadcast(error, 0, comm_);
-        raise(error);
+        or_abort([&] { broadcast(error, 0, comm_); }, comm_);
+        raise(error);  // (Agreed: rank 0 throws it too)
       }
       default:
         handle(message[0], message[1]);
@@ -69,9 +69,13 @@ void CommandChannel::finish(int status) const {
 }
 
 void CommandChannel::fail(const ErrorPacket& error) const {
-  announce(kFail, 0, comm_);
-  ErrorPacket copy = error;
-  broadcast(copy, 0, comm_);
+  or_abort(
+      [&] {
+        announce(kFail, 0, comm_);
+        ErrorPacket copy = error;
+        broadcast(copy, 0, comm_);
+      },
+      comm_);
 }
 
 }  // namespace fricon::parallel

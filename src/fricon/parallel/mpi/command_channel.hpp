@@ -2,7 +2,8 @@
 // parallel/mpi: rank 0 leads, the other ranks follow (docs/parallel.md). After the factorization
 // rank 0 runs the outer loop alone; each collective step it takes (a distributed solve) starts
 // with a command that the other ranks, waiting in follow(), receive and join. Rank 0 ends the
-// run with finish() (its status) or fail() (its error), so no rank is left waiting.
+// run with finish() (its status) or fail() (its error), so no rank is left waiting; a rank that
+// fails while passing a command or an error on ends the job (or_abort(), docs/parallel.md).
 
 #include <mpi.h>
 
@@ -24,7 +25,7 @@ class CommandChannel {
   int follow(const std::function<void(int command, int argument)>& handle) const;
   /// Rank 0: ends the other ranks' follow() with `status`.
   void finish(int status) const;
-  /// Rank 0: ends the other ranks' follow() by throwing `error` there.
+  /// Rank 0: ends the other ranks' follow() by throwing `error` there (as AgreedError).
   void fail(const ErrorPacket& error) const;
 
  private:

@@ -10,8 +10,11 @@
 //                follow its distributed solves (DistributedSolves: right-hand sides and
 //                solutions stay distributed; rank 0 receives n_dual numbers per product with Q,
 //                the contact dofs per outer iteration, and the displacement once at the end)
-// Every step that may fail on some ranks runs in collectively(), and rank 0 ends the others'
-// follow() with its status or its error: no rank is left waiting.
+// No rank is left waiting (docs/parallel.md, "When a rank fails"): every step that may fail on
+// some ranks and makes no collective call runs in collectively(), and rank 0 ends the others'
+// follow() with its status or its error; an error that leaves run_distributed on one rank
+// alone (one inside a step of collective calls: the partition, MUMPS, a distributed solve)
+// ends the job with MPI_Abort, exit code 3 (or_abort()).
 #include <memory>
 #include <optional>
 
@@ -28,6 +31,7 @@
 #include "fricon/parallel/mpi/partition.hpp"
 #include "fricon/parallel/mpi/scatter_model.hpp"
 #include "fricon/parallel/mpi/session.hpp"
+#include "fricon/parallel/mpi/test_fault.hpp"
 
 namespace fricon::parallel {
 
@@ -147,17 +151,19 @@ RankShare assemble_share(const driver::Problem& problem, const driver::Model* wh
                          const SparseMatrix* B, PartitionKind partition, PhaseTimes& times) {
   RankShare share;
   driver::ModelPart part;
-  collectively([&] {
+  {
     ScopedPhase phase(times, "partition");
+    // (partition_elements agrees on its failures or ends the job itself)
     const std::vector<int> owner =
         partition_elements(whole ? &whole->mesh : nullptr, partition, world());
-    part = scatter_model(problem, whole, owner, world());
-  });
+    collectively([&] { part = scatter_model(problem, whole, owner, world()); });
+  }
   share.model_mib = peak_memory_mib();
   share.n_tets = part.model.mesh.n_tets();
   share.n_nodes = whole ? whole->mesh.n_nodes() : part.model.mesh.n_nodes();
   collectively([&] {
     ScopedPhase phase(times, "assembly");
+    test_fault("assembly");
     share.entries = local_entries(part, B);
     share.load = LoadPart::of(driver::load_vector(problem, part.model, driver::Extent::Part),
                               part.global_dof);
@@ -175,6 +181,7 @@ std::vector<driver::RankReport> gather_ranks(const RankShare& share, const Mumps
                                  info.estimate_mib,
                                  share.model_mib,
                                  static_cast<double>(share.n_nodes)};
+  test_fault("gather");
   std::vector<double> all(static_cast<std::size_t>(kFigures * size));
   MPI_Gather(mine, kFigures, MPI_DOUBLE, all.data(), kFigures, MPI_DOUBLE, 0, world());
   std::vector<driver::RankReport> ranks;
@@ -210,10 +217,9 @@ VectorXd solve_on_rank_0(const driver::Problem& problem,
   return driver::solve_with_operator(problem, *disc, *Q, opts, r);
 }
 
-}  // namespace
-
-RunResult run_distributed(const driver::Problem& problem, const RunOptions& options) {
-  initialize();
+// run_distributed on this rank, MPI started; the factor is made in `factor`.
+RunResult run_on_rank(const driver::Problem& problem, const RunOptions& options,
+                      std::unique_ptr<MumpsFactor>& factor) {
   const Stopwatch total;
   const int rank = world_rank(), size = world_size();
   // Progress and callbacks come from rank 0 only; a stop request reaches rank 0's outer loop.
@@ -231,6 +237,7 @@ RunResult run_distributed(const driver::Problem& problem, const RunOptions& opti
   // its problem.
   std::optional<contact::ContactDiscretization> disc;
   collectively([&] {
+    test_fault("model");
     driver::validate(problem);
     if (rank != 0) return;
     // f whole on rank 0, for the residuals of the postprocessing; every rank assembles its
@@ -243,6 +250,7 @@ RunResult run_distributed(const driver::Problem& problem, const RunOptions& opti
     }
   });
   const ModelSizes sizes = broadcast_sizes(r.model, disc.has_value(), world());
+  test_fault("share");  // (between two broadcasts: the job ends, see run_distributed)
   const std::optional<ContactCoupling> contact = share_contact(disc, sizes.contact, rank);
   const dual::DualOperatorKind kind =
       contact ? operator_kind(problem.solver.dual_operator, contact->B.rows())
@@ -259,42 +267,64 @@ RunResult run_distributed(const driver::Problem& problem, const RunOptions& opti
 
   // @sect: one factorization across the ranks.
   driver::phase_start(opts, "factorize");
-  std::unique_ptr<MumpsFactor> factor;
-  collectively([&] {
+  {
     ScopedPhase phase(rep.times, "factorize");
-    const std::vector<Index> order = rank == 0 ? free_dof_order(r.model) : std::vector<Index>{};
+    std::vector<Index> order;
+    collectively([&] {
+      if (rank == 0) order = free_dof_order(r.model);
+    });
+    // (MumpsFactor agrees on its failures or ends the job itself)
     factor = std::make_unique<MumpsFactor>(world(), sizes.n_free, par.n_schur,
                                            std::move(share.entries), order, memory_limit(problem));
-  });
+  }
 
   // @sect: the ranks other than 0 take part in rank 0's solves until it ends the run.
   const CommandChannel channel(world());
-  const DistributedSolves solves(*factor, channel, contact ? &*contact : nullptr,
-                                 std::move(share.load));
+  std::optional<DistributedSolves> solves;
+  collectively([&] {
+    test_fault("setup");
+    solves.emplace(*factor, channel, contact ? &*contact : nullptr, std::move(share.load));
+  });
   if (rank != 0) {
     driver::phase_start(options, "follow");  // (a stop request is rank 0's to act on)
-    rep.status = static_cast<driver::Status>(solves.follow());
+    rep.status = static_cast<driver::Status>(solves->follow());
     par.ranks = gather_ranks(share, factor->info(), rank, size);
     rep.parallel = par;
     return r;
   }
 
-  // @sect: rank 0: the displacement, then the fields; the other ranks wait until it ends.
-  driver::report_sizes(r.model, rep);
-  rep.factor = factor_info(factor->info());
-  par.analysis_s = factor->info().analysis_s;
-  par.factorization_s = factor->info().factorization_s;
+  // @sect: rank 0: the displacement, then the fields; the other ranks wait until it ends, with
+  // its error if it fails (the same on every rank from here: Agreed).
   try {
-    const VectorXd u = solve_on_rank_0(problem, disc, kind, *factor, solves, opts, r);
+    driver::report_sizes(r.model, rep);
+    rep.factor = factor_info(factor->info());
+    par.analysis_s = factor->info().analysis_s;
+    par.factorization_s = factor->info().factorization_s;
+    const VectorXd u = solve_on_rank_0(problem, disc, kind, *factor, *solves, opts, r);
     driver::finish_run(problem, u, opts, r);
   } catch (...) {
-    channel.fail(capture_current_exception());
-    throw;
+    const ErrorPacket error = capture_current_exception();
+    channel.fail(error);
+    raise(error);
   }
   channel.finish(static_cast<int>(rep.status));
   par.ranks = gather_ranks(share, factor->info(), rank, size);
   rep.parallel = par;
   rep.time_s = total.seconds();
+  return r;
+}
+
+}  // namespace
+
+RunResult run_distributed(const driver::Problem& problem, const RunOptions& options) {
+  initialize();
+  // The other ranks would wait forever for a rank that leaves with an error they do not raise
+  // too: what the steps agree on (Agreed) passes, anything else ends the job. The factor
+  // outlives the guard: its destructor is collective (MUMPS's end), and a rank failing alone
+  // must not reach it.
+  std::unique_ptr<MumpsFactor> factor;
+  RunResult r;
+  or_abort([&] { r = run_on_rank(problem, options, factor); });
   return r;
 }
 

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "fricon/core/error.hpp"
+#include "fricon/parallel/mpi/test_fault.hpp"
 
 namespace fricon::parallel {
 
@@ -197,42 +198,57 @@ VectorXd DistributedSolves::displacement_step(const VectorXd& lambda) const {
   return w;
 }
 
+VectorXd DistributedSolves::step(Command command, const VectorXd& x) const {
+  // The other ranks are inside MUMPS's solve or the reduction that follows it: a failure of this
+  // rank alone ends the job; MUMPS's own failure is seen by every rank (Agreed) and passes.
+  VectorXd result;
+  or_abort([&] {
+    test_fault("solve");
+    switch (command) {
+      case kApply:
+        result = apply_step(x);
+        break;
+      case kContact:
+        result = contact_step(x);
+        break;
+      case kDisplacement:
+        result = displacement_step(x);
+        break;
+      default:
+        throw Error(
+            fmt::format("DistributedSolves: unknown command {}", static_cast<int>(command)));
+    }
+  });
+  return result;
+}
+
 VectorXd DistributedSolves::apply(const VectorXd& x) const {
+  test_fault("outer");
   channel_.send(kApply);
-  return apply_step(x);
+  return step(kApply, x);
 }
 
 void DistributedSolves::contact_displacement(const VectorXd& lambda, VectorXd& w) const {
+  test_fault("outer");
   channel_.send(kContact);
-  const VectorXd w_c = contact_step(lambda);
+  const VectorXd w_c = step(kContact, lambda);
   w.conservativeResize(factor_.n_free());
   for (std::size_t c = 0; c < contact_dofs_.size(); ++c)
     w(contact_dofs_[c]) = w_c(static_cast<Index>(c));
 }
 
 VectorXd DistributedSolves::displacement(const VectorXd& lambda) const {
+  test_fault("outer");
   channel_.send(kDisplacement);
-  return displacement_step(lambda);
+  return step(kDisplacement, lambda);
 }
 
 int DistributedSolves::follow() const {
   return channel_.follow([this](int command, int) {
     try {
-      switch (command) {
-        case kApply:
-          apply_step(VectorXd());
-          break;
-        case kContact:
-          contact_step(VectorXd());
-          break;
-        case kDisplacement:
-          displacement_step(VectorXd());
-          break;
-        default:
-          throw Error(fmt::format("DistributedSolves::follow: unknown command {}", command));
-      }
-    } catch (const NumericalError&) {
-      // A failed solve fails on every rank at the same step; rank 0 reports it with fail().
+      step(static_cast<Command>(command), VectorXd());
+    } catch (const Agreed&) {
+      // MUMPS's failure, seen by every rank at the same step: rank 0 reports it with fail().
     }
   });
 }

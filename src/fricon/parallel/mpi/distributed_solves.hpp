@@ -8,7 +8,9 @@
 //   contact_displacement  w on the contact dofs            one number per contact dof
 //   displacement          w everywhere                      gathered (for the results)
 // Rank 0 calls these; each first sends its command to the other ranks, which run the same step
-// from follow().
+// from follow(). Once the command is sent, a failure of one rank alone ends the job (the others
+// wait for it inside the step: or_abort()); MUMPS's failure, which every rank sees, is thrown on
+// rank 0 (Agreed) and leaves the others following.
 
 #include <utility>
 #include <vector>
@@ -62,13 +64,17 @@ class DistributedSolves {
   VectorXd displacement(const VectorXd& lambda) const;
 
   /// Ranks other than 0: take part in rank 0's steps until it calls finish() (returns its
-  /// status) or fail() (throws its error) on the channel. A solve that fails is reported by rank
-  /// 0 (MUMPS's error is global: every rank sees it).
+  /// status) or fail() (throws its error, Agreed) on the channel. A solve that MUMPS fails is
+  /// reported by rank 0 (MUMPS's error is global: every rank sees it); any other failure of a
+  /// step, on any rank, ends the job (or_abort(): the other ranks wait for it inside the step).
   int follow() const;
 
  private:
   enum Command : int { kApply = 0, kContact = 1, kDisplacement = 2 };
 
+  // Runs a command's step on every rank (or_abort()): after rank 0 has sent it, a failure of one
+  // rank alone cannot be agreed on. x is rank 0's (the other ranks pass an empty vector).
+  VectorXd step(Command command, const VectorXd& x) const;
   // The steps, on every rank (lambda and x are rank 0's; the other ranks pass empty vectors).
   VectorXd apply_step(const VectorXd& x) const;
   VectorXd contact_step(const VectorXd& lambda) const;

@@ -9,6 +9,7 @@
 
 #include "fricon/core/error.hpp"
 #include "fricon/core/timer.hpp"
+#include "fricon/parallel/mpi/test_fault.hpp"
 
 namespace fricon::parallel {
 
@@ -72,8 +73,9 @@ std::string ordering_name(int code) {
 
 void check_phase(const DMUMPS_STRUC_C& id, const char* phase) {
   if (infog(id, 1) >= 0) return;
-  throw NumericalError(fmt::format("MUMPS {} failed: INFOG(1) = {}, INFOG(2) = {}: {}", phase,
-                                   infog(id, 1), infog(id, 2), meaning(infog(id, 1))));
+  throw AgreedError<NumericalError>(fmt::format("MUMPS {} failed: INFOG(1) = {}, INFOG(2) = {}: {}",
+                                                phase, infog(id, 1), infog(id, 2),
+                                                meaning(infog(id, 1))));
 }
 
 // Before the numerical factorization: the analysis's estimate of the largest rank's memory
@@ -81,7 +83,7 @@ void check_phase(const DMUMPS_STRUC_C& id, const char* phase) {
 void check_estimate(const DMUMPS_STRUC_C& id, const MemoryLimit& limit) {
   const double largest_mib = infog(id, 16) * kMibPerMumpsMb;
   if (limit.mib <= 0.0 || largest_mib <= limit.mib) return;
-  throw NumericalError(fmt::format(
+  throw AgreedError<NumericalError>(fmt::format(
       "{}: {}: MUMPS's analysis estimates {:.1f} MiB for the factorization on its largest rank, "
       "more than the limit of {:.1f} MiB per rank; run on more ranks (the memory per rank falls "
       "with them, docs/parallel.md) or raise the limit",
@@ -131,37 +133,46 @@ struct MumpsFactor::Impl {
     id.a_loc = nullptr;
   }
 
-  // The last n_schur of the n variables as Schur variables, S centralized into `schur` (rank 0).
-  void request_schur(Index n_schur, int rank, MatrixXd& schur) {
-    const Index n_free = id.n - n_schur;
-    icntl(id, 19) = 1;
-    id.size_schur = static_cast<MUMPS_INT>(n_schur);
+  // What rank 0 allocates for MUMPS before its first call, so that a failure here can be agreed
+  // on (collectively): the dense S (n_schur x n_schur, the last n_schur of the variables being
+  // the Schur variables) and their list, and PERM_IN from `order` (the elimination order of the
+  // first n_free variables, the others following; empty: MUMPS chooses).
+  void prepare(const std::vector<Index>& order, Index n_free, Index n_schur, int rank,
+               MatrixXd& schur) {
     if (rank != 0) return;
     schur_vars.resize(static_cast<std::size_t>(n_schur));
     for (Index k = 0; k < n_schur; ++k)
       schur_vars[static_cast<std::size_t>(k)] = static_cast<MUMPS_INT>(n_free + k + 1);
-    id.listvar_schur = schur_vars.data();
-    schur.setZero(n_schur, n_schur);
-    id.schur = schur.data();
-  }
-
-  // Rank 0's order of the first n_free variables, the others following (rank 0 decides whether
-  // there is one). Returns whether an order was given.
-  bool give_order(const std::vector<Index>& order, Index n_free, int rank, MPI_Comm comm) {
-    int given = rank == 0 && !order.empty();
-    MPI_Bcast(&given, 1, MPI_INT, 0, comm);
-    if (!given) return false;
-    icntl(id, 7) = 1;  // the order given in PERM_IN (on rank 0)
-    if (rank != 0) return true;
+    if (n_schur > 0) schur.setZero(n_schur, n_schur);
+    if (order.empty()) return;
     FRICON_CHECK(static_cast<Index>(order.size()) == n_free,
                  "order of " << order.size() << " variables, expected " << n_free);
-    const Index n = id.n;
+    const Index n = n_free + n_schur;
     perm_in.assign(static_cast<std::size_t>(n), 0);
     for (std::size_t k = 0; k < order.size(); ++k)
       perm_in[static_cast<std::size_t>(order[k])] = static_cast<MUMPS_INT>(k + 1);
     for (Index k = n_free; k < n; ++k)
       perm_in[static_cast<std::size_t>(k)] = static_cast<MUMPS_INT>(k + 1);
-    id.perm_in = perm_in.data();
+  }
+
+  // The last n_schur of the n variables as Schur variables, S centralized into `schur` (rank 0,
+  // allocated by prepare()).
+  void request_schur(Index n_schur, int rank, MatrixXd& schur) {
+    icntl(id, 19) = 1;
+    id.size_schur = static_cast<MUMPS_INT>(n_schur);
+    if (rank != 0) return;
+    id.listvar_schur = schur_vars.data();
+    id.schur = schur.data();
+  }
+
+  // Rank 0's order from prepare(), if any (rank 0 decides whether there is one). Returns
+  // whether an order was given.
+  bool give_order(int rank, MPI_Comm comm) {
+    int given = rank == 0 && !perm_in.empty();
+    MPI_Bcast(&given, 1, MPI_INT, 0, comm);
+    if (!given) return false;
+    icntl(id, 7) = 1;  // the order given in PERM_IN (on rank 0)
+    if (rank == 0) id.perm_in = perm_in.data();
     return true;
   }
 
@@ -176,7 +187,7 @@ struct MumpsFactor::Impl {
       icntl(id, 14) *= 2;
     }
     if (limit.mib > 0.0 && workspace_too_small(infog(id, 1)))
-      throw NumericalError(fmt::format(
+      throw AgreedError<NumericalError>(fmt::format(
           "{}: {}: the MUMPS factorization needs more than the limit of {:.0f} MiB per rank "
           "(INFOG(1) = {}, INFOG(2) = {}); run on more ranks or raise the limit",
           limit.where, limit.key, limit.mib, infog(id, 1), infog(id, 2)));
@@ -199,20 +210,31 @@ void complete_symmetric(MatrixXd& S) {
 
 MumpsFactor::MumpsFactor(MPI_Comm comm, Index n_free, Index n_schur, LocalEntries entries,
                          const std::vector<Index>& order, const MemoryLimit& limit)
-    : impl_(std::make_unique<Impl>()), comm_(comm), n_free_(n_free) {
+    : comm_(comm), n_free_(n_free) {
   MPI_Comm_rank(comm_, &rank_);
+  // A failure of one rank alone is agreed on before MUMPS's first call (what rank 0 allocates
+  // for it); between MUMPS's calls, which are collective, MUMPS's own failures are seen by every
+  // rank (INFOG is global: each releases MUMPS and throws them, Agreed), and any other ends the
+  // job (docs/parallel.md, "When a rank fails").
+  collectively(
+      [&] {
+        test_fault("analysis");
+        impl_ = std::make_unique<Impl>();
+        impl_->prepare(order, n_free, n_schur, rank_, schur_);
+      },
+      comm_);
   Impl& m = *impl_;
-  m.initialize(comm_, n_free + n_schur, n_schur > 0);
-  // From here a failure is seen by every rank (INFOG is global): each releases MUMPS and throws.
+  or_abort([&] { m.initialize(comm_, n_free + n_schur, n_schur > 0); }, comm_);
   try {
     m.give_entries(entries);
     if (n_schur > 0) m.request_schur(n_schur, rank_, schur_);
-    const bool given_order = m.give_order(order, n_free, rank_, comm_);
+    const bool given_order = m.give_order(rank_, comm_);
     const Stopwatch analysis;
     m.call(kJobAnalyse);
     check_phase(m.id, "analysis");
     const double analysis_s = analysis.seconds();
     check_estimate(m.id, limit);
+    test_fault("factorize");
     const Stopwatch factorization;
     m.factorize(limit);
     double given = static_cast<double>(entries.size());
@@ -229,15 +251,22 @@ MumpsFactor::MumpsFactor(MPI_Comm comm, Index n_free, Index n_schur, LocalEntrie
              infog(m.id, 16) * kMibPerMumpsMb,
              analysis_s,
              factorization.seconds()};
+    // The entries are no longer needed (no iterative refinement): free them now.
+    m.release_entries();
+    entries = LocalEntries{};
+    m.id.schur = nullptr;
+    // Rank 0 alone completes S (its temporaries are two more n_schur^2 matrices): agreed.
+    collectively(
+        [&] {
+          test_fault("schur");
+          if (n_schur > 0 && rank_ == 0) complete_symmetric(schur_);
+        },
+        comm_);
   } catch (...) {
+    abort_unless_agreed(comm_);
     m.call(kJobEnd);
     throw;
   }
-  // The entries are no longer needed (no iterative refinement): free them now.
-  m.release_entries();
-  entries = LocalEntries{};
-  if (n_schur > 0 && rank_ == 0) complete_symmetric(schur_);
-  m.id.schur = nullptr;
 }
 
 MumpsFactor::~MumpsFactor() {

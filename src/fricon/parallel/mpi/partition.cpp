@@ -8,6 +8,8 @@
 #include <fmt/format.h>
 
 #include "fricon/core/error.hpp"
+#include "fricon/parallel/mpi/session.hpp"
+#include "fricon/parallel/mpi/test_fault.hpp"
 
 namespace fricon::parallel {
 
@@ -134,14 +136,13 @@ AdjacencyRows scatter_rows(const DualGraph* g, Index n, MPI_Comm comm, int rank,
   return a;
 }
 
-std::vector<int> graph_partition(const mesh::TetMesh* mesh, Index n, MPI_Comm comm, int rank,
-                                 int size) {
+// The partition of the dual graph `g` (rank 0's; freed once scattered) by PT-Scotch across the
+// ranks; the owners on rank 0. Every call is collective: a failure ends the job (or_abort).
+std::vector<int> partition_graph(DualGraph& g, Index n, MPI_Comm comm, int rank, int size) {
   const Blocks rows = tet_blocks(n, size);
-  AdjacencyRows a;
-  {
-    const DualGraph g = rank == 0 ? dual_graph(*mesh) : DualGraph{};
-    a = scatter_rows(rank == 0 ? &g : nullptr, n, comm, rank, size);
-  }
+  AdjacencyRows a = scatter_rows(rank == 0 ? &g : nullptr, n, comm, rank, size);
+  g = DualGraph{};  // scattered: free it
+  test_fault("partition");
   const int n_mine = rows.counts[static_cast<std::size_t>(rank)];
   Mat graph = nullptr;
   check(MatCreateMPIAdj(comm, n_mine, static_cast<PetscInt>(n), a.ia, a.ja, nullptr, &graph),
@@ -168,6 +169,17 @@ std::vector<int> graph_partition(const mesh::TetMesh* mesh, Index n, MPI_Comm co
   return owner;
 }
 
+// Collective: see partition_elements() for how it fails.
+std::vector<int> graph_partition(const mesh::TetMesh* mesh, Index n, MPI_Comm comm, int rank,
+                                 int size) {
+  // Rank 0 alone builds the graph: agreed before the collective calls.
+  DualGraph g;
+  collectively([&] { g = rank == 0 ? dual_graph(*mesh) : DualGraph{}; }, comm);
+  std::vector<int> owner;
+  or_abort([&] { owner = partition_graph(g, n, comm, rank, size); }, comm);
+  return owner;
+}
+
 }  // namespace
 
 std::vector<int> partition_elements(const mesh::TetMesh* mesh, PartitionKind kind, MPI_Comm comm) {
@@ -176,14 +188,17 @@ std::vector<int> partition_elements(const mesh::TetMesh* mesh, PartitionKind kin
   MPI_Comm_size(comm, &size);
   long n = rank == 0 ? static_cast<long>(mesh->n_tets()) : 0;
   check_mpi(MPI_Bcast(&n, 1, MPI_LONG, 0, comm), "MPI_Bcast");
-  if (size == 1) return std::vector<int>(static_cast<std::size_t>(n), 0);
+  std::vector<int> owner;
   switch (kind) {
     case PartitionKind::Graph:
-      return graph_partition(mesh, n, comm, rank, size);
+      if (size > 1) return graph_partition(mesh, n, comm, rank, size);
+      break;
     case PartitionKind::Blocks:
-      return rank == 0 ? blocks(n, size) : std::vector<int>{};
+      break;
   }
-  throw Error("partition_elements: invalid partition kind");
+  // One rank, or blocks: rank 0 alone, agreed.
+  collectively([&] { owner = rank == 0 ? blocks(n, size) : std::vector<int>{}; }, comm);
+  return owner;
 }
 
 std::vector<std::vector<Index>> elements_by_rank(const std::vector<int>& owner, int size) {

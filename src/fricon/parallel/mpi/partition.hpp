@@ -17,6 +17,8 @@ namespace fricon::parallel {
 /// rank 0 builds the graph and gives each rank the rows of a block of tetrahedra, PT-Scotch
 /// partitions it across the ranks, and rank 0 gathers the owners. Blocks: consecutive blocks in
 /// mesh order. Collective over `comm`; `mesh` is read on rank 0 only (the others pass null).
+/// A failure of rank 0 alone building the graph or the blocks is raised on every rank (Agreed);
+/// one inside the collective calls of the graph partition ends the job (or_abort()).
 std::vector<int> partition_elements(const mesh::TetMesh* mesh, PartitionKind kind, MPI_Comm comm);
 
 /// The tetrahedra that `owner` gives to each rank 0 .. size-1, ascending, in one pass.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstring>
 #include <limits>
+#include <optional>
 #include <string>
 #include <type_traits>
 
@@ -10,6 +11,8 @@
 
 #include "fricon/core/error.hpp"
 #include "fricon/parallel/mpi/partition.hpp"
+#include "fricon/parallel/mpi/session.hpp"
+#include "fricon/parallel/mpi/test_fault.hpp"
 
 namespace fricon::parallel {
 
@@ -153,10 +156,12 @@ void send(const std::vector<char>& bytes, int to, MPI_Comm comm) {
               "MPI_Send");
 }
 
-std::vector<char> receive(MPI_Comm comm) {
+// This rank's part from rank 0, or nothing when rank 0 failed to build it.
+std::optional<std::vector<char>> receive(MPI_Comm comm) {
   long n = 0;
   check_mpi(MPI_Recv(&n, 1, MPI_LONG, 0, kTag, comm, MPI_STATUS_IGNORE), "MPI_Recv");
-  if (n == kFailed) throw Error("rank 0 could not give this rank its part of the model");
+  if (n == kFailed) return std::nullopt;
+  test_fault("scatter");
   std::vector<char> bytes(static_cast<std::size_t>(n));
   for (std::size_t at = 0; at < bytes.size(); at += kChunk)
     check_mpi(MPI_Recv(bytes.data() + at, static_cast<int>(std::min(kChunk, bytes.size() - at)),
@@ -173,7 +178,13 @@ driver::ModelPart scatter_model(const driver::Problem& problem, const driver::Mo
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
   if (rank != 0) {
-    driver::ModelPart part = unpack(receive(comm));
+    // Rank 0 sends the part once this rank has its length: a failure of this rank alone before
+    // the part has arrived leaves rank 0 waiting in MPI_Send, and ends the job (or_abort); after,
+    // it is the caller's to agree on (collectively).
+    std::optional<std::vector<char>> bytes;
+    or_abort([&] { bytes = receive(comm); }, comm);
+    if (!bytes) throw Error("rank 0 could not give this rank its part of the model");
+    driver::ModelPart part = unpack(*bytes);
     part.model.materials = driver::make_materials(problem, part.model.mesh);
     return part;
   }

@@ -17,7 +17,8 @@ namespace fricon::parallel {
 /// other ranks) and `owner` (the rank of each tetrahedron, partition_elements) and sends it, one
 /// rank at a time; each rank returns its own. The other ranks make the part's materials from
 /// their `problem`. Collective over `comm`. When rank 0 cannot build a part it tells the ranks
-/// still waiting before it throws, so that no rank is left waiting (run it in collectively()).
+/// still waiting before it throws, so that no rank is left waiting (run it in collectively());
+/// a rank that fails before its part has arrived ends the job (or_abort()).
 driver::ModelPart scatter_model(const driver::Problem& problem, const driver::Model* whole,
                                 const std::vector<int>& owner, MPI_Comm comm);
 

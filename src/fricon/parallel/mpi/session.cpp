@@ -1,7 +1,9 @@
 #include "fricon/parallel/mpi/session.hpp"
 
+#include <fcntl.h>
 #include <petscsys.h>
 #include <sys/resource.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <exception>
@@ -13,6 +15,11 @@
 namespace fricon::parallel {
 
 namespace {
+
+// This process's standard error as it was when initialize() ran, for abort_job(): the program
+// sends the other ranks' standard error to /dev/null afterwards (docs/parallel.md). -1: not
+// kept (MPI started elsewhere), abort_job() writes to the standard error of the moment.
+int g_error_fd = -1;
 
 void finalize_at_exit() {
   PetscBool done = PETSC_FALSE;
@@ -44,6 +51,7 @@ void initialize(int* argc, char*** argv) {
   // not PETSc's, so it is started without them (PETSc options go in PETSC_OPTIONS).
   (void)argc, (void)argv;
   if (PetscInitializeNoArguments() != 0) throw Error("PetscInitialize failed");
+  g_error_fd = fcntl(STDERR_FILENO, F_DUPFD_CLOEXEC, 0);
   std::atexit(finalize_at_exit);
 }
 
@@ -82,13 +90,13 @@ ErrorPacket capture_current_exception() {
 void raise(const ErrorPacket& e) {
   switch (e.kind) {
     case ErrorPacket::Input:
-      throw InputError(e.message);
+      throw AgreedError<InputError>(e.message);
     case ErrorPacket::Numerical:
-      throw NumericalError(e.message);
+      throw AgreedError<NumericalError>(e.message);
     case ErrorPacket::Interrupted:
-      throw Interrupted(e.message);
+      throw AgreedError<Interrupted>(e.message);
     default:
-      throw Error(e.message);
+      throw AgreedError<Error>(e.message);
   }
 }
 
@@ -116,6 +124,45 @@ void collectively(const std::function<void()>& step, MPI_Comm comm) {
   broadcast(error, first_failed, comm);
   if (first_failed != 0) error.message = fmt::format("rank {}: {}", first_failed, error.message);
   raise(error);
+}
+
+void abort_job(const ErrorPacket& e) {
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  const std::string line = fmt::format(
+      "fricon: internal error: rank {}: {} (in a step that every rank takes together: the job "
+      "is ended with MPI_Abort, exit code {})\n",
+      rank, e.message, kAbortExitCode);
+  const int fd = g_error_fd >= 0 ? g_error_fd : STDERR_FILENO;
+  for (std::size_t at = 0; at < line.size();) {
+    const ssize_t n = write(fd, line.data() + at, line.size() - at);
+    if (n <= 0) break;
+    at += static_cast<std::size_t>(n);
+  }
+  MPI_Abort(MPI_COMM_WORLD, kAbortExitCode);
+  std::_Exit(kAbortExitCode);  // (MPI_Abort does not return)
+}
+
+void abort_unless_agreed(MPI_Comm comm) {
+  try {
+    throw;
+  } catch (const Agreed&) {
+    return;
+  } catch (...) {
+  }
+  int size = 1;
+  MPI_Comm_size(comm, &size);
+  if (size == 1) return;
+  abort_job(capture_current_exception());
+}
+
+void or_abort(const std::function<void()>& step, MPI_Comm comm) {
+  try {
+    step();
+  } catch (...) {
+    abort_unless_agreed(comm);
+    throw;
+  }
 }
 
 double peak_memory_mib() {
