@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
@@ -222,6 +223,8 @@ TEST(FclibThirdPartyFiles, TripletsKeepTheRowInI) {
     const int max_p = *std::max_element(H.p, H.p + H.nz);
     EXPECT_GE(max_i, H.n) << name << ": i does not exceed the column count";
     EXPECT_LT(max_p, H.n) << name;
+    std::printf("%s: H is %d x %d in %d triplets, max i = %d, max p = %d\n", name, H.m, H.n, H.nz,
+                max_i, max_p);
     fclib_delete_global(g);  // frees the members only
     std::free(g);
     ++checked;
