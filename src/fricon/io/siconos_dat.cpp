@@ -65,10 +65,17 @@ class Tokens {
     return v;
   }
   VectorXd reals(Index n, const std::string& what) {
+    require(n, what);
     VectorXd v(n);
     for (Index k = 0; k < n; ++k)
       v(k) = real(what);
     return v;
+  }
+  // Before a block of n tokens is allocated: the file must still hold them.
+  void require(long n, const std::string& what) const {
+    if (n < 0 || static_cast<size_t>(n) > remaining())
+      throw Mismatch{fmt::format("the file ends before {}: {} {} needed, {} left", what, n,
+                                 n == 1 ? "token" : "tokens", remaining())};
   }
   size_t position() const { return next_; }
   void seek(size_t position) { next_ = position; }
@@ -99,6 +106,7 @@ SparseMatrix read_sparse_block(Tokens& t, const std::string& name, Index rows, I
     throw Mismatch{fmt::format("matrix {}: {} blocks in {} x {} block rows and columns", name,
                                n_blocks, n_row_blocks, n_col_blocks)};
   const auto cumulative = [&](long count, Index total, const char* what) {
+    t.require(count, in(what));
     std::vector<long> end(static_cast<size_t>(count));
     long before = 0;
     for (auto& e : end) {
@@ -120,6 +128,7 @@ SparseMatrix read_sparse_block(Tokens& t, const std::string& name, Index rows, I
     throw Mismatch{
         fmt::format("matrix {}: {} row pointers and {} blocks, expected {} (block rows + 1) and {}",
                     name, filled1, filled2, n_row_blocks + 1, n_blocks)};
+  t.require(filled1 + filled2, in("block row pointers and block columns"));
   std::vector<long> row_ptr(static_cast<size_t>(filled1)), block_col(static_cast<size_t>(filled2));
   for (auto& e : row_ptr)
     e = t.integer(in("block row pointer"));
@@ -166,6 +175,7 @@ SparseMatrix read_matrix(Tokens& t, const std::string& name) {
     if (r != rows || c != cols)
       throw Mismatch{fmt::format("matrix {} is {} x {} but its dense part says {} x {}", name, rows,
                                  cols, r, c)};
+    t.require(rows * cols, in("dense entries"));
     MatrixXd A(rows, cols);
     for (long j = 0; j < cols; ++j)
       for (long i = 0; i < rows; ++i)
