@@ -435,12 +435,13 @@ int dual_solve(const DualSolveOptions& o) {
     };
   const fricon::driver::LocalSolution s = fricon::driver::solve_local(p, so);
   fmt::print("fricon dual solve: {}\n", o.file);
-  fmt::print("  problem     {}, {} contacts (m = {}), nnz(W) = {}, ||W|| = {:.3e}\n",
+  fmt::print("  problem     {}, {} contacts (m = {}), nnz(W) = {}, ||S|| = {:.3e}\n",
              p.is_coulomb() ? "Coulomb" : "Tresca", p.n_contacts(), p.q.size(), p.W.nonZeros(),
              s.norm_W);
+  fmt::print("  W           {}\n", fricon::driver::describe_symmetry(s));
   fmt::print("  QP          MPGP {}, expansion {}, {}\n", fricon::enum_name(so.variant),
              fricon::enum_name(so.expansion),
-             so.scaling ? fmt::format("scaled per contact (||D W D|| = {:.3e})", s.norm_W_scaled)
+             so.scaling ? fmt::format("scaled per contact (||D S D|| = {:.3e})", s.norm_W_scaled)
                         : std::string("not scaled"));
   fmt::print("  iterations  {} outer ({}), {} QP iterations, {} products with W\n",
              s.outer_iterations, fricon::enum_name(s.termination), s.qp_iterations, s.n_products);

@@ -1,5 +1,6 @@
 #include "fricon/driver/local_solve.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -46,50 +47,92 @@ void check_problem(const qp::LocalProblem& p) {
         fmt::format("{}: q, mu and thresholds must be finite, mu and thresholds >= 0", p.source));
 }
 
-// Coulomb by successive approximations on the normal reactions: the radii of step k are
-// mu_R r_n^(k-1)(R), the first step the frictionless problem (theory.md §5.6).
-class LocalCoulombMap final : public outer::FixedPointMap {
+// The pieces of W the QPs see (theory.md §5.6): S = (W + W^T)/2, their Hessian, and, when W is
+// split, A = (W - W^T)/2, whose product with the reactions of the previous step goes into q.
+struct Parts {
+  SparseMatrix S, A;
+  bool split = false;
+  qp::Operator S_op() const {
+    return [this](const VectorXd& x, VectorXd& y) { y = S * x; };
+  }
+};
+
+// The successive approximations of theory.md §5.6 as one fixed-point map on the state
+// (r_n, A r): r_n for Coulomb, A r when W is split. Step k solves the Tresca QP with Hessian S, the
+// radii mu_a r_n,a of the state (Coulomb) or the thresholds (Tresca), and the linear term q + A r
+// of the state; image = the state of its answer. From r = 0 the first step is the frictionless
+// problem (Coulomb) with q itself. Where S is singular (rigid bodies) r is not unique but S r is
+// (the minimisers of a convex QP share it), and so is A r wherever A vanishes on S's null space.
+class LocalMap final : public outer::FixedPointMap {
  public:
-  LocalCoulombMap(const qp::LocalProblem& p, const qp::Operator& W, const qp::BlockScaling& D,
-                  const qp::MpgpOptions& o, LocalSolution& s)
+  LocalMap(const qp::LocalProblem& p, const Parts& parts, const qp::BlockScaling& D,
+           const qp::MpgpOptions& o, LocalSolution& s)
       : p_(p),
-        W_(W),
+        parts_(parts),
+        S_(parts.S_op()),
         D_(D),
         o_(o),
         s_(s),
-        c_(qp::SeparableConstraints::contact_layout(p.n_contacts())) {}
-  std::vector<outer::StateBlock> layout() const override { return {{"r_n", p_.n_contacts()}}; }
-  outer::StepResult apply(int k, const VectorXd& r_n, VectorXd& image) override {
-    c_.set_disc_radii(p_.mu.cwiseProduct(r_n.cwiseMax(0.0)));
-    const qp::MpgpReport q = qp::solve_mpgp_scaled(W_, -p_.q, c_, D_, o_, s_.r);
-    s_.qp_iterations += q.iterations;
-    s_.n_products += q.n_products;
-    image.resize(p_.n_contacts());
-    for (Index i = 0; i < p_.n_contacts(); ++i)
-      image(i) = s_.r(3 * i);
-    if (q.termination == qp::Termination::Converged) return {};
+        c_(qp::SeparableConstraints::contact_layout(p.n_contacts())) {
+    if (!p.is_coulomb()) c_.set_disc_radii(p.threshold);
+  }
+  Index n_normal() const { return p_.is_coulomb() ? p_.n_contacts() : 0; }
+  Index n_shift() const { return parts_.split ? p_.q.size() : 0; }
+  std::vector<outer::StateBlock> layout() const override {
+    std::vector<outer::StateBlock> blocks;
+    if (n_normal() > 0) blocks.push_back({"r_n", n_normal()});
+    if (n_shift() > 0) blocks.push_back({"A r", n_shift()});
+    return blocks;
+  }
+  // The state of the reactions s.r holds.
+  VectorXd state() const {
+    VectorXd x(n_normal() + n_shift());
+    for (Index i = 0; i < n_normal(); ++i)
+      x(i) = s_.r(3 * i);
+    if (n_shift() > 0) x.tail(n_shift()) = parts_.A * s_.r;
+    return x;
+  }
+  outer::StepResult apply(int k, const VectorXd& x, VectorXd& image) override {
+    if (n_normal() > 0) c_.set_disc_radii(p_.mu.cwiseProduct(x.head(n_normal()).cwiseMax(0.0)));
+    const VectorXd q = n_shift() > 0 ? VectorXd(p_.q + x.tail(n_shift())) : p_.q;
+    const qp::MpgpReport rep = qp::solve_mpgp_scaled(S_, -q, c_, D_, o_, s_.r);
+    s_.qp_iterations += rep.iterations;
+    s_.n_products += rep.n_products;
+    image = state();
+    if (rep.termination == qp::Termination::Converged) return {};
     return {outer::StepStatus::Failed,
-            fmt::format("the QP of step {} did not converge: {}", k, q.message)};
+            fmt::format("the QP of step {} did not converge: {}", k, rep.message)};
   }
   std::string stall_hint() const override {
-    return "large coefficients of friction may make the Coulomb problem have several solutions";
+    std::string hint;
+    if (parts_.split)
+      hint = fmt::format(
+          "the splitting W = S + A (||A||/||S|| = {:.2e}) contracts only while A is small against "
+          "S on the contacts that carry load",
+          s_.norm_A / s_.norm_W);
+    if (p_.is_coulomb())
+      hint += std::string(hint.empty() ? "" : "; ") +
+              "large coefficients of friction, or a singular S (rigid bodies), may make the "
+              "Coulomb problem have several solutions";
+    return hint;
   }
 
  private:
   const qp::LocalProblem& p_;
-  const qp::Operator& W_;
+  const Parts& parts_;
+  qp::Operator S_;
   const qp::BlockScaling& D_;
   qp::MpgpOptions o_;
   LocalSolution& s_;
   qp::SeparableConstraints c_;
 };
 
-// One Tresca QP with the given thresholds.
-void solve_tresca(const qp::LocalProblem& p, const qp::Operator& W, const qp::BlockScaling& D,
+// One Tresca QP with the given thresholds (W symmetric: no successive approximations needed).
+void solve_tresca(const qp::LocalProblem& p, const Parts& parts, const qp::BlockScaling& D,
                   const qp::MpgpOptions& o, LocalSolution& s) {
   auto c = qp::SeparableConstraints::contact_layout(p.n_contacts());
   c.set_disc_radii(p.threshold);
-  const qp::MpgpReport q = qp::solve_mpgp_scaled(W, -p.q, c, D, o, s.r);
+  const qp::MpgpReport q = qp::solve_mpgp_scaled(parts.S_op(), -p.q, c, D, o, s.r);
   s.qp_iterations += q.iterations;
   s.n_products += q.n_products;
   s.outer_iterations += 1;
@@ -99,43 +142,60 @@ void solve_tresca(const qp::LocalProblem& p, const qp::Operator& W, const qp::Bl
     s.reason = fmt::format("the QP did not converge: {}", q.message);
 }
 
-void solve_coulomb(const qp::LocalProblem& p, const qp::Operator& W, const qp::BlockScaling& D,
-                   const qp::MpgpOptions& o, Real outer_tol, int outer_max, LocalSolution& s) {
-  LocalCoulombMap map(p, W, D, o, s);
+// The successive approximations (Coulomb, or W split), warm-started from the reactions s.r holds.
+void solve_successive(const qp::LocalProblem& p, const Parts& parts, const qp::BlockScaling& D,
+                      const qp::MpgpOptions& o, Real outer_tol, int outer_max, LocalSolution& s) {
+  LocalMap map(p, parts, D, o, s);
   outer::OuterOptions oo;
   oo.tol = outer_tol;
   oo.max_iterations = outer_max;
-  VectorXd r_n(p.n_contacts());  // warm start from the reactions s.r holds
-  for (Index i = 0; i < p.n_contacts(); ++i)
-    r_n(i) = s.r(3 * i);
-  const outer::OuterReport rep = outer::iterate(map, r_n, oo);
+  VectorXd x = map.state();
+  const outer::OuterReport rep = outer::iterate(map, x, oo);
   s.outer_iterations += rep.iterations;
   s.termination = rep.termination;
-  if (!rep.converged()) s.reason = rep.message;
+  s.contraction = rep.contraction_ratio;
+  s.last_changes.clear();
+  if (!rep.block_history.empty()) {
+    const std::vector<outer::StateBlock> blocks = map.layout();
+    for (size_t b = 0; b < blocks.size(); ++b)
+      s.last_changes.emplace_back(blocks[b].name, rep.block_history.back()[b]);
+  }
+  if (rep.converged()) return;
+  s.reason = rep.message;
+  if (s.last_changes.size() > 1) {
+    s.reason += "; last relative change per block:";
+    for (const auto& [name, change] : s.last_changes)
+      s.reason += fmt::format(" {} {:.2e}", name, change);
+  }
 }
 
-// A failed solve on a W that is singular (rigid bodies: W only positive semidefinite) or, by
-// rounding in the code that wrote it, indefinite says so: the reactions are then not unique and
-// MPGP's rate, which rests on W's smallest eigenvalue, is lost.
-void explain_singular(const qp::LocalProblem& p, LocalSolution& s) {
+// A failed solve on a W whose symmetric part S is singular (rigid bodies: only positive
+// semidefinite) or, by rounding in the code that wrote it, indefinite says so: the reactions are
+// then not unique and MPGP's rate, which rests on S's smallest eigenvalue, is lost. The
+// eigenvalues are those of S (the quadratic form r^T W r = r^T S r), never of one triangle of W.
+void explain_singular(const qp::LocalProblem& p, const Parts& parts, LocalSolution& s) {
   if (p.q.size() > kDenseEigenLimit) return;
-  const Eigen::SelfAdjointEigenSolver<MatrixXd> eig(MatrixXd(p.W), Eigen::EigenvaluesOnly);
-  const Real ratio = eig.eigenvalues().minCoeff() / eig.eigenvalues().maxCoeff();
+  const Eigen::SelfAdjointEigenSolver<MatrixXd> eig(MatrixXd(parts.S), Eigen::EigenvaluesOnly);
+  const VectorXd& lambda = eig.eigenvalues();
+  const Real ratio = lambda.minCoeff() / lambda.maxCoeff();
+  const auto n_zero = (lambda.array().abs() <= kSingularRatio * lambda.maxCoeff()).count();
+  const char* of = parts.split ? "the symmetric part (W + W^T)/2 of W" : "W";
   if (ratio < -kSingularRatio) {
     s.reason += fmt::format(
-        "; W is not positive semidefinite (lambda_min/lambda_max = {:.1e}): the QP is not "
+        "; {} is not positive semidefinite (lambda_min/lambda_max = {:.1e}): the QP is not "
         "convex, outside what MPGP solves",
-        ratio);
-  } else if (ratio < kSingularRatio) {
+        of, ratio);
+  } else if (ratio <= kSingularRatio) {
     s.reason += fmt::format(
-        "; W is singular (lambda_min/lambda_max = {:.1e}): only positive semidefinite, so the "
-        "reactions are not unique and MPGP loses its rate",
-        ratio);
+        "; {} is singular ({} of its {} eigenvalues are zero to {:.0e} lambda_max; "
+        "lambda_min/lambda_max = {:.1e}): only positive semidefinite, so the reactions are not "
+        "unique and MPGP loses its rate",
+        of, n_zero, lambda.size(), kSingularRatio, ratio);
   }
 }
 
 // One attempt at the given tolerances, from the reactions s.r holds; then the certificate.
-void attempt(const qp::LocalProblem& p, const qp::Operator& W, const qp::BlockScaling& D,
+void attempt(const qp::LocalProblem& p, const Parts& parts, const qp::BlockScaling& D,
              const LocalSolveOptions& options, Real qp_rtol, Real outer_tol, LocalSolution& s) {
   qp::MpgpOptions o;
   o.variant = options.variant;
@@ -144,10 +204,10 @@ void attempt(const qp::LocalProblem& p, const qp::Operator& W, const qp::BlockSc
   o.max_iterations = options.qp_max;
   o.norm_A = s.norm_W_scaled;
   s.reason.clear();
-  if (p.is_coulomb()) {
-    solve_coulomb(p, W, D, o, outer_tol, options.outer_max, s);
+  if (p.is_coulomb() || parts.split) {
+    solve_successive(p, parts, D, o, outer_tol, options.outer_max, s);
   } else {
-    solve_tresca(p, W, D, o, s);
+    solve_tresca(p, parts, D, o, s);
   }
   s.u = p.W * s.r + p.q;
   const Real alpha = 1.0 / s.norm_W;
@@ -172,21 +232,59 @@ qp::BlockScaling contact_scaling(const VectorXd& diagonal) {
   return qp::BlockScaling::per_block(qp::SeparableConstraints::contact_layout(nc), factor);
 }
 
+Asymmetry measure_asymmetry(const SparseMatrix& W) {
+  if (W.rows() != W.cols())
+    throw InputError(
+        fmt::format("measure_asymmetry: W is {} x {}, not square", W.rows(), W.cols()));
+  const SparseMatrix D = W - SparseMatrix(W.transpose());
+  Asymmetry a;
+  for (Index k = 0; k < D.nonZeros(); ++k)
+    a.max_difference = std::max(a.max_difference, std::abs(D.valuePtr()[k]));
+  for (Index k = 0; k < W.nonZeros(); ++k)
+    a.max_entry = std::max(a.max_entry, std::abs(W.valuePtr()[k]));
+  return a;
+}
+
+std::string describe_symmetry(const LocalSolution& s) {
+  const std::string sizes =
+      fmt::format("max|W - W^T| = {:.2e}, max|W| = {:.2e}, relative {:.1e}",
+                  s.asymmetry.max_difference, s.asymmetry.max_entry, s.asymmetry.relative());
+  if (!s.split) return fmt::format("symmetric ({})", sizes);
+  std::string text = fmt::format(
+      "NOT symmetric ({}): solved as S + A, S = (W + W^T)/2 the QPs' Hessian, A = (W - W^T)/2 "
+      "with A r in q (||A||/||S|| = {:.2e}",
+      sizes, s.norm_W > 0.0 ? s.norm_A / s.norm_W : 0.0);
+  for (const auto& [name, change] : s.last_changes)
+    if (name == "A r") text += fmt::format(", last relative change of A r {:.1e}", change);
+  return text + ")";
+}
+
 LocalSolution solve_local(const qp::LocalProblem& p, const LocalSolveOptions& options) {
   const Stopwatch watch;
   check_problem(p);
   LocalSolution s;
-  const qp::Operator W = [&p](const VectorXd& x, VectorXd& y) { y = p.W * x; };
-  s.norm_W = qp::estimate_norm(W, p.q.size(), kPowerIterations, kPowerTolerance);
+  // @sect: W = S + A; S is the QPs' Hessian, A r moves into q when W is not symmetric.
+  s.asymmetry = measure_asymmetry(p.W);
+  Parts parts;
+  const SparseMatrix Wt = p.W.transpose();
+  parts.S = 0.5 * (p.W + Wt);
+  parts.split = s.asymmetry.max_difference > options.symmetry_tol * s.asymmetry.max_entry;
+  s.split = parts.split;
+  if (parts.split) parts.A = 0.5 * (p.W - Wt);
+  const qp::Operator S = parts.S_op();
+  s.norm_W = qp::estimate_norm(S, p.q.size(), kPowerIterations, kPowerTolerance);
+  if (parts.split)
+    s.norm_A = qp::estimate_norm([&parts](const VectorXd& x, VectorXd& y) { y = parts.A * x; },
+                                 p.q.size(), kPowerIterations, kPowerTolerance);
   s.r = VectorXd::Zero(p.q.size());
   if (!(s.norm_W > 0.0)) {
-    s.reason = "W is zero";
+    s.reason = "the symmetric part of W is zero";
     return s;
   }
-  // @sect: the scaled variables, and ||D W D|| behind MPGP's step length.
-  const qp::BlockScaling D =
-      options.scaling ? contact_scaling(p.W.diagonal()) : qp::BlockScaling::identity(p.q.size());
-  s.norm_W_scaled = options.scaling ? qp::estimate_norm(D.scaled(W), p.q.size(), kPowerIterations,
+  // @sect: the scaled variables, and ||D S D|| behind MPGP's step length.
+  const qp::BlockScaling D = options.scaling ? contact_scaling(parts.S.diagonal())
+                                             : qp::BlockScaling::identity(p.q.size());
+  s.norm_W_scaled = options.scaling ? qp::estimate_norm(D.scaled(S), p.q.size(), kPowerIterations,
                                                         kPowerTolerance)
                                     : s.norm_W;
   if (!(s.norm_W_scaled > 0.0)) {
@@ -195,14 +293,14 @@ LocalSolution solve_local(const qp::LocalProblem& p, const LocalSolveOptions& op
   }
   // @sect: solve, and refine while another code's merit is not yet met.
   Real qp_rtol = options.qp_rtol, outer_tol = options.outer_tol;
-  attempt(p, W, D, options, qp_rtol, outer_tol, s);
+  attempt(p, parts, D, options, qp_rtol, outer_tol, s);
   while (s.termination == outer::Termination::Converged &&
          (s.merit > options.merit_tol || s.residual > options.residual_tol) &&
          s.refinements < options.refinements) {
     qp_rtol *= kRefinementFactor;
     outer_tol *= kRefinementFactor;
     ++s.refinements;
-    attempt(p, W, D, options, qp_rtol, outer_tol, s);
+    attempt(p, parts, D, options, qp_rtol, outer_tol, s);
   }
   // @sect: the certificate, whatever the iterations said.
   const bool certified = s.residual <= options.residual_tol && s.merit <= options.merit_tol;
@@ -214,7 +312,7 @@ LocalSolution solve_local(const qp::LocalProblem& p, const LocalSolveOptions& op
         "{:.1e}) is too large after {} refinements",
         s.residual, options.residual_tol, s.merit, options.merit_tol, s.refinements);
   }
-  if (!s.solved) explain_singular(p, s);
+  if (!s.solved) explain_singular(p, parts, s);
   s.seconds = watch.seconds();
   return s;
 }

@@ -11,6 +11,8 @@
 
 #include <functional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "fricon/outer/outer_loop.hpp"
 #include "fricon/qp/local_problem.hpp"
@@ -20,9 +22,11 @@
 namespace fricon::driver {
 
 struct LocalSolveOptions {
-  Real qp_rtol = 1e-10;    ///< each QP to ||g^P|| <= qp_rtol ||q|| (of the scaled QP: D g^P, D q)
-  int qp_max = 100000;     ///< QP iterations per step
-  Real outer_tol = 1e-10;  ///< Coulomb: relative change of the normal reactions
+  Real qp_rtol = 1e-10;  ///< each QP to ||g^P|| <= qp_rtol ||q|| (of the scaled QP: D g^P, D q)
+  int qp_max = 100000;   ///< QP iterations per step
+  /// Successive approximations: relative change of the normal reactions (Coulomb), or of all
+  /// reactions when W is split (Coulomb or Tresca), at which they stop.
+  Real outer_tol = 1e-10;
   int outer_max = 200;
   qp::MpgpVariant variant = qp::MpgpVariant::BarzilaiBorwein;
   /// MPGP's expansion move. Default ProjectedCG: with bb the fewest products on the QPs of graded
@@ -41,7 +45,21 @@ struct LocalSolveOptions {
   std::function<Real(const VectorXd& r, const VectorXd& u)> merit;
   Real merit_tol = 1e-8;
   int refinements = 2;
+  /// W counts as symmetric when max|W_ij - W_ji| <= symmetry_tol max|W_ij| (the round-off of the
+  /// code that wrote it); a larger asymmetry is solved by the splitting W = S + A.
+  Real symmetry_tol = 1e-13;
 };
+
+/// How far W is from symmetric: max|W_ij - W_ji| and max|W_ij|, both in W's unit.
+struct Asymmetry {
+  Real max_difference = 0.0;  ///< max over i, j of |W_ij - W_ji|
+  Real max_entry = 0.0;       ///< max over i, j of |W_ij|
+  /// max_difference / max_entry (0 for W = 0).
+  Real relative() const { return max_entry > 0.0 ? max_difference / max_entry : 0.0; }
+};
+
+/// The asymmetry of a square W (InputError if W is not square).
+Asymmetry measure_asymmetry(const SparseMatrix& W);
 
 struct LocalSolution {
   bool solved = false;
@@ -52,8 +70,18 @@ struct LocalSolution {
   Real residual = 0.0;       ///< natural-map residual, relative (qp::coulomb_residual)
   Real merit = 0.0;          ///< LocalSolveOptions::merit of the answer (0 without one)
   int refinements = 0;       ///< re-solves with tighter tolerances that were needed
-  Real norm_W = 0.0;         ///< power-method estimate of ||W||
-  Real norm_W_scaled = 0.0;  ///< ... of ||D W D||, the matrix MPGP saw (norm_W without scaling)
+  Real norm_W = 0.0;         ///< power-method estimate of ||S||, S = (W + W^T)/2 (= W if symmetric)
+  Real norm_W_scaled = 0.0;  ///< ... of ||D S D||, the matrix MPGP saw (norm_W without scaling)
+  Asymmetry asymmetry;       ///< of W as given
+  /// W is not symmetric (LocalSolveOptions::symmetry_tol): solved by the splitting W = S + A, each
+  /// step's QP with Hessian S and A r of the previous step in q.
+  bool split = false;
+  Real norm_A = 0.0;  ///< power-method estimate of ||A||, A = (W - W^T)/2 (0 when not split)
+  /// Observed contraction ratio of the outer iterations (outer::OuterReport; 0 if fewer than 3).
+  Real contraction = 0.0;
+  /// The last relative change of each block of the successive approximations' state ("r_n" for
+  /// Coulomb, "A r" when W is split), in the order of the state; empty for one Tresca QP.
+  std::vector<std::pair<std::string, Real>> last_changes;
   double seconds = 0.0;
   outer::Termination termination = outer::Termination::Converged;
 };
@@ -64,6 +92,10 @@ struct LocalSolution {
 /// where that mean is not positive or not finite. diagonal_of_W: the m = 3 n_contacts diagonal
 /// entries of W (m a multiple of 3, else InputError).
 qp::BlockScaling contact_scaling(const VectorXd& diagonal_of_W);
+
+/// W's symmetry as one line of a summary: "symmetric (max|W - W^T| = ..., max|W| = ...)", or, for
+/// a split W, the same numbers, ||A||/||S|| and the last relative change of A r.
+std::string describe_symmetry(const LocalSolution& s);
 
 /// Solves the problem. Throws InputError for an inconsistent problem (sizes, negative
 /// coefficients or thresholds, non-finite entries).

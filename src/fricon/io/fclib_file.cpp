@@ -1,5 +1,7 @@
 #include "fricon/io/fclib_file.hpp"
 
+#include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <memory>
@@ -19,35 +21,78 @@ namespace fricon::io {
 
 namespace {
 
+// M of a global problem counts as symmetric when max|M - M^T| <= this times max|M|.
+constexpr Real kMassSymmetryTolerance = 1e-12;
+
+// fclib_delete_local / fclib_delete_global free the members of a problem (its info too), not the
+// problem itself, which fclib_read_local / fclib_read_global allocated.
 struct LocalDeleter {
-  void operator()(fclib_local* p) const { fclib_delete_local(p); }
+  void operator()(fclib_local* p) const {
+    fclib_delete_local(p);
+    std::free(p);
+  }
 };
 struct GlobalDeleter {
-  void operator()(fclib_global* p) const { fclib_delete_global(p); }
+  void operator()(fclib_global* p) const {
+    fclib_delete_global(p);
+    std::free(p);
+  }
 };
 
-// An FCLIB matrix (compressed columns, compressed rows or triplets) as a sparse matrix. FCLIB
-// stores it as CSparse does (the files are written through CSparse): in triplet form p holds
-// the column and i the row of each entry.
-SparseMatrix to_sparse(const fclib_matrix& a) {
+// An FCLIB matrix (compressed columns, compressed rows or triplets) as a sparse matrix, named
+// `name` in messages. Compressed forms are as fclib.h says: p the m + 1 row (nz = -2) or n + 1
+// column (nz = -1) pointers, i the column or row indices. For triplets (nz >= 0) fclib.h's comment
+// says that p holds row indices; the files and the codes that write them say the opposite, and
+// fricon follows them: p holds the COLUMN and i the ROW of each entry, CSparse's triplet layout
+// (fclib_matrix is CSparse's struct, fclib casts one to the other). The evidence is in
+// docs/dual-format.md ("FCLIB's triplet layout"): the tall H of FCLIB's global test problems has
+// i up to 389 with only 246 columns, and Siconos writes and reads FCLIB triplets as CSparse ones.
+// Entries out of range, pointers that decrease or overrun nzmax are errors naming the file.
+SparseMatrix to_sparse(const fclib_matrix& a, const char* name, const std::filesystem::path& path) {
+  const auto bad = [&](const std::string& what) {
+    return InputError(fmt::format("{}: FCLIB matrix {} ({} x {}, nz = {}): {}", path.string(), name,
+                                  a.m, a.n, a.nz, what));
+  };
+  if (a.m < 0 || a.n < 0 || a.nzmax < 0 || a.nz < -2) throw bad("invalid sizes");
   std::vector<Eigen::Triplet<Real, SparseIndex>> t;
   if (a.nz >= 0) {
+    if (a.nz > a.nzmax) throw bad(fmt::format("nz exceeds nzmax = {}", a.nzmax));
     for (int k = 0; k < a.nz; ++k) {
       if (a.i[k] < 0 || a.i[k] >= a.m || a.p[k] < 0 || a.p[k] >= a.n)
-        throw InputError(fmt::format("FCLIB matrix {} x {}: entry {} at ({}, {}) out of range", a.m,
-                                     a.n, k, a.i[k], a.p[k]));
+        throw bad(fmt::format(
+            "entry {} at row i = {}, column p = {} is out of range (triplets: p the column, i the "
+            "row, as CSparse and Siconos store them)",
+            k, a.i[k], a.p[k]));
       t.emplace_back(a.i[k], a.p[k], a.x[k]);
     }
   } else {
     const bool by_column = a.nz == -1;
-    const int outer = by_column ? a.n : a.m;
-    for (int j = 0; j < outer; ++j)
-      for (int k = a.p[j]; k < a.p[j + 1]; ++k)
+    const int outer = by_column ? a.n : a.m, inner = by_column ? a.m : a.n;
+    if (a.p[0] != 0 || a.p[outer] > a.nzmax)
+      throw bad(
+          fmt::format("pointers run from {} to {} (nzmax = {})", a.p[0], a.p[outer], a.nzmax));
+    for (int j = 0; j < outer; ++j) {
+      if (a.p[j + 1] < a.p[j])
+        throw bad(fmt::format("pointer {} decreases ({} then {})", j + 1, a.p[j], a.p[j + 1]));
+      for (int k = a.p[j]; k < a.p[j + 1]; ++k) {
+        if (a.i[k] < 0 || a.i[k] >= inner)
+          throw bad(fmt::format("entry {} has index {}, out of [0, {})", k, a.i[k], inner));
         by_column ? t.emplace_back(a.i[k], j, a.x[k]) : t.emplace_back(j, a.i[k], a.x[k]);
+      }
+    }
   }
+  for (const auto& e : t)
+    if (!std::isfinite(e.value()))
+      throw bad(fmt::format("entry ({}, {}) is not finite", e.row(), e.col()));
   SparseMatrix s(a.m, a.n);
   s.setFromTriplets(t.begin(), t.end());
   return s;
+}
+
+Real max_abs(const SparseMatrix& a) {
+  return a.nonZeros() == 0
+             ? 0.0
+             : Eigen::Map<const VectorXd>(a.valuePtr(), a.nonZeros()).cwiseAbs().maxCoeff();
 }
 
 Eigen::Map<const VectorXd> vector(const double* x, Index n) {
@@ -86,7 +131,11 @@ qp::LocalProblem from_local(const fclib_local& l, const std::filesystem::path& p
     throw InputError(fmt::format(
         "{}: FCLIB local problem with equality constraints (V, R): not supported", path.string()));
   qp::LocalProblem p;
-  p.W = to_sparse(*l.W);
+  p.W = to_sparse(*l.W, "W", path);
+  if (p.W.rows() != p.W.cols() || p.W.rows() == 0 || p.W.rows() % 3 != 0)
+    throw InputError(fmt::format(
+        "{}: FCLIB local problem: W is {} x {}; fricon needs W square of size 3 n_contacts",
+        path.string(), p.W.rows(), p.W.cols()));
   p.q = vector(l.q, p.W.rows());
   p.mu = vector(l.mu, p.W.rows() / 3);
   return p;
@@ -103,7 +152,20 @@ qp::LocalProblem from_global(const fclib_global& g, const std::filesystem::path&
   if (g.G != nullptr)
     throw InputError(fmt::format(
         "{}: FCLIB global problem with equality constraints (G): not supported", path.string()));
-  const SparseMatrix M = to_sparse(*g.M), H = to_sparse(*g.H);
+  const SparseMatrix M = to_sparse(*g.M, "M", path), H = to_sparse(*g.H, "H", path);
+  if (M.rows() != M.cols() || H.rows() != M.rows() || H.cols() == 0 || H.cols() % 3 != 0)
+    throw InputError(fmt::format(
+        "{}: FCLIB global problem: M is {} x {} and H {} x {}; fricon needs M square (n x n) "
+        "and H n x 3 n_contacts",
+        path.string(), M.rows(), M.cols(), H.rows(), H.cols()));
+  // The factorization reads one triangle of M: the other must agree with it.
+  const Real asymmetry = max_abs(SparseMatrix(M - SparseMatrix(M.transpose()))),
+             largest = max_abs(M);
+  if (asymmetry > kMassSymmetryTolerance * largest)
+    throw InputError(
+        fmt::format("{}: FCLIB global problem: M is not symmetric (max|M - M^T| = "
+                    "{:.2e}, max|M| = {:.2e})",
+                    path.string(), asymmetry, largest));
   const Eigen::SimplicialLDLT<SparseMatrix> ldlt(M);
   if (ldlt.info() != Eigen::Success || (ldlt.vectorD().array() <= 0.0).any())
     throw InputError(fmt::format("{}: FCLIB global problem: M ({} x {}) is not positive definite",

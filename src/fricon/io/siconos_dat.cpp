@@ -1,6 +1,10 @@
 #include "fricon/io/siconos_dat.hpp"
 
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
 #include <fstream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,133 +17,273 @@ namespace fricon::io {
 
 namespace {
 
-// The file's numbers, read one at a time, with messages that name the file and the item.
+// What goes wrong while reading the file one way (local or global), without the file's name.
+struct Mismatch {
+  std::string what;
+};
+
+struct Token {
+  std::string text;
+  long line = 0;
+};
+
+// The file's whitespace-separated tokens, each with its line, read one at a time; integers and
+// numbers must be whole tokens ("1.5" is not an integer, "1e3x" not a number).
 class Tokens {
  public:
-  explicit Tokens(const std::filesystem::path& path) : path_(path), in_(path) {
-    if (!in_) throw InputError(fmt::format("{}: cannot open the problem file", path.string()));
+  explicit Tokens(const std::filesystem::path& path) {
+    std::ifstream in(path);
+    if (!in) throw InputError(fmt::format("{}: cannot open the problem file", path.string()));
+    std::string line;
+    for (long n = 1; std::getline(in, line); ++n) {
+      size_t i = 0;
+      while (true) {
+        i = line.find_first_not_of(" \t\r\f\v", i);
+        if (i == std::string::npos) break;
+        const size_t j = std::min(line.find_first_of(" \t\r\f\v", i), line.size());
+        tokens_.push_back({line.substr(i, j - i), n});
+        i = j;
+      }
+    }
   }
-  long integer(const char* what) {
+  long integer(const std::string& what) {
+    const Token& t = next(what);
     long v = 0;
-    if (!(in_ >> v))
-      throw InputError(
-          fmt::format("{}: Siconos .dat file: expected an integer ({})", path_.string(), what));
+    const auto [end, ec] = std::from_chars(t.text.data(), t.text.data() + t.text.size(), v);
+    if (ec != std::errc() || end != t.text.data() + t.text.size())
+      throw Mismatch{
+          fmt::format("line {}: expected an integer ({}), found '{}'", t.line, what, t.text)};
     return v;
   }
-  Real real(const char* what) {
-    Real v = 0;
-    if (!(in_ >> v) || !std::isfinite(v))
-      throw InputError(fmt::format("{}: Siconos .dat file: expected a finite number ({})",
-                                   path_.string(), what));
+  Real real(const std::string& what) {
+    const Token& t = next(what);
+    char* end = nullptr;
+    const Real v = std::strtod(t.text.c_str(), &end);
+    if (end != t.text.c_str() + t.text.size() || !std::isfinite(v))
+      throw Mismatch{
+          fmt::format("line {}: expected a finite number ({}), found '{}'", t.line, what, t.text)};
     return v;
   }
-  VectorXd reals(Index n, const char* what) {
+  VectorXd reals(Index n, const std::string& what) {
+    require(n, what);
     VectorXd v(n);
     for (Index k = 0; k < n; ++k)
       v(k) = real(what);
     return v;
   }
-  const std::filesystem::path& path() const { return path_; }
+  // Before a block of n tokens is allocated: the file must still hold them.
+  void require(long n, const std::string& what) const {
+    if (n < 0 || static_cast<size_t>(n) > remaining())
+      throw Mismatch{fmt::format("the file ends before {}: {} {} needed, {} left", what, n,
+                                 n == 1 ? "token" : "tokens", remaining())};
+  }
+  size_t position() const { return next_; }
+  void seek(size_t position) { next_ = position; }
+  size_t remaining() const { return tokens_.size() - next_; }
+  const Token& peek() const { return tokens_[next_]; }
 
  private:
-  std::filesystem::path path_;
-  std::ifstream in_;
+  const Token& next(const std::string& what) {
+    if (next_ >= tokens_.size())
+      throw Mismatch{fmt::format("the file ends where {} was expected", what)};
+    return tokens_[next_++];
+  }
+  std::vector<Token> tokens_;
+  size_t next_ = 0;
 };
 
-// A sparse-block matrix (Siconos' SBM_write_in_file): block counts and cumulative block sizes
-// in both directions, row pointers and column indices of the blocks, then each block (its number,
-// then its values column by column).
-SparseMatrix read_sparse_block(Tokens& t, Index rows, Index cols) {
-  const long n_blocks = t.integer("number of blocks");
+// A sparse-block matrix (Siconos' SBM_write_in_file): the number of blocks; if not zero, the
+// numbers of block rows and block columns, the cumulative block sizes in each direction, the
+// counts of row pointers and of blocks, the row pointers, the blocks' columns, then each block (its
+// number, then its values column by column). Its structure is checked against the sizes.
+SparseMatrix read_sparse_block(Tokens& t, const std::string& name, Index rows, Index cols) {
+  const auto in = [&name](const char* what) { return fmt::format("{} of matrix {}", what, name); };
+  const long n_blocks = t.integer(in("number of blocks"));
   if (n_blocks == 0) return SparseMatrix(rows, cols);
-  const long n_row_blocks = t.integer("block rows"), n_col_blocks = t.integer("block columns");
-  std::vector<long> row_end(static_cast<size_t>(n_row_blocks)),
-      col_end(static_cast<size_t>(n_col_blocks));
-  for (auto& e : row_end)
-    e = t.integer("cumulative block row size");
-  for (auto& e : col_end)
-    e = t.integer("cumulative block column size");
-  const long filled1 = t.integer("row pointer count"), filled2 = t.integer("block count");
+  const long n_row_blocks = t.integer(in("block rows")),
+             n_col_blocks = t.integer(in("block columns"));
+  if (n_blocks < 0 || n_row_blocks <= 0 || n_col_blocks <= 0)
+    throw Mismatch{fmt::format("matrix {}: {} blocks in {} x {} block rows and columns", name,
+                               n_blocks, n_row_blocks, n_col_blocks)};
+  const auto cumulative = [&](long count, Index total, const char* what) {
+    t.require(count, in(what));
+    std::vector<long> end(static_cast<size_t>(count));
+    long before = 0;
+    for (auto& e : end) {
+      e = t.integer(in(what));
+      if (e <= before)
+        throw Mismatch{
+            fmt::format("matrix {}: the {} do not increase ({} after {})", name, what, e, before)};
+      before = e;
+    }
+    if (before != total)
+      throw Mismatch{fmt::format("matrix {}: the {} end at {}, not at its size {}", name, what,
+                                 before, total)};
+    return end;
+  };
+  const std::vector<long> row_end = cumulative(n_row_blocks, rows, "cumulative block row sizes");
+  const std::vector<long> col_end = cumulative(n_col_blocks, cols, "cumulative block column sizes");
+  const long filled1 = t.integer(in("row pointer count")), filled2 = t.integer(in("block count"));
+  if (filled1 != n_row_blocks + 1 || filled2 != n_blocks)
+    throw Mismatch{
+        fmt::format("matrix {}: {} row pointers and {} blocks, expected {} (block rows + 1) and {}",
+                    name, filled1, filled2, n_row_blocks + 1, n_blocks)};
+  t.require(filled1 + filled2, in("block row pointers and block columns"));
   std::vector<long> row_ptr(static_cast<size_t>(filled1)), block_col(static_cast<size_t>(filled2));
   for (auto& e : row_ptr)
-    e = t.integer("block row pointer");
-  for (auto& e : block_col)
-    e = t.integer("block column index");
+    e = t.integer(in("block row pointer"));
+  for (auto& e : block_col) {
+    e = t.integer(in("block column index"));
+    if (e < 0 || e >= n_col_blocks)
+      throw Mismatch{
+          fmt::format("matrix {}: block column index {} out of [0, {})", name, e, n_col_blocks)};
+  }
+  if (row_ptr.front() != 0 || row_ptr.back() != n_blocks)
+    throw Mismatch{fmt::format("matrix {}: the block row pointers run from {} to {}, not 0 to {}",
+                               name, row_ptr.front(), row_ptr.back(), n_blocks)};
   std::vector<Eigen::Triplet<Real, SparseIndex>> entries;
-  for (long br = 0; br + 1 < filled1; ++br)
-    for (long b = row_ptr[static_cast<size_t>(br)]; b < row_ptr[static_cast<size_t>(br) + 1]; ++b) {
-      const long bc = block_col.at(static_cast<size_t>(b));
-      const long r0 = br == 0 ? 0 : row_end.at(static_cast<size_t>(br) - 1);
-      const long c0 = bc == 0 ? 0 : col_end.at(static_cast<size_t>(bc) - 1);
-      const long nr = row_end.at(static_cast<size_t>(br)) - r0;
-      const long nc = col_end.at(static_cast<size_t>(bc)) - c0;
-      (void)t.integer("block number");
+  for (size_t br = 0; br + 1 < row_ptr.size(); ++br) {
+    if (row_ptr[br + 1] < row_ptr[br])
+      throw Mismatch{fmt::format("matrix {}: the block row pointers decrease ({} then {})", name,
+                                 row_ptr[br], row_ptr[br + 1])};
+    for (long b = row_ptr[br]; b < row_ptr[br + 1]; ++b) {
+      const auto bc = static_cast<size_t>(block_col[static_cast<size_t>(b)]);
+      const long r0 = br == 0 ? 0 : row_end[br - 1], c0 = bc == 0 ? 0 : col_end[bc - 1];
+      const long nr = row_end[br] - r0, nc = col_end[bc] - c0;
+      if (const long number = t.integer(in("block number")); number != b)
+        throw Mismatch{
+            fmt::format("matrix {}: block number {} where block {} was expected", name, number, b)};
       for (long j = 0; j < nc; ++j)
         for (long i = 0; i < nr; ++i)
-          entries.emplace_back(r0 + i, c0 + j, t.real("block entry"));
+          entries.emplace_back(r0 + i, c0 + j, t.real(in("block entry")));
     }
+  }
   SparseMatrix A(rows, cols);
   A.setFromTriplets(entries.begin(), entries.end());
   return A;
 }
 
-// A NumericsMatrix: storage, sizes, then the dense values (column-major) or the sparse blocks.
-SparseMatrix read_matrix(Tokens& t, const char* name) {
-  const long storage = t.integer("matrix storage");
-  const long rows = t.integer("matrix rows"), cols = t.integer("matrix columns");
-  if (rows <= 0 || cols <= 0)
-    throw InputError(fmt::format("{}: Siconos .dat file: matrix {} is {} x {}", t.path().string(),
-                                 name, rows, cols));
+// A NumericsMatrix (NM_write_in_file): storage, sizes, then the dense values (the sizes again,
+// then column-major) or the sparse blocks.
+SparseMatrix read_matrix(Tokens& t, const std::string& name) {
+  const auto in = [&name](const char* what) { return fmt::format("{} of matrix {}", what, name); };
+  const long storage = t.integer(in("storage"));
+  const long rows = t.integer(in("rows")), cols = t.integer(in("columns"));
+  if (rows <= 0 || cols <= 0) throw Mismatch{fmt::format("matrix {} is {} x {}", name, rows, cols)};
   if (storage == 0) {
-    (void)t.integer("dense rows");
-    (void)t.integer("dense columns");
+    const long r = t.integer(in("dense rows")), c = t.integer(in("dense columns"));
+    if (r != rows || c != cols)
+      throw Mismatch{fmt::format("matrix {} is {} x {} but its dense part says {} x {}", name, rows,
+                                 cols, r, c)};
+    t.require(rows * cols, in("dense entries"));
     MatrixXd A(rows, cols);
     for (long j = 0; j < cols; ++j)
       for (long i = 0; i < rows; ++i)
-        A(i, j) = t.real("dense entry");
+        A(i, j) = t.real(in("dense entry"));
     return A.sparseView();
   }
-  if (storage == 1) return read_sparse_block(t, rows, cols);
-  throw InputError(
-      fmt::format("{}: Siconos .dat file: matrix {} has storage {}; fricon reads "
-                  "dense (0) and sparse-block (1) matrices",
-                  t.path().string(), name, storage));
+  if (storage == 1) return read_sparse_block(t, name, rows, cols);
+  throw Mismatch{
+      fmt::format("matrix {} has storage {}; fricon reads dense (0) and sparse-block (1) matrices",
+                  name, storage)};
+}
+
+// After mu: nothing, or the one flag 0 or 1 that Siconos wrote there until 2010 (its problem's
+// "isComplete", since dropped and ignored by its readers; docs/dual-format.md). Anything else is
+// left over: the file is not what its sizes say.
+void expect_end(Tokens& t) {
+  if (t.remaining() == 1 && (t.peek().text == "0" || t.peek().text == "1"))
+    t.seek(t.position() + 1);
+  if (t.remaining() == 0) return;
+  throw Mismatch{fmt::format("{} {} left over after mu, from line {} ('{}')", t.remaining(),
+                             t.remaining() == 1 ? "token" : "tokens", t.peek().line,
+                             t.peek().text)};
+}
+
+// The rest of a local problem after its W: q, mu, the end.
+qp::LocalProblem read_local_rest(Tokens& t, const SparseMatrix& W, long nc) {
+  if (W.rows() != 3 * nc || W.cols() != 3 * nc)
+    throw Mismatch{
+        fmt::format("W is {} x {}, not 3 n_contacts = {} square", W.rows(), W.cols(), 3 * nc)};
+  qp::LocalProblem p;
+  p.W = W;
+  p.q = t.reals(3 * nc, "q (3 n_contacts numbers)");
+  p.mu = t.reals(nc, "mu (n_contacts numbers)");
+  expect_end(t);
+  return p;
+}
+
+// The rest of a global problem after its M: H, q, b, mu, the end; reduced to local form,
+// W = H^T M^-1 H and q_local = H^T M^-1 q + b (theory.md §5.6).
+qp::LocalProblem read_global_rest(Tokens& t, const SparseMatrix& M, long nc) {
+  if (M.rows() != M.cols())
+    throw Mismatch{fmt::format("M is {} x {}, not square", M.rows(), M.cols())};
+  const SparseMatrix H = read_matrix(t, "H");
+  if (H.rows() != M.rows() || H.cols() != 3 * nc)
+    throw Mismatch{fmt::format("H is {} x {}, not n x 3 n_contacts = {} x {}", H.rows(), H.cols(),
+                               M.rows(), 3 * nc)};
+  const VectorXd q = t.reals(M.rows(), "q (n numbers)");
+  const VectorXd b = t.reals(3 * nc, "b (3 n_contacts numbers)");
+  qp::LocalProblem p;
+  p.mu = t.reals(nc, "mu (n_contacts numbers)");
+  expect_end(t);
+  const Eigen::SimplicialLDLT<SparseMatrix> ldlt(M);
+  if (ldlt.info() != Eigen::Success || (ldlt.vectorD().array() <= 0.0).any())
+    throw Mismatch{fmt::format("M ({} x {}) is not positive definite", M.rows(), M.cols())};
+  const MatrixXd MinvH = ldlt.solve(MatrixXd(H));
+  const MatrixXd W = MatrixXd(H.transpose()) * MinvH;
+  p.W = (0.5 * (W + W.transpose())).sparseView();
+  p.q = H.transpose() * ldlt.solve(q) + b;
+  return p;
+}
+
+// One reading of the tokens after the first matrix: the problem, or why not.
+struct Attempt {
+  std::optional<qp::LocalProblem> problem;
+  std::string why_not;
+};
+
+template <class Read>
+Attempt attempt(Tokens& t, size_t from, Read read) {
+  t.seek(from);
+  try {
+    return {read(), {}};
+  } catch (const Mismatch& m) {
+    return {std::nullopt, m.what};
+  }
 }
 
 }  // namespace
 
 qp::LocalProblem read_siconos_dat(const std::filesystem::path& path) {
   Tokens t(path);
-  const long dim = t.integer("dimension");
-  const long nc = t.integer("number of contacts");
-  if (dim != 3 || nc <= 0)
-    throw InputError(
-        fmt::format("{}: Siconos .dat file: dimension {} with {} contacts; fricon "
-                    "solves 3D problems",
-                    path.string(), dim, nc));
-  qp::LocalProblem p;
-  p.source = path.string();
-  const SparseMatrix first = read_matrix(t, "W");
-  if (first.rows() == 3 * nc && first.cols() == 3 * nc) {  // local: W, q, mu
-    p.W = first;
-    p.q = t.reals(3 * nc, "q");
-  } else {  // global: M, H, q, b
-    const SparseMatrix H = read_matrix(t, "H");
-    const VectorXd q = t.reals(first.rows(), "q"), b = t.reals(H.cols(), "b");
-    const Eigen::SimplicialLDLT<SparseMatrix> ldlt(first);
-    if (ldlt.info() != Eigen::Success || (ldlt.vectorD().array() <= 0.0).any() ||
-        H.rows() != first.rows() || H.cols() != 3 * nc)
-      throw InputError(
-          fmt::format("{}: Siconos global problem: M ({} x {}) must be positive "
-                      "definite and H {} x {}",
-                      path.string(), first.rows(), first.cols(), first.rows(), 3 * nc));
-    const MatrixXd MinvH = ldlt.solve(MatrixXd(H));
-    const MatrixXd W = MatrixXd(H.transpose()) * MinvH;
-    p.W = (0.5 * (W + W.transpose())).sparseView();
-    p.q = H.transpose() * ldlt.solve(q) + b;
+  const auto fail = [&path](const std::string& what) {
+    return InputError(fmt::format("{}: Siconos .dat file: {}", path.string(), what));
+  };
+  try {
+    const long dim = t.integer("the dimension");
+    const long nc = t.integer("the number of contacts");
+    if (dim != 3 || nc <= 0)
+      throw fail(fmt::format("dimension {} with {} contacts; fricon solves 3D problems", dim, nc));
+    const SparseMatrix first = read_matrix(t, "W (local) or M (global)");
+    // Local (W, q, mu) or global (M, H, q, b, mu): the file says which only by how its tokens
+    // add up, so both readings are tried to the end of the file; exactly one must fit.
+    const size_t after_first = t.position();
+    const Attempt local = attempt(t, after_first, [&] { return read_local_rest(t, first, nc); });
+    const Attempt global = attempt(t, after_first, [&] { return read_global_rest(t, first, nc); });
+    if (local.problem && global.problem)
+      throw fail("ambiguous: it reads completely both as a local and as a global problem");
+    if (!local.problem && !global.problem)
+      throw fail(
+          fmt::format("neither a local problem (W, q, mu: {}) nor a global one (M, H, q, "
+                      "b, mu: {})",
+                      local.why_not, global.why_not));
+    qp::LocalProblem p = local.problem ? *local.problem : *global.problem;
+    p.source = path.string();
+    return p;
+  } catch (const Mismatch& m) {
+    throw fail(m.what);
   }
-  p.mu = t.reals(nc, "mu");
-  return p;
 }
 
 }  // namespace fricon::io

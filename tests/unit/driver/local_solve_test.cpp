@@ -107,5 +107,149 @@ TEST(SolveLocal, ScaledAndUnscaledGiveTheSameReactions) {
   }
 }
 
+// A problem W = S + A with S SPD (eigenvalues 1..10) and A antisymmetric, ||A|| = asymmetry
+// (relative to S's smallest eigenvalue, 1), whose solution r0 is known by construction: per
+// contact closed (r_n = 1, u_n = 0) or open (r = 0, u_n = 0.5), sticking (||r_t|| < bound, u_t = 0)
+// or sliding (||r_t|| = bound, u_t = -0.7 r_t); q = u0 - W r0. The bound is mu r_n (Coulomb,
+// mu = 0.3) or the threshold (Tresca, 0.3). S positive definite makes W strongly monotone and r0
+// the only solution of the Tresca problem.
+struct KnownSolution {
+  qp::LocalProblem p;
+  VectorXd r0;
+};
+
+KnownSolution nonsymmetric_problem(Index n_contacts, double asymmetry, bool coulomb,
+                                   unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> N(0.0, 1.0);
+  std::uniform_real_distribution<double> U(0.0, 1.0);
+  const Index m = 3 * n_contacts;
+  MatrixXd G(m, m), B(m, m);
+  for (Index j = 0; j < m; ++j)
+    for (Index i = 0; i < m; ++i) {
+      G(i, j) = N(rng);
+      B(i, j) = N(rng);
+    }
+  const MatrixXd Qr = Eigen::HouseholderQR<MatrixXd>(G).householderQ();
+  VectorXd lam(m);
+  for (Index i = 0; i < m; ++i)
+    lam(i) = 1.0 + 9.0 * static_cast<double>(i) / static_cast<double>(m - 1);
+  MatrixXd S = Qr * lam.asDiagonal() * Qr.transpose();
+  S = 0.5 * (S + S.transpose());
+  MatrixXd A = B - B.transpose();
+  A *= asymmetry / A.jacobiSvd().singularValues()(0);
+  const double bound = 0.3;
+  VectorXd r0 = VectorXd::Zero(m), u0 = VectorXd::Zero(m);
+  for (Index a = 0; a < n_contacts; ++a) {
+    const double angle = 2.0 * std::numbers::pi * U(rng);
+    const Eigen::Vector2d t(std::cos(angle), std::sin(angle));
+    const bool open = a % 4 == 3, slide = a % 2 == 1;
+    if (open) {
+      u0(3 * a) = 0.5;
+      continue;
+    }
+    r0(3 * a) = 1.0;
+    if (slide) {
+      r0.segment<2>(3 * a + 1) = bound * t;
+      u0.segment<2>(3 * a + 1) = -0.7 * r0.segment<2>(3 * a + 1);
+    } else {
+      r0.segment<2>(3 * a + 1) = 0.5 * bound * t;
+    }
+  }
+  KnownSolution k;
+  const MatrixXd W = S + A;
+  k.p.W = W.sparseView();
+  k.p.q = u0 - W * r0;
+  if (coulomb) {
+    k.p.mu = VectorXd::Constant(n_contacts, bound);
+  } else {
+    k.p.threshold = VectorXd::Constant(n_contacts, bound);
+  }
+  k.p.source = "nonsymmetric_problem";
+  k.r0 = r0;
+  return k;
+}
+
+TEST(MeasureAsymmetry, LargestDifferenceAndLargestEntry) {
+  MatrixXd W(3, 3);
+  W << 2, 1, 0, 0.5, -4, 0, 0, 0.25, 1;
+  const Asymmetry a = measure_asymmetry(W.sparseView());
+  EXPECT_EQ(a.max_difference, 0.5);
+  EXPECT_EQ(a.max_entry, 4.0);
+  EXPECT_EQ(a.relative(), 0.125);
+  EXPECT_THROW(measure_asymmetry(SparseMatrix(3, 2)), InputError);
+}
+
+// A non-symmetric W (issue 23: Capsules' W is not symmetric): solved by the splitting W = S + A to
+// the solution known by construction, certified against W as given.
+TEST(SolveLocal, NonSymmetricWIsSolvedToTheKnownSolution) {
+  for (const bool coulomb : {false, true}) {
+    for (unsigned seed = 1; seed <= 3; ++seed) {
+      const KnownSolution k = nonsymmetric_problem(8, 0.2, coulomb, seed);
+      const LocalSolution s = solve_local(k.p);
+      const std::string where = std::string(coulomb ? "Coulomb" : "Tresca") + " seed " +
+                                std::to_string(seed) + ": " + s.reason;
+      ASSERT_TRUE(s.solved) << where;
+      EXPECT_TRUE(s.split) << where;
+      EXPECT_LE((s.r - k.r0).norm(), 1e-7 * k.r0.norm()) << where;
+      EXPECT_LE((s.u - (k.p.W * s.r + k.p.q)).norm(), 1e-12 * s.u.norm()) << where;
+      EXPECT_NEAR(s.asymmetry.relative(),
+                  measure_asymmetry(k.p.W).max_difference / measure_asymmetry(k.p.W).max_entry,
+                  1e-15);
+    }
+  }
+}
+
+// A symmetric W (to round-off) is not split: one Tresca QP, as before.
+TEST(SolveLocal, SymmetricWIsNotSplit) {
+  const KnownSolution k = nonsymmetric_problem(8, 0.0, false, 4);
+  const LocalSolution s = solve_local(k.p);
+  ASSERT_TRUE(s.solved) << s.reason;
+  EXPECT_FALSE(s.split);
+  EXPECT_EQ(s.outer_iterations, 1);
+  EXPECT_TRUE(s.last_changes.empty());
+  EXPECT_LE((s.r - k.r0).norm(), 1e-7 * k.r0.norm());
+}
+
+// An antisymmetric part three times S's smallest eigenvalue: the splitting's iteration matrix
+// S^-1 A has eigenvalues +-3i, it does not contract, and the solve is refused with the measured
+// ratio, never called solved.
+TEST(SolveLocal, NonContractingSplittingIsRefusedWithItsMeasuredRatio) {
+  MatrixXd W = MatrixXd::Identity(3, 3);
+  W(0, 1) = 3.0;
+  W(1, 0) = -3.0;
+  qp::LocalProblem p;
+  p.W = W.sparseView();
+  p.q = (VectorXd(3) << -1.0, 0.05, 0.0).finished();
+  p.threshold = VectorXd::Constant(1, 10.0);
+  p.source = "antisymmetric";
+  const LocalSolution s = solve_local(p);
+  EXPECT_FALSE(s.solved);
+  EXPECT_TRUE(s.split);
+  EXPECT_NE(s.reason.find("observed"), std::string::npos) << s.reason;
+  EXPECT_NE(s.reason.find("splitting W = S + A"), std::string::npos) << s.reason;
+}
+
+// The spectrum behind a failed solve is that of S = (W + W^T)/2, not of one triangle of W: here
+// the lower triangle read as a symmetric matrix has the eigenvalue -1, S is positive semidefinite
+// and singular (issue 23: Capsules was called indefinite this way).
+TEST(SolveLocal, AFailedSolveReportsTheSpectrumOfTheSymmetricPart) {
+  MatrixXd W = MatrixXd::Identity(3, 3);
+  W(1, 0) = 2.0;  // S = [[1 1 0] [1 1 0] [0 0 1]]: eigenvalues 0, 1, 2
+  qp::LocalProblem p;
+  p.W = W.sparseView();
+  p.q = (VectorXd(3) << -1.0, 0.5, 0.2).finished();
+  p.threshold = VectorXd::Constant(1, 0.1);
+  p.source = "triangle";
+  LocalSolveOptions o;
+  o.qp_max = 1;  // make it fail
+  o.outer_max = 1;
+  const LocalSolution s = solve_local(p, o);
+  ASSERT_FALSE(s.solved);
+  EXPECT_EQ(s.reason.find("not positive semidefinite"), std::string::npos) << s.reason;
+  EXPECT_NE(s.reason.find("is singular (1 of its 3 eigenvalues are zero"), std::string::npos)
+      << s.reason;
+}
+
 }  // namespace
 }  // namespace fricon::driver
