@@ -1,11 +1,11 @@
 """fricon.solve from several threads at once (docs/python.md, "Threads"), and the lifetime of the
 numpy views of a Result."""
 import gc
-import pathlib
 import threading
 import weakref
 
 import numpy as np
+import pytest
 
 import fricon
 from conftest import PAPER_BRICK, ROOT
@@ -115,3 +115,43 @@ def test_the_numpy_views_keep_the_result_alive():
     del views
     gc.collect()
     assert alive() is None  # and the last one lets it go
+
+
+def test_a_second_concurrent_petsc_solve_is_refused_with_a_clear_error():
+    """PETSc is the process's: one solve with backend petsc at a time; the other waits for
+    nothing and is told so (serial solves run beside it)."""
+    inside, release = threading.Event(), threading.Event()
+
+    def F(t):  # the first solve's friction law: holds its run until the second has been refused
+        inside.set()
+        release.wait(timeout=60)
+        return np.full_like(t, 0.3)
+
+    first = fricon.load(PAPER_BRICK)
+    first.contact.friction = fricon.FrictionLaw.function(F)
+    first.solver.backend = "petsc"
+    outcome = {}
+
+    def run_first():
+        try:
+            outcome["first"] = fricon.solve(first, threads=1)
+        except Exception as e:  # noqa: BLE001 (reported by the test)
+            outcome["first"] = e
+
+    t = threading.Thread(target=run_first)
+    t.start()
+    try:
+        while not inside.wait(timeout=0.1) and t.is_alive():
+            pass
+        if isinstance(outcome.get("first"), fricon.InputError):
+            assert "built without PETSc" in str(outcome["first"])
+            pytest.skip("this fricon was built without PETSc")
+        assert inside.is_set()
+        with pytest.raises(RuntimeError, match="another solve with the PETSc backend"):
+            fricon.solve(PAPER_BRICK, set={"solver.backend": "petsc"}, threads=1)
+        assert fricon.solve(PAPER_BRICK, threads=1).converged  # serial: beside it
+    finally:
+        release.set()
+        t.join()
+    assert not isinstance(outcome["first"], Exception), outcome["first"]
+    assert outcome["first"].converged

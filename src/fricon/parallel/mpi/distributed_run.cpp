@@ -13,6 +13,7 @@
 // Every step that may fail on some ranks runs in collectively(), and rank 0 ends the others'
 // follow() with its status or its error: no rank is left waiting.
 #include <memory>
+#include <mutex>
 #include <optional>
 
 #include "fricon/core/error.hpp"
@@ -213,6 +214,16 @@ VectorXd solve_on_rank_0(const driver::Problem& problem,
 }  // namespace
 
 RunResult run_distributed(const driver::Problem& problem, const RunOptions& options) {
+  // PETSc and MPI are the process's and fricon calls them from one thread (MPI is started
+  // without thread support): a second distributed run while one runs, from another thread of
+  // the process (fricon.solve from Python threads), is refused rather than left to race.
+  static std::mutex one_run_at_a_time;
+  const std::unique_lock busy(one_run_at_a_time, std::try_to_lock);
+  if (!busy.owns_lock())
+    throw Error(
+        "solver.backend = \"petsc\": another solve with the PETSc backend is running in this "
+        "process (from another thread); PETSc runs one solve at a time per process: wait for it, "
+        "or use backend \"serial\", which runs concurrently (docs/python.md, \"Threads\")");
   initialize();
   const Stopwatch total;
   const int rank = world_rank(), size = world_size();
