@@ -1,6 +1,7 @@
 #include "fricon/io/siconos_dat.hpp"
 
 #include <fstream>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,20 @@ class Tokens {
  public:
   explicit Tokens(const std::filesystem::path& path) : path_(path), in_(path) {
     if (!in_) throw InputError(fmt::format("{}: cannot open the problem file", path.string()));
+    in_.seekg(0, std::ios::end);
+    if (const auto end = in_.tellg(); end >= 0) bytes_ = static_cast<long>(end);
+    in_.seekg(0);
+  }
+  // A count or a size of the file (issue 23, fuzzing): every item it counts is in the file, so
+  // it is at most the file's size in bytes; larger ones were allocated before being read.
+  long size(const char* what) {
+    const long v = integer(what);
+    if (v < 0 || v > bytes_)
+      throw InputError(
+          fmt::format("{}: Siconos .dat file: {} {} is not between 0 and the {} bytes "
+                      "of the file",
+                      path_.string(), what, v, bytes_));
+    return v;
   }
   long integer(const char* what) {
     long v = 0;
@@ -40,10 +55,12 @@ class Tokens {
     return v;
   }
   const std::filesystem::path& path() const { return path_; }
+  long bytes() const { return bytes_; }
 
  private:
   std::filesystem::path path_;
   std::ifstream in_;
+  long bytes_ = std::numeric_limits<long>::max();
 };
 
 // A sparse-block matrix (Siconos' SBM_write_in_file): block counts and cumulative block sizes
@@ -52,27 +69,40 @@ class Tokens {
 SparseMatrix read_sparse_block(Tokens& t, Index rows, Index cols) {
   const long n_blocks = t.integer("number of blocks");
   if (n_blocks == 0) return SparseMatrix(rows, cols);
-  const long n_row_blocks = t.integer("block rows"), n_col_blocks = t.integer("block columns");
+  const long n_row_blocks = t.size("block rows"), n_col_blocks = t.size("block columns");
   std::vector<long> row_end(static_cast<size_t>(n_row_blocks)),
       col_end(static_cast<size_t>(n_col_blocks));
   for (auto& e : row_end)
     e = t.integer("cumulative block row size");
   for (auto& e : col_end)
     e = t.integer("cumulative block column size");
-  const long filled1 = t.integer("row pointer count"), filled2 = t.integer("block count");
+  const long filled1 = t.size("row pointer count"), filled2 = t.size("block count");
   std::vector<long> row_ptr(static_cast<size_t>(filled1)), block_col(static_cast<size_t>(filled2));
   for (auto& e : row_ptr)
     e = t.integer("block row pointer");
   for (auto& e : block_col)
     e = t.integer("block column index");
+  // An index of the file into one of the arrays above (issue 23, fuzzing: .at() threw
+  // std::out_of_range, an internal error).
+  const auto at = [&t](const std::vector<long>& v, long k, const char* what) {
+    if (k < 0 || k >= static_cast<long>(v.size()))
+      throw InputError(fmt::format("{}: Siconos .dat file: {} {} is not below {}",
+                                   t.path().string(), what, k, v.size()));
+    return v[static_cast<size_t>(k)];
+  };
   std::vector<Eigen::Triplet<Real, SparseIndex>> entries;
   for (long br = 0; br + 1 < filled1; ++br)
     for (long b = row_ptr[static_cast<size_t>(br)]; b < row_ptr[static_cast<size_t>(br) + 1]; ++b) {
-      const long bc = block_col.at(static_cast<size_t>(b));
-      const long r0 = br == 0 ? 0 : row_end.at(static_cast<size_t>(br) - 1);
-      const long c0 = bc == 0 ? 0 : col_end.at(static_cast<size_t>(bc) - 1);
-      const long nr = row_end.at(static_cast<size_t>(br)) - r0;
-      const long nc = col_end.at(static_cast<size_t>(bc)) - c0;
+      const long bc = at(block_col, b, "block");
+      const long r1 = at(row_end, br, "block row"), c1 = at(col_end, bc, "block column");
+      const long r0 = br == 0 ? 0 : at(row_end, br - 1, "block row");
+      const long c0 = bc == 0 ? 0 : at(col_end, bc - 1, "block column");
+      if (r0 < 0 || r1 < r0 || r1 > rows || c0 < 0 || c1 < c0 || c1 > cols)
+        throw InputError(fmt::format(
+            "{}: Siconos .dat file: block {} (rows {}..{}, columns {}..{}) is not inside the "
+            "{} x {} matrix",
+            t.path().string(), b, r0, r1, c0, c1, rows, cols));
+      const long nr = r1 - r0, nc = c1 - c0;
       (void)t.integer("block number");
       for (long j = 0; j < nc; ++j)
         for (long i = 0; i < nr; ++i)
@@ -86,13 +116,18 @@ SparseMatrix read_sparse_block(Tokens& t, Index rows, Index cols) {
 // A NumericsMatrix: storage, sizes, then the dense values (column-major) or the sparse blocks.
 SparseMatrix read_matrix(Tokens& t, const char* name) {
   const long storage = t.integer("matrix storage");
-  const long rows = t.integer("matrix rows"), cols = t.integer("matrix columns");
+  const long rows = t.size("matrix rows"), cols = t.size("matrix columns");
   if (rows <= 0 || cols <= 0)
     throw InputError(fmt::format("{}: Siconos .dat file: matrix {} is {} x {}", t.path().string(),
                                  name, rows, cols));
   if (storage == 0) {
     (void)t.integer("dense rows");
     (void)t.integer("dense columns");
+    if (cols > t.bytes() / rows)  // issue 23, fuzzing: allocated before being read
+      throw InputError(
+          fmt::format("{}: Siconos .dat file: matrix {} ({} x {}, dense) has more "
+                      "entries than the {} bytes of the file",
+                      t.path().string(), name, rows, cols, t.bytes()));
     MatrixXd A(rows, cols);
     for (long j = 0; j < cols; ++j)
       for (long i = 0; i < rows; ++i)
@@ -111,7 +146,7 @@ SparseMatrix read_matrix(Tokens& t, const char* name) {
 qp::LocalProblem read_siconos_dat(const std::filesystem::path& path) {
   Tokens t(path);
   const long dim = t.integer("dimension");
-  const long nc = t.integer("number of contacts");
+  const long nc = t.size("number of contacts");
   if (dim != 3 || nc <= 0)
     throw InputError(
         fmt::format("{}: Siconos .dat file: dimension {} with {} contacts; fricon "
@@ -126,6 +161,9 @@ qp::LocalProblem read_siconos_dat(const std::filesystem::path& path) {
   } else {  // global: M, H, q, b
     const SparseMatrix H = read_matrix(t, "H");
     const VectorXd q = t.reals(first.rows(), "q"), b = t.reals(H.cols(), "b");
+    if (first.rows() != first.cols())  // issue 23, fuzzing: factorized out of bounds
+      throw InputError(fmt::format("{}: Siconos global problem: M is {} x {}, not square",
+                                   path.string(), first.rows(), first.cols()));
     const Eigen::SimplicialLDLT<SparseMatrix> ldlt(first);
     if (ldlt.info() != Eigen::Success || (ldlt.vectorD().array() <= 0.0).any() ||
         H.rows() != first.rows() || H.cols() != 3 * nc)
