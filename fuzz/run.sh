@@ -8,6 +8,8 @@
 #
 # Seeds: problem_file_fuzz takes examples/*.toml and tests/bad_input/*.toml (plus the same files
 # with a --set override appended, see problem_file_fuzz.cpp); the others fuzz/seeds/<reader>/.
+# FUZZ_FRESH_CORPUS=1 (make test-fuzz) starts each target from its seeds alone, in
+# build-fuzz/fresh-corpus, emptied first: a short run then costs the same every time.
 set -euo pipefail
 
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -38,9 +40,14 @@ mkdir -p "$artifacts"
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 
+corpora=$build/corpus
+if [ -n "${FUZZ_FRESH_CORPUS:-}" ]; then
+  corpora=$build/fresh-corpus
+  rm -rf "$corpora"
+fi
 for target in "${targets[@]}"; do
   reader=${target%_fuzz}
-  corpus=$build/corpus/$reader
+  corpus=$corpora/$reader
   seeds=$build/seeds/$reader
   rm -rf "$seeds"
   mkdir -p "$corpus" "$seeds"
