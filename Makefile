@@ -4,7 +4,8 @@
 #                BLAS's default threads, the numerical tests again with one BLAS thread (results
 #                must not depend on rounding), then the unit tests and a fast subset of the
 #                command-line tests under AddressSanitizer + UndefinedBehaviorSanitizer, in a
-#                build without PETSc (which also checks that such a build refuses backend petsc)
+#                build without PETSc (which also checks that such a build refuses backend petsc),
+#                then builds every fuzz target and runs each for FUZZ_SMOKE_SECONDS (make test-fuzz)
 #   make bench   build and run the benchmarks (outside the tests)
 #   Both build the Python module into $(BUILD)/python: PYTHONPATH=$(BUILD)/python /usr/bin/python3
 #   make format  clang-format every C++ file
@@ -15,7 +16,7 @@ EXAMPLE   ?= examples/paper-brick.toml
 WERROR    ?= $(if $(filter true,$(CI)),ON,OFF)
 CTEST_JOBS ?= 2
 
-.PHONY: deps build demo test test-release test-sanitize bench format clean
+.PHONY: deps build demo test test-release test-sanitize test-fuzz bench format clean
 
 deps:
 	@bash scripts/install-deps.sh
@@ -27,7 +28,7 @@ build: deps
 demo: build
 	$(BUILD)/apps/fricon/fricon solve $(EXAMPLE)
 
-test: test-release test-sanitize
+test: test-release test-sanitize test-fuzz
 
 test-release: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(CTEST_JOBS)
@@ -66,9 +67,15 @@ format:
 clean:
 	rm -rf $(BUILD) $(SAN_BUILD) build-fuzz
 
-# make fuzz    fuzz the problem-file reader with libFuzzer (clang, ASan + UBSan) for FUZZ_SECONDS,
-#              in its own build (build-fuzz); not part of the tests. See docs/fuzzing.md.
+# make fuzz    fuzz the readers (problem file, Siconos .dat, dual) with libFuzzer (clang, ASan +
+#              UBSan) for FUZZ_SECONDS each, in their own build (build-fuzz). See docs/fuzzing.md.
+# make test-fuzz, part of make test: the same build, each target FUZZ_SMOKE_SECONDS from its seeds
+#              only (a fresh corpus), so that the fuzz build and targets cannot break unseen.
 FUZZ_SECONDS ?= 60
+FUZZ_SMOKE_SECONDS ?= 5
 .PHONY: fuzz
 fuzz: deps
 	bash fuzz/run.sh $(FUZZ_SECONDS)
+
+test-fuzz: deps
+	FUZZ_FRESH_CORPUS=1 bash fuzz/run.sh $(FUZZ_SMOKE_SECONDS)

@@ -355,10 +355,12 @@ def solve(problem, set=None, progress=None, threads=None):
               applied to a copy (the problem itself is not changed)
     progress: called with each outer iteration (an OuterIteration: k, err, qp_iterations,
               qp_products, qp_rel_gp, seconds); an exception it raises stops the run
-    threads:  BLAS threads (default: as `fricon solve`, the cores the machine's load leaves)
+    threads:  BLAS threads (default: as `fricon solve`, the cores the machine's load leaves);
+              one count per process: solves running at once share the first one's
 
-    The GIL is released while the library runs; Ctrl-C stops the run at its next QP step and
-    raises KeyboardInterrupt. A run that did not converge returns a Result with
+    The GIL is released while the library runs, so solves from several threads run at once
+    (docs/python.md, "Threads"); Ctrl-C stops the run at its next QP step and raises
+    KeyboardInterrupt. A run that did not converge returns a Result with
     converged == False and the reason in .message (as `fricon solve` exits with code 2); bad
     input raises fricon.InputError, an ill-posed problem fricon.NumericalError.
     """

@@ -1,6 +1,8 @@
 // fricon.solve's engine: the run on a worker thread while the interpreter's thread waits without
 // the GIL, calls the progress callback with each outer iteration and checks for Ctrl-C; and the
-// Result with its arrays as numpy views of the run's own memory.
+// Result with its arrays as numpy views of the run's own memory. Several solves may run at once
+// from several Python threads: what the library keeps per process (Gmsh's state, the BLAS thread
+// count) is guarded there (gmsh_file.hpp, linalg::RunThreads); docs/python.md, "Threads".
 
 #include <atomic>
 #include <chrono>
@@ -53,7 +55,6 @@ struct Exchange {
 };
 
 PyResult solve(const PyProblem& p, const py::object& progress, std::optional<int> threads) {
-  linalg::choose_threads(threads.value_or(0));
   Exchange exchange;
   std::atomic<bool> stop{false};
   driver::RunOptions options;
@@ -72,6 +73,9 @@ PyResult solve(const PyProblem& p, const py::object& progress, std::optional<int
     const py::gil_scoped_release release;
     worker = std::thread([&] {
       try {
+        // The BLAS threads are the process's: set by the first of concurrent solves, shared by
+        // the others (linalg::RunThreads; docs/python.md, "Threads").
+        const linalg::RunThreads blas_threads(threads.value_or(0));
         result.emplace(driver::run(problem, options));
       } catch (...) {
         failure = std::current_exception();

@@ -63,6 +63,8 @@ class Lines {
   const std::string& file() const { return file_; }
   /// Line number of the line returned last.
   int line() const { return line_; }
+  /// Bytes of the text after the line returned last.
+  std::size_t remaining() const { return text_.size() - pos_; }
 
   /// The first physical line (the magic line), without its line break.
   std::string_view first() {
@@ -301,6 +303,12 @@ qp::DualProblem read_dual(const std::filesystem::path& path) {
   }
 
   expect_header(in, "Q", {n, n});
+  // Each of Q's n rows of n numbers takes at least 2n bytes (a digit and a blank or line break
+  // per number): a file too short for them is refused before Q is allocated (issue 23: 200 kB
+  // declaring 20000 patches allocated 29 GB, std::bad_alloc).
+  if (in.remaining() / static_cast<std::size_t>(n) < 2 * static_cast<std::size_t>(n))
+    in.fail(fmt::format("the {} rows of Q need at least {} bytes, the file has {} left", n,
+                        2 * n * n, in.remaining()));
   d.Q.resize(n, n);
   std::vector<int> q_line(static_cast<std::size_t>(n));  // file line of each row of Q
   {

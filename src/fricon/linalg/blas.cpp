@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <mutex>
 #include <string>
 #include <thread>
 
@@ -105,6 +106,30 @@ void choose_threads(int requested) {
   } else if (std::getenv("OPENBLAS_NUM_THREADS") == nullptr) {
     set_threads(threads_for_load());
   }
+}
+
+namespace {
+// The runs that hold a RunThreads, guarded by run_threads_mutex().
+int active_runs = 0;
+std::mutex& run_threads_mutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+}  // namespace
+
+RunThreads::RunThreads(int requested) {
+  const std::lock_guard lock(run_threads_mutex());
+  if (active_runs == 0) {
+    choose_threads(requested);
+    chose_ = true;
+  }
+  ++active_runs;
+  count_ = threads();
+}
+
+RunThreads::~RunThreads() {
+  const std::lock_guard lock(run_threads_mutex());
+  --active_runs;
 }
 
 void solve_lower(ConstBlockRef L, BlockRef X, bool transpose) {

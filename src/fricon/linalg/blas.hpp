@@ -30,6 +30,31 @@ int threads_for_load();
 /// it when that variable is set, else threads_for_load(). Sets them (set_threads).
 void choose_threads(int requested);
 
+/// The BLAS threads of one run, held for the run's lifetime, for callers that may run several
+/// solves at once (fricon.solve from Python threads, docs/python.md). OpenBLAS has one thread count
+/// for the whole process (Debian 12's 0.3.21 has no count per calling thread), and changing it
+/// while another thread is inside a BLAS call races with that call. So only the first of
+/// overlapping runs sets it: constructing a RunThreads while no other exists calls
+/// choose_threads(requested); while one exists, a new run shares the count in force, whatever it
+/// requested (count() says which). Thread-safe.
+class RunThreads {
+ public:
+  /// requested: as choose_threads (> 0: that many; else OPENBLAS_NUM_THREADS or the load's).
+  explicit RunThreads(int requested);
+  ~RunThreads();
+  RunThreads(const RunThreads&) = delete;
+  RunThreads& operator=(const RunThreads&) = delete;
+
+  /// The BLAS threads of this run (threads() once it was set up).
+  int count() const { return count_; }
+  /// Whether this run set the count (no other run held one), rather than sharing it.
+  bool chose() const { return chose_; }
+
+ private:
+  int count_ = 1;
+  bool chose_ = false;
+};
+
 /// X <- L^-1 X, or L^-T X when `transpose`. L is square and lower triangular (its strict upper
 /// part is not read), X has L.rows() rows.
 void solve_lower(ConstBlockRef L, BlockRef X, bool transpose = false);

@@ -1,12 +1,14 @@
 #include "fricon/linalg/cholesky.hpp"
 
 #include <algorithm>
+#include <mutex>
 #include <optional>
 
 #include <cholmod.h>
 #include <fmt/format.h>
 
 #include "fricon/core/error.hpp"
+#include "fricon/core/shared_random.hpp"
 #include "fricon/linalg/blas.hpp"
 
 namespace fricon::linalg {
@@ -134,8 +136,14 @@ std::vector<SuiteSparse_long> compressed_nested_dissection(const Pattern& a, cho
   G.packed = 1;
   std::vector<SuiteSparse_long> order(static_cast<size_t>(nv)), cparent(static_cast<size_t>(nv)),
       cmember(static_cast<size_t>(nv));
-  if (nv > 0 && cholmod_l_nested_dissection(&G, nullptr, 0, order.data(), cparent.data(),
-                                            cmember.data(), c) < 0)
+  // METIS seeds and draws from the C library's random sequence (core/shared_random.hpp).
+  std::unique_lock random_lock(shared_random_mutex());
+  const SuiteSparse_long n_components =
+      nv > 0 ? cholmod_l_nested_dissection(&G, nullptr, 0, order.data(), cparent.data(),
+                                           cmember.data(), c)
+             : 0;
+  random_lock.unlock();
+  if (n_components < 0)
     throw NumericalError(fmt::format(
         "nested dissection ordering of K failed (CHOLMOD status {}, {} vertices)", c->status, nv));
   std::vector<SuiteSparse_long> perm;

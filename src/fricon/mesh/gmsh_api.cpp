@@ -61,9 +61,14 @@ struct Functions {
 #undef FRICON_GMSH_POINTER
 };
 
+// Gmsh's internal function that empties the buffer of its .geo lexer (Gmsh.l: gmsh_yyflush), by
+// its mangled name (g++'s ABI); not part of the API, so a library without it is still used.
+constexpr const char* kGeoLexerFlushSymbol = "_Z12gmsh_yyflushv";
+
 struct Library {
   Functions functions;
-  std::string error;  // why it could not be loaded; "" when it is
+  void (*flush_geo_lexer)() = nullptr;  // kGeoLexerFlushSymbol, or null when absent
+  std::string error;                    // why it could not be loaded; "" when it is
 };
 
 std::string dl_message() {
@@ -107,6 +112,7 @@ Library load(const std::string& file) {
   }
   FRICON_GMSH_C_FUNCTIONS(FRICON_GMSH_RESOLVE)
 #undef FRICON_GMSH_RESOLVE
+  if (!missing) resolve(handle, kGeoLexerFlushSymbol, library.flush_geo_lexer);
   if (missing) {
     library.functions = {};
     library.error = fmt::format("{} is not Gmsh's library of API {}: it has no function {} ({})",
@@ -223,6 +229,14 @@ const std::string& load_error() {
 
 std::string try_load(const std::string& file) {
   return load(file).error;
+}
+
+bool flush_geo_parser() {
+  const Library& library = shared_library();
+  if (!library.error.empty()) throw Error(library.error);
+  if (!library.flush_geo_lexer) return false;
+  library.flush_geo_lexer();
+  return true;
 }
 
 // @sect: the API. Gmsh's C API takes input arrays through non-const pointers that it only reads.

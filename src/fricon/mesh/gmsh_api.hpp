@@ -9,8 +9,8 @@
 // std::vector and std::string outputs; gmsh_file.cpp calls them through the alias
 // `namespace gmsh = gmsh_api`. A call that Gmsh reports as failed (its `ierr` set) throws
 // CallError. Every call first loads the library if needed and throws fricon::Error (with
-// load_error()'s text) if it cannot be loaded. Gmsh's global state is not thread-safe: see
-// gmsh_file.hpp.
+// load_error()'s text) if it cannot be loaded. Gmsh's global state is not thread-safe: its
+// users hold the lock of gmsh_file.cpp (gmsh_file.hpp).
 
 #include <stdexcept>
 #include <string>
@@ -40,6 +40,14 @@ const std::string& load_error();
 /// without touching the library the other functions use: "" if it loads and has every function
 /// (it then stays loaded), else why not. For tests.
 std::string try_load(const std::string& file);
+
+/// Empties the input buffer of Gmsh's .geo parser. Gmsh 4.8 keeps there the rest of a .geo file
+/// whose parse failed (its API throws out of the parser before the buffer is flushed), and reads
+/// it as the start of the next file it parses in the process: after `this is not Gmsh;` the next
+/// file fails with "syntax error (;)". Calls Gmsh's internal gmsh_yyflush, which is not part of
+/// its API: returns false, doing nothing, when the library has no such function. Throws as the
+/// functions below when libgmsh cannot be loaded. Not thread-safe (gmsh_file.hpp).
+bool flush_geo_parser();
 
 using vectorpair = std::vector<std::pair<int, int>>;
 

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <functional>
 #include <map>
+#include <mutex>
 #include <set>
 #include <string>
 #include <system_error>
@@ -17,6 +18,7 @@
 #include <fmt/format.h>
 
 #include "fricon/core/error.hpp"
+#include "fricon/core/shared_random.hpp"
 #include "fricon/mesh/gmsh_api.hpp"
 
 namespace fricon::mesh {
@@ -61,12 +63,24 @@ std::string current_exception_message() {
   }
 }
 
-// Gmsh's global state for the lifetime of the object: initialised without the user's
-// configuration files and silent, finalised on destruction.
+// Gmsh's global state (one model, its options, its logger) is the process's: the lock of every
+// session, held from before gmsh::initialize to after gmsh::finalize, so that sessions of
+// several threads (fricon.solve from Python threads, docs/python.md) run one after another.
+std::mutex& gmsh_state_mutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+
+// Gmsh's global state for the lifetime of the object, for this thread alone: the locks taken
+// (waiting for other threads' sessions and METIS calls to end), then Gmsh initialised without the
+// user's configuration files and silent; finalised on destruction, then the lock released.
 class GmshSession {
  public:
-  explicit GmshSession(std::string source) : source_(std::move(source)) {
+  explicit GmshSession(std::string source)
+      : lock_(gmsh_state_mutex()), random_lock_(shared_random_mutex()), source_(std::move(source)) {
     gmsh::initialize(0, nullptr, /*readConfigFiles=*/false);
+    // What an earlier session's failed .geo left in the parser (gmsh_api.hpp).
+    gmsh_api::flush_geo_parser();
     gmsh::option::setNumber("General.Terminal", 0);
     gmsh::logger::start();
   }
@@ -110,6 +124,10 @@ class GmshSession {
     n_log_seen_ = log.size();
     return last;
   }
+  // First members: taken first, released last. Gmsh's mesher seeds and draws from the C
+  // library's random sequence (core/shared_random.hpp).
+  std::unique_lock<std::mutex> lock_;
+  std::unique_lock<std::mutex> random_lock_;
   size_t n_log_seen_ = 0;
   std::string source_;
 };

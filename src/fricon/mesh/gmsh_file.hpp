@@ -11,8 +11,11 @@
 //     is the face's entity (so `[contact] patches = "mesh"` makes each surface one patch).
 // Coordinates are taken as they are in the file, in metres.
 //
-// Gmsh keeps global state: these functions initialise and finalise it themselves and must not be
-// called while the caller uses the Gmsh API, nor from two threads at once.
+// Gmsh keeps global state: these functions initialise and finalise it themselves. They may be
+// called from several threads at once: each holds a process-wide lock from Gmsh's initialisation
+// to its finalisation, so the Gmsh parts of concurrent calls run one after another (the rest of a
+// run does not wait). They must not be called while the caller itself uses the same libgmsh
+// outside them (e.g. Gmsh's own Python module in the same process), which the lock cannot see.
 
 #include <filesystem>
 #include <optional>

@@ -9,6 +9,7 @@
 #include <map>
 #include <set>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "fricon/core/error.hpp"
@@ -238,6 +239,48 @@ TEST(GmshFile, GeoBoxIsMeshedWithOutwardFaces) {
 TEST(GmshFile, SizeFactorRefines) {
   const fs::path geo = write_file("box_factor.geo", kBoxGeo);
   EXPECT_GT(read_gmsh(geo, 0.5).n_tets(), read_gmsh(geo, 1.0).n_tets());
+}
+
+// Gmsh 4.8 kept the rest of a .geo file it failed to parse and read it as the start of the next
+// one: the box then failed with "syntax error (;)" (issue 23; gmsh_api::flush_geo_parser).
+TEST(GmshFile, AGeoFileThatFailedToParseDoesNotSpoilTheNext) {
+  for (const char* bad : {"this is not Gmsh;\n", "this is not Gmsh's language;\n"}) {
+    expect_input_error([&] { read_gmsh(write_file("bad.geo", bad)); }, {"bad.geo"});
+    EXPECT_NEAR(total_volume(read_gmsh(write_file("box_after_bad.geo", kBoxGeo))), 2.0, 1e-12)
+        << "after " << bad;
+  }
+}
+
+// Gmsh's state is the process's: threads that read .geo files at once took turns in it before
+// issue 23 only by chance (they crashed, or read each other's models). Each now gets the mesh
+// it would get alone, and one thread's bad file is its own error.
+TEST(GmshFile, ThreadsReadingGeoFilesAtOnceGetTheMeshOfOne) {
+  const fs::path box = write_file("box_threads.geo", kBoxGeo);
+  const fs::path bad = write_file("bad_threads.geo", "this is not Gmsh;\n");
+  const TetMesh alone = read_gmsh(box);
+  constexpr int kRounds = 4;
+  constexpr int kThreads = 3;  // two read the box, the last the bad file
+  for (int round = 0; round < kRounds; ++round) {
+    std::vector<TetMesh> meshes(kThreads);
+    std::vector<std::string> errors(kThreads);
+    std::vector<std::thread> threads;
+    for (int k = 0; k < kThreads; ++k)
+      threads.emplace_back([&, k] {
+        try {
+          meshes[k] = read_gmsh(k + 1 < kThreads ? box : bad);
+        } catch (const std::exception& e) {
+          errors[k] = e.what();
+        }
+      });
+    for (auto& t : threads)
+      t.join();
+    for (int k = 0; k + 1 < kThreads; ++k) {
+      EXPECT_EQ(errors[k], "") << "round " << round;
+      EXPECT_EQ(meshes[k].n_tets(), alone.n_tets()) << "round " << round;
+      EXPECT_NEAR(total_volume(meshes[k]), 2.0, 1e-12) << "round " << round;
+    }
+    EXPECT_NE(errors.back().find("bad_threads.geo"), std::string::npos) << errors.back();
+  }
 }
 
 TEST(GmshFile, SizeFactorOnlyForGeo) {

@@ -16,6 +16,7 @@
 // alone (one inside a step of collective calls: the partition, MUMPS, a distributed solve)
 // ends the job with MPI_Abort, exit code 3 (or_abort()).
 #include <memory>
+#include <mutex>
 #include <optional>
 
 #include "fricon/core/error.hpp"
@@ -317,6 +318,16 @@ RunResult run_on_rank(const driver::Problem& problem, const RunOptions& options,
 }  // namespace
 
 RunResult run_distributed(const driver::Problem& problem, const RunOptions& options) {
+  // PETSc and MPI are the process's and fricon calls them from one thread (MPI is started
+  // without thread support): a second distributed run while one runs, from another thread of
+  // the process (fricon.solve from Python threads), is refused rather than left to race.
+  static std::mutex one_run_at_a_time;
+  const std::unique_lock busy(one_run_at_a_time, std::try_to_lock);
+  if (!busy.owns_lock())
+    throw Error(
+        "solver.backend = \"petsc\": another solve with the PETSc backend is running in this "
+        "process (from another thread); PETSc runs one solve at a time per process: wait for it, "
+        "or use backend \"cholmod\", which runs concurrently (docs/python.md, \"Threads\")");
   initialize();
   // The other ranks would wait forever for a rank that leaves with an error they do not raise
   // too: what the steps agree on (Agreed) passes, anything else ends the job. The factor

@@ -1,0 +1,131 @@
+// io: what fuzzing the readers of other programs' files found (docs/fuzzing.md, "Findings so
+// far"), one reproducer each. Every input must be refused with an InputError that names what is
+// wrong; before the fixes each one escaped as another exception (an internal error, exit code 3),
+// allocated gigabytes, or read or wrote outside an array (under AddressSanitizer: a report).
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <string>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "fricon/core/error.hpp"
+#include "fricon/io/dual_dump.hpp"
+#include "fricon/io/siconos_dat.hpp"
+
+namespace fricon::io {
+namespace {
+
+using ::testing::HasSubstr;
+namespace fs = std::filesystem;
+
+class ReaderFuzzFinding : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() /
+           (std::string("fricon_fuzz_finding_") + info->name() + "_" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  /// The message of the InputError that `read` throws on a file holding `text`, or what else
+  /// happened.
+  std::string error_of(const std::function<void(const fs::path&)>& read,
+                       const std::string& text) const {
+    const fs::path p = dir_ / "input";
+    std::ofstream(p, std::ios::binary) << text;
+    try {
+      read(p);
+    } catch (const InputError& e) {
+      return e.what();
+    } catch (const std::exception& e) {
+      return std::string("not an InputError: ") + e.what();
+    }
+    return "read without an error";
+  }
+  std::string siconos(const std::string& text) const {
+    return error_of([](const fs::path& p) { (void)read_siconos_dat(p); }, text);
+  }
+  std::string dual(const std::string& text) const {
+    return error_of([](const fs::path& p) { (void)read_dual(p); }, text);
+  }
+
+  fs::path dir_;
+};
+
+// The header of a local problem of 2 contacts with W 6 x 6 in sparse-block storage (1), as
+// fuzz/seeds/siconos_dat/local-sbm.dat: dimension, contacts, storage, rows, columns, blocks.
+const std::string kSbmHeader = "3\n2\n1\n6\n6\n2\n";
+
+// Counts of the sparse-block header sized vectors before anything was read: a negative one threw
+// std::length_error, a large one allocated 8 bytes per unit (32 GiB here, std::bad_alloc).
+TEST_F(ReaderFuzzFinding, SiconosBlockCountsAreBoundedByTheFile) {
+  EXPECT_THAT(siconos(kSbmHeader + "-1\n2\n3 6\n"), HasSubstr("block rows -1 is not between 0"));
+  EXPECT_THAT(siconos(kSbmHeader + "2\n4294967296\n3 6\n"),
+              HasSubstr("block columns 4294967296 is not between 0 and the"));
+  EXPECT_THAT(siconos(kSbmHeader + "2\n2\n3 6\n3 6\n4294967296\n"),
+              HasSubstr("row pointer count 4294967296"));
+}
+
+// Block indices of the file were looked up with .at(), whose std::out_of_range escaped. Block 0
+// (rows and columns 0..3) is valid; the second block, or its column, is not.
+TEST_F(ReaderFuzzFinding, SiconosBlockIndicesOutOfRangeAreInputErrors) {
+  const std::string sizes = "2\n2\n3 6\n3 6\n3\n2\n", block0 = "0\n1 0 0 0 1 0 0 0 1\n";
+  EXPECT_THAT(siconos(kSbmHeader + sizes + "0 1 2\n0 2\n" + block0),
+              HasSubstr("block column 2 is not below 2"));
+  EXPECT_THAT(siconos(kSbmHeader + sizes + "0 1 5\n0 1\n" + block0 + "1\n1 0 0 0 1 0 0 0 1\n"),
+              HasSubstr("block 2 is not below 2"));
+  EXPECT_THAT(siconos(kSbmHeader + sizes + "0 1 2\n0 -9223372036854775808\n" + block0),
+              HasSubstr("block column -9223372036854775808 is not below 2"));
+}
+
+// A block whose cumulative sizes reach past the matrix (columns 0..5 of a 4 x 4 M) was written
+// outside Eigen's arrays by setFromTriplets (AddressSanitizer: heap-buffer-overflow).
+TEST_F(ReaderFuzzFinding, SiconosBlocksOutsideTheMatrixAreRefused) {
+  std::string text = "3\n1\n1\n4\n4\n1\n1\n1\n4\n5\n2\n1\n0 1\n0\n0\n";
+  for (int k = 0; k < 20; ++k)
+    text += k % 5 == k / 5 ? "2 " : "0 ";
+  text += "\n0\n4\n3\n4 3\n1 0 0 0 0 1 0 0 0 0 1 0\n1 2 3 4\n0 0 0\n0.5\n";
+  EXPECT_THAT(siconos(text),
+              HasSubstr("block 0 (rows 0..4, columns 0..5) is not inside the 4 x 4 matrix"));
+}
+
+// A matrix was allocated from its header: 100000 x 100000 dense is 80 GB (std::bad_alloc). Its
+// sizes are now bounded by the file's bytes, and so are its entries.
+TEST_F(ReaderFuzzFinding, SiconosDenseMatrixLargerThanTheFileIsRefused) {
+  EXPECT_THAT(siconos("3\n1\n0\n100000\n100000\n100000 100000\n1\n"),
+              HasSubstr("matrix rows 100000 is not between 0 and the 36 bytes of the file"));
+  EXPECT_THAT(siconos("3\n1\n0\n1000\n1000\n1000 1000\n1\n" + std::string(1000, '\n')),
+              HasSubstr("matrix W (1000 x 1000, dense) has more entries than the 1028 bytes"));
+}
+
+// A global problem's M that is not square was factorized all the same, out of bounds
+// (AddressSanitizer: heap-buffer-overflow in SimplicialLDLT).
+TEST_F(ReaderFuzzFinding, SiconosGlobalProblemWithNonSquareMIsRefused) {
+  std::string text = "3\n1\n0\n4\n5\n4 5\n";
+  for (int k = 0; k < 20; ++k)
+    text += k % 5 == k / 5 ? "2 " : "0 ";
+  text += "\n0\n4\n3\n4 3\n1 0 0 0 0 1 0 0 0 0 1 0\n1 2 3 4\n0 0 0\n0.5\n";
+  EXPECT_THAT(siconos(text), HasSubstr("M is 4 x 5, not square"));
+}
+
+// 200 kB declaring 20000 patches made the reader allocate Q, 60000 x 60000 (29 GB), before
+// reading a row of it (std::bad_alloc). Found by review while writing dual_fuzz: the fuzzer's
+// inputs (16 kB at most) cannot declare enough rows.
+TEST_F(ReaderFuzzFinding, DualFileTooShortForQIsRefusedBeforeAllocatingIt) {
+  constexpr int kPatches = 20000;
+  std::string text = std::string(kDualMagic) + "\nsource big\npatches " + std::to_string(kPatches) +
+                     "\npatch_data " + std::to_string(kPatches) + " 5\n";
+  for (int i = 0; i < kPatches; ++i)
+    text += "1 0 0 1 1\n";
+  text += "Q 60000 60000\n1 0 0\nend\n";
+  EXPECT_THAT(dual(text), HasSubstr("the 60000 rows of Q need at least 7200000000 bytes"));
+}
+
+}  // namespace
+}  // namespace fricon::io
