@@ -13,6 +13,12 @@ const Option* OptionTable::find(std::string_view key) const {
   return nullptr;
 }
 
+std::string OptionTable::doc_id() const {
+  if (name.empty()) return "top";
+  if (expected.find("[[") != std::string::npos) return fmt::format("[[{}]]", name);
+  return name;
+}
+
 std::vector<std::string_view> OptionTable::keys() const {
   std::vector<std::string_view> out;
   for (const Option& o : options)
@@ -68,7 +74,7 @@ namespace {
 std::string number_text(double v, bool integer) {
   if (integer) return fmt::format("{}", static_cast<long long>(v));
   const double a = std::abs(v);
-  if (v != 0.0 && (a >= 1e5 || a < 1e-3)) {
+  if (v != 0.0 && (a >= 1e4 || a < 1e-3)) {
     std::string s = fmt::format("{:.6e}", v);  // 2.119000e+11 -> 2.119e11
     const auto e = s.find('e');
     std::string mantissa = s.substr(0, e), exponent = s.substr(e + 1);
@@ -136,17 +142,30 @@ std::string default_text(const Option& o, const void* section) {
       v);
 }
 
-std::string valid_text(const Option& o) {
+/// "with `kind = "brick"`" for a key that only some choices of the selector use; "" otherwise.
+std::string selector_text(const OptionTable& table, const Option& o) {
+  if (std::find(table.selected.begin(), table.selected.end(), o.key) == table.selected.end())
+    return {};
+  std::string choices;
+  for (const auto& [spelling, keys] : table.selector_choices)
+    if (std::find(keys.begin(), keys.end(), o.key) != keys.end())
+      choices += fmt::format("{}`\"{}\"`", choices.empty() ? "" : " or ", spelling);
+  return fmt::format("with {} = {}", table.selector, choices);
+}
+
+std::string valid_text(const OptionTable& table, const Option& o) {
   std::string s;
+  const std::string when = o.used_doc.empty() ? selector_text(table, o) : std::string(o.used_doc);
   const auto add = [&s](std::string_view part) {
     if (part.empty()) return;
     s += s.empty() ? "" : "; ";
     s += part;
   };
-  if (o.required)
-    add(o.used_doc.empty() ? "**required**" : fmt::format("**required** {}", o.used_doc));
-  else
-    add(o.used_doc);
+  if (o.required) {
+    add(when.empty() ? "**required**" : fmt::format("**required** {}", when));
+  } else {
+    add(when.empty() ? "" : fmt::format("only {}", when));
+  }
   switch (o.type) {
     case OptionType::Real:
     case OptionType::Integer: {
@@ -188,7 +207,7 @@ std::string option_markdown(const OptionTable& table) {
     const std::string unit =
         o.is_number() && !o.range.unit.empty() ? std::string(o.range.unit) : std::string("—");
     s += fmt::format("| `{}` | {} | {} | {} | {} |\n", o.key, type_text(o), unit,
-                     default_text(o, defaults.get()), valid_text(o));
+                     default_text(o, defaults.get()), valid_text(table, o));
   }
   return s;
 }

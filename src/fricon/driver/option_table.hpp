@@ -88,7 +88,7 @@ struct Option {
   /// Whether the section's current choices use the key, and if not, the message why not
   /// (e.g. "only used by patches = \"agglomerate\" (patches is \"mesh\")"). Null: always used.
   std::function<std::optional<std::string>(const void* section)> unused;
-  std::string_view used_doc;  ///< when it is used, for the docs ("only with `\"gmsh\"`")
+  std::string_view used_doc;  ///< when it is used, for the docs ("with `backend = \"petsc\"`")
 
   std::function<OptionValue(const void* section)> get;
   std::function<void(void* section, const OptionValue&)> set;
@@ -163,6 +163,9 @@ struct OptionTable {
   std::function<std::shared_ptr<void>()> make;
 
   const Option* find(std::string_view key) const;
+  /// How docs/problem-file.md and `fricon keys` name the section: "top", "mesh",
+  /// "[[dirichlet]]" (an entry of an array of tables), "contact.friction", ...
+  std::string doc_id() const;
   /// Every key, in table order (the order of the docs and of "takes:" in messages).
   std::vector<std::string_view> keys() const;
   /// Whether the section's current selector choice uses `key` (true for keys no choice governs);

@@ -337,7 +337,7 @@ const OptionTable& contact_table() {
              return fmt::format("only used by patches = \"agglomerate\" (patches is \"{}\")",
                                 enum_name(c.patches));
            },
-           "only with `patches = \"agglomerate\"`");
+           "with `patches = \"agglomerate\"`");
     b.table("friction", &ContactOptions::friction, friction_table,
             "the coefficient of friction: see `[contact.friction]`");
     return b.build();
@@ -490,7 +490,7 @@ const OptionTable& solver_table() {
                  "limits the MUMPS factorization of backend = \"petsc\" (backend is \"{}\")",
                  enum_name(s.backend));
            },
-           "only with `backend = \"petsc\"`");
+           "with `backend = \"petsc\"`");
     b.check(check_solver);
     return b.build();
   }();

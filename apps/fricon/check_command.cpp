@@ -1,0 +1,61 @@
+// fricon check PROBLEM.toml: read and validate a problem, build its mesh and contact
+// discretization, print the sizes and the effective problem; nothing is solved.
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "command.hpp"
+#include "fricon/contact/friction_law.hpp"
+#include "fricon/driver/model.hpp"
+#include "fricon/io/problem_file.hpp"
+
+namespace fricon::app {
+
+namespace {
+
+int check(const std::string& file, const std::vector<std::string>& sets) {
+  const driver::Problem problem = io::read_problem(file, sets);
+  const mesh::TetMesh mesh = driver::make_mesh(problem);
+  (void)driver::make_materials(problem, mesh);  // every region has its material
+  const fe::DofMap dofs = driver::make_dofs(problem, mesh);
+  std::optional<contact::ContactDiscretization> disc;
+  if (problem.contact) disc = driver::discretize_contact(problem, mesh, dofs);
+  fmt::print("{}: valid\n", file);
+  fmt::print("  mesh       {} nodes, {} tetrahedra, {} regions, {} boundary triangles (tags: {})\n",
+             mesh.n_nodes(), mesh.n_tets(), mesh.n_regions(), mesh.n_faces(), mesh.tag_list());
+  fmt::print("  unknowns   n_primal = {}\n", dofs.n_free());
+  if (disc) {
+    fmt::print(
+        "  contact    '{}': {} surface nodes ({} contact nodes), {} patches ({}), n_dual = {}, "
+        "stability sigma_min/sigma_max(B) = {:.3g}, initial gap {:.3g} to {:.3g} m\n",
+        disc->surface.tag, disc->surface.n_nodes(), disc->surface.n_contact_nodes(),
+        disc->n_patches(), enum_name(problem.contact->patches), disc->n_dual(),
+        disc->stability.ratio, disc->gap.minCoeff(), disc->gap.maxCoeff());
+    if (!disc->partition_note.empty()) fmt::print("  partition  {}\n", disc->partition_note);
+    fmt::print("  friction   {}\n",
+               contact::make_friction_law(problem.contact->friction)->describe());
+  }
+  fmt::print("effective problem:\n{}\n", io::to_json(problem).dump(2));
+  return kConverged;
+}
+
+}  // namespace
+
+Command define_check(CLI::App& app) {
+  struct Options {
+    std::string file;
+    std::vector<std::string> sets;
+  };
+  auto o = std::make_shared<Options>();
+  CLI::App* cmd =
+      app.add_subcommand("check", "Validate a problem file without solving; print its sizes");
+  cmd->add_option("problem", o->file, "Problem file (TOML)")->required();
+  cmd->add_option("--set", o->sets, "Override a key of the file: KEY=VALUE, repeatable")
+      ->allow_extra_args(false);
+  return {cmd, [o] { return check(o->file, o->sets); }};
+}
+
+}  // namespace fricon::app

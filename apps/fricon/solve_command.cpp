@@ -1,0 +1,256 @@
+// fricon solve PROBLEM.toml: read, run, write the results, print the summary.
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "command.hpp"
+#include "fricon/core/error.hpp"
+#include "fricon/core/timer.hpp"
+#include "fricon/driver/run.hpp"
+#include "fricon/io/dual_dump.hpp"
+#include "fricon/io/problem_file.hpp"
+#include "fricon/io/results.hpp"
+#include "signals.hpp"
+#ifdef FRICON_HAVE_PETSC
+#include <fcntl.h>
+#include <unistd.h>
+
+#include "fricon/parallel/mpi/session.hpp"
+#endif
+
+namespace fricon::app {
+
+namespace {
+
+void print_summary(const driver::RunResult& result, const std::filesystem::path& dir) {
+  const auto& r = result.report;
+  fmt::print("fricon {}: {}\n", FRICON_VERSION, enum_name(r.status));
+  fmt::print("  mesh          {} nodes, {} tetrahedra\n", r.n_nodes, r.n_tets);
+  fmt::print("  unknowns      n_primal = {}\n", r.n_primal);
+  fmt::print("  factor        nnz(L) = {:.0f}, ordering {}\n", r.factor.nnz_L, r.factor.ordering);
+  if (r.parallel) {
+    fmt::print("  ranks         {} (backend petsc, partition {}), peak memory per rank [MiB]:",
+               r.parallel->n_ranks, enum_name(r.parallel->partition));
+    for (const auto& rank : r.parallel->ranks)
+      fmt::print(" {:.0f}", rank.peak_memory_mib);
+    fmt::print("\n");
+  }
+  if (r.contact) {
+    const auto& c = *r.contact;
+    fmt::print("  contact       '{}': {} patches, n_dual = {}, {} contact nodes, {} friction {}\n",
+               c.boundary, c.n_patches, c.n_dual, c.n_contact_nodes, enum_name(c.model),
+               c.friction_law);
+    if (c.search_rounds > 0)
+      fmt::print(
+          "  search        {} of {} patches in the QP, {} left out (none penetrates), {} {}\n",
+          c.n_candidate_patches, c.n_patches, c.n_patches - c.n_candidate_patches, c.search_rounds,
+          c.search_rounds == 1 ? "round" : "rounds");
+    fmt::print("  outer loop    {} iterations ({}), err(k):", c.outer_iterations,
+               enum_name(c.termination));
+    for (double e : c.err_history)
+      fmt::print(" {:.2e}", e);
+    fmt::print(
+        "\n  dual QP       {} MPGP steps, n_mult = {} products with Q ({}), {} solves with K\n",
+        c.qp_iterations, c.n_mult, enum_name(c.dual_operator), c.n_kinv);
+    fmt::print(
+        "  KKT           feasibility {:.1e}, stationarity {:.1e}, complementarity {:.1e}: max "
+        "{:.1e} {} {:.1e} = 100 qp_rtol, certificate {}\n",
+        c.kkt.feasibility, c.kkt.stationarity, c.kkt.complementarity, c.kkt.max(),
+        c.kkt.max() <= c.kkt_bound ? "<=" : ">", c.kkt_bound,
+        c.kkt.max() <= c.kkt_bound ? "passed" : "FAILED");
+    if (c.model == contact::FrictionModel::Coulomb)
+      fmt::print("  Coulomb       natural-map residual {:.1e} {} {:.1e}, certificate {}\n",
+                 c.coulomb_residual, c.coulomb_residual <= c.coulomb_bound ? "<=" : ">",
+                 c.coulomb_bound, c.coulomb_residual <= c.coulomb_bound ? "passed" : "FAILED");
+    fmt::print("  patches       {} stick, {} slip, {} separated\n", c.n_stick, c.n_slip,
+               c.n_separated);
+    if (c.n_objective_increases > 0)
+      fmt::print("  monotonicity  {} QP steps increased the objective (expected 0)\n",
+                 c.n_objective_increases);
+    fmt::print(
+        "  ||w_hn^+||    L2 {:.3e} m^2, max {:.3e} m; max(-w_n) {:.3e} m, max ||w_t|| {:.3e} m\n",
+        c.wn_pos_l2, c.wn_pos_inf, c.max_neg_wn, c.max_wt);
+    fmt::print(
+        "  multipliers   max lambda_n {:.4e} Pa, max ||lambda_t|| {:.4e} Pa, normal force {:.4e} "
+        "N\n",
+        c.max_lambda_n, c.max_lambda_t, c.total_normal_force);
+  }
+  fmt::print("  max |u|       {:.6e} m\n", r.max_displacement);
+  fmt::print("  equilibrium   |applied + contact + reactions| / largest of the three = {:.2e}\n",
+             r.equilibrium_residual);
+  fmt::print("  residual      ||K u - f|| / ||f|| = {:.2e}\n", r.linear_residual);
+  fmt::print("  results       {}\n", dir.string());
+  // Time per phase, like a miniature PETSc -log_view.
+  fmt::print("  time          {:.3f} s in all\n", r.time_s);
+  fmt::print("    {:<12} {:>10} {:>7} {:>6}\n", "phase", "seconds", "share", "calls");
+  for (const auto& [name, e] : r.times.phases)
+    fmt::print("    {:<12} {:>10.4f} {:>6.1f}% {:>6}\n", name, e.seconds,
+               r.time_s > 0 ? 100.0 * e.seconds / r.time_s : 0.0, e.calls);
+}
+
+enum class Verbosity { Quiet, Normal, Verbose };
+
+struct SolveOptions {
+  std::string out;
+  std::vector<std::string> sets;
+  std::string dump_dual;
+  Verbosity verbosity = Verbosity::Normal;
+  bool plot = false;
+};
+
+// Progress on stderr: phases as they start, one monitor line per outer iteration and, verbose,
+// one line per MPGP step (step letters as in PERMON: c = CG, e = expansion, p = proportioning).
+driver::RunOptions progress_options(Verbosity v, const Stopwatch& clock) {
+  driver::RunOptions o;
+  if (v == Verbosity::Quiet) return o;
+  o.on_phase_start = [&clock](const std::string& phase) {
+    fmt::print(stderr, "[{:8.3f} s] {} ...\n", clock.seconds(), phase);
+  };
+  auto header = std::make_shared<bool>(false);
+  o.on_outer_iteration = [&clock, header](const driver::OuterIteration& it) {
+    if (!*header) {
+      fmt::print(stderr, "{:>4} {:>11} {:>8} {:>8} {:>11} {:>10}\n", "k", "err(k)", "QP its",
+                 "Q mults", "||gP||/||h||", "elapsed");
+      *header = true;
+    }
+    fmt::print(stderr, "{:>4} {:>11.3e} {:>8} {:>8} {:>11.2e} {:>8.3f} s\n", it.k, it.err,
+               it.qp_iterations, it.qp_products, it.qp_rel_gp, clock.seconds());
+  };
+  if (v == Verbosity::Verbose)
+    o.on_qp_iteration = [](const qp::MpgpIteration& q) {
+      fmt::print(stderr,
+                 "      qp {:>6} [{}] ||gP|| {:.3e} ||phi|| {:.3e} ||beta|| {:.3e} alpha {:.3e} q "
+                 "{:.6e}\n",
+                 q.iteration, q.step, q.norm_gp, q.norm_phi, q.norm_beta, q.alpha, q.objective);
+      return true;
+    };
+  return o;
+}
+
+struct SolveCommandLine {
+  std::string file;
+  SolveOptions solve;
+  bool quiet = false, verbose = false;
+};
+
+#ifdef FRICON_HAVE_PETSC
+// Under mpirun every rank runs this program; only rank 0 prints (progress, summary, errors).
+// FRICON_RANK_OUTPUT=all keeps the other ranks' output, for debugging.
+void silence_other_ranks() {
+  if (parallel::world_rank() == 0) return;
+  if (const char* keep = std::getenv("FRICON_RANK_OUTPUT"); keep && std::string(keep) == "all")
+    return;
+  const int null = open("/dev/null", O_WRONLY);
+  if (null < 0) return;
+  dup2(null, STDOUT_FILENO);
+  dup2(null, STDERR_FILENO);
+  close(null);
+}
+#endif
+
+int mpi_ranks() {
+#ifdef FRICON_HAVE_PETSC
+  return parallel::initialized() ? parallel::world_size() : 1;
+#else
+  return 1;
+#endif
+}
+
+// The problem, read by every rank of an MPI job (an error on one rank ends them all, the same).
+driver::Problem read_problem_on_every_rank(const std::string& file,
+                                           const std::vector<std::string>& sets) {
+  driver::Problem problem;
+  const auto read = [&] {
+    problem = io::read_problem(file, sets);
+    if (mpi_ranks() > 1 && problem.solver.backend != parallel::Backend::Petsc)
+      throw InputError(fmt::format(
+          "{}: solver.backend: \"{}\" runs on one process, but mpirun started {} ranks; run "
+          "with --set solver.backend=petsc (docs/parallel.md)",
+          problem.where("solver.backend"), enum_name(problem.solver.backend), mpi_ranks()));
+  };
+#ifdef FRICON_HAVE_PETSC
+  if (parallel::initialized()) {
+    parallel::collectively(read);
+    return problem;
+  }
+#endif
+  read();
+  return problem;
+}
+
+int solve(const std::string& file, const SolveOptions& so, const std::string& command_line) {
+  const Stopwatch clock;
+#ifdef FRICON_HAVE_PETSC
+  if (parallel::launched_by_mpi()) {
+    parallel::initialize();
+    silence_other_ranks();
+  }
+#endif
+  const driver::Problem problem = read_problem_on_every_rank(file, so.sets);
+  const std::filesystem::path dir =
+      std::filesystem::path(so.out.empty() ? problem.output.dir : so.out);
+  driver::RunOptions options = progress_options(so.verbosity, clock);
+  options.keep_first_dual = !so.dump_dual.empty();
+  options.stop_requested = &stop_requested;
+  // From the outer loop on, a signal stops the run at its next QP step with an iterate to save.
+  options.on_phase_start = [progress = options.on_phase_start](const std::string& phase) {
+    if (phase == "outer loop" || phase == "follow") has_iterate.store(true);
+    if (progress) progress(phase);
+  };
+  install_signal_handlers();
+  const driver::RunResult result = driver::run(problem, options);
+  // The other ranks of a distributed run have served rank 0, which writes the results.
+  if (result.report.parallel && result.report.parallel->rank != 0)
+    return result.report.status == driver::Status::Converged ? kConverged : kNotConverged;
+  if (!so.dump_dual.empty()) {
+    if (!result.first_dual)
+      throw InputError(fmt::format("{}: --dump-dual needs a [contact] section", file));
+    io::write_dual(so.dump_dual, *result.first_dual);
+  }
+  io::write_results(dir, problem, result, {so.sets, command_line});
+  if (so.verbosity != Verbosity::Quiet) print_summary(result, dir);
+  if (so.plot) render_plots(dir.string(), "");
+  if (result.report.status != driver::Status::Converged) {
+    std::cerr << "fricon: NOT CONVERGED: " << result.report.message << "\n"
+              << "fricon: the last iterate is in " << dir.string() << "/*.not-converged.*\n";
+    return kNotConverged;
+  }
+  return kConverged;
+}
+
+}  // namespace
+
+Command define_solve(CLI::App& app, const Invocation& invocation) {
+  auto o = std::make_shared<SolveCommandLine>();
+  CLI::App* cmd = app.add_subcommand(
+      "solve",
+      "Solve the problem of a TOML file and write its results.\n"
+      "Progress goes to stderr (phases, one line per outer iteration), the summary to stdout.\n"
+      "Results: report.json, solution.vtu, contact.vtu, solution.pvd, contact_nodes.csv,\n"
+      "patches.csv in the results folder (see README).");
+  cmd->add_option("problem", o->file, "Problem file (TOML), see docs/problem-file.md")->required();
+  cmd->add_option("--out,-o", o->solve.out, "Results folder (default: the file's output.dir)");
+  cmd->add_option("--set", o->solve.sets,
+                  "Override a key of the file: KEY=VALUE with a TOML value, e.g.\n"
+                  "--set mesh.cells=[24,8,8] --set contact.friction.param=2e4; repeatable;\n"
+                  "recorded in report.json")
+      ->allow_extra_args(false);
+  cmd->add_option("--dump-dual", o->solve.dump_dual,
+                  "Also write the dual QP of the first outer iteration to this file\n"
+                  "(format: docs/dual-format.md)");
+  cmd->add_flag("--quiet,-q", o->quiet, "Print nothing but errors");
+  cmd->add_flag("--plot", o->solve.plot, "Also render the figures (as `fricon plot`)");
+  cmd->add_flag("--verbose,-v", o->verbose, "Also print every step of the inner QP solver");
+  return {cmd, [o, &invocation] {
+            o->solve.verbosity = o->quiet     ? Verbosity::Quiet
+                                 : o->verbose ? Verbosity::Verbose
+                                              : Verbosity::Normal;
+            return solve(o->file, o->solve, invocation.command_line);
+          }};
+}
+
+}  // namespace fricon::app
