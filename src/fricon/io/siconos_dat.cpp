@@ -141,11 +141,13 @@ SparseMatrix read_sparse_block(Tokens& t, const std::string& name, Index rows, I
   if (row_ptr.front() != 0 || row_ptr.back() != n_blocks)
     throw Mismatch{fmt::format("matrix {}: the block row pointers run from {} to {}, not 0 to {}",
                                name, row_ptr.front(), row_ptr.back(), n_blocks)};
-  std::vector<Eigen::Triplet<Real, SparseIndex>> entries;
-  for (size_t br = 0; br + 1 < row_ptr.size(); ++br) {
+  // All pointers in order before any is used (one past n_blocks would read past block_col).
+  for (size_t br = 0; br + 1 < row_ptr.size(); ++br)
     if (row_ptr[br + 1] < row_ptr[br])
       throw Mismatch{fmt::format("matrix {}: the block row pointers decrease ({} then {})", name,
                                  row_ptr[br], row_ptr[br + 1])};
+  std::vector<Eigen::Triplet<Real, SparseIndex>> entries;
+  for (size_t br = 0; br + 1 < row_ptr.size(); ++br) {
     for (long b = row_ptr[br]; b < row_ptr[br + 1]; ++b) {
       const auto bc = static_cast<size_t>(block_col[static_cast<size_t>(b)]);
       const long r0 = br == 0 ? 0 : row_end[br - 1], c0 = bc == 0 ? 0 : col_end[bc - 1];

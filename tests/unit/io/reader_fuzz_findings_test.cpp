@@ -84,6 +84,15 @@ TEST_F(ReaderFuzzFinding, SiconosBlockIndicesOutOfRangeAreInputErrors) {
               HasSubstr("block column index -9223372036854775808 out of [0, 2)"));
 }
 
+// Found by siconos_dat_fuzz on the token reader (docs/fuzzing.md): a row pointer past the number
+// of blocks (0 4 2 for 2 blocks) was followed, reading past the blocks' columns
+// (AddressSanitizer: heap-buffer-overflow), before the next pointer showed the decrease.
+TEST_F(ReaderFuzzFinding, SiconosRowPointersPastTheBlocksAreRefused) {
+  const std::string sizes = "2\n2\n3 6\n3 6\n3\n2\n", block0 = "0\n1 0 0 0 1 0 0 0 1\n";
+  EXPECT_THAT(siconos(kSbmHeader + sizes + "0 4 2\n0 1\n" + block0),
+              HasSubstr("the block row pointers decrease (4 then 2)"));
+}
+
 // A block whose cumulative sizes reach past the matrix (columns 0..5 of a 4 x 4 M) was written
 // outside Eigen's arrays by setFromTriplets (AddressSanitizer: heap-buffer-overflow).
 TEST_F(ReaderFuzzFinding, SiconosBlocksOutsideTheMatrixAreRefused) {
