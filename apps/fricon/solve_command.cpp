@@ -63,9 +63,14 @@ void print_summary(const driver::RunResult& result, const std::filesystem::path&
         c.kkt.max() <= c.kkt_bound ? "<=" : ">", c.kkt_bound,
         c.kkt.max() <= c.kkt_bound ? "passed" : "FAILED");
     if (c.model == contact::FrictionModel::Coulomb)
-      fmt::print("  Coulomb       natural-map residual {:.1e} {} {:.1e}, certificate {}\n",
-                 c.coulomb_residual, c.coulomb_residual <= c.coulomb_bound ? "<=" : ">",
-                 c.coulomb_bound, c.coulomb_residual <= c.coulomb_bound ? "passed" : "FAILED");
+      fmt::print(
+          "  Coulomb       natural-map residual {:.1e} {} {:.1e} = certificate_tol{}, "
+          "certificate {}\n",
+          c.coulomb_residual, c.coulomb_residual <= c.coulomb_bound ? "<=" : ">", c.coulomb_bound,
+          c.certificate_refinements > 0
+              ? fmt::format(" after {} round(s) at tighter tolerances", c.certificate_refinements)
+              : std::string(),
+          c.coulomb_residual <= c.coulomb_bound ? "passed" : "FAILED");
     fmt::print("  patches       {} stick, {} slip, {} separated\n", c.n_stick, c.n_slip,
                c.n_separated);
     if (c.n_objective_increases > 0)

@@ -55,8 +55,7 @@ ContactReport describe(const Problem& problem, const contact::ContactDiscretizat
   rep.radius_integration = contact::radius_integration(law);
   rep.partition_note = disc.partition_note;
   rep.kkt_bound = kCertificateFactor * problem.solver.qp.rel_tolerance;
-  rep.coulomb_bound = kCoulombCertificateFactor *
-                      std::max(problem.solver.outer.tol, problem.solver.qp.rel_tolerance);
+  rep.coulomb_bound = problem.solver.certificate_tol;
   return rep;
 }
 
@@ -111,7 +110,9 @@ qp::DualProblem first_dual_problem(const Problem& problem,
 }
 
 // The successive approximations, with the QP counts of every iteration in the report.
-outer::OuterReport successive_approximations(TrescaMap& map, VectorXd& phi, const Problem& problem,
+// A refinement (refine_coulomb) calls it again: the counts and histories accumulate.
+outer::OuterReport successive_approximations(TrescaMap& map, VectorXd& phi,
+                                             const outer::OuterOptions& outer_options,
                                              ContactReport& rep, const RunOptions& options) {
   const auto monitor = [&](const outer::OuterIteration& o) {
     const qp::MpgpReport& q = map.last_qp();
@@ -130,16 +131,50 @@ outer::OuterReport successive_approximations(TrescaMap& map, VectorXd& phi, cons
     if (options.on_outer_iteration) options.on_outer_iteration(it);
   };
   const outer::OuterReport o =
-      outer::iterate(map, phi, problem.solver.outer, monitor, options.stop_requested);
+      outer::iterate(map, phi, outer_options, monitor, options.stop_requested);
   rep.termination = o.termination;
-  rep.outer_iterations = o.iterations;
-  rep.err_history = o.err_history;
+  rep.outer_iterations += o.iterations;
+  rep.err_history.insert(rep.err_history.end(), o.err_history.begin(), o.err_history.end());
   rep.contraction_ratio = o.contraction_ratio;
   rep.fixed_point_residual = o.fixed_point_residual;
-  rep.block_history = o.block_history;
+  rep.block_history.insert(rep.block_history.end(), o.block_history.begin(), o.block_history.end());
+  rep.state_blocks.clear();
   for (const auto& b : map.layout())
     rep.state_blocks.push_back(b.name);
   return o;
+}
+
+// The natural-map residual of the Coulomb problem on the patches of the QP (those a contact
+// search left out carry no pressure and, unpenetrated, no residual), from the current
+// multipliers and slips: g = Q lambda - h, one product with Q.
+Real coulomb_residual_now(const TrescaMap& map, const VectorXd& state, const dual::DualOperator& Q,
+                          const contact::SlipBounds& bounds, Real norm_Q) {
+  VectorXd g;
+  Q.apply(map.lambda(), g);
+  g -= Q.h();
+  return qp::coulomb_residual(map.lambda(), g, bounds.mean_coefficients(map.slips(state)),
+                              1.0 / norm_Q);
+}
+
+// A Coulomb fixed point whose natural-map residual is above solver.certificate_tol takes further
+// steps, warm-started, with the QP and outer tolerances a hundredfold tighter each round, as
+// `fricon dual solve` refines (theory.md §5.6); the final certificate decides.
+outer::OuterReport refine_coulomb(TrescaMap& map, VectorXd& state, const Problem& problem,
+                                  const dual::DualOperator& Q, const contact::SlipBounds& bounds,
+                                  outer::OuterReport loop, ContactReport& rep,
+                                  const RunOptions& options) {
+  if (!bounds.uses_pressure()) return loop;
+  Real qp_rtol = problem.solver.qp.rel_tolerance;
+  outer::OuterOptions outer_options = problem.solver.outer;
+  while (loop.converged() && rep.certificate_refinements < kMaxCertificateRefinements &&
+         coulomb_residual_now(map, state, Q, bounds, rep.norm_Q) > problem.solver.certificate_tol) {
+    qp_rtol *= kCertificateRefinementFactor;
+    outer_options.tol *= kCertificateRefinementFactor;
+    map.set_qp_tolerance(qp_rtol);
+    ++rep.certificate_refinements;
+    loop = successive_approximations(map, state, outer_options, rep, options);
+  }
+  return loop;
 }
 
 // The displacement of the whole body from the final multipliers (one solve), checked against
@@ -255,8 +290,9 @@ void conclude(const outer::OuterReport& loop, ContactOutcome& out) {
     out.converged = false;
     out.message = fmt::format(
         "the certificate of the Coulomb solution failed: its natural-map residual {:.3e} "
-        "exceeds {:g} x max(outer_tol, qp_rtol) = {:.1e}",
-        rep.coulomb_residual, kCoulombCertificateFactor, rep.coulomb_bound);
+        "exceeds solver.certificate_tol = {:.1e} after {} rounds of further steps at tighter "
+        "tolerances",
+        rep.coulomb_residual, rep.coulomb_bound, rep.certificate_refinements);
   }
   if (out.converged && !(rep.kkt.max() <= rep.kkt_bound)) {
     rep.termination = outer::Termination::CertificateFailed;
@@ -314,7 +350,9 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m,
   // @sect: successive approximations (theory.md §5), from the zero state (phi = 0, and for
   // Coulomb lambda_n = 0: the first step is then the frictionless problem).
   VectorXd state = VectorXd::Zero(state_size(map));
-  const outer::OuterReport loop = successive_approximations(map, state, problem, rep, options);
+  outer::OuterReport loop =
+      successive_approximations(map, state, problem.solver.outer, rep, options);
+  loop = refine_coulomb(map, state, problem, Q, *bounds, loop, rep, options);
 
   // @sect: the displacement of the whole body, once, and the certificate of the last iterate
   // (over every patch, those a contact search left out too).

@@ -29,10 +29,11 @@ namespace fricon::driver {
 /// A run whose final KKT residuals exceed this multiple of qp_rtol is not converged
 /// (theory.md §5.5): the QP's own stopping test would put them below about qp_rtol.
 inline constexpr Real kCertificateFactor = 100.0;
-/// A Coulomb run whose natural-map residual exceeds this multiple of max(outer_tol, qp_rtol) is
-/// not converged (theory.md §5.6): the radii of the last QP lag the pressures it returns by
-/// about outer_tol.
-inline constexpr Real kCoulombCertificateFactor = 10.0;
+/// A Coulomb fixed point whose natural-map residual exceeds solver.certificate_tol takes further
+/// steps with the QP and outer tolerances divided by this, warm-started (theory.md §5.6)...
+inline constexpr Real kCertificateRefinementFactor = 1e-2;
+/// ... at most this many times; a run still above is not converged ("certificate failed").
+inline constexpr int kMaxCertificateRefinements = 3;
 
 /// How a patch ends up (patches.csv, contact.vtu).
 enum class PatchState {
@@ -103,6 +104,8 @@ struct ContactReport {
   /// (qp::coulomb_residual, with mu_R from the returned slips), and its bound.
   Real coulomb_residual = 0.0;
   Real coulomb_bound = 0.0;
+  /// Rounds of further steps at tighter tolerances that the Coulomb certificate needed.
+  int certificate_refinements = 0;
   /// Per outer iteration, the relative change of each block of the state (phi; lambda_n).
   std::vector<std::vector<Real>> block_history;
   std::vector<std::string> state_blocks;           ///< the names of those blocks

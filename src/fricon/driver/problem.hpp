@@ -148,7 +148,8 @@ struct SolverOptions {
   /// [solver.qp_variant] variant, [solver.qp_expansion] expansion. Its other fields are settings
   /// for code only; the driver sets norm_A and the monitor of each solve.
   qp::MpgpOptions qp;
-  bool warm_start = true;                                               ///< [solver.warm_start]
+  bool warm_start = true;       ///< [solver.warm_start]
+  Real certificate_tol = 1e-6;  ///< [solver.certificate_tol]
   dual::DualOperatorKind dual_operator = dual::DualOperatorKind::Auto;  ///< [solver.dual_operator]
   contact::DualScaling dual_scaling = contact::DualScaling::Patch;      ///< [solver.dual_scaling]
   contact::ContactSearch contact_search = contact::ContactSearch::Gap;  ///< [solver.contact_search]

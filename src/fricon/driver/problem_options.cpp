@@ -437,6 +437,10 @@ const OptionTable& solver_table() {
              "would penetrate)");
     b.number("qp_max", at(&SolverOptions::qp, &qp::MpgpOptions::max_iterations),
              integer_at_least(1), "at most this many iterations per QP");
+    b.number("certificate_tol", &SolverOptions::certificate_tol, open_interval(0.0, 1.0),
+             "Coulomb: the largest natural-map residual of a converged run; a fixed point above "
+             "it takes further steps at tighter tolerances, else the run is not converged "
+             "(theory.md §5.6)");
     b.boolean("warm_start", &SolverOptions::warm_start,
               "start each QP from the previous multipliers");
     b.choice("qp_variant", at(&SolverOptions::qp, &qp::MpgpOptions::variant),

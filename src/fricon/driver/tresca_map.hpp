@@ -53,6 +53,8 @@ class TrescaMap final : public outer::FixedPointMap {
   const qp::BlockScaling& scaling() const { return scaling_; }
   /// Starts the next QP from these multipliers [Pa] (a warm start from another solve).
   void set_lambda(const VectorXd& lambda);
+  /// The relative tolerance of the QPs from now on (MpgpOptions::rel_tolerance), > 0.
+  void set_qp_tolerance(Real rel_tolerance) { qp_.rel_tolerance = rel_tolerance; }
 
  private:
   const fe::DofMap& dofs_;

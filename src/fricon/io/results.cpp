@@ -45,7 +45,9 @@ void add_contact_report(const driver::ContactReport& c, nlohmann::json& j) {
   j["n_objective_increases"] = c.n_objective_increases;
   j["model"] = enum_name(c.model);
   if (c.model == contact::FrictionModel::Coulomb)
-    j["coulomb"] = {{"residual", c.coulomb_residual}, {"bound", c.coulomb_bound}};
+    j["coulomb"] = {{"residual", c.coulomb_residual},
+                    {"bound", c.coulomb_bound},
+                    {"refinements", c.certificate_refinements}};
   j["patch_states"] = {{"stick", c.n_stick}, {"slip", c.n_slip}, {"separated", c.n_separated}};
   j["state_blocks"] = c.state_blocks;
   j["block_err_history"] = c.block_history;
