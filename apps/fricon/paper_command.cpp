@@ -11,6 +11,7 @@
 #include "command.hpp"
 #include "fricon/driver/paper.hpp"
 #include "fricon/driver/run.hpp"
+#include "fricon/solve.hpp"
 
 namespace fricon::app {
 
@@ -53,7 +54,7 @@ bool print_paper_table(const std::string& title, const std::vector<driver::Paper
     driver::Problem problem = driver::paper_problem(row.n, row.param);
     problem.solver.dual_operator = parse_enum<dual::DualOperatorKind>(o.dual_operator);
     problem.solver.qp.rel_tolerance = o.qp_rtol;
-    const driver::RunResult r = driver::run(problem);
+    const driver::RunResult r = fricon::solve(problem);
     const auto& c = *r.report.contact;
     const bool sizes_equal = r.report.n_primal == row.n_p && c.n_dual == row.n_d;
     const bool converged = r.report.status == driver::Status::Converged;

@@ -14,6 +14,7 @@
 #include "fricon/io/dual_dump.hpp"
 #include "fricon/io/problem_file.hpp"
 #include "fricon/io/results.hpp"
+#include "fricon/solve.hpp"
 #include "signals.hpp"
 #ifdef FRICON_HAVE_PETSC
 #include <fcntl.h>
@@ -207,7 +208,7 @@ int solve(const std::string& file, const SolveOptions& so, const std::string& co
     if (progress) progress(phase);
   };
   install_signal_handlers();
-  const driver::RunResult result = driver::run(problem, options);
+  const driver::RunResult result = fricon::solve(problem, options);
   // The other ranks of a distributed run have served rank 0, which writes the results.
   if (result.report.parallel && result.report.parallel->rank != 0)
     return result.report.status == driver::Status::Converged ? kConverged : kNotConverged;

@@ -20,6 +20,7 @@
 #include "fricon/driver/run.hpp"
 #include "fricon/io/results.hpp"
 #include "fricon/linalg/blas.hpp"
+#include "fricon/solve.hpp"
 
 namespace fricon::python {
 
@@ -76,7 +77,7 @@ PyResult solve(const PyProblem& p, const py::object& progress, std::optional<int
         // The BLAS threads are the process's: set by the first of concurrent solves, shared by
         // the others (linalg::RunThreads; docs/python.md, "Threads").
         const linalg::RunThreads blas_threads(threads.value_or(0));
-        result.emplace(driver::run(problem, options));
+        result.emplace(fricon::solve(problem, options));
       } catch (...) {
         failure = std::current_exception();
       }

@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <memory>
 
+#include <fmt/format.h>
 #include "fricon/core/error.hpp"
 #include "fricon/driver/run_steps.hpp"
 #include "fricon/fe/stress.hpp"
-#include "fricon/parallel/distributed_run.hpp"
 
 namespace fricon::driver {
 
@@ -212,13 +212,13 @@ void finish_run(const Problem& problem, const VectorXd& u, const RunOptions& opt
 }
 
 RunResult run(const Problem& problem, const RunOptions& options) {
-  if (problem.solver.backend == parallel::Backend::Petsc) {
-    // Validated on every rank there; a build without PETSc says here how to get it.
-    if (!parallel::petsc_available()) validate(problem);
-    return parallel::run_distributed(problem, options);
-  }
   const Stopwatch total;
   validate(problem);
+  if (problem.solver.backend != parallel::Backend::Cholmod)
+    throw InputError(fmt::format(
+        "{}: solver.backend: driver::run factors K on one process (\"cholmod\"); fricon::solve "
+        "(fricon/solve.hpp) runs backend \"{}\"",
+        problem.where("solver.backend"), enum_name(problem.solver.backend)));
   RunResult r;
   RunReport& rep = r.report;
 

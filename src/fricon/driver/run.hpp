@@ -3,7 +3,9 @@
 //   validate -> mesh, assembly -> [contact discretization] -> factorization (as the dual operator
 //   asks) -> [dual operator -> outer loop of dual QPs -> certificate] -> displacement, stresses
 //   and the self-check of the result.
-// The run returns everything the output stage writes; it never writes files itself.
+// The run returns everything the output stage writes; it never writes files itself. This is the
+// run on one process (CHOLMOD); fricon::solve (solve.hpp) chooses between it and the
+// distributed run of parallel/.
 
 #include <optional>
 #include <string>
@@ -13,36 +15,12 @@
 #include "fricon/driver/contact_solver.hpp"
 #include "fricon/driver/model.hpp"
 #include "fricon/driver/problem.hpp"
+#include "fricon/parallel/report.hpp"
 
 namespace fricon::driver {
 
 /// The outcome of a run as the report and the exit code give it.
 enum class Status { Converged, NotConverged };
-
-/// One rank of a distributed run (backend "petsc").
-struct RankReport {
-  Index n_tets = 0;  ///< tetrahedra this rank assembled
-  /// Nodes of the mesh this rank holds: all on rank 0, the nodes of its tetrahedra elsewhere.
-  Index n_nodes = 0;
-  double peak_memory_mib = 0;     ///< peak resident memory of the process [MiB]
-  double mumps_memory_mib = 0;    ///< memory MUMPS allocated for the factorization here [MiB]
-  double mumps_estimate_mib = 0;  ///< what MUMPS's analysis estimated for it [MiB]
-  /// Peak resident memory once the rank's input was built, before the assembly and
-  /// factorization [MiB]: on rank 0 the whole model (mesh, loads, contact discretization), on
-  /// the others their part of it (their tetrahedra and nodes, B on the contact dofs).
-  double model_memory_mib = 0;
-};
-
-/// What a distributed run adds to the report.
-struct ParallelReport {
-  int rank = 0;     ///< of the process that holds this report
-  int n_ranks = 1;  ///< MPI ranks of the run
-  parallel::PartitionKind partition = parallel::PartitionKind::Graph;
-  Index n_schur = 0;              ///< Schur variables of the MUMPS factorization (0: K alone)
-  double analysis_s = 0.0;        ///< MUMPS's analysis (ordering, symbolic; on rank 0) [s]
-  double factorization_s = 0.0;   ///< MUMPS's numerical factorization, across the ranks [s]
-  std::vector<RankReport> ranks;  ///< per rank, on rank 0
-};
 
 /// What a run reports (the JSON report serialises this struct).
 struct RunReport {
@@ -62,9 +40,9 @@ struct RunReport {
   /// prescribed displacement, which has no applied load): global equilibrium, round-off if all is
   /// well.
   Real equilibrium_residual = 0.0;
-  Real linear_residual = 0.0;              ///< ||K u - (f - B^T lambda)|| / ||f||
-  std::optional<ContactReport> contact;    ///< present when the problem has a [contact] section
-  std::optional<ParallelReport> parallel;  ///< present for backend "petsc"
+  Real linear_residual = 0.0;            ///< ||K u - (f - B^T lambda)|| / ||f||
+  std::optional<ContactReport> contact;  ///< present when the problem has a [contact] section
+  std::optional<parallel::ParallelReport> parallel;  ///< present for backend "petsc"
 };
 
 struct RunResult {
@@ -78,7 +56,8 @@ struct RunResult {
   std::optional<qp::DualProblem> first_dual;  ///< if RunOptions::keep_first_dual and contact
 };
 
-/// Validates and solves the problem. Throws InputError/NumericalError for ill-posed input, and
+/// Validates and solves the problem on this process (solver.backend "cholmod"; InputError for
+/// another: fricon::solve chooses). Throws InputError/NumericalError for ill-posed input, and
 /// Interrupted for a stop requested before any iterate exists; a run whose iterations did not
 /// converge (or whose certificate failed) returns with report.status == NotConverged.
 RunResult run(const Problem& problem, const RunOptions& options = {});

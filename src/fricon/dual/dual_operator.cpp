@@ -9,14 +9,6 @@
 
 namespace fricon::dual {
 
-namespace {
-// Auto forms Q by the forward sweep (measured the fastest on the paper's brick,
-// docs/benchmarks.md) while Q (n_dual^2 doubles) takes no more memory than the factor of K
-// already does, or at most this many multipliers (288 MB) on small meshes; beyond, Q stays
-// implicit.
-constexpr Index kDenseDualLimit = 6000;
-}  // namespace
-
 FactorizationRequest factorization_request(DualOperatorKind kind,
                                            const std::vector<Index>& contact_dofs) {
   FactorizationRequest r;
@@ -24,12 +16,17 @@ FactorizationRequest factorization_request(DualOperatorKind kind,
   return r;
 }
 
-DualOperatorKind resolve(DualOperatorKind kind, const linalg::CholeskyInfo& factor, Index n_dual) {
+// One process: the forward sweep (measured the fastest on the paper's brick,
+// docs/benchmarks.md) while Q takes no more memory than the factor of K already does, or on small
+// meshes; distributed: MUMPS's Schur complement, 288 MB of dense Q on rank 0 at most.
+DualOperatorKind resolve(DualOperatorKind kind, FactorLocation where, Index n_dual, double nnz_L) {
   if (kind != DualOperatorKind::Auto) return kind;
   const double q_entries = static_cast<double>(n_dual) * static_cast<double>(n_dual);
-  const double limit = std::max(
-      factor.nnz_L, static_cast<double>(kDenseDualLimit) * static_cast<double>(kDenseDualLimit));
-  return q_entries <= limit ? DualOperatorKind::Forward : DualOperatorKind::Implicit;
+  const double small = static_cast<double>(kDenseDualLimit) * static_cast<double>(kDenseDualLimit);
+  if (where == FactorLocation::Distributed)
+    return q_entries <= small ? DualOperatorKind::Schur : DualOperatorKind::Implicit;
+  return q_entries <= std::max(nnz_L, small) ? DualOperatorKind::Forward
+                                             : DualOperatorKind::Implicit;
 }
 
 void DualOperator::set_free_solution(VectorXd u0, const SparseMatrix& B, const VectorXd* offset) {
@@ -71,7 +68,7 @@ qp::Operator DualOperator::as_qp_operator() const {
 }
 
 std::unique_ptr<DualOperator> make_dual_operator(DualOperatorKind kind, const DualInput& input) {
-  switch (resolve(kind, input.factor.info(), input.B.rows())) {
+  switch (resolve(kind, FactorLocation::OneProcess, input.B.rows(), input.factor.info().nnz_L)) {
     case DualOperatorKind::Implicit:
       return make_implicit_operator(input);
     case DualOperatorKind::Forward:

@@ -32,11 +32,6 @@ struct FactorizationRequest {
 FactorizationRequest factorization_request(DualOperatorKind kind,
                                            const std::vector<Index>& contact_dofs);
 
-/// Auto resolved for a factor of this size: Forward while the dense Q (n_dual^2 entries) is no
-/// larger than the factor's nnz(L) or n_dual <= 6000, else Implicit. Other kinds are returned
-/// as they are.
-DualOperatorKind resolve(DualOperatorKind kind, const linalg::CholeskyInfo& factor, Index n_dual);
-
 /// What an operator is built from; every reference must outlive the operator.
 struct DualInput {
   const linalg::CholeskyFactor& factor;    ///< of K, built with factorization_request(kind)

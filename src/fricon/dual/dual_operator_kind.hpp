@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "fricon/core/enum_names.hpp"
+#include "fricon/core/types.hpp"
 
 namespace fricon::dual {
 
@@ -21,6 +22,22 @@ enum class DualOperatorKind {
   /// K factored with the contact dofs last; Q from the trailing block of the factor.
   Schur,
 };
+
+/// "auto" forms a dense Q of at most this many multipliers (288 MB) whatever the factor's size.
+inline constexpr Index kDenseDualLimit = 6000;
+
+/// Where K is factored, for what "auto" stands for.
+enum class FactorLocation {
+  OneProcess,   ///< CHOLMOD: the factor is at hand for a forward sweep
+  Distributed,  ///< MUMPS across the ranks: Q comes from its Schur complement
+};
+
+/// The operator "auto" stands for (theory.md §3.3), the one rule of fricon: on one process
+/// Forward while the dense Q (n_dual^2 entries) is no larger than the factor (nnz_L entries) or
+/// n_dual <= kDenseDualLimit, else Implicit; distributed, Schur up to kDenseDualLimit, else
+/// Implicit. Other kinds are returned as they are. nnz_L is not used when distributed.
+DualOperatorKind resolve(DualOperatorKind kind, FactorLocation where, Index n_dual,
+                         double nnz_L = 0.0);
 
 }  // namespace fricon::dual
 

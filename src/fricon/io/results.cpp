@@ -120,7 +120,7 @@ void add_contact_geometry(const driver::Problem& problem, const mesh::TetMesh& m
 }
 
 // A distributed run: its ranks, partition and each rank's work and memory.
-void add_parallel_report(const driver::ParallelReport& p, nlohmann::json& j) {
+void add_parallel_report(const parallel::ParallelReport& p, nlohmann::json& j) {
   nlohmann::json ranks = nlohmann::json::array();
   for (const auto& r : p.ranks)
     ranks.push_back({{"n_tets", r.n_tets},

@@ -95,14 +95,20 @@ TEST(DualOperator, OnlySchurAsksForAnOrderingAndNeedsIt) {
 }
 
 TEST(DualOperator, AutoFormsQWhileItIsNoLargerThanTheFactor) {
-  linalg::CholeskyInfo small;
-  small.nnz_L = 1e6;
-  EXPECT_EQ(resolve(DualOperatorKind::Auto, small, 5000), DualOperatorKind::Forward);
-  EXPECT_EQ(resolve(DualOperatorKind::Auto, small, 7000), DualOperatorKind::Implicit);
-  linalg::CholeskyInfo big;
-  big.nnz_L = 1e8;
-  EXPECT_EQ(resolve(DualOperatorKind::Auto, big, 9000), DualOperatorKind::Forward);
-  EXPECT_EQ(resolve(DualOperatorKind::Schur, small, 7000), DualOperatorKind::Schur);
+  constexpr auto kOne = FactorLocation::OneProcess;
+  EXPECT_EQ(resolve(DualOperatorKind::Auto, kOne, 5000, 1e6), DualOperatorKind::Forward);
+  EXPECT_EQ(resolve(DualOperatorKind::Auto, kOne, 7000, 1e6), DualOperatorKind::Implicit);
+  EXPECT_EQ(resolve(DualOperatorKind::Auto, kOne, 9000, 1e8), DualOperatorKind::Forward);
+  EXPECT_EQ(resolve(DualOperatorKind::Schur, kOne, 7000, 1e6), DualOperatorKind::Schur);
+}
+
+TEST(DualOperator, AutoDistributedFormsQAsASchurComplementUpToTheDenseLimit) {
+  // The same limit as on one process, the one rule of dual_operator_kind.hpp.
+  constexpr auto kMumps = FactorLocation::Distributed;
+  EXPECT_EQ(resolve(DualOperatorKind::Auto, kMumps, kDenseDualLimit), DualOperatorKind::Schur);
+  EXPECT_EQ(resolve(DualOperatorKind::Auto, kMumps, kDenseDualLimit + 1),
+            DualOperatorKind::Implicit);
+  EXPECT_EQ(resolve(DualOperatorKind::Implicit, kMumps, 10), DualOperatorKind::Implicit);
 }
 
 TEST(DualOperator, PollingStopsTheFormingOfQ) {

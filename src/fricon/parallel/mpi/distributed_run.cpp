@@ -41,16 +41,6 @@ namespace {
 using driver::RunOptions;
 using driver::RunResult;
 
-// Up to this many multipliers Q is formed (as a Schur complement) by "auto": the serial rule's
-// small-mesh limit (dual/dual_operator.cpp), 288 MB of dense Q on rank 0.
-constexpr Index kDenseDualLimit = 6000;
-
-dual::DualOperatorKind operator_kind(dual::DualOperatorKind asked, Index n_dual) {
-  if (asked != dual::DualOperatorKind::Auto) return asked;  // Schur or Implicit (validated)
-  return n_dual <= kDenseDualLimit ? dual::DualOperatorKind::Schur
-                                   : dual::DualOperatorKind::Implicit;
-}
-
 // The lower triangle of this rank's part of K (in the whole model's numbering) and, when B is
 // given (rank 0 of a Schur factorization), the block B below K in the augmented matrix.
 LocalEntries local_entries(const driver::ModelPart& part, const SparseMatrix* B) {
@@ -173,8 +163,8 @@ RankShare assemble_share(const driver::Problem& problem, const driver::Model* wh
 }
 
 // Every rank's figures, on rank 0. Collective.
-std::vector<driver::RankReport> gather_ranks(const RankShare& share, const MumpsInfo& info,
-                                             int rank, int size) {
+std::vector<RankReport> gather_ranks(const RankShare& share, const MumpsInfo& info, int rank,
+                                     int size) {
   constexpr int kFigures = 6;
   const double mine[kFigures] = {static_cast<double>(share.n_tets),
                                  peak_memory_mib(),
@@ -185,7 +175,7 @@ std::vector<driver::RankReport> gather_ranks(const RankShare& share, const Mumps
   test_fault("gather");
   std::vector<double> all(static_cast<std::size_t>(kFigures * size));
   MPI_Gather(mine, kFigures, MPI_DOUBLE, all.data(), kFigures, MPI_DOUBLE, 0, world());
-  std::vector<driver::RankReport> ranks;
+  std::vector<RankReport> ranks;
   if (rank != 0) return ranks;
   for (int r = 0; r < size; ++r) {
     const double* a = &all[static_cast<std::size_t>(kFigures * r)];
@@ -229,7 +219,7 @@ RunResult run_on_rank(const driver::Problem& problem, const RunOptions& options,
   const RunOptions& opts = rank == 0 ? options : quiet;
   RunResult r;
   driver::RunReport& rep = r.report;
-  driver::ParallelReport par;
+  ParallelReport par;
   par.rank = rank;
   par.n_ranks = size;
   par.partition = problem.solver.partition;
@@ -254,7 +244,8 @@ RunResult run_on_rank(const driver::Problem& problem, const RunOptions& options,
   test_fault("share");  // (between two broadcasts: the job ends, see run_distributed)
   const std::optional<ContactCoupling> contact = share_contact(disc, sizes.contact, rank);
   const dual::DualOperatorKind kind =
-      contact ? operator_kind(problem.solver.dual_operator, contact->B.rows())
+      contact ? dual::resolve(problem.solver.dual_operator, dual::FactorLocation::Distributed,
+                              contact->B.rows())
               : dual::DualOperatorKind::Implicit;
   const bool with_schur = contact && kind == dual::DualOperatorKind::Schur;
   par.n_schur = with_schur ? contact->B.rows() : 0;
