@@ -71,7 +71,7 @@ void expect_contains(const std::string& message, const std::vector<std::string>&
     EXPECT_NE(message.find(part), std::string::npos) << "'" << part << "' not in: " << message;
 }
 
-TEST(Bodies, AFreeBodyNextToAClampedOneIsNamed) {
+TEST(DirichletPerBody, AFreeBodyNextToAClampedOneIsNamed) {
   expect_contains(assembly_error(problem_on(2, kClampA)),
                   {"t.toml:", ": dirichlet: the mesh has 2 separate bodies",
                    "body 1 (region \"b_body\", 27 nodes in [2, 3] x [0, 1] x [0, 1] m) is not held",
@@ -79,21 +79,21 @@ TEST(Bodies, AFreeBodyNextToAClampedOneIsNamed) {
                    "stiffness matrix would be singular", "contact alone does not hold a body"});
 }
 
-TEST(Bodies, ABodyOnARollerIsNamedWithItsEntriesAndLooseAxes) {
+TEST(DirichletPerBody, ABodyOnARollerIsNamedWithItsEntriesAndLooseAxes) {
   expect_contains(assembly_error(problem_on(2, std::string(kClampA) + kRollerB)),
                   {"body 1 (region \"b_body\"",
                    "the [[dirichlet]] entries on it, dirichlet[1] (\"b_z0\"), leave 3 rigid "
                    "motion(s) of it free (no x or y component is fixed on it)"});
 }
 
-TEST(Bodies, TheFirstFreeBodyIsDescribedAndTheOthersListed) {
+TEST(DirichletPerBody, TheFirstFreeBodyIsDescribedAndTheOthersListed) {
   const std::string message = assembly_error(problem_on(3, kClampB));
   expect_contains(message, {"3 separate bodies (0 to 2", "body 0 (region \"a_body\"",
                             "[0, 1] x [0, 1] x [0, 1] m", "; body 2 is not held either"});
   EXPECT_EQ(message.find("dirichlet[0]"), std::string::npos) << message;  // b_x0 is on body 1
 }
 
-TEST(Bodies, BodiesThatAreAllHeldGiveAModelWithItsBodiesAndAFactor) {
+TEST(DirichletPerBody, BodiesThatAreAllHeldGiveAModelWithItsBodiesAndAFactor) {
   const Problem problem = problem_on(2, std::string(kClampA) + kClampB);
   PhaseTimes times;
   Model model = assemble_model(problem, times);
@@ -105,7 +105,7 @@ TEST(Bodies, BodiesThatAreAllHeldGiveAModelWithItsBodiesAndAFactor) {
 }
 
 // One body: the message of a single body, as before (tests/bad_input/89, 90).
-TEST(Bodies, OneBodyKeepsTheMessageOfTheWholeBody) {
+TEST(DirichletPerBody, OneBodyKeepsTheMessageOfTheWholeBody) {
   io::ReadOptions options;
   options.code.mesh = bricks(1);
   const Problem problem = io::parse_problem(R"(
