@@ -66,22 +66,66 @@ VectorXd applied_load(const Problem& problem, const mesh::TetMesh& mesh, const f
   return f;
 }
 
-// The rigid-motion check of fe, with a message that names the problem's keys.
+// The [[dirichlet]] entries that fix a component of some node of body b, as
+// `dirichlet[0] ("base")`, comma-separated (empty if none).
+std::string entries_on_body(const Problem& problem, const mesh::TetMesh& mesh,
+                            const mesh::Bodies& bodies, Index b) {
+  std::string s;
+  for (size_t i = 0; i < problem.dirichlet.size(); ++i) {
+    const auto& d = problem.dirichlet[i];
+    if (!d.components[0] && !d.components[1] && !d.components[2]) continue;
+    const std::vector<Index> nodes = mesh.nodes_with_tag(d.boundary);
+    if (std::any_of(nodes.begin(), nodes.end(),
+                    [&](Index a) { return bodies.node_body[static_cast<size_t>(a)] == b; }))
+      s += fmt::format("{}dirichlet[{}] (\"{}\")", s.empty() ? "" : ", ", i, d.boundary);
+  }
+  return s;
+}
+
+// The rigid-motion check of fe, per body, with a message that names the problem's keys and, for
+// a mesh of several bodies, the first body that is not held.
 void check_rigid_motions(const Problem& problem, const mesh::TetMesh& mesh,
-                         const std::vector<bool>& fixed) {
-  const fe::RigidMotionCheck check = fe::free_rigid_motions(mesh, fixed);
-  if (check.n_free == 0) return;
+                         const mesh::Bodies& bodies, const std::vector<bool>& fixed) {
+  const std::vector<fe::RigidMotionCheck> checks = fe::free_rigid_motions(mesh, bodies, fixed);
+  std::vector<Index> loose;  // the bodies not held
+  for (Index b = 0; b < bodies.n_bodies(); ++b)
+    if (checks[static_cast<size_t>(b)].n_free > 0) loose.push_back(b);
+  if (loose.empty()) return;
+  const fe::RigidMotionCheck& check = checks[static_cast<size_t>(loose.front())];
+  if (bodies.n_bodies() == 1)
+    throw InputError(fmt::format(
+        "{}: dirichlet: {} leave {} rigid motion(s) of the body free{}, so the stiffness matrix "
+        "would be singular (not positive definite); fix enough components to hold the body, "
+        "e.g. a [[dirichlet]] entry with components = \"xyz\" on one face",
+        problem.where("dirichlet"),
+        problem.dirichlet.empty() ? "there is no [[dirichlet]] entry: the conditions"
+                                  : "the [[dirichlet]] conditions",
+        check.n_free,
+        check.loose_axes.empty()
+            ? ""
+            : fmt::format(" (no {} component is fixed anywhere)", check.loose_axes)));
+  const Index b = loose.front();
+  const std::string entries = entries_on_body(problem, mesh, bodies, b);
+  std::string others;  // the other bodies not held
+  for (size_t i = 1; i < loose.size(); ++i)
+    others += fmt::format("{}{}", i == 1 ? "" : ", ", loose[i]);
   throw InputError(fmt::format(
-      "{}: dirichlet: {} leave {} rigid motion(s) of the body free{}, so the stiffness matrix "
-      "would be singular (not positive definite); fix enough components to hold the body, e.g. "
-      "a [[dirichlet]] entry with components = \"xyz\" on one face",
-      problem.where("dirichlet"),
-      problem.dirichlet.empty() ? "there is no [[dirichlet]] entry: the conditions"
-                                : "the [[dirichlet]] conditions",
+      "{}: dirichlet: the mesh has {} separate bodies (0 to {}, sharing no node) and {} is not "
+      "held: {} {} rigid motion(s) of it free{}, so the stiffness matrix would be singular (not "
+      "positive definite); give each body [[dirichlet]] conditions of its own, e.g. components = "
+      "\"xyz\" on one face of it: contact alone does not hold a body (floating bodies are not "
+      "solved yet){}",
+      problem.where("dirichlet"), bodies.n_bodies(), bodies.n_bodies() - 1,
+      mesh::describe_body(mesh, bodies, b),
+      entries.empty() ? "no [[dirichlet]] entry fixes any of its nodes, which leaves"
+                      : fmt::format("the [[dirichlet]] entries on it, {}, leave", entries),
       check.n_free,
-      check.loose_axes.empty()
+      check.n_fixed == 0 || check.loose_axes.empty()
           ? ""
-          : fmt::format(" (no {} component is fixed anywhere)", check.loose_axes)));
+          : fmt::format(" (no {} component is fixed on it)", check.loose_axes),
+      loose.size() == 1   ? ""
+      : loose.size() == 2 ? fmt::format("; body {} is not held either", others)
+                          : fmt::format("; bodies {} are not held either", others)));
 }
 
 // K_free,fixed times the prescribed displacements [N]: moved to the right-hand side.
@@ -93,6 +137,11 @@ VectorXd prescribed_load(const Model& model) {
 }  // namespace
 
 fe::DofMap make_dofs(const Problem& problem, const mesh::TetMesh& mesh) {
+  return make_dofs(problem, mesh, mesh::find_bodies(mesh));
+}
+
+fe::DofMap make_dofs(const Problem& problem, const mesh::TetMesh& mesh,
+                     const mesh::Bodies& bodies) {
   std::vector<bool> fixed(static_cast<size_t>(3 * mesh.n_nodes()), false);
   for (size_t i = 0; i < problem.dirichlet.size(); ++i) {
     const auto& d = problem.dirichlet[i];
@@ -108,7 +157,7 @@ fe::DofMap make_dofs(const Problem& problem, const mesh::TetMesh& mesh) {
         "{}: dirichlet: the [[dirichlet]] conditions fix every displacement component of the "
         "mesh: nothing to solve",
         problem.where("dirichlet")));
-  check_rigid_motions(problem, mesh, fixed);
+  check_rigid_motions(problem, mesh, bodies, fixed);
   return dofs;
 }
 
@@ -211,12 +260,13 @@ Model assemble(const Problem& problem, PhaseTimes& times, const PhaseCallback& o
   {
     ScopedPhase phase(times, "mesh");
     model.mesh = make_mesh(problem);
+    model.bodies = mesh::find_bodies(model.mesh);
     model.materials = make_materials(problem, model.mesh);
   }
   if (on_phase_start) on_phase_start("assembly");
   {
     ScopedPhase phase(times, "assembly");
-    model.dofs = make_dofs(problem, model.mesh);
+    model.dofs = make_dofs(problem, model.mesh, model.bodies);
     model.prescribed = make_prescribed(problem, model.mesh);
     if (with_stiffness) model.K = fe::assemble_stiffness(model.mesh, model.materials, model.dofs);
     model.f = load_vector(problem, model, Extent::Whole);

@@ -1,7 +1,8 @@
 #pragma once
 // driver: the discrete elastic model of a problem, built phase by phase in data-flow order:
-// mesh -> dofs (Dirichlet elimination) -> K and f (assembly) -> Cholesky factor of K.
-// Everything later (contact, the dual QP, the outer loop) reads this model and never changes it.
+// mesh (and its connected bodies) -> dofs (Dirichlet elimination) -> K and f (assembly) -> Cholesky
+// factor of K. Everything later (contact, the dual QP, the outer loop) reads this model and never
+// changes it.
 
 #include <functional>
 #include <string>
@@ -15,12 +16,16 @@
 #include "fricon/fe/dof_map.hpp"
 #include "fricon/fe/material.hpp"
 #include "fricon/linalg/cholesky.hpp"
+#include "fricon/mesh/bodies.hpp"
 #include "fricon/mesh/tet_mesh.hpp"
 
 namespace fricon::driver {
 
 struct Model {
   mesh::TetMesh mesh;
+  /// The connected bodies of the mesh (mesh::find_bodies), each held by its own Dirichlet
+  /// conditions (make_dofs checks it). Empty in a part of a model (driver::model_part).
+  mesh::Bodies bodies;
   /// The material of each region of the mesh (fe::Materials), or one for the whole body.
   std::vector<fe::Material> materials;
   fe::DofMap dofs{0};
@@ -43,8 +48,15 @@ VectorXd stiffness_times(const Model& model, const VectorXd& w);
 /// Builds the mesh the problem describes and checks it. Throws InputError on bad input.
 mesh::TetMesh make_mesh(const Problem& problem);
 
-/// The dofs left free by the problem's Dirichlet conditions. Throws InputError when a boundary
-/// tag does not exist on the mesh or nothing is left free.
+/// The dofs left free by the problem's Dirichlet conditions on `mesh`, whose connected bodies are
+/// `bodies` (mesh::find_bodies(mesh)). Throws InputError when a boundary tag does not exist on the
+/// mesh, nothing is left free, or the conditions leave a rigid motion of a body free (K would be
+/// singular): the message names the problem's [[dirichlet]] position, the number of free rigid
+/// motions and, for a mesh of several bodies, the first body not held (its index, regions and
+/// bounding box, mesh::describe_body) and the [[dirichlet]] entries that touch it.
+fe::DofMap make_dofs(const Problem& problem, const mesh::TetMesh& mesh, const mesh::Bodies& bodies);
+
+/// make_dofs with the bodies found on `mesh`.
 fe::DofMap make_dofs(const Problem& problem, const mesh::TetMesh& mesh);
 
 /// The prescribed displacements of the problem's [[dirichlet]] values (see Model::prescribed).
@@ -59,8 +71,8 @@ std::vector<fe::Material> make_materials(const Problem& problem, const mesh::Tet
 /// Called with each phase's name ("mesh", "assembly", "factorize", ...) as it starts.
 using PhaseCallback = std::function<void(const std::string& phase)>;
 
-/// The model without K: mesh, materials, dofs, prescribed displacements and f (phases "mesh",
-/// "assembly"). Throws as assemble_model.
+/// The model without K: mesh, bodies, materials, dofs, prescribed displacements and f (phases
+/// "mesh", "assembly"). Throws as assemble_model.
 Model assemble_loads(const Problem& problem, PhaseTimes& times,
                      const PhaseCallback& on_phase_start = {});
 
@@ -75,9 +87,9 @@ enum class Extent { Whole, Part };
 /// triangle in the Whole mesh (a Part may hold none of them).
 VectorXd load_vector(const Problem& problem, const Model& model, Extent extent);
 
-/// The model up to the factorization: mesh, material, dofs, K and f (phases "mesh",
+/// The model up to the factorization: mesh, bodies, material, dofs, K and f (phases "mesh",
 /// "assembly"). Throws InputError when a boundary tag named by the problem does not exist on the
-/// mesh or the Dirichlet conditions leave rigid motions free.
+/// mesh or the Dirichlet conditions leave rigid motions of a body free (make_dofs).
 Model assemble_model(const Problem& problem, PhaseTimes& times,
                      const PhaseCallback& on_phase_start = {});
 
