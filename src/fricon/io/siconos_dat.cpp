@@ -80,6 +80,7 @@ class Tokens {
   size_t position() const { return next_; }
   void seek(size_t position) { next_ = position; }
   size_t remaining() const { return tokens_.size() - next_; }
+  size_t total() const { return tokens_.size(); }
   const Token& peek() const { return tokens_[next_]; }
 
  private:
@@ -172,6 +173,11 @@ SparseMatrix read_matrix(Tokens& t, const std::string& name) {
   const long storage = t.integer(in("storage"));
   const long rows = t.integer(in("rows")), cols = t.integer(in("columns"));
   if (rows <= 0 || cols <= 0) throw Mismatch{fmt::format("matrix {} is {} x {}", name, rows, cols)};
+  // Each dimension is the size of a vector the file holds too (q, f, w): an empty sparse matrix
+  // of a size beyond the file's tokens would be allocated from its header alone.
+  if (static_cast<size_t>(rows) > t.total() || static_cast<size_t>(cols) > t.total())
+    throw Mismatch{fmt::format("matrix {} is {} x {}, larger than the file's {} numbers", name,
+                               rows, cols, t.total())};
   if (storage == 0) {
     const long r = t.integer(in("dense rows")), c = t.integer(in("dense columns"));
     if (r != rows || c != cols)
