@@ -69,7 +69,7 @@ Row measure(long n, const std::string& mode, const std::string& variant, const s
     r.dual = rep.times.seconds("dual");
     r.qp = rep.times.seconds("qp");
     r.other = r.total - r.factorize - r.dual - r.qp;
-    r.converged = rep.status == driver::Status::Converged;
+    r.converged = rep.status == driver::RunStatus::Converged;
     std::snprintf(r.mode, sizeof r.mode, "%s", std::string(enum_name(c.dual_operator)).c_str());
     std::snprintf(r.variant, sizeof r.variant, "%s",
                   std::string(enum_name(p.solver.qp.variant)).c_str());

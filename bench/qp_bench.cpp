@@ -75,7 +75,7 @@ void BM_SolveMpgp(benchmark::State& state) {
     rep = fricon::qp::solve_mpgp(A, p.h, p.c, opt, x);
     benchmark::DoNotOptimize(x.data());
   }
-  if (rep.termination != fricon::qp::Termination::Converged) state.SkipWithError("not converged");
+  if (rep.termination != fricon::qp::QpTermination::Converged) state.SkipWithError("not converged");
   state.counters["iterations"] = rep.iterations;
   state.counters["n_products"] = static_cast<double>(rep.n_products);
   state.counters["n_expansion"] = rep.n_expansion;

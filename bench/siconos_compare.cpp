@@ -300,7 +300,7 @@ Outcome run_mpgp(const Case& k, double tol, int max_iter, qp::MpgpVariant varian
   fricon::Stopwatch w;
   const auto rep = qp::solve_mpgp(A, k.d.h, k.c, opt, out.l);
   out.seconds = w.seconds();
-  out.converged = rep.termination == qp::Termination::Converged;
+  out.converged = rep.termination == qp::QpTermination::Converged;
   out.iterations = rep.iterations;
   return out;
 }

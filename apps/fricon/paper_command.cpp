@@ -57,7 +57,7 @@ bool print_paper_table(const std::string& title, const std::vector<driver::Paper
     const driver::RunResult r = fricon::solve(problem);
     const auto& c = *r.report.contact;
     const bool sizes_equal = r.report.n_primal == row.n_p && c.n_dual == row.n_d;
-    const bool converged = r.report.status == driver::Status::Converged;
+    const bool converged = r.report.status == driver::RunStatus::Converged;
     ok = ok && sizes_equal && converged;
     n_mult.add(static_cast<double>(c.n_mult), static_cast<double>(row.n_mult), row);
     wn_inf.add(c.wn_pos_inf, row.wn_pos_inf, row);

@@ -117,7 +117,7 @@ driver::RunOptions progress_options(Verbosity v, const Stopwatch& clock) {
     fmt::print(stderr, "[{:8.3f} s] {} ...\n", clock.seconds(), phase);
   };
   auto header = std::make_shared<bool>(false);
-  o.on_outer_iteration = [&clock, header](const driver::OuterIteration& it) {
+  o.on_outer_iteration = [&clock, header](const driver::IterationReport& it) {
     if (!*header) {
       fmt::print(stderr, "{:>4} {:>11} {:>8} {:>8} {:>11} {:>10}\n", "k", "err(k)", "QP its",
                  "Q mults", "||gP||/||h||", "elapsed");
@@ -211,7 +211,7 @@ int solve(const std::string& file, const SolveOptions& so, const std::string& co
   const driver::RunResult result = fricon::solve(problem, options);
   // The other ranks of a distributed run have served rank 0, which writes the results.
   if (result.report.parallel && result.report.parallel->rank != 0)
-    return result.report.status == driver::Status::Converged ? kConverged : kNotConverged;
+    return result.report.status == driver::RunStatus::Converged ? kConverged : kNotConverged;
   if (!so.dump_dual.empty()) {
     if (!result.first_dual)
       throw InputError(fmt::format("{}: --dump-dual needs a [contact] section", file));
@@ -220,7 +220,7 @@ int solve(const std::string& file, const SolveOptions& so, const std::string& co
   io::write_results(dir, problem, result, {so.sets, command_line});
   if (so.verbosity != Verbosity::Quiet) print_summary(result, dir);
   if (so.plot) render_plots(dir.string(), "");
-  if (result.report.status != driver::Status::Converged) {
+  if (result.report.status != driver::RunStatus::Converged) {
     std::cerr << "fricon: NOT CONVERGED: " << result.report.message << "\n"
               << "fricon: the last iterate is in " << dir.string() << "/*.not-converged.*\n";
     return kNotConverged;

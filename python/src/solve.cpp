@@ -51,7 +51,7 @@ py::dict table_dict(const io::Table& table) {
 struct Exchange {
   std::mutex mutex;
   std::condition_variable changed;
-  std::deque<driver::OuterIteration> iterations;
+  std::deque<driver::IterationReport> iterations;
   bool done = false;
 };
 
@@ -60,7 +60,7 @@ PyResult solve(const PyProblem& p, const py::object& progress, std::optional<int
   std::atomic<bool> stop{false};
   driver::RunOptions options;
   options.stop_requested = &stop;
-  options.on_outer_iteration = [&exchange](const driver::OuterIteration& it) {
+  options.on_outer_iteration = [&exchange](const driver::IterationReport& it) {
     const std::lock_guard lock(exchange.mutex);
     exchange.iterations.push_back(it);
     exchange.changed.notify_one();
@@ -91,7 +91,7 @@ PyResult solve(const PyProblem& p, const py::object& progress, std::optional<int
   // stop the run at its next QP step; the first such Python error is raised once it has ended.
   std::optional<py::error_already_set> python_error;
   for (bool done = false; !done;) {
-    std::deque<driver::OuterIteration> iterations;
+    std::deque<driver::IterationReport> iterations;
     {
       const py::gil_scoped_release release;
       std::unique_lock lock(exchange.mutex);
@@ -131,17 +131,17 @@ std::string report_text(const PyResult& r) {
 }  // namespace
 
 void bind_solve(py::module_& m) {
-  py::class_<driver::OuterIteration>(m, "OuterIteration",
-                                     "One outer iteration, as the progress callback receives it.")
-      .def_readonly("k", &driver::OuterIteration::k)
-      .def_readonly("err", &driver::OuterIteration::err,
+  py::class_<driver::IterationReport>(m, "OuterIteration",
+                                      "One outer iteration, as the progress callback receives it.")
+      .def_readonly("k", &driver::IterationReport::k)
+      .def_readonly("err", &driver::IterationReport::err,
                     "||phi^k - phi^(k-1)|| / ||phi^k|| (docs/theory.md §5.2)")
-      .def_readonly("qp_iterations", &driver::OuterIteration::qp_iterations)
-      .def_readonly("qp_products", &driver::OuterIteration::qp_products,
+      .def_readonly("qp_iterations", &driver::IterationReport::qp_iterations)
+      .def_readonly("qp_products", &driver::IterationReport::qp_products,
                     "products with Q in this QP")
-      .def_readonly("qp_rel_gp", &driver::OuterIteration::qp_rel_gp, "final ||g^P|| / ||h||")
-      .def_readonly("seconds", &driver::OuterIteration::seconds)
-      .def("__repr__", [](const driver::OuterIteration& it) {
+      .def_readonly("qp_rel_gp", &driver::IterationReport::qp_rel_gp, "final ||g^P|| / ||h||")
+      .def_readonly("seconds", &driver::IterationReport::seconds)
+      .def("__repr__", [](const driver::IterationReport& it) {
         return fmt::format("OuterIteration(k={}, err={:.3e}, qp_iterations={}, qp_products={})",
                            it.k, it.err, it.qp_iterations, it.qp_products);
       });
@@ -149,7 +149,7 @@ void bind_solve(py::module_& m) {
   py::class_<PyResult>(m, "Result", "The outcome of fricon.solve (the files of `fricon solve`).")
       .def_property_readonly(
           "converged",
-          [](const PyResult& r) { return r.run->report.status == driver::Status::Converged; },
+          [](const PyResult& r) { return r.run->report.status == driver::RunStatus::Converged; },
           "False when the run did not converge or its certificate failed (exit code 2)")
       .def_property_readonly(
           "message", [](const PyResult& r) { return r.run->report.message; },
@@ -209,7 +209,7 @@ void bind_solve(py::module_& m) {
       .def("__repr__", [](const PyResult& r) {
         return fmt::format(
             "fricon.Result({}, {} nodes{})",
-            r.run->report.status == driver::Status::Converged ? "converged" : "NOT converged",
+            r.run->report.status == driver::RunStatus::Converged ? "converged" : "NOT converged",
             r.run->report.n_nodes,
             r.run->report.contact
                 ? fmt::format(", {} outer iterations", r.run->report.contact->outer_iterations)

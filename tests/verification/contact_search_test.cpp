@@ -66,8 +66,8 @@ TEST(ContactSearch, LeavesOutTheFarPatchesAndGivesTheAnswerOfEveryPatch) {
   const Problem p = tilted_coulomb_brick();
   const RunResult all = run(without_search(p));
   const RunResult searched = run(p);
-  ASSERT_EQ(all.report.status, Status::Converged) << all.report.message;
-  ASSERT_EQ(searched.report.status, Status::Converged) << searched.report.message;
+  ASSERT_EQ(all.report.status, RunStatus::Converged) << all.report.message;
+  ASSERT_EQ(searched.report.status, RunStatus::Converged) << searched.report.message;
   const ContactReport& c = *searched.report.contact;
   // Some patches touch, some are left out, and the search needed no growth here.
   EXPECT_LT(c.n_candidate_patches, c.n_patches);
@@ -86,11 +86,11 @@ TEST(ContactSearch, LeavesOutTheFarPatchesAndGivesTheAnswerOfEveryPatch) {
 TEST(ContactSearch, AFirstSetTooSmallGrowsUntilNoPatchLeftOutPenetrates) {
   const Problem p = tilted_coulomb_brick();
   const RunResult all = run(without_search(p));
-  ASSERT_EQ(all.report.status, Status::Converged) << all.report.message;
+  ASSERT_EQ(all.report.status, RunStatus::Converged) << all.report.message;
   // Only the last patch to start with: the others that press must be found by the check.
   const Index n_patches = all.report.contact->n_patches;
   const RunResult grown = run_search_from(p, {n_patches - 1});
-  ASSERT_EQ(grown.report.status, Status::Converged) << grown.report.message;
+  ASSERT_EQ(grown.report.status, RunStatus::Converged) << grown.report.message;
   const ContactReport& c = *grown.report.contact;
   EXPECT_GE(c.search_rounds, 2);
   EXPECT_LE(max_difference(grown, all), 1e-7);
@@ -108,7 +108,7 @@ TEST(ContactSearch, TrescaWithAPositiveBoundUsesEveryPatch) {
   p.contact->obstacle =
       ObstacleOptions{ObstacleKind::Plane, Vec3(0.0, 0.0, -1.0e-5), Vec3(1.0e-4, 0.0, 1.0)};
   const RunResult r = run(p);
-  ASSERT_EQ(r.report.status, Status::Converged) << r.report.message;
+  ASSERT_EQ(r.report.status, RunStatus::Converged) << r.report.message;
   EXPECT_EQ(r.report.contact->search_rounds, 0);
   EXPECT_EQ(r.report.contact->n_candidate_patches, r.report.contact->n_patches);
 }

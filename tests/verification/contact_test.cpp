@@ -82,7 +82,7 @@ TEST(PaperBrick, SizesIterationsAndPenetrationMatchTable1) {
   for (const PaperRow& row : paper_table1()) {
     if (row.n > 6) continue;
     const RunResult r = run(paper_problem(row.n, row.param));
-    ASSERT_EQ(r.report.status, Status::Converged) << r.report.message;
+    ASSERT_EQ(r.report.status, RunStatus::Converged) << r.report.message;
     const ContactReport& c = *r.report.contact;
     EXPECT_EQ(r.report.n_primal, row.n_p);
     EXPECT_EQ(c.n_dual, row.n_d);
@@ -100,7 +100,7 @@ TEST(PaperBrick, SizesIterationsAndPenetrationMatchTable1) {
 
 TEST(PaperBrick, TightQpAgreesWithAnIndependentDenseSolution) {
   const RunResult r = run(tight(paper_problem(4, 6e4)));
-  ASSERT_EQ(r.report.status, Status::Converged) << r.report.message;
+  ASSERT_EQ(r.report.status, RunStatus::Converged) << r.report.message;
   const ContactReport& c = *r.report.contact;
   EXPECT_LT(c.kkt.max(), 1e-9);
   const DenseDual d = dense_dual(r);
@@ -164,7 +164,7 @@ TEST(PaperBrick, ReturnedSlipIsAFixedPointOfPsi) {
   Problem p = tight(paper_problem(4, 6e4));
   p.solver.outer.tol = 1e-9;
   const RunResult r = run(p);
-  ASSERT_EQ(r.report.status, Status::Converged) << r.report.message;
+  ASSERT_EQ(r.report.status, RunStatus::Converged) << r.report.message;
   const auto& c = *r.contact;
   const VectorXd phi = (c.wt1.array().square() + c.wt2.array().square()).sqrt().matrix();
   const auto law = contact::make_friction_law(p.contact->friction);
@@ -209,7 +209,7 @@ TEST(ContactColumn, FrictionlessColumnUnderGravityCarriesHalfItsWeight) {
   p.contact = c;
   p.solver.qp.rel_tolerance = 1e-12;
   const RunResult r = run(p);
-  ASSERT_EQ(r.report.status, Status::Converged) << r.report.message;
+  ASSERT_EQ(r.report.status, RunStatus::Converged) << r.report.message;
   const auto& f = *r.contact;
   for (Index q = 0; q < f.patches.size(); ++q) {
     EXPECT_NEAR(f.lambda(3 * q), b0 * H / 2, 1e-6 * b0 * H) << "patch " << q;
@@ -228,7 +228,7 @@ TEST(PaperBrick, EveryDualOperatorGivesTheSameSolution) {
     Problem p = tight(paper_problem(4, 6e4));
     p.solver.dual_operator = parse_enum<dual::DualOperatorKind>(mode);
     runs.push_back(run(p));
-    ASSERT_EQ(runs.back().report.status, Status::Converged) << mode;
+    ASSERT_EQ(runs.back().report.status, RunStatus::Converged) << mode;
     EXPECT_EQ(enum_name(runs.back().report.contact->dual_operator), mode);
   }
   const VectorXd& ref = runs[0].contact->lambda;
@@ -254,7 +254,7 @@ TEST(PaperBrick, AndersonMixingReachesTheSameFixedPoint) {
   Problem accelerated = plain;
   accelerated.solver.outer.acceleration = outer::Acceleration::Anderson;
   const RunResult a = run(plain), b = run(accelerated);
-  ASSERT_EQ(b.report.status, Status::Converged) << b.report.message;
+  ASSERT_EQ(b.report.status, RunStatus::Converged) << b.report.message;
   EXPECT_LE(b.report.contact->outer_iterations, a.report.contact->outer_iterations);
   EXPECT_LT((b.contact->lambda - a.contact->lambda).norm() / a.contact->lambda.norm(), 1e-6);
   EXPECT_LT((b.displacement - a.displacement).norm() / a.displacement.norm(), 1e-6);
@@ -265,7 +265,7 @@ TEST(PaperBrick, BarzilaiBorweinVariantGivesTheSameSolutionWithFewerProducts) {
   Problem fast = paper;
   fast.solver.qp.variant = qp::MpgpVariant::BarzilaiBorwein;
   const RunResult a = run(paper), b = run(fast);
-  ASSERT_EQ(b.report.status, Status::Converged) << b.report.message;
+  ASSERT_EQ(b.report.status, RunStatus::Converged) << b.report.message;
   EXPECT_LT(b.report.contact->kkt.max(), 1e-9);
   EXPECT_LT(b.report.contact->n_mult, a.report.contact->n_mult / 2);
   // Both stop at err <= 1e-4 of the same fixed point.
@@ -284,13 +284,13 @@ TEST(PaperBrick, AnOuterLoopThatDoesNotContractStopsAndSaysSo) {
   p.contact->friction.f = {0.0, 3.0};
   p.solver.outer.max_iterations = 50;
   const RunResult r = run(p);
-  EXPECT_EQ(r.report.status, Status::NotConverged);
-  EXPECT_EQ(r.report.contact->termination, outer::Termination::Stalled);
+  EXPECT_EQ(r.report.status, RunStatus::NotConverged);
+  EXPECT_EQ(r.report.contact->termination, outer::OuterTermination::Stalled);
   EXPECT_LE(r.report.contact->outer_iterations, 25);
   EXPECT_NE(r.report.message.find("do not contract"), std::string::npos) << r.report.message;
   // The paper's law contracts: the same check never fires there (7 iterations at most).
   const RunResult ok = run(paper_problem(4, 6e4));
-  EXPECT_EQ(ok.report.status, Status::Converged) << ok.report.message;
+  EXPECT_EQ(ok.report.status, RunStatus::Converged) << ok.report.message;
 }
 
 namespace {
@@ -335,14 +335,14 @@ TEST(Certificate, ARunWhoseFinalKktResidualsExceedTheBoundIsNotConverged) {
   const auto exact = dual::make_forward_operator(b.input());
   const ContactOutcome good = solve_contact(b.problem, b.model, b.disc, *exact, times);
   ASSERT_TRUE(good.converged) << good.message;
-  EXPECT_EQ(good.report.termination, outer::Termination::Converged);
+  EXPECT_EQ(good.report.termination, outer::OuterTermination::Converged);
   EXPECT_LE(good.report.kkt.max(), good.report.kkt_bound);
   EXPECT_EQ(good.report.kkt_bound, kCertificateFactor * b.problem.solver.qp.rel_tolerance);
 
   const SkewedOperator skewed(b.input());
   const ContactOutcome bad = solve_contact(b.problem, b.model, b.disc, skewed, times);
   EXPECT_FALSE(bad.converged);
-  EXPECT_EQ(bad.report.termination, outer::Termination::CertificateFailed);
+  EXPECT_EQ(bad.report.termination, outer::OuterTermination::CertificateFailed);
   EXPECT_GT(bad.report.kkt.max(), bad.report.kkt_bound);
   EXPECT_NE(bad.message.find("certificate"), std::string::npos) << bad.message;
 }
@@ -351,7 +351,7 @@ TEST(PaperBrick, MpgpMonotonicityIsReportedPerIterationAndInAll) {
   const RunResult r = run(paper_problem(4, 6e4));
   const ContactReport& c = *r.report.contact;
   int sum = 0;
-  for (const OuterIteration& it : c.history)
+  for (const IterationReport& it : c.history)
     sum += it.n_objective_increases;
   EXPECT_EQ(sum, c.n_objective_increases);
   EXPECT_EQ(c.n_objective_increases, 0);  // alpha_bar = 1.95/||Q||: no step increases q
@@ -369,8 +369,8 @@ TEST(Symmetry, AHalfBrickOnARollerReproducesTheFullModelOnItsHalf) {
   half.mesh.cells = {12, 2, 4};
   half.dirichlet.push_back({"y1", {false, true, false}});
   const RunResult a = run(full), b = run(half);
-  ASSERT_EQ(a.report.status, Status::Converged) << a.report.message;
-  ASSERT_EQ(b.report.status, Status::Converged) << b.report.message;
+  ASSERT_EQ(a.report.status, RunStatus::Converged) << a.report.message;
+  ASSERT_EQ(b.report.status, RunStatus::Converged) << b.report.message;
   // 13 x 3 surface nodes, the 3 on x = 0 clamped: 36 contact nodes, the roller's included.
   EXPECT_EQ(b.report.contact->n_contact_nodes, 36);
   EXPECT_EQ(b.report.contact->n_patches, a.report.contact->n_patches / 2);
@@ -408,7 +408,7 @@ TEST(Symmetry, ARollerOnTheContactFaceFixesTheTangentialComponentOnly) {
   Problem p = tight(paper_problem(4, 6e4));
   p.dirichlet.push_back({"z0", {false, true, false}});
   const RunResult r = run(p);
-  ASSERT_EQ(r.report.status, Status::Converged) << r.report.message;
+  ASSERT_EQ(r.report.status, RunStatus::Converged) << r.report.message;
   const ContactReport& c = *r.report.contact;
   EXPECT_EQ(c.n_contact_nodes, 60);
   EXPECT_EQ(c.n_inactive_multipliers, c.n_patches);

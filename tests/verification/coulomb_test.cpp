@@ -97,7 +97,7 @@ TEST(Coulomb, WithoutFrictionItIsTheFrictionlessProblem) {
   frictionless.solver.qp.rel_tolerance = 1e-10;
   const Problem c = coulomb(frictionless, 0.0);
   const RunResult a = run(frictionless), b = run(c);
-  ASSERT_EQ(b.report.status, Status::Converged) << b.report.message;
+  ASSERT_EQ(b.report.status, RunStatus::Converged) << b.report.message;
   EXPECT_EQ(b.report.contact->model, contact::FrictionModel::Coulomb);
   EXPECT_LT((b.contact->lambda - a.contact->lambda).norm(), 1e-8 * a.contact->lambda.norm());
   EXPECT_EQ(b.contact->lambda.segment<2>(1).norm(), 0.0);
@@ -111,7 +111,7 @@ TEST(Coulomb, UnderAKnownUniformPressureItIsTrescaWithThatPressure) {
   t.contact->friction.value = 0.3;
   t.contact->slip_bound = pressure;
   const RunResult a = run(t), b = run(c);
-  ASSERT_EQ(b.report.status, Status::Converged) << b.report.message;
+  ASSERT_EQ(b.report.status, RunStatus::Converged) << b.report.message;
   for (Index q = 0; q < b.contact->patches.size(); ++q)
     EXPECT_NEAR(b.contact->lambda(3 * q), pressure, 1e-6 * pressure);
   EXPECT_LT((b.contact->lambda - a.contact->lambda).norm(), 1e-6 * a.contact->lambda.norm());
@@ -128,7 +128,7 @@ TEST(Coulomb, EveryFixedPointReturnedSatisfiesTheCoulombConditions) {
     p.solver.qp.rel_tolerance = 1e-10;
     p.solver.outer.tol = 1e-8;
     const RunResult r = run(p);
-    ASSERT_EQ(r.report.status, Status::Converged) << r.report.message;
+    ASSERT_EQ(r.report.status, RunStatus::Converged) << r.report.message;
     const ContactReport& c = *r.report.contact;
     EXPECT_GT(c.n_slip, 0);
     EXPECT_GT(c.n_stick + c.n_separated, 0);
@@ -153,7 +153,7 @@ TEST(Coulomb, ATrescaStartReachesTheSameFixedPoint) {
   Problem started = p;
   started.contact->start_slip_bound = 3.0e7;
   const RunResult a = run(p), b = run(started);
-  ASSERT_EQ(b.report.status, Status::Converged) << b.report.message;
+  ASSERT_EQ(b.report.status, RunStatus::Converged) << b.report.message;
   EXPECT_LT((b.contact->lambda - a.contact->lambda).norm(), 1e-6 * a.contact->lambda.norm());
 }
 
@@ -164,8 +164,8 @@ TEST(Coulomb, ALoopThatDoesNotContractIsReportedWithItsRatio) {
   p.contact->friction.t = {1.0e-5, 1.1e-5};
   p.contact->friction.f = {0.0, 3.0};
   const RunResult r = run(p);
-  EXPECT_EQ(r.report.status, Status::NotConverged);
-  EXPECT_EQ(r.report.contact->termination, outer::Termination::Stalled);
+  EXPECT_EQ(r.report.status, RunStatus::NotConverged);
+  EXPECT_EQ(r.report.contact->termination, outer::OuterTermination::Stalled);
   EXPECT_LE(r.report.contact->outer_iterations, 25);
   EXPECT_NE(r.report.message.find("observed ratio"), std::string::npos) << r.report.message;
 }
@@ -180,7 +180,7 @@ TEST(Coulomb, AtDefaultTolerancesTheAnswerMeetsTheCertificateTolerance) {
       io::read_problem(std::string(FRICON_SOURCE_DIR) + "/examples/coulomb-brick.toml");
   ASSERT_EQ(p.solver.certificate_tol, 1e-6);
   const RunResult r = run(p);
-  ASSERT_EQ(r.report.status, Status::Converged) << r.report.message;
+  ASSERT_EQ(r.report.status, RunStatus::Converged) << r.report.message;
   const ContactReport& c = *r.report.contact;
   EXPECT_EQ(c.coulomb_bound, 1e-6);
   const CoulombCheck k = check_coulomb(r, p);
@@ -190,7 +190,7 @@ TEST(Coulomb, AtDefaultTolerancesTheAnswerMeetsTheCertificateTolerance) {
   Problem loose = p;
   loose.solver.certificate_tol = 0.5;
   const RunResult l = run(loose);
-  ASSERT_EQ(l.report.status, Status::Converged);
+  ASSERT_EQ(l.report.status, RunStatus::Converged);
   EXPECT_EQ(l.report.contact->certificate_refinements, 0);
   EXPECT_GT(check_coulomb(l, loose).residual, 1e-6);
   EXPECT_GT(c.certificate_refinements, 0);
@@ -200,9 +200,8 @@ TEST(Coulomb, ACertificateToleranceOutOfReachIsNotConverged) {
   Problem p = coulomb(paper_problem(4, 6e4), 0.3);
   p.solver.certificate_tol = 1e-15;
   const RunResult r = run(p);
-  EXPECT_EQ(r.report.status, Status::NotConverged);
-  EXPECT_EQ(r.report.contact->termination, outer::Termination::CertificateFailed);
+  EXPECT_EQ(r.report.status, RunStatus::NotConverged);
+  EXPECT_EQ(r.report.contact->termination, outer::OuterTermination::CertificateFailed);
   EXPECT_EQ(r.report.contact->certificate_refinements, kMaxCertificateRefinements);
-  EXPECT_NE(r.report.message.find("solver.certificate_tol"), std::string::npos)
-      << r.report.message;
+  EXPECT_NE(r.report.message.find("solver.certificate_tol"), std::string::npos) << r.report.message;
 }

@@ -46,8 +46,8 @@ TEST(DualScaling, ScaledAndUnscaledSolvesGiveTheSameMultipliersOnThePaperBrick) 
   p.solver.qp.rel_tolerance = 1e-10;
   const RunResult scaled = run(with_scaling(p, contact::DualScaling::Patch));
   const RunResult plain = run(with_scaling(p, contact::DualScaling::None));
-  ASSERT_EQ(scaled.report.status, Status::Converged) << scaled.report.message;
-  ASSERT_EQ(plain.report.status, Status::Converged) << plain.report.message;
+  ASSERT_EQ(scaled.report.status, RunStatus::Converged) << scaled.report.message;
+  ASSERT_EQ(plain.report.status, RunStatus::Converged) << plain.report.message;
   const VectorXd& a = scaled.contact->lambda;
   const VectorXd& b = plain.contact->lambda;
   EXPECT_LE((a - b).lpNorm<Eigen::Infinity>(), 1e-7 * b.lpNorm<Eigen::Infinity>());
@@ -60,8 +60,8 @@ TEST(DualScaling, OnTheUniformBrickThePaperCountsMoveByRoundingOnly) {
   p.solver.qp.variant = qp::MpgpVariant::Paper;
   const RunResult scaled = run(with_scaling(p, contact::DualScaling::Patch));
   const RunResult plain = run(with_scaling(p, contact::DualScaling::None));
-  ASSERT_EQ(scaled.report.status, Status::Converged) << scaled.report.message;
-  ASSERT_EQ(plain.report.status, Status::Converged) << plain.report.message;
+  ASSERT_EQ(scaled.report.status, RunStatus::Converged) << scaled.report.message;
+  ASSERT_EQ(plain.report.status, RunStatus::Converged) << plain.report.message;
   const auto& s = *scaled.report.contact;
   const auto& u = *plain.report.contact;
   EXPECT_EQ(s.outer_iterations, u.outer_iterations);

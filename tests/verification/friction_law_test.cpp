@@ -32,7 +32,7 @@ Real relative_difference(const VectorXd& a, const VectorXd& b) {
 }
 
 void expect_same_solution(const RunResult& r, const RunResult& ref) {
-  ASSERT_EQ(r.report.status, Status::Converged) << r.report.message;
+  ASSERT_EQ(r.report.status, RunStatus::Converged) << r.report.message;
   const ContactReport& c = *r.report.contact;
   const ContactReport& c_ref = *ref.report.contact;
   EXPECT_EQ(c.outer_iterations, c_ref.outer_iterations);
@@ -48,7 +48,7 @@ void expect_same_solution(const RunResult& r, const RunResult& ref) {
 
 TEST(FrictionLawKinds, PaperLawAsAnExpressionGivesThePaperSolution) {
   const RunResult ref = run(tight_paper_problem());
-  ASSERT_EQ(ref.report.status, Status::Converged) << ref.report.message;
+  ASSERT_EQ(ref.report.status, RunStatus::Converged) << ref.report.message;
   EXPECT_EQ(ref.report.contact->radius_integration, contact::kRadiusIntegration);
 
   Problem p = tight_paper_problem();

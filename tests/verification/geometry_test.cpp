@@ -62,8 +62,8 @@ TEST(Geometry, RotatingTheWholeProblemRotatesTheAnswer) {
   const auto file = std::filesystem::path(testing::TempDir()) / "fricon-rotated-brick.msh";
   const RunResult a = run(level);
   const RunResult b = run(rotated(level, R, file));
-  ASSERT_EQ(a.report.status, Status::Converged);
-  ASSERT_EQ(b.report.status, Status::Converged);
+  ASSERT_EQ(a.report.status, RunStatus::Converged);
+  ASSERT_EQ(b.report.status, RunStatus::Converged);
   EXPECT_EQ(a.report.contact->outer_iterations, b.report.contact->outer_iterations);
   const VectorXd& la = a.contact->lambda;
   const VectorXd& lb = b.contact->lambda;
@@ -103,7 +103,7 @@ TEST(Geometry, AContactSurfaceInTwoPiecesIsOneProblem) {
   p.contact->patches = contact::PatchKind::Agglomerate;
   const RunResult r = run(p);
   std::filesystem::remove(file);
-  ASSERT_EQ(r.report.status, Status::Converged);
+  ASSERT_EQ(r.report.status, RunStatus::Converged);
   const ContactFields& c = *r.contact;
   // Patches lie in one piece each, and both pieces carry pressure.
   Real force_left = 0.0, force_right = 0.0;
@@ -121,7 +121,7 @@ TEST(Geometry, AContactSurfaceInTwoPiecesIsOneProblem) {
 
 TEST(Geometry, TheDiscreteConstraintsHoldWithAGap) {
   const RunResult r = run(brick_over_plane());
-  ASSERT_EQ(r.report.status, Status::Converged);
+  ASSERT_EQ(r.report.status, RunStatus::Converged);
   const ContactFields& c = *r.contact;
   const mesh::TetMesh& mesh = r.model.mesh;
   // Scales of the QP's own tolerance (1e-10 relative): pressures, and displacement times area.
@@ -168,8 +168,8 @@ TEST(Geometry, AGapIsTakenUpByAPrescribedApproach) {
   q.contact->obstacle->point = Vec3(0, 0, -kGapDown);
   q.dirichlet[0].value = Vec3(0, 0, -kDelta - kGapDown);
   const RunResult a = run(p), b = run(q);
-  ASSERT_EQ(a.report.status, Status::Converged);
-  ASSERT_EQ(b.report.status, Status::Converged);
+  ASSERT_EQ(a.report.status, RunStatus::Converged);
+  ASSERT_EQ(b.report.status, RunStatus::Converged);
   const Real scale = a.contact->lambda.cwiseAbs().maxCoeff();
   ASSERT_GT(scale, 0.0);
   EXPECT_LE((a.contact->lambda - b.contact->lambda).cwiseAbs().maxCoeff(), 1e-7 * scale);

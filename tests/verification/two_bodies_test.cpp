@@ -73,8 +73,8 @@ TEST(TwoBodies, EachBodyOfAUnionMovesAsItDoesAlone) {
   const RunResult u_both = run(both);
   const RunResult u_first = run(first);
   const RunResult u_second = run(second_alone());
-  ASSERT_EQ(u_both.report.status, Status::Converged) << u_both.report.message;
-  ASSERT_EQ(u_first.report.status, Status::Converged) << u_first.report.message;
+  ASSERT_EQ(u_both.report.status, RunStatus::Converged) << u_both.report.message;
+  ASSERT_EQ(u_first.report.status, RunStatus::Converged) << u_first.report.message;
   ASSERT_EQ(u_both.model.bodies.n_bodies(), 2);
   const Index n1 = u_first.displacement.cols(), n2 = u_second.displacement.cols();
   ASSERT_EQ(u_both.displacement.cols(), n1 + n2);
@@ -100,7 +100,7 @@ TEST(TwoBodies, TwoClampedBlocksOfAGmshFileRun) {
   p.traction.push_back({"loose_top", Vec3(0.0, 0.0, -1.0e7)});
   validate(p);
   const RunResult r = run(p);
-  ASSERT_EQ(r.report.status, Status::Converged) << r.report.message;
+  ASSERT_EQ(r.report.status, RunStatus::Converged) << r.report.message;
   const mesh::Bodies& bodies = r.model.bodies;
   ASSERT_EQ(bodies.n_bodies(), 2);
   const int held = r.model.mesh.find_region("held");

@@ -27,10 +27,6 @@ constexpr Real kRecoveryTolerance = 1e-8;
 constexpr Real kSlipTolerance = 1e-6;
 constexpr Real kSeparationTolerance = 1e-12;
 
-bool stop_requested(const RunOptions& o) {
-  return o.stop_requested && o.stop_requested->load();
-}
-
 Index state_size(const TrescaMap& map) {
   Index n = 0;
   for (const auto& block : map.layout())
@@ -66,7 +62,7 @@ Real estimate_norm_Q(const dual::DualOperator& Q, const qp::BlockScaling& D,
   const qp::Operator product = Q.as_qp_operator();
   const qp::Operator scaled = D.scaled(product);
   const qp::Operator apply = [&scaled, &options](const VectorXd& x, VectorXd& y) {
-    if (stop_requested(options)) throw Interrupted("interrupted while estimating ||Q||");
+    if (options.stop_was_requested()) throw Interrupted("interrupted while estimating ||Q||");
     scaled(x, y);
   };
   return qp::estimate_norm(apply, Q.size(), kPowerIterations, kPowerTolerance);
@@ -90,7 +86,7 @@ qp::MpgpOptions qp_options(const SolverOptions& so, Real norm_Q, const RunOption
   qp::MpgpOptions o = so.qp;
   o.norm_A = norm_Q;
   o.monitor = [&options](const qp::MpgpIteration& it) {
-    if (stop_requested(options)) return false;
+    if (options.stop_was_requested()) return false;
     return options.on_qp_iteration ? options.on_qp_iteration(it) : true;
   };
   return o;
@@ -116,14 +112,14 @@ outer::OuterReport successive_approximations(TrescaMap& map, VectorXd& phi,
                                              ContactReport& rep, const RunOptions& options) {
   const auto monitor = [&](const outer::OuterIteration& o) {
     const qp::MpgpReport& q = map.last_qp();
-    const OuterIteration it{.k = o.k,
-                            .err = o.err,
-                            .qp_iterations = q.iterations,
-                            .qp_products = q.n_products,
-                            .qp_rel_gp = q.rel_gp,
-                            .qp_termination = q.termination,
-                            .n_objective_increases = q.n_objective_increases,
-                            .seconds = o.seconds};
+    const IterationReport it{.k = o.k,
+                             .err = o.err,
+                             .qp_iterations = q.iterations,
+                             .qp_products = q.n_products,
+                             .qp_rel_gp = q.rel_gp,
+                             .qp_termination = q.termination,
+                             .n_objective_increases = q.n_objective_increases,
+                             .seconds = o.seconds};
     rep.n_mult += q.n_products;
     rep.qp_iterations += q.iterations;
     rep.n_objective_increases += q.n_objective_increases;
@@ -286,7 +282,7 @@ void conclude(const outer::OuterReport& loop, ContactOutcome& out) {
   out.message = loop.message;
   if (out.converged && rep.model == contact::FrictionModel::Coulomb &&
       !(rep.coulomb_residual <= rep.coulomb_bound)) {
-    rep.termination = outer::Termination::CertificateFailed;
+    rep.termination = outer::OuterTermination::CertificateFailed;
     out.converged = false;
     out.message = fmt::format(
         "the certificate of the Coulomb solution failed: its natural-map residual {:.3e} "
@@ -295,7 +291,7 @@ void conclude(const outer::OuterReport& loop, ContactOutcome& out) {
         rep.coulomb_residual, rep.coulomb_bound, rep.certificate_refinements);
   }
   if (out.converged && !(rep.kkt.max() <= rep.kkt_bound)) {
-    rep.termination = outer::Termination::CertificateFailed;
+    rep.termination = outer::OuterTermination::CertificateFailed;
     out.converged = false;
     out.message = fmt::format(
         "the certificate of the final QP failed: its largest KKT residual {:.3e} (feasibility "

@@ -18,6 +18,7 @@
 #include "fricon/core/timer.hpp"
 #include "fricon/driver/model.hpp"
 #include "fricon/driver/problem.hpp"
+#include "fricon/driver/run_options.hpp"
 #include "fricon/dual/dual_operator.hpp"
 #include "fricon/outer/outer_loop.hpp"
 #include "fricon/qp/dual_problem.hpp"
@@ -40,18 +41,6 @@ enum class PatchState {
   Separated,  ///< no contact pressure (lambda_n = 0)
   Stick,      ///< ||lambda_t|| below the radius
   Slip,       ///< ||lambda_t|| on the radius
-};
-
-/// One outer iteration (a Tresca problem with a frozen coefficient).
-struct OuterIteration {
-  int k = 0;
-  Real err = 0.0;         ///< err(k) = ||phi^k - phi^(k-1)|| / ||phi^k|| (theory.md §5.2)
-  int qp_iterations = 0;  ///< MPGP steps
-  long qp_products = 0;   ///< products with Q in this QP (n_mult contribution)
-  Real qp_rel_gp = 0.0;   ///< final ||g^P|| / ||h||
-  qp::Termination qp_termination = qp::Termination::Converged;
-  int n_objective_increases = 0;  ///< MPGP steps that increased the objective (expected 0)
-  double seconds = 0.0;           ///< wall time of this outer iteration [s]
 };
 
 struct ContactReport {
@@ -80,14 +69,14 @@ struct ContactReport {
   Real norm_Q_scaled = 0.0;
   /// How the partition was made stable (ContactDiscretization::partition_note; may be empty).
   std::string partition_note;
-  outer::Termination termination = outer::Termination::IterationLimit;
+  outer::OuterTermination termination = outer::OuterTermination::IterationLimit;
   int outer_iterations = 0;
   long n_mult = 0;                ///< products with Q over all QPs (the paper's n_mult)
   long qp_iterations = 0;         ///< MPGP steps over all QPs
   long n_kinv = 0;                ///< solves with the factor of K, all of them
   int n_objective_increases = 0;  ///< over all QPs (expected 0)
   std::vector<Real> err_history;
-  std::vector<OuterIteration> history;
+  std::vector<IterationReport> history;
   // The paper's measures of the last iterate (theory.md §6.4), with w_n = w.n on the surface:
   /// ||max(0, w_n - gap)|| in L2(surface), P1 interpolant [m^2] (the penetration; w_n at zero gap)
   Real wn_pos_l2 = 0.0;
@@ -129,23 +118,6 @@ struct ContactFields {
   VectorXd slip_bound;            ///< g per surface node [Pa]
   VectorXd coefficient;           ///< per patch: F_R = (1/|R|) int_R F(||w_t||) dS of the result
   std::vector<PatchState> state;  ///< per patch
-};
-
-/// How a run reports progress and what it keeps besides the solution.
-struct RunOptions {
-  /// Keep the dual problem of the first outer iteration (ContactOutcome::first_dual).
-  bool keep_first_dual = false;
-  /// Called after every outer iteration (the monitor line of `fricon solve`).
-  std::function<void(const OuterIteration&)> on_outer_iteration;
-  /// Called after every MPGP step of every QP (verbose progress); return false to stop.
-  std::function<bool(const qp::MpgpIteration&)> on_qp_iteration;
-  /// Called when a phase starts ("assembly", "factorize", ...) so that long phases are visible;
-  /// on the ranks other than 0 of a distributed run, "follow" when they start serving rank 0's
-  /// outer loop.
-  std::function<void(const std::string& phase)> on_phase_start;
-  /// If set and true, the run stops at the next QP step (e.g. set by a SIGINT handler) and
-  /// returns what it has, not converged; while Q is formed it throws fricon::Interrupted.
-  const std::atomic<bool>* stop_requested = nullptr;
 };
 
 struct ContactOutcome {

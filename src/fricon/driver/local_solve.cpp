@@ -92,14 +92,14 @@ class LocalMap final : public outer::FixedPointMap {
     if (n_shift() > 0) x.tail(n_shift()) = parts_.A * s_.r;
     return x;
   }
-  outer::StepResult apply(int k, const VectorXd& x, VectorXd& image) override {
+  outer::MapStep apply(int k, const VectorXd& x, VectorXd& image) override {
     if (n_normal() > 0) c_.set_disc_radii(p_.mu.cwiseProduct(x.head(n_normal()).cwiseMax(0.0)));
     const VectorXd q = n_shift() > 0 ? VectorXd(p_.q + x.tail(n_shift())) : p_.q;
     const qp::MpgpReport rep = qp::solve_mpgp_scaled(S_, -q, c_, D_, o_, s_.r);
     s_.qp_iterations += rep.iterations;
     s_.n_products += rep.n_products;
     image = state();
-    if (rep.termination == qp::Termination::Converged) return {};
+    if (rep.termination == qp::QpTermination::Converged) return {};
     return {outer::StepStatus::Failed,
             fmt::format("the QP of step {} did not converge: {}", k, rep.message)};
   }
@@ -136,9 +136,9 @@ void solve_tresca(const qp::LocalProblem& p, const Parts& parts, const qp::Block
   s.qp_iterations += q.iterations;
   s.n_products += q.n_products;
   s.outer_iterations += 1;
-  s.termination = q.termination == qp::Termination::Converged ? outer::Termination::Converged
-                                                              : outer::Termination::QpFailed;
-  if (s.termination != outer::Termination::Converged)
+  s.termination = q.termination == qp::QpTermination::Converged ? outer::OuterTermination::Converged
+                                                                : outer::OuterTermination::QpFailed;
+  if (s.termination != outer::OuterTermination::Converged)
     s.reason = fmt::format("the QP did not converge: {}", q.message);
 }
 
@@ -294,7 +294,7 @@ LocalSolution solve_local(const qp::LocalProblem& p, const LocalSolveOptions& op
   // @sect: solve, and refine while another code's merit is not yet met.
   Real qp_rtol = options.qp_rtol, outer_tol = options.outer_tol;
   attempt(p, parts, D, options, qp_rtol, outer_tol, s);
-  while (s.termination == outer::Termination::Converged &&
+  while (s.termination == outer::OuterTermination::Converged &&
          (s.merit > options.merit_tol || s.residual > options.residual_tol) &&
          s.refinements < options.refinements) {
     qp_rtol *= kRefinementFactor;
@@ -304,9 +304,9 @@ LocalSolution solve_local(const qp::LocalProblem& p, const LocalSolveOptions& op
   }
   // @sect: the certificate, whatever the iterations said.
   const bool certified = s.residual <= options.residual_tol && s.merit <= options.merit_tol;
-  s.solved = s.termination == outer::Termination::Converged && certified;
-  if (s.termination == outer::Termination::Converged && !certified) {
-    s.termination = outer::Termination::CertificateFailed;
+  s.solved = s.termination == outer::OuterTermination::Converged && certified;
+  if (s.termination == outer::OuterTermination::Converged && !certified) {
+    s.termination = outer::OuterTermination::CertificateFailed;
     s.reason = fmt::format(
         "the answer's natural-map residual {:.2e} (tolerance {:.1e}) or merit {:.2e} (tolerance "
         "{:.1e}) is too large after {} refinements",

@@ -83,7 +83,7 @@ struct LocalSolution {
   /// Coulomb, "A r" when W is split), in the order of the state; empty for one Tresca QP.
   std::vector<std::pair<std::string, Real>> last_changes;
   double seconds = 0.0;
-  outer::Termination termination = outer::Termination::Converged;
+  outer::OuterTermination termination = outer::OuterTermination::Converged;
 };
 
 /// The change of variables r = D y of LocalSolveOptions::scaling, on the layout

@@ -10,17 +10,13 @@
 
 namespace fricon::driver {
 
-bool stop_requested(const RunOptions& o) {
-  return o.stop_requested && o.stop_requested->load();
-}
-
 void phase_start(const RunOptions& o, const std::string& name) {
   if (o.on_phase_start) o.on_phase_start(name);
 }
 
 std::function<void()> interrupt_poll(const RunOptions& options) {
   return [&options] {
-    if (stop_requested(options)) throw Interrupted("interrupted while forming Q");
+    if (options.stop_was_requested()) throw Interrupted("interrupted while forming Q");
   };
 }
 
@@ -30,7 +26,7 @@ namespace {
 VectorXd adopt(ContactOutcome&& c, RunResult& r) {
   RunReport& rep = r.report;
   r.first_dual = std::move(c.first_dual);
-  rep.status = c.converged ? Status::Converged : Status::NotConverged;
+  rep.status = c.converged ? RunStatus::Converged : RunStatus::NotConverged;
   rep.message = c.message;
   rep.contact_force = c.contact_force;
   rep.linear_residual = c.linear_residual;
@@ -115,8 +111,8 @@ VectorXd solve_with_search(const Problem& problem, const contact::ContactDiscret
     // A round that left out a pressing patch fails its certificate over every patch: that
     // failure is what the growth repairs; any other is the answer.
     const bool grow =
-        !added.empty() && !stop_requested(options) &&
-        (c.converged || c.report.termination == outer::Termination::CertificateFailed);
+        !added.empty() && !options.stop_was_requested() &&
+        (c.converged || c.report.termination == outer::OuterTermination::CertificateFailed);
     if (!grow) {
       c.report.n_mult += earlier_products;
       c.report.qp_iterations += earlier_qp_iterations;
@@ -204,8 +200,8 @@ Real elastic_residual(const Model& model, const VectorXd& u) {
 
 void finish_run(const Problem& problem, const VectorXd& u, const RunOptions& options,
                 RunResult& r) {
-  if (stop_requested(options) && r.report.status == Status::Converged) {
-    r.report.status = Status::NotConverged;
+  if (options.stop_was_requested() && r.report.status == RunStatus::Converged) {
+    r.report.status = RunStatus::NotConverged;
     r.report.message = "interrupted";
   }
   postprocess(problem, u, r);
@@ -238,7 +234,7 @@ RunResult run(const Problem& problem, const RunOptions& options) {
   factorize_model(r.model, request, rep.times, options.on_phase_start);
   report_sizes(r.model, rep);
   rep.factor = r.model.factor.info();
-  if (stop_requested(options)) throw Interrupted("interrupted before the solve");
+  if (options.stop_was_requested()) throw Interrupted("interrupted before the solve");
 
   // @sect: the displacement: one solve, or the outer loop of dual QPs.
   const VectorXd u = disc ? solve_contact_problem(problem, *disc, options, r) : solve_elastic(r);

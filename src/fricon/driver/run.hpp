@@ -20,11 +20,11 @@
 namespace fricon::driver {
 
 /// The outcome of a run as the report and the exit code give it.
-enum class Status { Converged, NotConverged };
+enum class RunStatus { Converged, NotConverged };
 
 /// What a run reports (the JSON report serialises this struct).
 struct RunReport {
-  Status status = Status::Converged;
+  RunStatus status = RunStatus::Converged;
   std::string message;
   Index n_nodes = 0, n_tets = 0;
   Index n_primal = 0;                  ///< free displacement dofs (the paper's n_p)
@@ -64,5 +64,5 @@ RunResult run(const Problem& problem, const RunOptions& options = {});
 
 }  // namespace fricon::driver
 
-FRICON_ENUM_NAMES(fricon::driver::Status, "status", {driver::Status::Converged, "converged"},
-                  {driver::Status::NotConverged, "not_converged"});
+FRICON_ENUM_NAMES(fricon::driver::RunStatus, "status", {driver::RunStatus::Converged, "converged"},
+                  {driver::RunStatus::NotConverged, "not_converged"});

@@ -8,7 +8,6 @@
 
 namespace fricon::driver {
 
-bool stop_requested(const RunOptions& options);
 void phase_start(const RunOptions& options, const std::string& name);
 
 /// The poll of a dual operator while it forms Q: throws Interrupted when a stop was requested.

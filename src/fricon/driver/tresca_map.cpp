@@ -47,7 +47,7 @@ VectorXd TrescaMap::radii(int k, const VectorXd& state) const {
   return bounds_.radii(k, slips(state), lambda_n);
 }
 
-outer::StepResult TrescaMap::apply(int k, const VectorXd& state, VectorXd& image) {
+outer::MapStep TrescaMap::apply(int k, const VectorXd& state, VectorXd& image) {
   // @sect: the Tresca problem with the slip bounds frozen at the state, in its dual form.
   radius_ = radii(k, state);
   constraints_.set_disc_radii(radius_);
@@ -70,12 +70,12 @@ outer::StepResult TrescaMap::apply(int k, const VectorXd& state, VectorXd& image
       image(phi.size() + p) = lambda_(3 * p);
 
   switch (last_qp_.termination) {
-    case qp::Termination::Converged:
+    case qp::QpTermination::Converged:
       return {};
-    case qp::Termination::UserStopped:
+    case qp::QpTermination::UserStopped:
       return {outer::StepStatus::Interrupted, last_qp_.message};
-    case qp::Termination::MaxIterations:
-    case qp::Termination::NumericalFailure:
+    case qp::QpTermination::MaxIterations:
+    case qp::QpTermination::NumericalFailure:
       break;
   }
   return {

@@ -35,7 +35,7 @@ class TrescaMap final : public outer::FixedPointMap {
 
   /// {"phi": surface nodes}, and for Coulomb {"lambda_n": patches} after it.
   std::vector<outer::StateBlock> layout() const override;
-  outer::StepResult apply(int k, const VectorXd& state, VectorXd& image) override;
+  outer::MapStep apply(int k, const VectorXd& state, VectorXd& image) override;
   std::string stall_hint() const override;
 
   /// The radii [Pa] at iteration k for a state (those of the first QP for the zero state).

@@ -321,7 +321,7 @@ std::vector<std::filesystem::path> write_results(const std::filesystem::path& di
                                                  const driver::Problem& problem,
                                                  const driver::RunResult& result,
                                                  const RunContext& context) {
-  const bool converged = result.report.status == driver::Status::Converged;
+  const bool converged = result.report.status == driver::RunStatus::Converged;
   // Results of an earlier run in the same folder, converged or not, would contradict this one.
   for (const auto& [base, ext] : kResultFiles)
     for (bool c : {true, false}) {

@@ -29,14 +29,9 @@ void copy_nodes_and_tets(const MeshArrays& a, const std::string& source, TetMesh
 }
 
 void require_all_nodes_used(const std::string& source, const TetMesh& mesh) {
-  std::vector<bool> used(static_cast<std::size_t>(mesh.n_nodes()), false);
-  for (Index t = 0; t < mesh.n_tets(); ++t)
-    for (Index v = 0; v < kNodesPerTet; ++v)
-      used[static_cast<std::size_t>(mesh.tets(v, t))] = true;
-  for (std::size_t i = 0; i < used.size(); ++i)
-    if (!used[i])
-      throw InputError(
-          fmt::format("{}: points[{}] belongs to no tetrahedron (remove it)", source, i));
+  if (const auto n = first_unused_node(mesh))
+    throw InputError(
+        fmt::format("{}: points[{}] belongs to no tetrahedron (remove it)", source, *n));
 }
 
 void add_boundary(const MeshArrays& a, const std::string& source, TetMesh& mesh) {

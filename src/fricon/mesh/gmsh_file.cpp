@@ -306,16 +306,11 @@ GmshTets read_tets(const std::string& source, const GmshNodes& nodes, TetMesh& m
 
 void require_all_nodes_used(const std::string& source, const GmshNodes& nodes,
                             const TetMesh& mesh) {
-  std::vector<bool> used(static_cast<size_t>(mesh.n_nodes()), false);
-  for (Index t = 0; t < mesh.n_tets(); ++t)
-    for (int v = 0; v < kNodesPerTet; ++v)
-      used[static_cast<size_t>(mesh.tets(v, t))] = true;
-  for (size_t n = 0; n < used.size(); ++n)
-    if (!used[n])
-      throw InputError(fmt::format(
-          "{}: node {} (Gmsh node {}) belongs to no tetrahedron (remove it, or mesh the volume "
-          "it lies in)",
-          source, n, nodes.tag_of[n]));
+  if (const auto n = first_unused_node(mesh))
+    throw InputError(fmt::format(
+        "{}: node {} (Gmsh node {}) belongs to no tetrahedron (remove it, or mesh the volume "
+        "it lies in)",
+        source, *n, nodes.tag_of[static_cast<size_t>(*n)]));
 }
 
 // Every face of every tetrahedron, sorted by its vertex set, with its tetrahedron: to name the

@@ -50,6 +50,16 @@ std::string TetMesh::tag_list() const {
   return s;
 }
 
+std::optional<Index> first_unused_node(const TetMesh& mesh) {
+  std::vector<bool> used(static_cast<std::size_t>(mesh.n_nodes()), false);
+  for (Index t = 0; t < mesh.n_tets(); ++t)
+    for (Index v = 0; v < 4; ++v)
+      used[static_cast<std::size_t>(mesh.tets(v, t))] = true;
+  for (std::size_t n = 0; n < used.size(); ++n)
+    if (!used[n]) return static_cast<Index>(n);
+  return std::nullopt;
+}
+
 Real signed_volume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
   Mat3 m;
   m << b - a, c - a, d - a;

@@ -8,6 +8,7 @@
 // once per tag. It knows nothing of finite elements or contact.
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -54,6 +55,10 @@ struct TetMesh {
   /// Index of the region called `name`, or -1.
   int find_region(const std::string& name) const;
 };
+
+/// The first node of no tetrahedron, or nothing when every node belongs to one (a reader
+/// refuses such nodes: they would be free dofs that nothing holds).
+std::optional<Index> first_unused_node(const TetMesh& mesh);
 
 /// Signed volume [m^3] of the tetrahedron (a, b, c, d): det[b-a, c-a, d-a] / 6.
 Real signed_volume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);

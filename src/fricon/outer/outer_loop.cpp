@@ -74,17 +74,17 @@ std::vector<Real> block_changes(const std::vector<StateBlock>& blocks, const Vec
 
 // The reason to stop right after iteration k, if any, in the order: the inner solve's own
 // failure or interruption, a stop request, convergence, a stall.
-std::optional<std::pair<Termination, std::string>> stop_reason(const StepResult& step,
-                                                               const std::atomic<bool>* stop, int k,
-                                                               const OuterReport& rep,
-                                                               const OuterOptions& options,
-                                                               const FixedPointMap& map) {
+std::optional<std::pair<OuterTermination, std::string>> stop_reason(const MapStep& step,
+                                                                    const std::atomic<bool>* stop,
+                                                                    int k, const OuterReport& rep,
+                                                                    const OuterOptions& options,
+                                                                    const FixedPointMap& map) {
   if (step.status == StepStatus::Interrupted || (stop != nullptr && stop->load()))
-    return std::pair{Termination::Interrupted,
+    return std::pair{OuterTermination::Interrupted,
                      fmt::format("interrupted during outer iteration {}", k)};
-  if (step.status == StepStatus::Failed) return std::pair{Termination::QpFailed, step.message};
+  if (step.status == StepStatus::Failed) return std::pair{OuterTermination::QpFailed, step.message};
   const Real err = rep.err_history.back();
-  if (err <= options.tol) return std::pair{Termination::Converged, std::string()};
+  if (err <= options.tol) return std::pair{OuterTermination::Converged, std::string()};
   // Psi contracts when the friction law's Lipschitz constant is small (theory.md §1.5); then
   // err(k) falls at every step. If it has not gone below its best value for stall_window
   // iterations (growth, or a cycle between states), the iteration does not contract.
@@ -92,7 +92,7 @@ std::optional<std::pair<Termination, std::string>> stop_reason(const StepResult&
   if (stalled(rep.err_history, window)) {
     const std::string hint = map.stall_hint();
     return std::pair{
-        Termination::Stalled,
+        OuterTermination::Stalled,
         fmt::format("the successive approximations do not contract: err(k) has not gone below "
                     "its best value {:.3g} for {} iterations (observed ratio err(k)/err(k-1) = "
                     "{:.3g}){}; err(k):{}",
@@ -117,7 +117,7 @@ OuterReport iterate(FixedPointMap& map, VectorXd& x, const OuterOptions& options
   for (int k = 1; k <= options.max_iterations; ++k) {
     // @sect: one application of Psi and its relative change.
     const Stopwatch watch;
-    const StepResult step = map.apply(k, x, image);
+    const MapStep step = map.apply(k, x, image);
     OuterIteration it;
     it.k = k;
     it.block_err = block_changes(blocks, image, x);
@@ -138,7 +138,7 @@ OuterReport iterate(FixedPointMap& map, VectorXd& x, const OuterOptions& options
     }
     x = options.acceleration == Acceleration::Anderson ? anderson.next(x, image) : image;
   }
-  rep.termination = Termination::IterationLimit;
+  rep.termination = OuterTermination::IterationLimit;
   rep.message = fmt::format(
       "the successive approximations did not reach err <= {:.1e} in {} iterations (observed "
       "contraction ratio {:.3g}); err(k):{}",

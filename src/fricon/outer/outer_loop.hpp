@@ -24,7 +24,7 @@ namespace fricon::outer {
 
 /// Why the outer loop stopped (and, set by the caller after it, whether the final iterate passed
 /// its certificate).
-enum class Termination {
+enum class OuterTermination {
   Converged,          ///< err(k) <= tol
   IterationLimit,     ///< max_iterations reached first
   Stalled,            ///< no new smallest err(k) for stall_window iterations: not contracting
@@ -63,7 +63,7 @@ enum class StepStatus {
   Interrupted,  ///< the inner solve was stopped on request
 };
 
-struct StepResult {
+struct MapStep {
   StepStatus status = StepStatus::Ok;
   std::string message;  ///< why, when not Ok
 };
@@ -76,7 +76,7 @@ class FixedPointMap {
   virtual std::vector<StateBlock> layout() const = 0;
   /// image := Psi(x) at outer iteration k (1-based). A step that fails still fills `image` with
   /// what it reached, so that the last iterate can be reported.
-  virtual StepResult apply(int k, const VectorXd& x, VectorXd& image) = 0;
+  virtual MapStep apply(int k, const VectorXd& x, VectorXd& image) = 0;
   /// For a loop that does not contract: what may cause it, as a clause ("the friction law's
   /// Lipschitz constant 3 1/m may be too large"); empty if nothing is known.
   virtual std::string stall_hint() const { return {}; }
@@ -91,7 +91,7 @@ struct OuterIteration {
 };
 
 struct OuterReport {
-  Termination termination = Termination::IterationLimit;
+  OuterTermination termination = OuterTermination::IterationLimit;
   std::string message;  ///< one sentence: why the loop stopped (empty when converged)
   int iterations = 0;
   std::vector<Real> err_history;                 ///< err(k), k = 1, 2, ...
@@ -102,7 +102,7 @@ struct OuterReport {
   /// The last err(k): ||Psi(x) - x|| / ||Psi(x)|| at the returned state.
   Real fixed_point_residual = 0.0;
 
-  bool converged() const { return termination == Termination::Converged; }
+  bool converged() const { return termination == OuterTermination::Converged; }
 };
 
 /// Runs the successive approximations from x (the initial state, sized as map.layout()); on
@@ -125,10 +125,10 @@ bool stalled(const std::vector<Real>& err, size_t window);
 
 }  // namespace fricon::outer
 
-FRICON_ENUM_NAMES(fricon::outer::Termination, "outer termination",
-                  {outer::Termination::Converged, "converged"},
-                  {outer::Termination::IterationLimit, "iteration_limit"},
-                  {outer::Termination::Stalled, "stalled"},
-                  {outer::Termination::QpFailed, "qp_failed"},
-                  {outer::Termination::Interrupted, "interrupted"},
-                  {outer::Termination::CertificateFailed, "certificate_failed"});
+FRICON_ENUM_NAMES(fricon::outer::OuterTermination, "outer termination",
+                  {outer::OuterTermination::Converged, "converged"},
+                  {outer::OuterTermination::IterationLimit, "iteration_limit"},
+                  {outer::OuterTermination::Stalled, "stalled"},
+                  {outer::OuterTermination::QpFailed, "qp_failed"},
+                  {outer::OuterTermination::Interrupted, "interrupted"},
+                  {outer::OuterTermination::CertificateFailed, "certificate_failed"});

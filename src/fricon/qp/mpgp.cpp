@@ -201,23 +201,23 @@ struct MpgpState {
 
 /// How the iteration ends.
 struct Stop {
-  Termination termination;
+  QpTermination termination;
   std::string message;
 };
 
 /// What a step did: its kind ('c', 'e', 'p'), its length (MpgpIteration::alpha) and, if it failed
 /// (A found not positive definite along a direction, or non-finite values), why.
-struct StepResult {
+struct MpgpStep {
   char kind;
   double alpha = 0.0;
   std::optional<std::string> failure;
 };
 
-StepResult taken(char kind, double alpha) {
+MpgpStep taken(char kind, double alpha) {
   return {kind, alpha, std::nullopt};
 }
 
-StepResult failed(char kind, std::string why) {
+MpgpStep failed(char kind, std::string why) {
   return {kind, 0.0, std::move(why)};
 }
 
@@ -233,14 +233,14 @@ class Mpgp {
 
  private:
   bool proportional() const;
-  StepResult cg_or_expansion_step();
-  StepResult cg_step(double a_cg, double pAp);
-  StepResult expansion_step(double a_f, double a_cg);
-  StepResult fixed_expansion(double a_f);
-  StepResult optimal_expansion(double a_f);
-  StepResult projected_cg_expansion(double a_f, double a_cg);
+  MpgpStep cg_or_expansion_step();
+  MpgpStep cg_step(double a_cg, double pAp);
+  MpgpStep expansion_step(double a_f, double a_cg);
+  MpgpStep fixed_expansion(double a_f);
+  MpgpStep optimal_expansion(double a_f);
+  MpgpStep projected_cg_expansion(double a_f, double a_cg);
   void move_to_boundary(double a_f);
-  StepResult proportioning_step();
+  MpgpStep proportioning_step();
   std::optional<double> projected_gradient_move(const Eigen::VectorXd& v);
   std::optional<double> spectral_move(const Eigen::VectorXd& v);
   double fixed_length_move(const Eigen::VectorXd& v);
@@ -299,11 +299,11 @@ void Mpgp::run() {
   while (true) {
     if (std::optional<Stop> stop = stop_test()) return finish(*stop);  // line 3
     const long products_before = rep_.n_products;
-    const StepResult step = proportional() ? cg_or_expansion_step()  // line 4; lines 5-12
-                                           : proportioning_step();   // lines 14-15
+    const MpgpStep step = proportional() ? cg_or_expansion_step()  // line 4; lines 5-12
+                                         : proportioning_step();   // lines 14-15
     count(step.kind);  // a failed step is counted too: its product was spent
     if (step.kind == 'e') rep_.n_expansion_products += rep_.n_products - products_before;
-    if (step.failure) return finish({Termination::NumericalFailure, *step.failure});
+    if (step.failure) return finish({QpTermination::NumericalFailure, *step.failure});
     record(step.kind, step.alpha);
   }
 }
@@ -316,7 +316,7 @@ bool Mpgp::proportional() const {
 
 // Lines 5-12: the CG step length a_cg along -p and the feasible one a_f decide between the CG
 // step and the expansion step (1 product, A p, shared by both).
-StepResult Mpgp::cg_or_expansion_step() {
+MpgpStep Mpgp::cg_or_expansion_step() {
   multiply(s_.p, s_.Ap);
   const double pAp = s_.p.dot(s_.Ap);
   const double a_cg = s_.g.dot(s_.p) / pAp;
@@ -331,7 +331,7 @@ StepResult Mpgp::cg_or_expansion_step() {
 
 // Lines 7-8: the CG step inside the feasible set, g updated recursively, and the next conjugate
 // direction p = phi - beta_cg p.
-StepResult Mpgp::cg_step(double a_cg, double pAp) {
+MpgpStep Mpgp::cg_step(double a_cg, double pAp) {
   if (bb_) s_.spectral.update(s_.p.squaredNorm(), pAp, s_.Ap.squaredNorm());
   s_.x.noalias() -= a_cg * s_.p;
   s_.g.noalias() -= a_cg * s_.Ap;
@@ -344,7 +344,7 @@ StepResult Mpgp::cg_step(double a_cg, double pAp) {
 }
 
 // Lines 10-12, with the move that MpgpOptions::expansion chooses; CG restarts from phi.
-StepResult Mpgp::expansion_step(double a_f, double a_cg) {
+MpgpStep Mpgp::expansion_step(double a_f, double a_cg) {
   switch (opt_.expansion) {
     case MpgpExpansion::Optimal:
       return optimal_expansion(a_f);
@@ -365,7 +365,7 @@ void Mpgp::move_to_boundary(double a_f) {
 
 // MpgpExpansion::Fixed, lines 10-12: to the boundary along -p (step a_f), then a projected move
 // along the free gradient there (1 more product).
-StepResult Mpgp::fixed_expansion(double a_f) {
+MpgpStep Mpgp::fixed_expansion(double a_f) {
   move_to_boundary(a_f);
   if (!projected_gradient_move(s_.phi)) {
     return failed('e',
@@ -384,7 +384,7 @@ StepResult Mpgp::fixed_expansion(double a_f) {
 // exceed q(x_b), the move is x_b - alpha_bar gr = P(x_b - alpha_bar phi), Paper's fixed-length
 // move, whose gradient g_b - alpha_bar A gr is known (no product). BarzilaiBorwein's trial length
 // stays as it was (updated with gr, it gave more products on the paper's brick).
-StepResult Mpgp::optimal_expansion(double a_f) {
+MpgpStep Mpgp::optimal_expansion(double a_f) {
   move_to_boundary(a_f);
   s_.allocate_expansion_work();
   Eigen::VectorXd& gr = s_.gr;
@@ -430,7 +430,7 @@ StepResult Mpgp::optimal_expansion(double a_f) {
 // boundary, then g recomputed (1 product). Should q increase, x and g are restored and the step
 // is the Fixed one (1 more product). BarzilaiBorwein's trial length stays as it was (updated with
 // p, it gave more products on the paper's brick).
-StepResult Mpgp::projected_cg_expansion(double a_f, double a_cg) {
+MpgpStep Mpgp::projected_cg_expansion(double a_f, double a_cg) {
   s_.allocate_expansion_work();
   s_.x_saved = s_.x;
   s_.g_saved = s_.g;
@@ -450,7 +450,7 @@ StepResult Mpgp::projected_cg_expansion(double a_f, double a_cg) {
 
 // Lines 14-15: the proportioning step 14(b), a projected move along the whole gradient
 // (1 product), and CG restarts from phi.
-StepResult Mpgp::proportioning_step() {
+MpgpStep Mpgp::proportioning_step() {
   const std::optional<double> alpha = projected_gradient_move(s_.g);
   if (!alpha) {
     return failed('p',
@@ -543,20 +543,20 @@ std::optional<Stop> Mpgp::stop_test() {
   }
   const int done = steps();
   if (!std::isfinite(s_.split.gp2) || !std::isfinite(s_.q_prev)) {
-    return Stop{Termination::NumericalFailure,
+    return Stop{QpTermination::NumericalFailure,
                 fmt::format("non-finite gradient or objective after {} iterations", done)};
   }
   if (norm_gp() <= threshold_) {
     return Stop{
-        Termination::Converged,
+        QpTermination::Converged,
         fmt::format("||g^P|| = {:.3e} <= {:.3e} after {} iterations", norm_gp(), threshold_, done)};
   }
   if (s_.stopped) {
-    return Stop{Termination::UserStopped,
+    return Stop{QpTermination::UserStopped,
                 fmt::format("stopped by the monitor after {} iterations", done)};
   }
   if (done >= opt_.max_iterations) {
-    return Stop{Termination::MaxIterations,
+    return Stop{QpTermination::MaxIterations,
                 fmt::format("reached max_iterations = {} with ||g^P|| / ||r|| = {:.3e} (target "
                             "{:.3e})",
                             opt_.max_iterations, norm_gp() / rep_.reference_norm,
@@ -633,7 +633,7 @@ void solve_zero_rhs(const Operator& A, const Eigen::VectorXd& b, const Separable
   FRICON_CHECK(g.size() == x.size(),
                "operator returned a vector of size " << g.size() << ", expected " << x.size());
   if (g.norm() != 0.0) {
-    rep.termination = Termination::NumericalFailure;
+    rep.termination = QpTermination::NumericalFailure;
     rep.message = fmt::format("A 0 has norm {}: A is not linear", g.norm());
     rep.norm_gp = rep.rel_gp = g.norm();
     return;
@@ -644,7 +644,7 @@ void solve_zero_rhs(const Operator& A, const Eigen::VectorXd& b, const Separable
   rep.norm_gp = resisted_part(b, c).norm();
   rep.rel_gp = rep.norm_gp;
   rep.objective = 0.0;
-  rep.termination = Termination::Converged;
+  rep.termination = QpTermination::Converged;
   rep.message = rep.norm_b == 0.0 ? "b = 0: the solution is x = 0"
                                   : "b_R = 0 (no constraint resists b): the solution is x = 0";
 }

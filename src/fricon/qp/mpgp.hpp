@@ -41,7 +41,7 @@
 
 namespace fricon::qp {
 
-enum class Termination {
+enum class QpTermination {
   Converged,         ///< ||g^P|| reached the tolerance
   MaxIterations,     ///< MpgpOptions::max_iterations steps taken without converging
   NumericalFailure,  ///< non-finite values, or A found not positive definite along a direction
@@ -130,10 +130,11 @@ Eigen::VectorXd resisted_part(const Eigen::VectorXd& b, const SeparableConstrain
 
 }  // namespace fricon::qp
 
-FRICON_ENUM_NAMES(fricon::qp::Termination, "termination", {qp::Termination::Converged, "converged"},
-                  {qp::Termination::MaxIterations, "max_iterations"},
-                  {qp::Termination::NumericalFailure, "numerical_failure"},
-                  {qp::Termination::UserStopped, "user_stopped"});
+FRICON_ENUM_NAMES(fricon::qp::QpTermination, "termination",
+                  {qp::QpTermination::Converged, "converged"},
+                  {qp::QpTermination::MaxIterations, "max_iterations"},
+                  {qp::QpTermination::NumericalFailure, "numerical_failure"},
+                  {qp::QpTermination::UserStopped, "user_stopped"});
 
 FRICON_ENUM_NAMES(fricon::qp::MpgpVariant, "solver.qp_variant", {qp::MpgpVariant::Paper, "paper"},
                   {qp::MpgpVariant::BarzilaiBorwein, "bb"});
@@ -195,7 +196,7 @@ struct MpgpOptions {
   /// ||b||_2 / ||A||). Default 1e-12; range [0, 1e-3].
   double active_tolerance = 1e-12;
   /// Optional; called after every iteration and once for the starting point. Return false to
-  /// stop (Termination::UserStopped).
+  /// stop (QpTermination::UserStopped).
   std::function<bool(const MpgpIteration&)> monitor;
   /// Store every MpgpIteration (starting point included) in MpgpReport::history. Default false.
   bool record_history = false;
@@ -205,7 +206,7 @@ struct MpgpOptions {
 };
 
 struct MpgpReport {
-  Termination termination = Termination::NumericalFailure;
+  QpTermination termination = QpTermination::NumericalFailure;
   std::string message;                             ///< one sentence: why the solver stopped
   MpgpVariant variant = MpgpVariant::Paper;        ///< the algorithm that ran
   MpgpExpansion expansion = MpgpExpansion::Fixed;  ///< its expansion move

@@ -21,11 +21,11 @@ namespace {
 // A map given by a function of (k, x), with one block or the blocks given.
 class FunctionMap final : public FixedPointMap {
  public:
-  using Step = std::function<StepResult(int, const VectorXd&, VectorXd&)>;
+  using Step = std::function<MapStep(int, const VectorXd&, VectorXd&)>;
   FunctionMap(std::vector<StateBlock> blocks, Step step)
       : blocks_(std::move(blocks)), step_(std::move(step)) {}
   std::vector<StateBlock> layout() const override { return blocks_; }
-  StepResult apply(int k, const VectorXd& x, VectorXd& image) override {
+  MapStep apply(int k, const VectorXd& x, VectorXd& image) override {
     ++calls;
     return step_(k, x, image);
   }
@@ -44,7 +44,7 @@ struct Affine {
   FunctionMap map() const {
     return FunctionMap({{"x", b.size()}}, [this](int, const VectorXd& x, VectorXd& image) {
       image = A * x + b;
-      return StepResult{};
+      return MapStep{};
     });
   }
   VectorXd fixed_point() const {
@@ -75,7 +75,7 @@ TEST(OuterLoop, ContractionConvergesToItsFixedPoint) {
   o.tol = 1e-10;
   VectorXd x = VectorXd::Zero(4);
   const OuterReport rep = iterate(map, x, o);
-  ASSERT_EQ(rep.termination, Termination::Converged) << rep.message;
+  ASSERT_EQ(rep.termination, OuterTermination::Converged) << rep.message;
   EXPECT_TRUE(rep.converged());
   EXPECT_LT((x - a.fixed_point()).norm(), 1e-9 * a.fixed_point().norm());
   EXPECT_EQ(rep.iterations, static_cast<int>(rep.err_history.size()));
@@ -112,7 +112,7 @@ TEST(OuterLoop, AnImageThatCollapsesToZeroIsNotConvergence) {
   // not: err(2) is a change of everything (1), not 0. At k = 3 both are zero: converged.
   FunctionMap map({{"phi", 3}}, [](int k, const VectorXd&, VectorXd& image) {
     image = k == 1 ? VectorXd::Ones(3) : VectorXd::Zero(3);
-    return StepResult{};
+    return MapStep{};
   });
   VectorXd x = VectorXd::Zero(3);
   const OuterReport rep = iterate(map, x, OuterOptions{});
@@ -120,7 +120,7 @@ TEST(OuterLoop, AnImageThatCollapsesToZeroIsNotConvergence) {
   EXPECT_EQ(rep.err_history[0], 1.0);
   EXPECT_EQ(rep.err_history[1], 1.0);
   EXPECT_EQ(rep.err_history[2], 0.0);
-  EXPECT_EQ(rep.termination, Termination::Converged);
+  EXPECT_EQ(rep.termination, OuterTermination::Converged);
 }
 
 TEST(OuterLoop, RelativeChangeOfZeroVectors) {
@@ -134,13 +134,13 @@ TEST(OuterLoop, RelativeChangeOfZeroVectors) {
 TEST(OuterLoop, ATwoCycleStallsWithinTheWindowAndSaysWhy) {
   FunctionMap map({{"phi", 2}}, [](int k, const VectorXd&, VectorXd& image) {
     image = (k % 2 == 0 ? 1.0 : 3.0) * VectorXd::Ones(2);
-    return StepResult{};
+    return MapStep{};
   });
   OuterOptions o;
   o.max_iterations = 50;
   VectorXd x = VectorXd::Zero(2);
   const OuterReport rep = iterate(map, x, o);
-  EXPECT_EQ(rep.termination, Termination::Stalled);
+  EXPECT_EQ(rep.termination, OuterTermination::Stalled);
   EXPECT_LE(rep.iterations, o.stall_window + 3);
   EXPECT_NE(rep.message.find("do not contract"), std::string::npos) << rep.message;
   EXPECT_NE(rep.message.find("the test's map cycles"), std::string::npos) << rep.message;
@@ -155,7 +155,7 @@ TEST(OuterLoop, IterationLimitIsReportedWithTheHistory) {
   o.max_iterations = 3;
   VectorXd x = VectorXd::Zero(4);
   const OuterReport rep = iterate(map, x, o);
-  EXPECT_EQ(rep.termination, Termination::IterationLimit);
+  EXPECT_EQ(rep.termination, OuterTermination::IterationLimit);
   EXPECT_EQ(rep.iterations, 3);
   EXPECT_NE(rep.message.find("did not reach"), std::string::npos) << rep.message;
   EXPECT_NE(rep.message.find("err(k):"), std::string::npos);
@@ -164,22 +164,22 @@ TEST(OuterLoop, IterationLimitIsReportedWithTheHistory) {
 TEST(OuterLoop, AFailedOrInterruptedStepStopsTheLoopWithItsReason) {
   FunctionMap failing({{"phi", 1}}, [](int k, const VectorXd&, VectorXd& image) {
     image = VectorXd::Constant(1, k);
-    return k == 2 ? StepResult{StepStatus::Failed, "the QP failed"} : StepResult{};
+    return k == 2 ? MapStep{StepStatus::Failed, "the QP failed"} : MapStep{};
   });
   VectorXd x = VectorXd::Zero(1);
   OuterReport rep = iterate(failing, x, OuterOptions{});
-  EXPECT_EQ(rep.termination, Termination::QpFailed);
+  EXPECT_EQ(rep.termination, OuterTermination::QpFailed);
   EXPECT_EQ(rep.message, "the QP failed");
   EXPECT_EQ(rep.iterations, 2);
   EXPECT_EQ(x(0), 1.0);  // the state the failed step started from
 
   FunctionMap stopped({{"phi", 1}}, [](int, const VectorXd&, VectorXd& image) {
     image = VectorXd::Ones(1);
-    return StepResult{StepStatus::Interrupted, "stopped"};
+    return MapStep{StepStatus::Interrupted, "stopped"};
   });
   x.setZero();
   rep = iterate(stopped, x, OuterOptions{});
-  EXPECT_EQ(rep.termination, Termination::Interrupted);
+  EXPECT_EQ(rep.termination, OuterTermination::Interrupted);
   EXPECT_EQ(rep.iterations, 1);
 
   // A stop request ends the loop after the iteration in progress.
@@ -188,7 +188,7 @@ TEST(OuterLoop, AFailedOrInterruptedStepStopsTheLoopWithItsReason) {
   std::atomic<bool> stop{true};
   x = VectorXd::Zero(4);
   rep = iterate(map, x, OuterOptions{}, {}, &stop);
-  EXPECT_EQ(rep.termination, Termination::Interrupted);
+  EXPECT_EQ(rep.termination, OuterTermination::Interrupted);
   EXPECT_EQ(map.calls, 1);
 }
 
@@ -198,7 +198,7 @@ TEST(OuterLoop, ErrIsTheLargestRelativeChangeOfTheBlocks) {
   FunctionMap map({{"phi", 2}, {"lambda_n", 1}}, [](int, const VectorXd& x, VectorXd& image) {
     image.resize(3);
     image << 1.0, 1.0, 0.5 * (x(2) + 8.0);
-    return StepResult{};
+    return MapStep{};
   });
   OuterOptions o;
   o.tol = 1e-6;

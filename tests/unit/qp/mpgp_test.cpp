@@ -156,10 +156,10 @@ TEST(MpgpOptions, ValidateRejectsOutOfRangeFields) {
 }
 
 TEST(MpgpEnums, SpellingsRoundTrip) {
-  EXPECT_EQ(enum_name(Termination::Converged), "converged");
-  EXPECT_EQ(enum_name(Termination::MaxIterations), "max_iterations");
-  EXPECT_EQ(enum_name(Termination::NumericalFailure), "numerical_failure");
-  EXPECT_EQ(enum_name(Termination::UserStopped), "user_stopped");
+  EXPECT_EQ(enum_name(QpTermination::Converged), "converged");
+  EXPECT_EQ(enum_name(QpTermination::MaxIterations), "max_iterations");
+  EXPECT_EQ(enum_name(QpTermination::NumericalFailure), "numerical_failure");
+  EXPECT_EQ(enum_name(QpTermination::UserStopped), "user_stopped");
   EXPECT_EQ(enum_name(MpgpVariant::Paper), "paper");
   EXPECT_EQ(enum_name(MpgpVariant::BarzilaiBorwein), "bb");
   for (auto v : kVariants) {
@@ -198,7 +198,7 @@ TEST_P(MpgpVariants, DiagonalBoundProblemGivesClippedUnconstrainedSolution) {
   const Eigen::MatrixXd M = d.asDiagonal();
   Eigen::VectorXd x = Eigen::VectorXd::Zero(5);
   const auto rep = solve_mpgp(dense_operator(M), b, all_bounds(5), tight(), x);
-  ASSERT_EQ(rep.termination, Termination::Converged) << rep.full();
+  ASSERT_EQ(rep.termination, QpTermination::Converged) << rep.full();
   const Eigen::VectorXd expected = (Eigen::VectorXd(5) << 1.0, 0.0, 0.5, 0.0, 0.0).finished();
   EXPECT_LE((x - expected).norm(), 1e-12) << x.transpose();  // CG ends exactly on a face
 }
@@ -212,7 +212,7 @@ TEST_P(MpgpVariants, BlockScalarDiscProblemGivesProjectedUnconstrainedSolution) 
   const Eigen::MatrixXd M = d.asDiagonal();
   Eigen::VectorXd x = Eigen::VectorXd::Zero(6);
   const auto rep = solve_mpgp(dense_operator(M), b, all_discs(rho), tight(), x);
-  ASSERT_EQ(rep.termination, Termination::Converged) << rep.full();
+  ASSERT_EQ(rep.termination, QpTermination::Converged) << rep.full();
   Eigen::VectorXd expected(6);
   expected << 0.6, 0.8,  // (3, 4) scaled onto radius 1
       0.6, -0.8,         // (0.6, -0.8) is inside radius 4
@@ -228,7 +228,7 @@ TEST_P(MpgpVariants, CoupledTwoByTwoBoundProblemMatchesHandSolution) {
   Eigen::VectorXd x = Eigen::Vector2d(3.0, 3.0);
   const auto rep =
       solve_mpgp(dense_operator(Md), Eigen::Vector2d(1.0, -2.0), all_bounds(2), tight(), x);
-  ASSERT_EQ(rep.termination, Termination::Converged) << rep.full();
+  ASSERT_EQ(rep.termination, QpTermination::Converged) << rep.full();
   EXPECT_NEAR(x(0), 0.5, 1e-12);
   EXPECT_NEAR(x(1), 0.0, 1e-12);
   EXPECT_NEAR(rep.objective, 0.5 * 2 * 0.25 - 0.5, 1e-12);
@@ -241,7 +241,7 @@ TEST_P(MpgpVariants, CoupledTwoByTwoDiscProblemMatchesHandSolution) {
   Eigen::VectorXd x = Eigen::Vector2d(0.0, 0.0);
   const auto rep = solve_mpgp(dense_operator(M), Eigen::Vector2d(3.0, 3.0),
                               all_discs(Eigen::VectorXd::Ones(1)), tight(), x);
-  ASSERT_EQ(rep.termination, Termination::Converged) << rep.full();
+  ASSERT_EQ(rep.termination, QpTermination::Converged) << rep.full();
   EXPECT_NEAR(x(0), std::sqrt(0.5), 1e-10);
   EXPECT_NEAR(x(1), std::sqrt(0.5), 1e-10);
 }
@@ -256,7 +256,7 @@ TEST_P(MpgpVariants, AnisotropicDiscMatchesSecularEquation) {
     Eigen::VectorXd x = Eigen::Vector2d(0.0, 0.0);
     const auto rep =
         solve_mpgp(dense_operator(M), b, all_discs(Eigen::VectorXd::Constant(1, rho)), tight(), x);
-    ASSERT_EQ(rep.termination, Termination::Converged) << rep.full();
+    ASSERT_EQ(rep.termination, QpTermination::Converged) << rep.full();
     EXPECT_LE((x - expected).norm(), 1e-8 * std::max(rho, 1.0)) << "trial " << trial;
   }
 }
@@ -271,7 +271,7 @@ TEST_P(MpgpVariants, BoundProblemsMatchActiveSetEnumeration) {
     const Eigen::VectorXd expected = testing::enumerate_bound_solution(M, b);
     Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
     const auto rep = solve_mpgp(dense_operator(M), b, all_bounds(n), tight(), x);
-    ASSERT_EQ(rep.termination, Termination::Converged) << rep.full();
+    ASSERT_EQ(rep.termination, QpTermination::Converged) << rep.full();
     EXPECT_LE((x - expected).norm(), 1e-10 * cond * std::max(1.0, expected.norm()))
         << "trial " << trial << " n " << n << " cond " << cond;
   }
@@ -310,7 +310,7 @@ TEST(Mpgp, SpectralStepsMatchHandComputation) {
   opt.record_history = true;
   Eigen::VectorXd x = Eigen::Vector2d(0.0, 1.0);
   const auto rep = solve_mpgp(dense_operator(M), Eigen::Vector2d(1.0, 0.0), all_bounds(2), opt, x);
-  ASSERT_EQ(rep.termination, Termination::Converged) << rep.full();
+  ASSERT_EQ(rep.termination, QpTermination::Converged) << rep.full();
   ASSERT_GE(rep.history.size(), 2u);
   const auto& h = rep.history[1];
   EXPECT_EQ(h.step, 'p');
@@ -328,7 +328,7 @@ TEST(Mpgp, BarzilaiBorweinCertifiesTheStoppingTestWithTheExactGradient) {
   opt.rel_tolerance = 1e-8;
   Eigen::VectorXd x = Eigen::VectorXd::Zero(p.b.size());
   const auto rep = solve_mpgp(dense_operator(p.M), p.b, p.c, opt, x);
-  ASSERT_EQ(rep.termination, Termination::Converged) << rep.full();
+  ASSERT_EQ(rep.termination, QpTermination::Converged) << rep.full();
   const Eigen::VectorXd g = p.M * x - p.b;
   double gp2 = 0.0;  // docs/theory.md §4.1 with exact active tests
   for (Index i = 0; i < 15; ++i) {
@@ -358,7 +358,7 @@ TEST(Mpgp, SpectralMovesFallBackToFixedStepsAtTheRoundingLevel) {
   opt.rel_tolerance = 1e-13;
   Eigen::VectorXd x = Eigen::VectorXd::Zero(p.b.size());
   const auto rep = solve_mpgp(dense_operator(p.M), p.b, p.c, opt, x);
-  ASSERT_EQ(rep.termination, Termination::Converged) << rep.full();
+  ASSERT_EQ(rep.termination, QpTermination::Converged) << rep.full();
   EXPECT_GT(rep.n_fallbacks, 0) << rep.full();
   EXPECT_EQ(rep.n_objective_increases, 0) << rep.full();
   EXPECT_LE(kkt(p.M, p.b, x, p.c).max(), 1e-12) << rep.full();
@@ -383,7 +383,7 @@ TEST(Mpgp, OptimalAndProjectedCgExpansionsMatchHandComputation) {
       Eigen::VectorXd x = Eigen::Vector2d(0.5, 0.5);
       const auto rep = solve_mpgp(dense_operator(M), b, all_bounds(2), opt, x);
       const std::string where = std::string(enum_name(expansion)) + "\n" + rep.full();
-      ASSERT_EQ(rep.termination, Termination::Converged) << where;
+      ASSERT_EQ(rep.termination, QpTermination::Converged) << where;
       ASSERT_EQ(rep.iterations, 1) << where;
       EXPECT_EQ(rep.history[1].step, 'e') << where;
       EXPECT_DOUBLE_EQ(rep.history[1].alpha, expansion == MpgpExpansion::Optimal ? 1.0 / 3.0 : 1.0);
@@ -423,7 +423,7 @@ TEST(Mpgp, ExpansionMovesThatWouldIncreaseQFallBack) {
         const std::string where = std::string(enum_name(variant)) + "/" +
                                   std::string(enum_name(expansion)) + " seed " +
                                   std::to_string(seed) + "\n" + rep.full();
-        ASSERT_EQ(rep.termination, Termination::Converged) << where;
+        ASSERT_EQ(rep.termination, QpTermination::Converged) << where;
         fallbacks += rep.n_expansion_fallbacks;
         for (std::size_t k = 1; k < rep.history.size(); ++k) {
           EXPECT_LE(rep.history[k].objective,
@@ -468,7 +468,7 @@ TEST_P(MpgpVariants, RandomContactProblemsSatisfyKktToTightTolerance) {
     const auto rep = solve_mpgp(dense_operator(p.M), p.b, p.c, tight(), x);
     const std::string where = "n " + std::to_string(3 * rc.n_patches) + " cond " +
                               std::to_string(rc.cond) + "\n" + rep.full();
-    ASSERT_EQ(rep.termination, Termination::Converged) << where;
+    ASSERT_EQ(rep.termination, QpTermination::Converged) << where;
     EXPECT_LE(rep.rel_gp, 1e-10) << where;
     const auto r = kkt(p.M, p.b, x, p.c);
     EXPECT_LE(r.feasibility, 1e-14) << where;
@@ -485,7 +485,7 @@ TEST_P(MpgpVariants, RandomContactProblemsMatchReferenceSolver) {
     const Eigen::VectorXd ref = testing::reference_solve(p.M, p.b, p.c);
     Eigen::VectorXd x = Eigen::VectorXd::Zero(p.b.size());
     const auto rep = solve_mpgp(dense_operator(p.M), p.b, p.c, tight(), x);
-    ASSERT_EQ(rep.termination, Termination::Converged) << rep.full();
+    ASSERT_EQ(rep.termination, QpTermination::Converged) << rep.full();
     const double q = objective(p.M, p.b, x), q_ref = objective(p.M, p.b, ref);
     EXPECT_LE(q, q_ref + 1e-12 * std::abs(q_ref)) << "n " << p.b.size() << " cond " << rc.cond;
     EXPECT_LE((x - ref).norm(), 1e-8 * std::max(1.0, ref.norm()))
@@ -502,12 +502,12 @@ TEST_P(MpgpVariants, RandomContactProblemsAgreeWithTheFixedExpansion) {
     fixed.expansion = MpgpExpansion::Fixed;
     Eigen::VectorXd x_fixed = Eigen::VectorXd::Zero(p.b.size());
     ASSERT_EQ(solve_mpgp(dense_operator(p.M), p.b, p.c, fixed, x_fixed).termination,
-              Termination::Converged);
+              QpTermination::Converged);
     Eigen::VectorXd x = Eigen::VectorXd::Zero(p.b.size());
     const auto rep = solve_mpgp(dense_operator(p.M), p.b, p.c, tight(), x);
     const std::string where = "n " + std::to_string(3 * rc.n_patches) + " cond " +
                               std::to_string(rc.cond) + "\n" + rep.full();
-    ASSERT_EQ(rep.termination, Termination::Converged) << where;
+    ASSERT_EQ(rep.termination, QpTermination::Converged) << where;
     // ||x - x*|| <= ||g^P|| / lambda_min, lambda_min = 3 here, for both solutions.
     EXPECT_LE((x - x_fixed).norm(), 1e-10 * p.b.norm()) << where;
     EXPECT_LE(kkt(p.M, p.b, x, p.c).max(), 1e-9) << where;
@@ -523,7 +523,7 @@ TEST_P(MpgpVariants, LargerGammaSolvesRandomContactProblems) {
     opt.gamma = 2.0;
     Eigen::VectorXd x = Eigen::VectorXd::Zero(p.b.size());
     const auto rep = solve_mpgp(dense_operator(p.M), p.b, p.c, opt, x);
-    ASSERT_EQ(rep.termination, Termination::Converged) << rep.full();
+    ASSERT_EQ(rep.termination, QpTermination::Converged) << rep.full();
     EXPECT_LE(kkt(p.M, p.b, x, p.c).max(), 1e-9) << "cond " << rc.cond;
   }
 }
@@ -567,7 +567,7 @@ TEST_P(MpgpVariants, ManufacturedOptimumIsRecovered) {
     opt.rel_tolerance = 1e-12;
     Eigen::VectorXd x = Eigen::VectorXd::Zero(b.size());
     const auto rep = solve_mpgp(dense_operator(M), b, c, opt, x);
-    ASSERT_EQ(rep.termination, Termination::Converged) << rep.full();
+    ASSERT_EQ(rep.termination, QpTermination::Converged) << rep.full();
     EXPECT_LE((x - xs).norm(), 1e-9 * cond * xs.norm()) << "seed " << seed << " cond " << cond;
   }
 }
@@ -590,7 +590,7 @@ TEST_P(MpgpVariants, AllInactiveProblemGivesUnconstrainedSolution) {
   opt.rel_tolerance = 1e-13;
   Eigen::VectorXd x = Eigen::VectorXd::Zero(b.size());
   const auto rep = solve_mpgp(dense_operator(M), b, c, opt, x);
-  ASSERT_EQ(rep.termination, Termination::Converged) << rep.full();
+  ASSERT_EQ(rep.termination, QpTermination::Converged) << rep.full();
   EXPECT_LE((x - M.llt().solve(b)).norm(), 1e-10 * xs.norm());
 }
 
@@ -613,7 +613,7 @@ TEST_P(MpgpVariants, AllActiveProblemGivesBoundaryValues) {
   const Eigen::VectorXd b = M * xs - gs;
   Eigen::VectorXd x = Eigen::VectorXd::Zero(b.size());
   const auto rep = solve_mpgp(dense_operator(M), b, c, tight(), x);
-  ASSERT_EQ(rep.termination, Termination::Converged) << rep.full();
+  ASSERT_EQ(rep.termination, QpTermination::Converged) << rep.full();
   EXPECT_LE((x - xs).norm(), 1e-9 * xs.norm());
   for (Index i = 0; i < n_patches; ++i) {
     EXPECT_EQ(x(3 * i), 0.0);
@@ -634,7 +634,7 @@ TEST_P(MpgpVariants, ProductCountMatchesOperatorCalls) {
     }
     Eigen::VectorXd x = Eigen::VectorXd::Zero(p.b.size());
     const auto rep = solve_mpgp(dense_operator(p.M, &calls), p.b, p.c, opt, x);
-    ASSERT_EQ(rep.termination, Termination::Converged) << rep.full();
+    ASSERT_EQ(rep.termination, QpTermination::Converged) << rep.full();
     EXPECT_EQ(rep.variant, opt.variant);
     EXPECT_EQ(rep.iterations, rep.n_cg + rep.n_expansion + rep.n_proportioning);
     // All three step kinds occur, so the formula below tests each coefficient.
@@ -674,7 +674,7 @@ TEST_P(MpgpVariants, ObjectiveDecreasesMonotonicallyAlongHistory) {
   opt.record_history = true;
   Eigen::VectorXd x = Eigen::VectorXd::Zero(p.b.size());
   const auto rep = solve_mpgp(dense_operator(p.M), p.b, p.c, opt, x);
-  ASSERT_EQ(rep.termination, Termination::Converged) << rep.full();
+  ASSERT_EQ(rep.termination, QpTermination::Converged) << rep.full();
   ASSERT_EQ(rep.history.size(), static_cast<std::size_t>(rep.iterations) + 1);
   EXPECT_EQ(rep.history.front().step, 's');
   EXPECT_EQ(rep.history.front().objective, 0.0);  // q(0)
@@ -709,7 +709,7 @@ TEST_P(MpgpVariants, MonitorReturningFalseStopsWithUserStopped) {
   };
   Eigen::VectorXd x = Eigen::VectorXd::Zero(p.b.size());
   const auto rep = solve_mpgp(dense_operator(p.M), p.b, p.c, opt, x);
-  EXPECT_EQ(rep.termination, Termination::UserStopped) << rep.full();
+  EXPECT_EQ(rep.termination, QpTermination::UserStopped) << rep.full();
   EXPECT_EQ(rep.iterations, 3);
   EXPECT_EQ(seen, 4);  // start + 3 steps
   EXPECT_FALSE(rep.message.empty());
@@ -721,7 +721,7 @@ TEST_P(MpgpVariants, MaxIterationsIsReportedWithMessage) {
   opt.max_iterations = 5;
   Eigen::VectorXd x = Eigen::VectorXd::Zero(p.b.size());
   const auto rep = solve_mpgp(dense_operator(p.M), p.b, p.c, opt, x);
-  EXPECT_EQ(rep.termination, Termination::MaxIterations);
+  EXPECT_EQ(rep.termination, QpTermination::MaxIterations);
   EXPECT_EQ(rep.iterations, 5);
   EXPECT_NE(rep.message.find("max_iterations = 5"), std::string::npos) << rep.message;
   EXPECT_GT(rep.rel_gp, 1e-10);
@@ -737,7 +737,7 @@ TEST_P(MpgpVariants, WarmStartAtSolutionTakesNoStep) {
   auto opt = tight();
   opt.rel_tolerance = 1e-6;
   const auto rep = solve_mpgp(dense_operator(p.M), p.b, p.c, opt, x);
-  EXPECT_EQ(rep.termination, Termination::Converged);
+  EXPECT_EQ(rep.termination, QpTermination::Converged);
   EXPECT_EQ(rep.iterations, 0);
   EXPECT_EQ(rep.n_products, 1);
 }
@@ -869,7 +869,7 @@ TEST(MpgpRegression, CountsAndIteratesArePinned) {
       const auto rep = solve_mpgp(dense_operator(prob.M), prob.b, prob.c, opt, x);
       const std::string where = "n " + std::to_string(n) + " seed " + std::to_string(k.seed) +
                                 (variant == MpgpVariant::Paper ? " paper\n" : " bb\n") + rep.full();
-      ASSERT_EQ(rep.termination, Termination::Converged) << where;
+      ASSERT_EQ(rep.termination, QpTermination::Converged) << where;
       const PinnedCounts& c = pin->counts;
       EXPECT_EQ(rep.iterations, c.iterations) << where;
       EXPECT_EQ(rep.n_cg, c.n_cg) << where;
@@ -897,7 +897,7 @@ TEST_P(MpgpVariants, ZeroRightHandSideGivesZeroSolution) {
   Eigen::VectorXd x = Eigen::VectorXd::Constant(p.b.size(), 0.3);
   const auto rep =
       solve_mpgp(dense_operator(p.M), Eigen::VectorXd::Zero(p.b.size()), p.c, options(), x);
-  EXPECT_EQ(rep.termination, Termination::Converged) << rep.full();
+  EXPECT_EQ(rep.termination, QpTermination::Converged) << rep.full();
   EXPECT_EQ(x, Eigen::VectorXd::Zero(p.b.size()));
   EXPECT_EQ(rep.rel_gp, 0.0);
   EXPECT_EQ(rep.objective, 0.0);
@@ -912,7 +912,7 @@ TEST_P(MpgpVariants, InfeasibleInitialGuessIsProjectedFirst) {
   auto opt = tight();
   opt.record_history = true;
   const auto rep = solve_mpgp(dense_operator(p.M), p.b, p.c, opt, x);
-  ASSERT_EQ(rep.termination, Termination::Converged) << rep.full();
+  ASSERT_EQ(rep.termination, QpTermination::Converged) << rep.full();
   EXPECT_LE(kkt(p.M, p.b, x, p.c).max(), 1e-9);
   // The starting objective is that of the projected guess.
   const Eigen::VectorXd px = testing::reference_project(p.c, x0);
@@ -925,7 +925,7 @@ TEST_P(MpgpVariants, ZeroRadiusPinsTangentialUnknowns) {
   p.c.set_disc_radii(Eigen::VectorXd::Zero(6));  // frictionless
   Eigen::VectorXd x = Eigen::VectorXd::Ones(p.b.size());
   const auto rep = solve_mpgp(dense_operator(p.M), p.b, p.c, tight(), x);
-  ASSERT_EQ(rep.termination, Termination::Converged) << rep.full();
+  ASSERT_EQ(rep.termination, QpTermination::Converged) << rep.full();
   for (Index i = 0; i < 6; ++i)
     EXPECT_EQ(x.segment<2>(3 * i + 1), Eigen::Vector2d::Zero());
   // Independent truth: the bound problem on the normal unknowns alone.
@@ -970,7 +970,7 @@ TEST_P(MpgpVariants, IndefiniteOperatorReportsNumericalFailure) {
   Eigen::VectorXd x = Eigen::VectorXd::Constant(6, 0.1);
   const Eigen::VectorXd b = Eigen::VectorXd::Constant(6, 1.0);
   const auto rep = solve_mpgp(A, b, c, options(), x);
-  EXPECT_EQ(rep.termination, Termination::NumericalFailure) << rep.full();
+  EXPECT_EQ(rep.termination, QpTermination::NumericalFailure) << rep.full();
   EXPECT_NE(rep.message.find("CG step"), std::string::npos) << rep.message;
   // The failed step is counted: its product was spent.
   EXPECT_EQ(rep.n_cg, 1);
@@ -988,7 +988,7 @@ TEST_P(MpgpVariants, OperatorProducingNanReportsNumericalFailure) {
   opt.norm_A = 1.0;
   const auto rep =
       solve_mpgp(A, Eigen::Vector3d(1, 1, 1), SeparableConstraints::contact_layout(1), opt, x);
-  EXPECT_EQ(rep.termination, Termination::NumericalFailure) << rep.full();
+  EXPECT_EQ(rep.termination, QpTermination::NumericalFailure) << rep.full();
 }
 
 TEST(Mpgp, ZeroNormOperatorThrowsNumericalError) {

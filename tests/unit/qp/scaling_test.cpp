@@ -88,8 +88,8 @@ TEST(BlockScaling, ScaledSolveReachesTheSameMinimizerInFewerProducts) {
   Eigen::VectorXd x_plain = Eigen::VectorXd::Zero(p.b.size());
   const MpgpReport plain = solve_mpgp_scaled(
       dense_operator(p.M), p.b, p.c, BlockScaling::identity(p.b.size()), tight(1e-10), x_plain);
-  ASSERT_EQ(scaled.termination, Termination::Converged) << scaled.full();
-  ASSERT_EQ(plain.termination, Termination::Converged) << plain.full();
+  ASSERT_EQ(scaled.termination, QpTermination::Converged) << scaled.full();
+  ASSERT_EQ(plain.termination, QpTermination::Converged) << plain.full();
   // The same point, each patch on its own scale (in the scaled variables).
   const double y_scale = y_reference.lpNorm<Eigen::Infinity>();
   EXPECT_LT((D.to_scaled(x_scaled) - y_reference).lpNorm<Eigen::Infinity>(), 1e-7 * y_scale);
@@ -125,7 +125,7 @@ TEST(ResistedPart, FarPatchesDoNotLoosenTheStoppingTest) {
   MpgpOptions o = tight(1e-6);
   o.reference = StopReference::Resisted;
   Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
-  ASSERT_EQ(solve_mpgp(dense_operator(M), b, c, o, x).termination, Termination::Converged);
+  ASSERT_EQ(solve_mpgp(dense_operator(M), b, c, o, x).termination, QpTermination::Converged);
   EXPECT_LT((x - reference).lpNorm<Eigen::Infinity>(), 1e-4 * scale);
   EXPECT_GT(resisted_part(b, c).norm(), 0.0);
   EXPECT_LT(resisted_part(b, c).norm(), 1e-3 * b.norm());

@@ -35,7 +35,7 @@ Coulomb fricon_coulomb(contact::FrictionLawKind law) {
   driver::RunOptions o;
   o.keep_first_dual = true;  // Q and h are those of every outer iteration
   const driver::RunResult r = driver::run(p, o);
-  EXPECT_EQ(r.report.status, driver::Status::Converged) << r.report.message;
+  EXPECT_EQ(r.report.status, driver::RunStatus::Converged) << r.report.message;
   return {r.first_dual->Q, -r.first_dual->h, r.contact->coefficient, r.contact->lambda};
 }
 

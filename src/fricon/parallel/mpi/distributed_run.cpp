@@ -192,7 +192,7 @@ VectorXd solve_on_rank_0(const driver::Problem& problem,
                          dual::DualOperatorKind kind, const MumpsFactor& factor,
                          const DistributedSolves& solves, const RunOptions& opts, RunResult& r) {
   driver::RunReport& rep = r.report;
-  if (driver::stop_requested(opts)) throw Interrupted("interrupted before the solve");
+  if (opts.stop_was_requested()) throw Interrupted("interrupted before the solve");
   if (!disc) {
     ScopedPhase phase(rep.times, "solve");
     VectorXd u = solves.displacement(VectorXd());
@@ -279,7 +279,7 @@ RunResult run_on_rank(const driver::Problem& problem, const RunOptions& options,
   });
   if (rank != 0) {
     driver::phase_start(options, "follow");  // (a stop request is rank 0's to act on)
-    rep.status = static_cast<driver::Status>(solves->follow());
+    rep.status = static_cast<driver::RunStatus>(solves->follow());
     par.ranks = gather_ranks(share, factor->info(), rank, size);
     rep.parallel = par;
     return r;
