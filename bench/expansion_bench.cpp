@@ -10,7 +10,7 @@
 // once per problem (200 power iterations, as the driver does) and passed to every solve, so no
 // count below includes it.
 //
-// Problems: the paper's brick (param 6e4) for n = 4, 8, 12, 16 (bench/paper_dual.hpp, Q formed
+// Problems: the paper's brick (param 6e4) for n = 4, 8, 12, 16 (bench/common/paper_dual.hpp, Q formed
 // densely), and the dual files given as arguments (docs/dual-format.md; e.g. the graded Hertz and
 // wheel meshes' QPs written by `fricon solve --dump-dual`).
 //
@@ -30,11 +30,10 @@
 //   build/bench/expansion_bench [FILE.dual ...] [--n 4,8,12,16] [--variants paper,bb]
 //                               [--expansions fixed,opt,projcg] [--factor 1] [--tol 1e-6,1e-8]
 //                               [--reps 3] [--no-run] [--run PROBLEM.toml ...] [--verbose]
-//                               [--scaling diagonal|area|none]
+//                               [--scaling diagonal|area|none]   (--help: the options)
 
 #include <algorithm>
 #include <cmath>
-#include <exception>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -55,7 +54,8 @@
 #include "fricon/qp/kkt.hpp"
 #include "fricon/qp/mpgp.hpp"
 #include "fricon/qp/scaling.hpp"
-#include "paper_dual.hpp"
+#include "common/bench_args.hpp"
+#include "common/paper_dual.hpp"
 
 namespace {
 
@@ -300,67 +300,38 @@ void whole_run(const Case& k, const Settings& s) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  try {
-    Settings s;
-    std::vector<fs::path> dumps, runs;
-    std::vector<Index> ns = {4, 8, 12, 16};
-    for (int i = 1; i < argc; ++i) {
-      const std::string a = argv[i];
-      auto value = [&]() -> std::string {
-        if (i + 1 >= argc) throw fricon::InputError(fmt::format("{} needs a value", a));
-        return argv[++i];
-      };
-      if (a == "--run") {
-        runs.emplace_back(value());
-        while (i + 1 < argc && std::string(argv[i + 1]).rfind("--", 0) != 0)
-          runs.emplace_back(argv[++i]);
-      } else if (a == "--n") {
-        ns = fricon::bench::parse_list<Index>(value(),
-                                              [](const std::string& t) { return std::stol(t); });
-      } else if (a == "--variants") {
-        s.variants = fricon::bench::parse_list<qp::MpgpVariant>(
-            value(), [](const std::string& t) { return fricon::parse_enum<qp::MpgpVariant>(t); });
-      } else if (a == "--expansions") {
-        s.expansions = fricon::bench::parse_list<qp::MpgpExpansion>(
-            value(), [](const std::string& t) { return fricon::parse_enum<qp::MpgpExpansion>(t); });
-      } else if (a == "--factor") {
-        s.factor = std::stod(value());
-      } else if (a == "--tol") {
-        s.tols = fricon::bench::parse_list<double>(
-            value(), [](const std::string& t) { return std::stod(t); });
-      } else if (a == "--reps") {
-        s.reps = std::max(1, std::stoi(value()));
-      } else if (a == "--verbose") {
-        s.verbose = true;
-      } else if (a == "--no-run") {
-        s.run = false;
-      } else if (a == "--scaling") {
-        const std::string v = value();
-        if (v == "diagonal") {
-          s.scaling = Scaling::Diagonal;
-        } else if (v == "area") {
-          s.scaling = Scaling::Area;
-        } else if (v == "none") {
-          s.scaling = Scaling::None;
-        } else {
-          throw fricon::InputError(fmt::format("--scaling {}: expected diagonal, area or none", v));
-        }
-      } else if (a == "--help" || a == "-h") {
-        fmt::print(
-            "usage: expansion_bench [FILE.dual ...] [--n 4,8,12,16] [--variants paper,bb]\n"
-            "                       [--expansions fixed,opt,projcg] [--factor 1] [--tol "
-            "1e-6,1e-8]\n"
-            "                       [--reps 3] [--no-run] [--run PROBLEM.toml ...] [--verbose]\n"
-            "                       [--scaling diagonal|area|none]\n");
-        return 0;
-      } else if (a.rfind("--", 0) == 0) {
-        throw fricon::InputError(fmt::format("unknown argument '{}' (see --help)", a));
-      } else {
-        dumps.emplace_back(a);
-      }
-    }
+FRICON_ENUM_NAMES(Scaling, "--scaling", {Scaling::Diagonal, "diagonal"}, {Scaling::Area, "area"},
+                  {Scaling::None, "none"});
 
+int main(int argc, char** argv) {
+  CLI::App app{
+      "The expansion moves of MPGP (qp::MpgpExpansion) with each variant (qp::MpgpVariant) on "
+      "the paper's brick and on dual files: one QP, then the whole outer loop.",
+      "expansion_bench"};
+  Settings s;
+  std::vector<std::string> dumps, runs;
+  std::vector<Index> ns = {4, 8, 12, 16};
+  app.add_option("files", dumps, "Dual files (docs/dual-format.md) to solve as single QPs");
+  fricon::bench::comma_list(app.add_option("--n", ns, "Mesh parameters n of the paper's brick"))
+      ->check(CLI::Range(Index{1}, Index{1000}))
+      ->capture_default_str();
+  fricon::bench::comma_list(app.add_option("--variants", s.variants, "QP variants (paper,bb)"))
+      ->transform(fricon::bench::enum_spelling<qp::MpgpVariant>());
+  fricon::bench::comma_list(
+      app.add_option("--expansions", s.expansions, "Expansion moves (fixed,opt,projcg)"))
+      ->transform(fricon::bench::enum_spelling<qp::MpgpExpansion>());
+  app.add_option("--factor", s.factor, "MpgpOptions::expansion_length_factor")
+      ->capture_default_str();
+  fricon::bench::comma_list(app.add_option("--tol", s.tols, "QP tolerances"))
+      ->capture_default_str();
+  app.add_option("--reps", s.reps, "Runs per time (the median is shown)")->capture_default_str();
+  app.add_flag_callback("--no-run", [&s] { s.run = false; }, "Skip the whole runs");
+  app.add_option("--run", runs, "Problem files (TOML) to run whole, besides the brick");
+  app.add_flag("--verbose", s.verbose, "Print every QP of the whole runs");
+  app.add_option("--scaling", s.scaling, "The change of variables (default diagonal)")
+      ->transform(fricon::bench::enum_spelling<Scaling>());
+  return fricon::bench::run_main(app, argc, argv, [&] {
+    s.reps = std::max(1, s.reps);
     fmt::print(
         "MPGP expansion moves (qp::MpgpExpansion) x variants (qp::MpgpVariant), {}; expansion "
         "length factor {}.\n"
@@ -400,8 +371,5 @@ int main(int argc, char** argv) {
         whole_run(k, s);
     }
     return 0;
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "expansion_bench: {}\n", e.what());
-    return 1;
-  }
+  });
 }

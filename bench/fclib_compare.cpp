@@ -6,7 +6,7 @@
 // (1e-10 on its own error) and 10000 iterations. Every answer is measured by the same yardstick,
 // FCLIB's merit (fclib_merit_local); "ok" means merit <= 1e-8. Times are the median of 3 runs
 // (one run when it takes more than a second).
-//   build/bench/fclib_compare [DIR or FILES...]
+//   build/bench/fclib_compare [DIR or FILES...]   (--help: the options)
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -21,6 +21,7 @@
 #include "NonSmoothDrivers.h"
 #include "NumericsMatrix.h"
 #include "SolverOptions.h"
+#include "common/bench_args.hpp"
 #include "fricon/core/timer.hpp"
 #include "fricon/driver/local_solve.hpp"
 #include "fricon/io/fclib_file.hpp"
@@ -114,10 +115,9 @@ std::vector<fs::path> problem_files(const std::vector<fs::path>& arguments) {
   return files;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  std::vector<fs::path> arguments(argv + 1, argv + argc);
+// The table: every problem by fricon, then by each Siconos solver.
+int compare(const std::vector<std::string>& given) {
+  std::vector<fs::path> arguments(given.begin(), given.end());
   if (arguments.empty()) {
     const fs::path shared = fs::path(FRICON_SOURCE_DIR) / ".." / "shared" / "data" / "siconos-fc3d";
     if (!fs::is_directory(shared)) {
@@ -148,4 +148,18 @@ int main(int argc, char** argv) {
           ours.seconds);
   }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "fricon's `dual solve` against Siconos 4.4 (NSN_AC, NSGS, PROX) on the friction problems "
+      "of other codes, all measured by FCLIB's merit.",
+      "fclib_compare"};
+  std::vector<std::string> given;
+  app.add_option("problems", given,
+                 "Problem files (.hdf5, .dat) or folders of them (default: "
+                 "../shared/data/siconos-fc3d)");
+  return fricon::bench::run_main(app, argc, argv, [&] { return compare(given); });
 }

@@ -3,7 +3,7 @@
 //   minimise 1/2 l^T Q l - l^T h  over  l_n >= 0,  ||l_t|| <= radius  (per patch)
 //
 // Problems: the paper's brick (param 6e4) for n = 4, 8, 12, 16, built through the library with
-// Q = B K^-1 B^T formed densely (bench/paper_dual.hpp, shared with siconos_compare), or dual files
+// Q = B K^-1 B^T formed densely (bench/common/paper_dual.hpp, shared with siconos_compare), or dual files
 // (--dump, docs/dual-format.md). ||Q|| is estimated once per problem (200 power iterations, as the
 // driver does) and passed to every solve, so no count below includes it.
 //
@@ -21,11 +21,10 @@
 // variant's.
 //
 //   build/bench/qp_variants_bench [--n 4,8,12,16] [--dump FILE ...] [--variants paper,bb]
-//                                 [--tol 1e-6,1e-8] [--reps 5] [--no-run]
+//                                 [--tol 1e-6,1e-8] [--reps 5] [--no-run]   (--help: the options)
 
 #include <algorithm>
 #include <cmath>
-#include <exception>
 #include <filesystem>
 #include <optional>
 #include <sstream>
@@ -48,7 +47,8 @@
 #include "fricon/outer/outer_loop.hpp"
 #include "fricon/qp/kkt.hpp"
 #include "fricon/qp/mpgp.hpp"
-#include "paper_dual.hpp"
+#include "common/bench_args.hpp"
+#include "common/paper_dual.hpp"
 
 namespace {
 
@@ -231,43 +231,25 @@ void whole_run(const Case& k, const Settings& s) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    Settings s;
-    std::vector<fs::path> dumps;
-    std::vector<Index> ns = {4, 8, 12, 16};
-    for (int i = 1; i < argc; ++i) {
-      const std::string a = argv[i];
-      auto value = [&]() -> std::string {
-        if (i + 1 >= argc) throw fricon::InputError(fmt::format("{} needs a value", a));
-        return argv[++i];
-      };
-      if (a == "--dump") {
-        dumps.emplace_back(value());
-        while (i + 1 < argc && std::string(argv[i + 1]).rfind("--", 0) != 0)
-          dumps.emplace_back(argv[++i]);
-      } else if (a == "--n") {
-        ns = fricon::bench::parse_list<Index>(value(),
-                                              [](const std::string& t) { return std::stol(t); });
-      } else if (a == "--variants") {
-        s.variants = fricon::bench::parse_list<qp::MpgpVariant>(
-            value(), [](const std::string& t) { return fricon::parse_enum<qp::MpgpVariant>(t); });
-      } else if (a == "--tol") {
-        s.tols = fricon::bench::parse_list<double>(
-            value(), [](const std::string& t) { return std::stod(t); });
-      } else if (a == "--reps") {
-        s.reps = std::max(1, std::stoi(value()));
-      } else if (a == "--no-run") {
-        s.run = false;
-      } else if (a == "--help" || a == "-h") {
-        fmt::print(
-            "usage: qp_variants_bench [--n 4,8,12,16] [--dump FILE ...] [--variants "
-            "paper,bb]\n"
-            "                         [--tol 1e-6,1e-8] [--reps 5] [--no-run]\n");
-        return 0;
-      } else {
-        throw fricon::InputError(fmt::format("unknown argument '{}' (see --help)", a));
-      }
-    }
+  CLI::App app{
+      "The variants of MPGP (qp::MpgpVariant) on the dual problems of the paper's brick or of "
+      "dual files: one QP, then the whole outer loop.",
+      "qp_variants_bench"};
+  Settings s;
+  std::vector<std::string> dumps;
+  std::vector<Index> ns = {4, 8, 12, 16};
+  fricon::bench::comma_list(app.add_option("--n", ns, "Mesh parameters n of the paper's brick"))
+      ->check(CLI::Range(Index{1}, Index{1000}))
+      ->capture_default_str();
+  app.add_option("--dump", dumps, "Dual files (docs/dual-format.md) instead of the brick");
+  fricon::bench::comma_list(app.add_option("--variants", s.variants, "QP variants (paper,bb)"))
+      ->transform(fricon::bench::enum_spelling<qp::MpgpVariant>());
+  fricon::bench::comma_list(app.add_option("--tol", s.tols, "QP tolerances"))
+      ->capture_default_str();
+  app.add_option("--reps", s.reps, "Runs per time (the median is shown)")->capture_default_str();
+  app.add_flag_callback("--no-run", [&s] { s.run = false; }, "Skip the whole runs");
+  return fricon::bench::run_main(app, argc, argv, [&] {
+    s.reps = std::max(1, s.reps);
     if (std::find(s.variants.begin(), s.variants.end(), qp::MpgpVariant::Paper) == s.variants.end())
       s.variants.insert(s.variants.begin(), qp::MpgpVariant::Paper);  // the reference
 
@@ -306,8 +288,5 @@ int main(int argc, char** argv) {
         whole_run(k, s);
     }
     return 0;
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "qp_variants_bench: {}\n", e.what());
-    return 1;
-  }
+  });
 }

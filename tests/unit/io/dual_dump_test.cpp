@@ -10,11 +10,10 @@
 #include <random>
 #include <string>
 
-#include <unistd.h>
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "common/fixtures.hpp"
 #include "fricon/core/error.hpp"
 
 namespace fricon::io {
@@ -26,33 +25,18 @@ namespace fs = std::filesystem;
 /// A fresh folder per test, removed at the end.
 class DualDump : public ::testing::Test {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() /
-           (std::string("fricon_dual_dump_") + info->name() + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
   fs::path write_text(const std::string& name, const std::string& text) const {
-    const fs::path p = dir_ / name;
-    std::ofstream(p, std::ios::binary) << text;
-    return p;
+    return temp_.write(name, text);
   }
 
   /// The message of the InputError that reading `text` throws, or "" if it does not throw.
   std::string error_of(const std::string& text) const {
     const fs::path p = write_text("bad.dual", text);
-    try {
-      (void)read_dual(p);
-    } catch (const InputError& e) {
-      return e.what();
-    }
-    return "";
+    return test::input_error_of([&p] { (void)read_dual(p); });
   }
 
-  fs::path dir_;
+  const test::TempDir temp_{"fricon_dual_dump"};
+  const fs::path dir_ = temp_.path();
 };
 
 /// Doubles with every kind of bit pattern a dump can meet: random magnitudes over the whole

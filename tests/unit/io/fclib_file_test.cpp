@@ -22,6 +22,7 @@ extern "C" {
 #include <fclib.h>
 }
 
+#include "common/fixtures.hpp"
 #include "fricon/core/error.hpp"
 
 namespace fricon::io {
@@ -83,12 +84,9 @@ void store(const MatrixXd& A, Storage storage, Matrix& out) {
 
 class FclibFile : public ::testing::Test {
  protected:
-  fs::path dir_ = fs::temp_directory_path() / "fricon_fclib_file_test";
-  void SetUp() override { fs::create_directories(dir_); }
-  fs::path fresh(const std::string& name) {
-    fs::remove(dir_ / name);
-    return dir_ / name;
-  }
+  /// A path in this test's fresh folder.
+  fs::path fresh(const std::string& name) const { return dir_.path() / name; }
+  const test::TempDir dir_{"fricon_fclib_file"};
 };
 
 // Two contacts, W not symmetric: W(0, 1) = 0.3 but W(1, 0) = 0, and so on.
@@ -209,7 +207,7 @@ TEST_F(FclibFile, TripletsWithTheRowInPAreRefusedNamingTheFile) {
 // FCLIB's own global test problems (Siconos' data in ../shared): H is tall and in triplets, and
 // i reaches beyond its number of columns, so i holds the row and p the column.
 TEST(FclibThirdPartyFiles, TripletsKeepTheRowInI) {
-  const fs::path dir = fs::path(FRICON_SHARED_DIR) / "data" / "siconos-fc3d";
+  const fs::path dir = test::shared_data("siconos-fc3d");
   int checked = 0;
   for (const char* name : {"Box_Stacks-i0122-82-5.hdf5", "Spheres-i099-356-679.hdf5"}) {
     const fs::path file = dir / name;

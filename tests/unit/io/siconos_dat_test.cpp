@@ -6,10 +6,11 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
+#include <sstream>
 
 #include <Eigen/Dense>
 
+#include "common/fixtures.hpp"
 #include "fricon/core/error.hpp"
 
 namespace fricon::io {
@@ -17,12 +18,10 @@ namespace {
 
 class SiconosDat : public ::testing::Test {
  protected:
-  std::filesystem::path dir_ = std::filesystem::temp_directory_path() / "fricon_siconos_dat";
-  void SetUp() override { std::filesystem::create_directories(dir_); }
   std::filesystem::path write(const std::string& name, const std::string& text) {
-    std::ofstream(dir_ / name) << text;
-    return dir_ / name;
+    return dir_.write(name, text);
   }
+  const test::TempDir dir_{"fricon_siconos_dat"};
 };
 
 // W = diag(blocks A, B) of two contacts, written dense (column-major) and sparse-block.

@@ -2,19 +2,13 @@
 // Shared by the QP benchmarks (qp_variants_bench, expansion_bench, siconos_compare): the paper's
 // brick (or any problem) built through the library exactly as `fricon solve` builds it (contact
 // discretization, factor of K, the forward dual operator), with the dual problem of its first
-// outer iteration (phi = 0); and the parsing of comma-separated option values.
+// outer iteration (phi = 0).
 #include <memory>
-#include <sstream>
-#include <string>
 #include <utility>
-#include <vector>
-
-#include <fmt/format.h>
 
 #include "fricon/contact/discretization.hpp"
 #include "fricon/contact/friction_law.hpp"
 #include "fricon/contact/radii.hpp"
-#include "fricon/core/error.hpp"
 #include "fricon/driver/model.hpp"
 #include "fricon/driver/paper.hpp"
 #include "fricon/dual/dual_operator.hpp"
@@ -51,17 +45,6 @@ inline std::unique_ptr<PaperDual> problem_dual(driver::Problem problem) {
 /// The paper's brick for mesh parameter n, param = 6e4, at its first outer iteration.
 inline std::unique_ptr<PaperDual> paper_dual(Index n) {
   return problem_dual(driver::paper_problem(n, 6e4));
-}
-
-/// "a,b,c" -> {convert("a"), convert("b"), convert("c")}; throws InputError on an empty list.
-template <typename T, typename F>
-std::vector<T> parse_list(const std::string& s, F convert) {
-  std::vector<T> out;
-  std::stringstream ss(s);
-  for (std::string item; std::getline(ss, item, ',');)
-    if (!item.empty()) out.push_back(convert(item));
-  if (out.empty()) throw InputError(fmt::format("empty list '{}'", s));
-  return out;
 }
 
 }  // namespace fricon::bench
