@@ -67,15 +67,14 @@
 #include "fc3d_Solvers.h"
 #include "fc3d_compute_error.h"
 
+#include "common/bench_args.hpp"
+#include "common/paper_dual.hpp"
 #include "fricon/core/error.hpp"
 #include "fricon/core/timer.hpp"
 #include "fricon/io/dual_dump.hpp"
-#include "fricon/linalg/blas.hpp"
 #include "fricon/qp/dual_problem.hpp"
 #include "fricon/qp/kkt.hpp"
 #include "fricon/qp/mpgp.hpp"
-#include "common/bench_args.hpp"
-#include "common/paper_dual.hpp"
 
 namespace {
 
@@ -96,17 +95,12 @@ struct Case {
   double power_ms = 0.0;
 
   /// y = Q x (refers to this Case: do not move it while the operator is in use).
-  qp::Operator A() const {
-    // As the driver applies a dense Q (BLAS dsymv).
-    return
-        [Q = &d.Q](const VectorXd& x, VectorXd& y) { fricon::linalg::symmetric_product(*Q, x, y); };
-  }
+  qp::Operator A() const { return fricon::bench::dense_operator(d.Q); }
 };
 
 void finish_case(Case& k) {
   const Index m = k.d.radius.size();
-  k.c = qp::SeparableConstraints::contact_layout(m);
-  k.c.set_disc_radii(k.d.radius);
+  k.c = fricon::bench::disc_constraints(k.d.radius);
   fricon::Stopwatch w;
   k.norm_Q = qp::estimate_norm(k.A(), 3 * m, 200, 1e-10);  // the driver's settings
   k.power_ms = 1e3 * w.seconds();
@@ -358,8 +352,7 @@ double median_ms(const std::function<double()>& run_seconds, int reps) {
   std::vector<double> t;
   for (int i = 0; i < reps; ++i)
     t.push_back(1e3 * run_seconds());
-  std::sort(t.begin(), t.end());
-  return t[t.size() / 2];
+  return fricon::bench::median(t);
 }
 
 struct Settings {
@@ -494,7 +487,9 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(Index{1}, Index{1000}))
       ->capture_default_str();
   app.add_option("--kkt", s.kkt, "The KKT accuracy every solver must reach")->capture_default_str();
-  app.add_option("--reps", s.reps, "Runs per time (the median is shown)")->capture_default_str();
+  app.add_option("--reps", s.reps, "Runs per time (the median is shown)")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
   app.add_option("--nsgs-max", s.nsgs_max, "Most NSGS sweeps")->capture_default_str();
   app.add_option("--pg-max", s.pg_max, "Most projected-gradient iterations")->capture_default_str();
   return fricon::bench::run_main(app, argc, argv, [&] {

@@ -335,6 +335,5 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_flag("--try-solve", try_solve,
                "Try MatSolve with the Schur factor on several ranks too (hangs with PETSc 3.18)");
-  return fricon::bench::run_main(app, argc, argv,
-                                 [&] { return probe(argc, argv, n, try_solve); });
+  return fricon::bench::run_main(app, argc, argv, [&] { return probe(argc, argv, n, try_solve); });
 }

@@ -38,7 +38,9 @@ ClampedBrick clamped_brick(const std::array<Index, 3>& cells, Chessboard chessbo
   return b;
 }
 
-ClampedBrick paper_brick(Index n) { return clamped_brick({3 * n, n, n}); }
+ClampedBrick paper_brick(Index n) {
+  return clamped_brick({3 * n, n, n});
+}
 
 void add_second_tag(mesh::TetMesh& m, const std::string& tag, const std::string& second) {
   const std::vector<Index> faces = m.faces_with_tag(tag);
@@ -79,8 +81,8 @@ driver::Problem gravity_column() {
 
 TempDir::TempDir(const std::string& prefix) {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  std::string name = prefix + "_" + (info ? info->name() : "no_test") + "_" +
-                     std::to_string(::getpid());
+  std::string name =
+      prefix + "_" + (info ? info->name() : "no_test") + "_" + std::to_string(::getpid());
   for (char& c : name)  // a parameterized test's name holds a '/'
     if (c == '/') c = '_';
   path_ = fs::temp_directory_path() / name;
@@ -99,7 +101,9 @@ fs::path TempDir::write(const std::string& name, const std::string& text) const 
   return p;
 }
 
-fs::path source_path(const std::string& relative) { return fs::path(FRICON_SOURCE_DIR) / relative; }
+fs::path source_path(const std::string& relative) {
+  return fs::path(FRICON_SOURCE_DIR) / relative;
+}
 
 fs::path shared_data(const std::string& name) {
   return fs::path(FRICON_SHARED_DIR) / "data" / name;

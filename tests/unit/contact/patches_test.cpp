@@ -28,7 +28,9 @@ const std::string kWhere = "t.toml:7:1";
 
 // The brick (size 3 x 1 x 1) with its surface z0, x0 clamped; no chessboard (odd cells too).
 using Case = test::ClampedBrick;
-Case brick(std::array<Index, 3> cells) { return test::clamped_brick(cells, test::Chessboard::No); }
+Case brick(std::array<Index, 3> cells) {
+  return test::clamped_brick(cells, test::Chessboard::No);
+}
 
 // The same surface fields as make_contact_surface, without its planarity check (curved faces).
 ContactSurface curved_surface(const mesh::TetMesh& m, const fe::DofMap& dofs,

@@ -28,7 +28,9 @@ std::string error_of(const Problem& p) {
 }
 
 /// A valid problem with every section: clamped at x0, pulled at x1, contact on z0.
-Problem base() { return test::clamped_problem(); }
+Problem base() {
+  return test::clamped_problem();
+}
 
 /// The isotropic Hooke matrix of steel, as a general one.
 std::array<std::array<Real, 6>, 6> steel_voigt() {

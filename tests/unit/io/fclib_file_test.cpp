@@ -84,8 +84,12 @@ void store(const MatrixXd& A, Storage storage, Matrix& out) {
 
 class FclibFile : public ::testing::Test {
  protected:
-  /// A path in this test's fresh folder.
-  fs::path fresh(const std::string& name) const { return dir_.path() / name; }
+  /// A path in this test's folder where no file is (FCLIB's writers refuse to add a second
+  /// problem to a file).
+  fs::path fresh(const std::string& name) const {
+    fs::remove(dir_.path() / name);
+    return dir_.path() / name;
+  }
   const test::TempDir dir_{"fricon_fclib_file"};
 };
 

@@ -53,7 +53,9 @@ constexpr double kSiconosTolerance = 1e-12;    // Siconos' own error
 constexpr int kSiconosIterations = 10000;
 constexpr double kDefinite = 1e-10;  // W counts as definite above this lambda_min / lambda_max
 
-fs::path shared_file(const std::string& name) { return test::shared_data("siconos-fc3d") / name; }
+fs::path shared_file(const std::string& name) {
+  return test::shared_data("siconos-fc3d") / name;
+}
 
 struct GlobalDeleter {
   void operator()(GlobalFrictionContactProblem* p) const { globalFrictionContact_free(p); }
