@@ -79,11 +79,12 @@ driver::Problem gravity_column() {
   return p;
 }
 
-TempDir::TempDir(const std::string& prefix) {
+TempDir::TempDir() {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
   std::string name =
-      prefix + "_" + (info ? info->name() : "no_test") + "_" + std::to_string(::getpid());
-  for (char& c : name)  // a parameterized test's name holds a '/'
+      "fricon_" + (info ? std::string(info->test_suite_name()) + "_" + info->name() : "no_test") +
+      "_" + std::to_string(::getpid());
+  for (char& c : name)  // parameterized tests' names hold a '/'
     if (c == '/') c = '_';
   path_ = fs::temp_directory_path() / name;
   fs::remove_all(path_);

@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include <gtest/gtest.h>
+
 #include "fricon/contact/contact_surface.hpp"
 #include "fricon/contact/patches.hpp"
 #include "fricon/core/types.hpp"
@@ -83,11 +85,11 @@ driver::Problem gravity_column();
 // Files.
 
 /// A fresh folder for the running test, removed with its contents at the end of the object's
-/// life: <system temporary folder>/<prefix>_<test name>_<process id>, so that tests that CTest
-/// runs at the same time never share one.
+/// life: <system temporary folder>/fricon_<test suite>_<test>_<process id>, so that tests that
+/// CTest runs at the same time never share one.
 class TempDir {
  public:
-  explicit TempDir(const std::string& prefix);
+  TempDir();
   ~TempDir();
   TempDir(const TempDir&) = delete;
   TempDir& operator=(const TempDir&) = delete;
@@ -98,6 +100,12 @@ class TempDir {
 
  private:
   std::filesystem::path path_;
+};
+
+/// A GoogleTest fixture that gives each of its tests a fresh folder, dir_.
+class TempDirTest : public ::testing::Test {
+ protected:
+  const TempDir dir_;
 };
 
 /// A file or folder of this repository, by its path relative to the top (e.g.

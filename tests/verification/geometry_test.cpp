@@ -60,7 +60,7 @@ Problem rotated(const Problem& p, const Mat3& R, const std::filesystem::path& fi
 TEST(Geometry, RotatingTheWholeProblemRotatesTheAnswer) {
   const Problem level = brick_over_plane();
   const Mat3 R = Eigen::AngleAxis<Real>(0.7, Vec3(1, 2, 3).normalized()).toRotationMatrix();
-  const test::TempDir dir("fricon_geometry");
+  const test::TempDir dir;
   const auto file = dir.path() / "rotated-brick.msh";
   const RunResult a = run(level);
   const RunResult b = run(rotated(level, R, file));
@@ -96,7 +96,7 @@ TEST(Geometry, AContactSurfaceInTwoPiecesIsOneProblem) {
         3.0;
     if (x < 1.0 || x > 2.0) m.face_tag[static_cast<size_t>(f)] = feet;
   }
-  const test::TempDir dir("fricon_geometry");
+  const test::TempDir dir;
   const auto file = dir.path() / "feet.msh";
   mesh::write_gmsh(file, m);
   p.mesh.kind = MeshKind::Gmsh;

@@ -82,7 +82,7 @@ void store(const MatrixXd& A, Storage storage, Matrix& out) {
   out.finish(rows, cols, by_column ? -1 : -2);
 }
 
-class FclibFile : public ::testing::Test {
+class FclibFile : public test::TempDirTest {
  protected:
   /// A path in this test's folder where no file is (FCLIB's writers refuse to add a second
   /// problem to a file).
@@ -90,7 +90,6 @@ class FclibFile : public ::testing::Test {
     fs::remove(dir_.path() / name);
     return dir_.path() / name;
   }
-  const test::TempDir dir_{"fricon_fclib_file"};
 };
 
 // Two contacts, W not symmetric: W(0, 1) = 0.3 but W(1, 0) = 0, and so on.

@@ -21,7 +21,7 @@ namespace {
 using ::testing::HasSubstr;
 namespace fs = std::filesystem;
 
-class ReaderFuzzFinding : public ::testing::Test {
+class ReaderFuzzFinding : public test::TempDirTest {
  protected:
   /// The message of the InputError that `read` throws on a file holding `text`, or what else
   /// happened.
@@ -41,8 +41,6 @@ class ReaderFuzzFinding : public ::testing::Test {
   std::string dual(const std::string& text) const {
     return error_of([](const fs::path& p) { (void)read_dual(p); }, text);
   }
-
-  const test::TempDir dir_{"fricon_fuzz_finding"};
 };
 
 // The header of a local problem of 2 contacts with W 6 x 6 in sparse-block storage (1), as

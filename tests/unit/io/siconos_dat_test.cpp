@@ -16,12 +16,11 @@
 namespace fricon::io {
 namespace {
 
-class SiconosDat : public ::testing::Test {
+class SiconosDat : public test::TempDirTest {
  protected:
   std::filesystem::path write(const std::string& name, const std::string& text) {
     return dir_.write(name, text);
   }
-  const test::TempDir dir_{"fricon_siconos_dat"};
 };
 
 // W = diag(blocks A, B) of two contacts, written dense (column-major) and sparse-block.

@@ -1,6 +1,7 @@
 // The CHOLMOD wrapper against dense algebra, and its failure on a singular K.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 
 #include "common/fixtures.hpp"
@@ -17,6 +18,20 @@ SparseMatrix random_spd(Index n, unsigned seed) {
   const MatrixXd R = MatrixXd::Random(n, n);
   const MatrixXd A = R * R.transpose() + static_cast<Real>(n) * MatrixXd::Identity(n, n);
   return A.sparseView().cast<Real>();
+}
+
+// A steel brick of edge lengths `size` and `cells` clamped at x0: its dofs and stiffness matrix.
+struct ClampedSteel {
+  mesh::TetMesh m;
+  fe::DofMap dofs{0};
+  SparseMatrix K;
+};
+ClampedSteel clamped_steel(const Vec3& size, const std::array<Index, 3>& cells) {
+  ClampedSteel b;
+  b.m = mesh::make_brick({size, cells});
+  b.dofs = test::clamped_dofs(b.m);
+  b.K = fe::assemble_stiffness(b.m, fe::isotropic(2e11, 0.3), b.dofs);
+  return b;
 }
 }  // namespace
 
@@ -51,9 +66,7 @@ TEST(Cholesky, UnclampedStiffnessIsReportedAsNotPositiveDefinite) {
 TEST(Cholesky, TrailingBlockIsTheFactorOfTheSchurComplement) {
   // Constrain the dofs of the bottom face to come last; then L22 L22^T must equal the Schur
   // complement S = K22 - K21 K11^-1 K12 computed with dense algebra.
-  const mesh::TetMesh m = mesh::make_brick({Vec3(2, 1, 1), {4, 2, 2}});
-  const fe::DofMap dofs = test::clamped_dofs(m);
-  const SparseMatrix K = fe::assemble_stiffness(m, fe::isotropic(2e11, 0.3), dofs);
+  const auto [m, dofs, K] = clamped_steel(Vec3(2, 1, 1), {4, 2, 2});
   const std::vector<Index> last = dofs.free_dofs(m.nodes_with_tag("z0"));
   linalg::CholeskyFactor chol;
   chol.factorize(K, last);
@@ -103,9 +116,7 @@ SparseMatrix bottom_columns(const mesh::TetMesh& m, const fe::DofMap& dofs, Inde
 
 TEST(Cholesky, InverseGramOnTheReachIsTheDualHessian) {
   // B^T K^-1 B from the forward sweep over the reach of B, against dense solves with K.
-  const mesh::TetMesh m = mesh::make_brick({Vec3(3, 1, 1), {12, 4, 4}});
-  const fe::DofMap dofs = test::clamped_dofs(m);
-  const SparseMatrix K = fe::assemble_stiffness(m, fe::isotropic(2e11, 0.3), dofs);
+  const auto [m, dofs, K] = clamped_steel(Vec3(3, 1, 1), {12, 4, 4});
   const SparseMatrix B = bottom_columns(m, dofs, 10);
   linalg::CholeskyFactor chol;
   chol.factorize(K);
@@ -121,9 +132,7 @@ TEST(Cholesky, InverseGramOnTheReachIsTheDualHessian) {
 }
 
 TEST(Cholesky, SolveOnTheReachIsExactOnItsDofs) {
-  const mesh::TetMesh m = mesh::make_brick({Vec3(3, 1, 1), {12, 4, 4}});
-  const fe::DofMap dofs = test::clamped_dofs(m);
-  const SparseMatrix K = fe::assemble_stiffness(m, fe::isotropic(2e11, 0.3), dofs);
+  const auto [m, dofs, K] = clamped_steel(Vec3(3, 1, 1), {12, 4, 4});
   const std::vector<Index> surface = dofs.free_dofs(m.nodes_with_tag("z0"));
   linalg::CholeskyFactor chol;
   chol.factorize(K);

@@ -90,15 +90,13 @@ Vec3 tag_area_normal(const TetMesh& m, const std::string& tag) {
 }
 
 // Each test writes its files in a fresh folder of its own.
-class GmshFile : public ::testing::Test {
+class GmshFile : public test::TempDirTest {
  protected:
   fs::path test_dir() const { return dir_.path(); }
   fs::path write_file(const std::string& name, const std::string& content) const {
     return dir_.write(name, content);
   }
   void expect_round_trip(int version, bool binary, const std::string& name) const;
-
-  const test::TempDir dir_{"fricon_gmsh_file"};
 };
 
 // @sect: round trips.
