@@ -102,6 +102,12 @@ fs::path TempDir::write(const std::string& name, const std::string& text) const 
   return p;
 }
 
+std::string TempDirTest::read_error(const std::string& name, const std::string& text,
+                                    const std::function<void(const fs::path&)>& read) const {
+  const fs::path p = dir_.write(name, text);
+  return input_error_of([&] { read(p); });
+}
+
 fs::path source_path(const std::string& relative) {
   return fs::path(FRICON_SOURCE_DIR) / relative;
 }

@@ -105,6 +105,11 @@ class TempDir {
 /// A GoogleTest fixture that gives each of its tests a fresh folder, dir_.
 class TempDirTest : public ::testing::Test {
  protected:
+  /// The message of the InputError that `read` throws on the file `name` of dir_ holding
+  /// `text`, or "" when it throws none; any other exception goes through.
+  std::string read_error(const std::string& name, const std::string& text,
+                         const std::function<void(const std::filesystem::path&)>& read) const;
+
   const TempDir dir_;
 };
 

@@ -22,7 +22,7 @@ namespace {
 using ::testing::HasSubstr;
 namespace fs = std::filesystem;
 
-/// A fresh folder per test, removed at the end.
+/// A fresh folder per test (dir_), removed at the end.
 class DualDump : public test::TempDirTest {
  protected:
   fs::path write_text(const std::string& name, const std::string& text) const {
@@ -31,8 +31,7 @@ class DualDump : public test::TempDirTest {
 
   /// The message of the InputError that reading `text` throws, or "" if it does not throw.
   std::string error_of(const std::string& text) const {
-    const fs::path p = write_text("bad.dual", text);
-    return test::input_error_of([&p] { (void)read_dual(p); });
+    return read_error("bad.dual", text, [](const fs::path& p) { (void)read_dual(p); });
   }
 };
 

@@ -27,9 +27,8 @@ class ReaderFuzzFinding : public test::TempDirTest {
   /// happened.
   std::string error_of(const std::function<void(const fs::path&)>& read,
                        const std::string& text) const {
-    const fs::path p = dir_.write("input", text);
     try {
-      const std::string message = test::input_error_of([&] { read(p); });
+      const std::string message = read_error("input", text, read);
       return message.empty() ? "read without an error" : message;
     } catch (const std::exception& e) {
       return std::string("not an InputError: ") + e.what();
