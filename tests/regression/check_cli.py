@@ -75,7 +75,7 @@ if (nc / "report.not-converged.json").exists():
     r = common.read_report(nc, "report.not-converged.json")
     if r["status"] != "not_converged" or r["termination"] != "iteration_limit":
         failures.add(f"report.not-converged.json: status {r['status']}, "
-                        f"termination {r['termination']}")
+                     f"termination {r['termination']}")
 # A later converged run in the same folder replaces the not-converged files.
 expect(["solve", paper, "--out", str(nc), "--quiet"], 0)
 if (nc / "report.not-converged.json").exists() or not (nc / "report.json").exists():

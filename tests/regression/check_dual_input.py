@@ -78,4 +78,5 @@ good = sum(1 for p in files if expectations(p.with_suffix(".expect"))["exit"] ==
            if p.with_suffix(".expect").exists())
 if len(files) < 10 or good < 3:
     failures.add(f"the corpus is too small: {len(files)} files, {good} good")
-failures.finish(f"dual input corpus: {len(files)} files ({good} good, {len(files) - good} bad) checked")
+failures.finish(f"dual input corpus: {len(files)} files ({good} good, {len(files) - good} bad) "
+                "checked")

@@ -35,7 +35,7 @@ for cells in ["[12,4,4]", "[24,8,8]"]:
                        f"contact.friction.kinks={KINKS}"])
     if got["outer_iterations"] != ref["outer_iterations"]:
         failures.add(f"{cells}: {got['outer_iterations']} outer iterations, "
-                        f"law paper took {ref['outer_iterations']}")
+                     f"law paper took {ref['outer_iterations']}")
     if "Gauss-Kronrod" not in got["contact"]["radius_integration"]:
         failures.add(f"{cells}: radius_integration is {got['contact']['radius_integration']!r}")
     if not got["contact"]["friction_law"].startswith("expression("):

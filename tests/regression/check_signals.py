@@ -54,7 +54,7 @@ def qp_phase(sig):
     took = time.time() - t0
     if proc.returncode != 2 or "interrupted" not in stderr:
         failures.add(f"{sig.name} in the QP phase: exit {proc.returncode}, expected 2 with "
-                        f"'interrupted'\n{stderr}")
+                     f"'interrupted'\n{stderr}")
     if took > 5:
         failures.add(f"{sig.name} in the QP phase: took {took:.1f} s to stop")
     if (outdir / "report.json").exists():
@@ -68,7 +68,7 @@ def qp_phase(sig):
         failures.add(f"{sig.name}: status {r['status']}, termination {r['termination']}")
     if r["outer_iterations"] < 2 or "interrupted" not in r["message"]:
         failures.add(f"{sig.name}: outer_iterations {r['outer_iterations']}, "
-                        f"message {r['message']!r}")
+                     f"message {r['message']!r}")
     for name in ["solution.not-converged.vtu", "contact.not-converged.vtu",
                  "patches.not-converged.csv", "contact_nodes.not-converged.csv"]:
         if not (outdir / name).exists():

@@ -21,16 +21,15 @@ ALARMS = ("AddressSanitizer", "UndefinedBehaviorSanitizer", "LeakSanitizer", "ru
           "Traceback", "terminate called", "internal error", "Segmentation fault", "Aborted")
 
 
-def arguments(usage, count=3, make_out=True):
-    """The script's `count` arguments, FRICON INPUT OUTDIR ...: FRICON as given, the others as
-    paths; OUTDIR (the third) is created unless make_out is false. Wrong count: exit 1 with usage."""
-    if len(sys.argv) != count + 1:
+def arguments(usage):
+    """The script's arguments FRICON INPUT OUTDIR: FRICON as given, INPUT and OUTDIR as paths,
+    OUTDIR created. Another count of arguments ends the script with `usage` (its docstring) and
+    exit code 1."""
+    if len(sys.argv) != 4:
         sys.exit(usage)
-    exe, *paths = sys.argv[1:]
-    paths = [pathlib.Path(p) for p in paths]
-    if make_out and len(paths) >= 2:
-        paths[1].mkdir(parents=True, exist_ok=True)
-    return (exe, *paths)
+    out = pathlib.Path(sys.argv[3])
+    out.mkdir(parents=True, exist_ok=True)
+    return sys.argv[1], pathlib.Path(sys.argv[2]), out
 
 
 def run(cmd, timeout=None, env=None):
@@ -40,9 +39,9 @@ def run(cmd, timeout=None, env=None):
                           encoding="utf-8", errors="replace", timeout=timeout, env=env)
 
 
-def run_ok(cmd, timeout=None, expect=0, env=None):
+def run_ok(cmd, timeout=None, expect=0):
     """run(), ending the script (fail) when the exit code is not `expect`."""
-    r = run(cmd, timeout=timeout, env=env)
+    r = run(cmd, timeout=timeout)
     if r.returncode != expect:
         fail(f"{' '.join(map(str, cmd))}: exit code {r.returncode}, expected {expect}\n"
              f"stdout:\n{r.stdout}\nstderr:\n{r.stderr}")
