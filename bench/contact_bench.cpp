@@ -9,15 +9,16 @@
 //   build/bench/contact_bench --qp-variant paper 16   the paper's MPGP (default: fricon's default)
 //   build/bench/contact_bench --repeat 5 16           fastest of 5 (default 3 up to n = 16, else 1)
 //   build/bench/contact_bench --model coulomb         Coulomb friction (the paper's coefficient)
+//   build/bench/contact_bench --help                  the options (bench/common/bench_args.hpp)
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <string>
 #include <vector>
 
 #include <fmt/format.h>
 
-#include "child_process.hpp"
+#include "common/bench_args.hpp"
+#include "common/child_process.hpp"
 #include "fricon/core/timer.hpp"
 #include "fricon/driver/model.hpp"
 #include "fricon/driver/paper.hpp"
@@ -35,15 +36,22 @@ struct Row {
 
 // One linear solve and one full run, alternated `repeat` times; the fastest of each is kept
 // (the machine's noise only ever adds time).
-Row measure(long n, const std::string& mode, const std::string& variant, const std::string& model,
-            int repeat) {
+// The choices of the command line.
+struct Settings {
+  fricon::dual::DualOperatorKind mode = fricon::dual::DualOperatorKind::Auto;
+  fricon::qp::MpgpVariant variant = fricon::driver::SolverOptions{}.qp.variant;
+  fricon::contact::FrictionModel model = fricon::contact::FrictionModel::Tresca;
+  int repeat = 0;  // 0: 3 up to n = 16, 1 beyond
+};
+
+Row measure(long n, const Settings& s, int repeat) {
   using namespace fricon;
   Row r;
   r.n = n;
   driver::Problem p = driver::paper_problem(n, 6e4);
-  p.contact->model = parse_enum<contact::FrictionModel>(model);
-  p.solver.dual_operator = parse_enum<dual::DualOperatorKind>(mode);
-  p.solver.qp.variant = parse_enum<qp::MpgpVariant>(variant);
+  p.contact->model = s.model;
+  p.solver.dual_operator = s.mode;
+  p.solver.qp.variant = s.variant;
   for (int k = 0; k < repeat; ++k) {
     {
       Stopwatch watch;
@@ -78,32 +86,13 @@ Row measure(long n, const std::string& mode, const std::string& variant, const s
   return r;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  std::vector<long> sizes;
-  std::string mode = "auto";
-  std::string variant(fricon::enum_name(fricon::driver::SolverOptions{}.qp.variant));
-  std::string model = "tresca";
-  int repeat = 0;  // 0: 3 up to n = 16, 1 beyond
-  for (int i = 1; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--operator") == 0 && i + 1 < argc) {
-      mode = argv[++i];
-    } else if (std::strcmp(argv[i], "--repeat") == 0 && i + 1 < argc) {
-      repeat = std::atoi(argv[++i]);
-    } else if (std::strcmp(argv[i], "--qp-variant") == 0 && i + 1 < argc) {
-      variant = argv[++i];
-    } else if (std::strcmp(argv[i], "--model") == 0 && i + 1 < argc) {
-      model = argv[++i];
-    } else {
-      sizes.push_back(std::atol(argv[i]));
-    }
-  }
+// The table: one row per n, each measured in a child process.
+int scan(std::vector<long> sizes, const Settings& s) {
   if (sizes.empty()) sizes = {4, 6, 8, 10, 12, 14, 16};
   fmt::print(
       "Paper brick, param = 6e4, {} friction: the full frictional run against one linear solve "
       "of the same mesh\n",
-      model);
+      fricon::enum_name(s.model));
   fmt::print(
       "(linear = assembly + factorization + one solve; ratio = total / linear; times in s, the\n"
       "fastest of 3 alternated repetitions up to n = 16, of one beyond, unless --repeat R)\n\n");
@@ -115,7 +104,7 @@ int main(int argc, char** argv) {
   int code = 0;
   for (long n : sizes) {
     const auto row = fricon::bench::run_in_child(
-        [&] { return measure(n, mode, variant, model, repeat > 0 ? repeat : (n <= 16 ? 3 : 1)); });
+        [&] { return measure(n, s, s.repeat > 0 ? s.repeat : (n <= 16 ? 3 : 1)); });
     if (!row) {
       fmt::print("| {} | failed (out of memory or killed) |\n", n);
       code = 3;
@@ -133,4 +122,28 @@ int main(int argc, char** argv) {
     if (!r.converged) code = 2;
   }
   return code;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace fricon;
+  CLI::App app{
+      "The whole contact solve of the paper's brick against one linear elastic solve of the same "
+      "mesh, one child process per n.",
+      "contact_bench"};
+  std::vector<long> sizes;
+  Settings s;
+  app.add_option("n", sizes, "Mesh parameters n (default 4, 6, ..., 16)")
+      ->check(CLI::Range(1L, 1000L));
+  app.add_option("--operator", s.mode, "Dual operator (default auto)")
+      ->transform(bench::enum_spelling<dual::DualOperatorKind>());
+  app.add_option("--qp-variant", s.variant, "QP variant (default: fricon's default)")
+      ->transform(bench::enum_spelling<qp::MpgpVariant>());
+  app.add_option("--repeat", s.repeat,
+                 "Keep the fastest of R runs (0, the default: 3 up to n = 16, else 1)")
+      ->check(CLI::Range(0, 1000));
+  app.add_option("--model", s.model, "Friction model (default tresca)")
+      ->transform(bench::enum_spelling<contact::FrictionModel>());
+  return bench::run_main(app, argc, argv, [&] { return scan(sizes, s); });
 }

@@ -1,7 +1,7 @@
 // Benchmark of the elastic core on the paper's brick: time and peak memory of assembly,
 // factorization and one solve, for n = 8, 16, 24 (or the n given on the command line).
 // Each n runs in its own child process, so that the peak resident memory is that of one size.
-//   build/bench/elasticity_bench [n ...]
+//   build/bench/elasticity_bench [n ...]   (--help: the options)
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -9,7 +9,8 @@
 
 #include <fmt/format.h>
 
-#include "child_process.hpp"
+#include "common/bench_args.hpp"
+#include "common/child_process.hpp"
 #include "fricon/core/timer.hpp"
 #include "fricon/driver/model.hpp"
 #include "fricon/driver/paper.hpp"
@@ -41,12 +42,8 @@ Row measure(fricon::Index n) {
   return r;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  std::vector<long> sizes;
-  for (int i = 1; i < argc; ++i)
-    sizes.push_back(std::atol(argv[i]));
+// The table: one row per n, each measured in a child process.
+int scan(std::vector<long> sizes) {
   if (sizes.empty()) sizes = {8, 16, 24};
   fmt::print(
       "Elastic brick (paper's mesh, 3n x n x n cubes): one linear solve, phases in seconds\n\n");
@@ -66,4 +63,16 @@ int main(int argc, char** argv) {
     std::fflush(stdout);
   }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "The elastic core on the paper's brick: assembly, factorization and one solve, one child "
+      "process per n.",
+      "elasticity_bench"};
+  std::vector<long> sizes;
+  app.add_option("n", sizes, "Mesh parameters n (default 8, 16, 24)")->check(CLI::Range(1L, 1000L));
+  return fricon::bench::run_main(app, argc, argv, [&] { return scan(sizes); });
 }

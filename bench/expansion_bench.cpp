@@ -10,9 +10,9 @@
 // once per problem (200 power iterations, as the driver does) and passed to every solve, so no
 // count below includes it.
 //
-// Problems: the paper's brick (param 6e4) for n = 4, 8, 12, 16 (bench/paper_dual.hpp, Q formed
-// densely), and the dual files given as arguments (docs/dual-format.md; e.g. the graded Hertz and
-// wheel meshes' QPs written by `fricon solve --dump-dual`).
+// Problems: the paper's brick (param 6e4) for n = 4, 8, 12, 16 (bench/common/paper_dual.hpp, Q
+// formed densely), and the dual files given as arguments (docs/dual-format.md; e.g. the graded
+// Hertz and wheel meshes' QPs written by `fricon solve --dump-dual`).
 //
 // Table 1, "single QP": each problem's QP (for the brick its first outer iteration, all radii
 // 6e6 Pa), from l = 0 to ||D g^P|| <= tol ||D h_R|| for every variant x expansion and tol:
@@ -30,11 +30,10 @@
 //   build/bench/expansion_bench [FILE.dual ...] [--n 4,8,12,16] [--variants paper,bb]
 //                               [--expansions fixed,opt,projcg] [--factor 1] [--tol 1e-6,1e-8]
 //                               [--reps 3] [--no-run] [--run PROBLEM.toml ...] [--verbose]
-//                               [--scaling diagonal|area|none]
+//                               [--scaling diagonal|area|none]   (--help: the options)
 
 #include <algorithm>
 #include <cmath>
-#include <exception>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -43,6 +42,8 @@
 #include <fmt/format.h>
 #include <Eigen/Dense>
 
+#include "common/bench_args.hpp"
+#include "common/paper_dual.hpp"
 #include "fricon/contact/dual_scaling.hpp"
 #include "fricon/core/error.hpp"
 #include "fricon/driver/contact_solver.hpp"
@@ -50,12 +51,9 @@
 #include "fricon/driver/tresca_map.hpp"
 #include "fricon/io/dual_dump.hpp"
 #include "fricon/io/problem_file.hpp"
-#include "fricon/linalg/blas.hpp"
 #include "fricon/outer/outer_loop.hpp"
-#include "fricon/qp/kkt.hpp"
 #include "fricon/qp/mpgp.hpp"
 #include "fricon/qp/scaling.hpp"
-#include "paper_dual.hpp"
 
 namespace {
 
@@ -111,15 +109,9 @@ struct Case {
   std::unique_ptr<qp::BlockScaling> D_run;          // the driver's scaling of the outer loop
   double norm_run = 0.0;                            // ||D_run Q D_run||
 
-  qp::Operator A() const {
-    // As the driver applies a dense Q (BLAS dsymv).
-    return
-        [Q = &Q](const VectorXd& x, VectorXd& y) { fricon::linalg::symmetric_product(*Q, x, y); };
-  }
+  qp::Operator A() const { return fricon::bench::dense_operator(Q); }
   qp::SeparableConstraints constraints(const VectorXd& r) const {
-    auto c = qp::SeparableConstraints::contact_layout(r.size());
-    c.set_disc_radii(r);
-    return c;
+    return fricon::bench::disc_constraints(r);
   }
 };
 
@@ -171,16 +163,7 @@ Case file_case(const fs::path& p, const Settings& s) {
   return k;
 }
 
-double kkt_max(const Case& k, const qp::SeparableConstraints& c, const VectorXd& l) {
-  const VectorXd g = k.Q * l - k.h;
-  const auto sc = qp::default_kkt_scales(l, k.h, c);
-  return qp::kkt_residuals(l, g, c, sc.x, sc.g).max();
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
+using fricon::bench::median;
 
 qp::MpgpOptions options(double norm, const Settings& s, Combination m, double tol) {
   qp::MpgpOptions o;
@@ -217,8 +200,8 @@ void single_qp(const Case& k, const Settings& s) {
           "{}\n",
           k.name, k.h.size(), tol, m.name(), rep.iterations,
           fmt::format("{}/{}/{}", rep.n_cg, rep.n_expansion, rep.n_proportioning), rep.n_products,
-          rep.n_expansion_products, rep.n_expansion_fallbacks, median(ms), kkt_max(k, c, l), dl,
-          fricon::enum_name(rep.termination));
+          rep.n_expansion_products, rep.n_expansion_fallbacks, median(ms),
+          fricon::bench::kkt_max(k.Q, k.h, c, l), dl, fricon::enum_name(rep.termination));
     }
   }
 }
@@ -265,20 +248,20 @@ RunResult run_outer(const Case& k, const Settings& s, Combination m) {
   fricon::PhaseTimes times;
   const auto bounds = fricon::driver::make_slip_bounds(o.problem, o.model.mesh, o.disc, *o.law);
   fricon::driver::TrescaMap map(o.model.dofs, o.disc, *o.Q, *bounds, *o.law, *k.D_run,
-                                options(k.norm_run, s, m, so.qp.rel_tolerance), so.warm_start, times);
+                                options(k.norm_run, s, m, so.qp.rel_tolerance), so.warm_start,
+                                times);
   RunResult res;
   Index n_state = 0;  // phi, and lambda_n for Coulomb
   for (const auto& block : map.layout())
     n_state += block.size;
   VectorXd state = VectorXd::Zero(n_state);
-  const auto rep = fricon::outer::iterate(map, state, so.outer,
-                                          [&](const fricon::outer::OuterIteration&) {
-                                            res.iterations += map.last_qp().iterations;
-                                            res.products += map.last_qp().n_products;
-                                            res.qp_ms += 1e3 * map.last_qp().seconds;
-                                            if (s.verbose)
-                                              fmt::print("  {}\n", map.last_qp().brief());
-                                          });
+  const auto rep =
+      fricon::outer::iterate(map, state, so.outer, [&](const fricon::outer::OuterIteration&) {
+        res.iterations += map.last_qp().iterations;
+        res.products += map.last_qp().n_products;
+        res.qp_ms += 1e3 * map.last_qp().seconds;
+        if (s.verbose) fmt::print("  {}\n", map.last_qp().brief());
+      });
   res.outer = rep.iterations;
   res.converged = rep.converged();
   return res;
@@ -300,67 +283,39 @@ void whole_run(const Case& k, const Settings& s) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  try {
-    Settings s;
-    std::vector<fs::path> dumps, runs;
-    std::vector<Index> ns = {4, 8, 12, 16};
-    for (int i = 1; i < argc; ++i) {
-      const std::string a = argv[i];
-      auto value = [&]() -> std::string {
-        if (i + 1 >= argc) throw fricon::InputError(fmt::format("{} needs a value", a));
-        return argv[++i];
-      };
-      if (a == "--run") {
-        runs.emplace_back(value());
-        while (i + 1 < argc && std::string(argv[i + 1]).rfind("--", 0) != 0)
-          runs.emplace_back(argv[++i]);
-      } else if (a == "--n") {
-        ns = fricon::bench::parse_list<Index>(value(),
-                                              [](const std::string& t) { return std::stol(t); });
-      } else if (a == "--variants") {
-        s.variants = fricon::bench::parse_list<qp::MpgpVariant>(
-            value(), [](const std::string& t) { return fricon::parse_enum<qp::MpgpVariant>(t); });
-      } else if (a == "--expansions") {
-        s.expansions = fricon::bench::parse_list<qp::MpgpExpansion>(
-            value(), [](const std::string& t) { return fricon::parse_enum<qp::MpgpExpansion>(t); });
-      } else if (a == "--factor") {
-        s.factor = std::stod(value());
-      } else if (a == "--tol") {
-        s.tols = fricon::bench::parse_list<double>(
-            value(), [](const std::string& t) { return std::stod(t); });
-      } else if (a == "--reps") {
-        s.reps = std::max(1, std::stoi(value()));
-      } else if (a == "--verbose") {
-        s.verbose = true;
-      } else if (a == "--no-run") {
-        s.run = false;
-      } else if (a == "--scaling") {
-        const std::string v = value();
-        if (v == "diagonal") {
-          s.scaling = Scaling::Diagonal;
-        } else if (v == "area") {
-          s.scaling = Scaling::Area;
-        } else if (v == "none") {
-          s.scaling = Scaling::None;
-        } else {
-          throw fricon::InputError(fmt::format("--scaling {}: expected diagonal, area or none", v));
-        }
-      } else if (a == "--help" || a == "-h") {
-        fmt::print(
-            "usage: expansion_bench [FILE.dual ...] [--n 4,8,12,16] [--variants paper,bb]\n"
-            "                       [--expansions fixed,opt,projcg] [--factor 1] [--tol "
-            "1e-6,1e-8]\n"
-            "                       [--reps 3] [--no-run] [--run PROBLEM.toml ...] [--verbose]\n"
-            "                       [--scaling diagonal|area|none]\n");
-        return 0;
-      } else if (a.rfind("--", 0) == 0) {
-        throw fricon::InputError(fmt::format("unknown argument '{}' (see --help)", a));
-      } else {
-        dumps.emplace_back(a);
-      }
-    }
+FRICON_ENUM_NAMES(Scaling, "--scaling", {Scaling::Diagonal, "diagonal"}, {Scaling::Area, "area"},
+                  {Scaling::None, "none"});
 
+int main(int argc, char** argv) {
+  CLI::App app{
+      "The expansion moves of MPGP (qp::MpgpExpansion) with each variant (qp::MpgpVariant) on "
+      "the paper's brick and on dual files: one QP, then the whole outer loop.",
+      "expansion_bench"};
+  Settings s;
+  std::vector<std::string> dumps, runs;
+  std::vector<Index> ns = {4, 8, 12, 16};
+  app.add_option("files", dumps, "Dual files (docs/dual-format.md) to solve as single QPs");
+  fricon::bench::comma_list(app.add_option("--n", ns, "Mesh parameters n of the paper's brick"))
+      ->check(CLI::Range(Index{1}, Index{1000}))
+      ->capture_default_str();
+  fricon::bench::comma_list(app.add_option("--variants", s.variants, "QP variants (paper,bb)"))
+      ->transform(fricon::bench::enum_spelling<qp::MpgpVariant>());
+  fricon::bench::comma_list(
+      app.add_option("--expansions", s.expansions, "Expansion moves (fixed,opt,projcg)"))
+      ->transform(fricon::bench::enum_spelling<qp::MpgpExpansion>());
+  app.add_option("--factor", s.factor, "MpgpOptions::expansion_length_factor")
+      ->capture_default_str();
+  fricon::bench::comma_list(app.add_option("--tol", s.tols, "QP tolerances"))
+      ->capture_default_str();
+  app.add_option("--reps", s.reps, "Runs per time (the median is shown)")->capture_default_str();
+  app.add_flag_callback(
+      "--no-run", [&s] { s.run = false; }, "Skip the whole runs");
+  app.add_option("--run", runs, "Problem files (TOML) to run whole, besides the brick");
+  app.add_flag("--verbose", s.verbose, "Print every QP of the whole runs");
+  app.add_option("--scaling", s.scaling, "The change of variables (default diagonal)")
+      ->transform(fricon::bench::enum_spelling<Scaling>());
+  return fricon::bench::run_main(app, argc, argv, [&] {
+    s.reps = std::max(1, s.reps);
     fmt::print(
         "MPGP expansion moves (qp::MpgpExpansion) x variants (qp::MpgpVariant), {}; expansion "
         "length factor {}.\n"
@@ -400,8 +355,5 @@ int main(int argc, char** argv) {
         whole_run(k, s);
     }
     return 0;
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "expansion_bench: {}\n", e.what());
-    return 1;
-  }
+  });
 }

@@ -6,7 +6,7 @@
 // (1e-10 on its own error) and 10000 iterations. Every answer is measured by the same yardstick,
 // FCLIB's merit (fclib_merit_local); "ok" means merit <= 1e-8. Times are the median of 3 runs
 // (one run when it takes more than a second).
-//   build/bench/fclib_compare [DIR or FILES...]
+//   build/bench/fclib_compare [DIR or FILES...]   (--help: the options)
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -16,15 +16,13 @@
 
 #include <fmt/format.h>
 
-#include "FrictionContactProblem.h"
 #include "Friction_cst.h"
-#include "NonSmoothDrivers.h"
-#include "NumericsMatrix.h"
-#include "SolverOptions.h"
+#include "common/bench_args.hpp"
 #include "fricon/core/timer.hpp"
 #include "fricon/driver/local_solve.hpp"
 #include "fricon/io/fclib_file.hpp"
 #include "fricon/io/local_problem_file.hpp"
+#include "tests/common/siconos_solve.hpp"
 
 namespace {
 
@@ -62,30 +60,14 @@ Outcome fricon_run(const fricon::qp::LocalProblem& p) {
 }
 
 Outcome siconos_run(const fricon::qp::LocalProblem& p, int solver) {
-  const int n = static_cast<int>(p.q.size());
-  NumericsMatrix* M = NM_create(NM_DENSE, n, n);
-  Eigen::Map<fricon::MatrixXd>(M->matrix0, n, n) = fricon::MatrixXd(p.W);
-  VectorXd q = p.q, mu = p.mu;
-  FrictionContactProblem fcp{};
-  fcp.dimension = 3;
-  fcp.numberOfContacts = n / 3;
-  fcp.M = M;
-  fcp.q = q.data();
-  fcp.mu = mu.data();
-  SolverOptions* o = solver_options_create(solver);
-  o->dparam[SICONOS_DPARAM_TOL] = kSiconosTolerance;
-  o->iparam[SICONOS_IPARAM_MAX_ITER] = kSiconosIterations;
-  VectorXd r = VectorXd::Zero(n), u = VectorXd::Zero(n);
-  const fricon::Stopwatch watch;
-  const int info = fc3d_driver(&fcp, r.data(), u.data(), o);
+  const auto s = fricon::test::siconos_solve(fricon::MatrixXd(p.W), p.q, p.mu, solver,
+                                             kSiconosTolerance, kSiconosIterations);
   Outcome out;
-  out.seconds = watch.seconds();
-  out.iterations = o->iparam[SICONOS_IPARAM_ITER_DONE];
-  out.finished = info == 0;
-  u = p.W * r + p.q;
-  out.merit = fricon::io::fclib_merit(p, r, u);
-  solver_options_delete(o);
-  NM_free(M);
+  out.seconds = s.seconds;
+  out.iterations = s.iterations;
+  out.finished = s.info == 0;
+  const VectorXd u = p.W * s.r + p.q;
+  out.merit = fricon::io::fclib_merit(p, s.r, u);
   return out;
 }
 
@@ -114,10 +96,9 @@ std::vector<fs::path> problem_files(const std::vector<fs::path>& arguments) {
   return files;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  std::vector<fs::path> arguments(argv + 1, argv + argc);
+// The table: every problem by fricon, then by each Siconos solver.
+int compare(const std::vector<std::string>& given) {
+  std::vector<fs::path> arguments(given.begin(), given.end());
   if (arguments.empty()) {
     const fs::path shared = fs::path(FRICON_SOURCE_DIR) / ".." / "shared" / "data" / "siconos-fc3d";
     if (!fs::is_directory(shared)) {
@@ -148,4 +129,18 @@ int main(int argc, char** argv) {
           ours.seconds);
   }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "fricon's `dual solve` against Siconos 4.4 (NSN_AC, NSGS, PROX) on the friction problems "
+      "of other codes, all measured by FCLIB's merit.",
+      "fclib_compare"};
+  std::vector<std::string> given;
+  app.add_option("problems", given,
+                 "Problem files (.hdf5, .dat) or folders of them (default: "
+                 "../shared/data/siconos-fc3d)");
+  return fricon::bench::run_main(app, argc, argv, [&] { return compare(given); });
 }

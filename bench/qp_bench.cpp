@@ -13,6 +13,7 @@
 
 #include "fricon/linalg/blas.hpp"
 #include "fricon/qp/mpgp.hpp"
+#include "tests/common/random_spd.hpp"
 
 namespace {
 
@@ -26,26 +27,17 @@ struct DualProblem {
   double norm_Q = 0.0;
 };
 
-// Q = V diag(lambda) V^T with lambda log-spaced in [1, cond] and a random orthogonal V; h random;
-// disc radii a random fraction (0.2 ... 1.5) of the tangential part of the unconstrained
-// solution, so that roughly half of the discs end up active; fixed seed.
+// Q = V diag(lambda) V^T with lambda log-spaced in [1, cond] and a random orthogonal V
+// (tests/common/random_spd.hpp, as the QP unit tests); h random; disc radii a random fraction
+// (0.2 ... 1.5) of the tangential part of the unconstrained solution, so that roughly half of the
+// discs end up active; fixed seed.
 DualProblem make_problem(Index n_unknowns, double cond, unsigned seed) {
   std::mt19937 rng(seed);
   std::normal_distribution<double> N(0.0, 1.0);
   std::uniform_real_distribution<double> U(0.2, 1.5);
   DualProblem p;
-  Eigen::MatrixXd G(n_unknowns, n_unknowns);
-  for (Index j = 0; j < n_unknowns; ++j)
-    for (Index i = 0; i < n_unknowns; ++i)
-      G(i, j) = N(rng);
-  const Eigen::MatrixXd V = Eigen::HouseholderQR<Eigen::MatrixXd>(G).householderQ();
-  Eigen::VectorXd lambda(n_unknowns);
-  for (Index i = 0; i < n_unknowns; ++i) {
-    lambda(i) = std::pow(cond, static_cast<double>(i) / static_cast<double>(n_unknowns - 1));
-  }
-  p.Q = V * lambda.asDiagonal() * V.transpose();
-  p.Q = 0.5 * (p.Q + p.Q.transpose()).eval();
-  p.norm_Q = lambda.maxCoeff();
+  p.Q = fricon::test::random_spd(n_unknowns, cond, rng);
+  p.norm_Q = cond;  // the largest eigenvalue
   p.h.resize(n_unknowns);
   for (Index i = 0; i < n_unknowns; ++i)
     p.h(i) = N(rng);

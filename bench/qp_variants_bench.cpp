@@ -3,7 +3,8 @@
 //   minimise 1/2 l^T Q l - l^T h  over  l_n >= 0,  ||l_t|| <= radius  (per patch)
 //
 // Problems: the paper's brick (param 6e4) for n = 4, 8, 12, 16, built through the library with
-// Q = B K^-1 B^T formed densely (bench/paper_dual.hpp, shared with siconos_compare), or dual files
+// Q = B K^-1 B^T formed densely (bench/common/paper_dual.hpp, shared with siconos_compare), or dual
+// files
 // (--dump, docs/dual-format.md). ||Q|| is estimated once per problem (200 power iterations, as the
 // driver does) and passed to every solve, so no count below includes it.
 //
@@ -21,11 +22,10 @@
 // variant's.
 //
 //   build/bench/qp_variants_bench [--n 4,8,12,16] [--dump FILE ...] [--variants paper,bb]
-//                                 [--tol 1e-6,1e-8] [--reps 5] [--no-run]
+//                                 [--tol 1e-6,1e-8] [--reps 5] [--no-run]   (--help: the options)
 
 #include <algorithm>
 #include <cmath>
-#include <exception>
 #include <filesystem>
 #include <optional>
 #include <sstream>
@@ -35,6 +35,8 @@
 #include <fmt/format.h>
 #include <Eigen/Dense>
 
+#include "common/bench_args.hpp"
+#include "common/paper_dual.hpp"
 #include "fricon/contact/contact_surface.hpp"
 #include "fricon/contact/friction_law.hpp"
 #include "fricon/core/error.hpp"
@@ -44,11 +46,8 @@
 #include "fricon/driver/paper.hpp"
 #include "fricon/driver/tresca_map.hpp"
 #include "fricon/io/dual_dump.hpp"
-#include "fricon/linalg/blas.hpp"
 #include "fricon/outer/outer_loop.hpp"
-#include "fricon/qp/kkt.hpp"
 #include "fricon/qp/mpgp.hpp"
-#include "paper_dual.hpp"
 
 namespace {
 
@@ -73,15 +72,9 @@ struct Case {
   double norm_Q = 0.0;
   std::unique_ptr<fricon::bench::PaperDual> outer;  // what the outer loop needs; null for files
 
-  qp::Operator A() const {
-    // As the driver applies a dense Q (BLAS dsymv).
-    return
-        [Q = &Q](const VectorXd& x, VectorXd& y) { fricon::linalg::symmetric_product(*Q, x, y); };
-  }
+  qp::Operator A() const { return fricon::bench::dense_operator(Q); }
   qp::SeparableConstraints constraints(const VectorXd& r) const {
-    auto c = qp::SeparableConstraints::contact_layout(r.size());
-    c.set_disc_radii(r);
-    return c;
+    return fricon::bench::disc_constraints(r);
   }
 };
 
@@ -111,16 +104,7 @@ Case file_case(const fs::path& p) {
   return k;
 }
 
-double kkt_max(const Case& k, const qp::SeparableConstraints& c, const VectorXd& l) {
-  const VectorXd g = k.Q * l - k.h;
-  const auto s = qp::default_kkt_scales(l, k.h, c);
-  return qp::kkt_residuals(l, g, c, s.x, s.g).max();
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
+using fricon::bench::median;
 
 qp::MpgpOptions options(const Case& k, qp::MpgpVariant v, double tol) {
   qp::MpgpOptions o;
@@ -156,7 +140,7 @@ void single_qp(const Case& k, const Settings& s) {
       }
       fmt::print("{:<10} {:>5} {:>8.0e} {:<14} {:>7} {:>8} {:>9.2f} {:>9.2e} {:>7} {:>7}  {}\n",
                  k.name, k.h.size(), tol, fricon::enum_name(v), rep.iterations, rep.n_products, t,
-                 kkt_max(k, c, l),
+                 fricon::bench::kkt_max(k.Q, k.h, c, l),
                  paper_products > 0 ? fmt::format("{:.2f}", static_cast<double>(rep.n_products) /
                                                                 static_cast<double>(paper_products))
                                     : "-",
@@ -185,20 +169,20 @@ RunResult run_outer(const Case& k, qp::MpgpVariant v) {
   const auto& so = o.problem.solver;
   fricon::PhaseTimes times;
   const auto bounds = fricon::driver::make_slip_bounds(o.problem, o.model.mesh, o.disc, *o.law);
-  fricon::driver::TrescaMap map(o.model.dofs, o.disc, *o.Q, *bounds, *o.law,
-                                qp::BlockScaling::identity(o.disc.n_dual()),
+  const auto unscaled = qp::BlockScaling::identity(o.disc.n_dual());  // the map keeps a reference
+  fricon::driver::TrescaMap map(o.model.dofs, o.disc, *o.Q, *bounds, *o.law, unscaled,
                                 options(k, v, so.qp.rel_tolerance), so.warm_start, times);
   RunResult res;
   VectorXd phi = VectorXd::Zero(o.disc.surface.n_nodes());
-  const auto rep = fricon::outer::iterate(map, phi, so.outer,
-                                          [&](const fricon::outer::OuterIteration&) {
-                                            res.iterations += map.last_qp().iterations;
-                                            res.products += map.last_qp().n_products;
-                                            res.qp_ms += 1e3 * map.last_qp().seconds;
-                                          });
+  const auto rep =
+      fricon::outer::iterate(map, phi, so.outer, [&](const fricon::outer::OuterIteration&) {
+        res.iterations += map.last_qp().iterations;
+        res.products += map.last_qp().n_products;
+        res.qp_ms += 1e3 * map.last_qp().seconds;
+      });
   res.outer = rep.iterations;
   res.converged = rep.converged();
-  res.kkt = kkt_max(k, map.constraints(), map.lambda());
+  res.kkt = fricon::bench::kkt_max(k.Q, k.h, map.constraints(), map.lambda());
   res.phi = phi;
   return res;
 }
@@ -231,43 +215,26 @@ void whole_run(const Case& k, const Settings& s) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    Settings s;
-    std::vector<fs::path> dumps;
-    std::vector<Index> ns = {4, 8, 12, 16};
-    for (int i = 1; i < argc; ++i) {
-      const std::string a = argv[i];
-      auto value = [&]() -> std::string {
-        if (i + 1 >= argc) throw fricon::InputError(fmt::format("{} needs a value", a));
-        return argv[++i];
-      };
-      if (a == "--dump") {
-        dumps.emplace_back(value());
-        while (i + 1 < argc && std::string(argv[i + 1]).rfind("--", 0) != 0)
-          dumps.emplace_back(argv[++i]);
-      } else if (a == "--n") {
-        ns = fricon::bench::parse_list<Index>(value(),
-                                              [](const std::string& t) { return std::stol(t); });
-      } else if (a == "--variants") {
-        s.variants = fricon::bench::parse_list<qp::MpgpVariant>(
-            value(), [](const std::string& t) { return fricon::parse_enum<qp::MpgpVariant>(t); });
-      } else if (a == "--tol") {
-        s.tols = fricon::bench::parse_list<double>(
-            value(), [](const std::string& t) { return std::stod(t); });
-      } else if (a == "--reps") {
-        s.reps = std::max(1, std::stoi(value()));
-      } else if (a == "--no-run") {
-        s.run = false;
-      } else if (a == "--help" || a == "-h") {
-        fmt::print(
-            "usage: qp_variants_bench [--n 4,8,12,16] [--dump FILE ...] [--variants "
-            "paper,bb]\n"
-            "                         [--tol 1e-6,1e-8] [--reps 5] [--no-run]\n");
-        return 0;
-      } else {
-        throw fricon::InputError(fmt::format("unknown argument '{}' (see --help)", a));
-      }
-    }
+  CLI::App app{
+      "The variants of MPGP (qp::MpgpVariant) on the dual problems of the paper's brick or of "
+      "dual files: one QP, then the whole outer loop.",
+      "qp_variants_bench"};
+  Settings s;
+  std::vector<std::string> dumps;
+  std::vector<Index> ns = {4, 8, 12, 16};
+  fricon::bench::comma_list(app.add_option("--n", ns, "Mesh parameters n of the paper's brick"))
+      ->check(CLI::Range(Index{1}, Index{1000}))
+      ->capture_default_str();
+  app.add_option("--dump", dumps, "Dual files (docs/dual-format.md) instead of the brick");
+  fricon::bench::comma_list(app.add_option("--variants", s.variants, "QP variants (paper,bb)"))
+      ->transform(fricon::bench::enum_spelling<qp::MpgpVariant>());
+  fricon::bench::comma_list(app.add_option("--tol", s.tols, "QP tolerances"))
+      ->capture_default_str();
+  app.add_option("--reps", s.reps, "Runs per time (the median is shown)")->capture_default_str();
+  app.add_flag_callback(
+      "--no-run", [&s] { s.run = false; }, "Skip the whole runs");
+  return fricon::bench::run_main(app, argc, argv, [&] {
+    s.reps = std::max(1, s.reps);
     if (std::find(s.variants.begin(), s.variants.end(), qp::MpgpVariant::Paper) == s.variants.end())
       s.variants.insert(s.variants.begin(), qp::MpgpVariant::Paper);  // the reference
 
@@ -306,8 +273,5 @@ int main(int argc, char** argv) {
         whole_run(k, s);
     }
     return 0;
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "qp_variants_bench: {}\n", e.what());
-    return 1;
-  }
+  });
 }

@@ -10,7 +10,7 @@
 //
 // Problems: the dual problems of the first outer iteration (phi = 0, radius = F(0) g = 6e6 Pa
 // everywhere) of the paper's brick for n = 4, 8, 12, 16 (param 6e4), built through the library
-// with Q = B K^-1 B^T formed densely (bench/paper_dual.hpp); or the files given with --dump
+// with Q = B K^-1 B^T formed densely (bench/common/paper_dual.hpp); or the files given with --dump
 // (docs/dual-format.md).
 //
 // Siconos (docs/dual-format.md, "Mapping"): FrictionContactProblem with dimension 3, one contact
@@ -39,7 +39,7 @@
 // A self-check on two tiny problems comes first (one with a patch that lifts off and sticks).
 //
 //   build/bench/siconos_compare [--dump FILE ...] [--save DIR] [--n 4,8,12,16] [--kkt 1e-8]
-//                               [--reps 5] [--nsgs-max 20000] [--pg-max 200000]
+//                               [--reps 5] [--nsgs-max 20000] [--pg-max 200000]   (--help)
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -48,11 +48,9 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <functional>
-#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -69,14 +67,14 @@
 #include "fc3d_Solvers.h"
 #include "fc3d_compute_error.h"
 
+#include "common/bench_args.hpp"
+#include "common/paper_dual.hpp"
 #include "fricon/core/error.hpp"
 #include "fricon/core/timer.hpp"
 #include "fricon/io/dual_dump.hpp"
-#include "fricon/linalg/blas.hpp"
 #include "fricon/qp/dual_problem.hpp"
 #include "fricon/qp/kkt.hpp"
 #include "fricon/qp/mpgp.hpp"
-#include "paper_dual.hpp"
 
 namespace {
 
@@ -97,17 +95,12 @@ struct Case {
   double power_ms = 0.0;
 
   /// y = Q x (refers to this Case: do not move it while the operator is in use).
-  qp::Operator A() const {
-    // As the driver applies a dense Q (BLAS dsymv).
-    return
-        [Q = &d.Q](const VectorXd& x, VectorXd& y) { fricon::linalg::symmetric_product(*Q, x, y); };
-  }
+  qp::Operator A() const { return fricon::bench::dense_operator(d.Q); }
 };
 
 void finish_case(Case& k) {
   const Index m = k.d.radius.size();
-  k.c = qp::SeparableConstraints::contact_layout(m);
-  k.c.set_disc_radii(k.d.radius);
+  k.c = fricon::bench::disc_constraints(k.d.radius);
   fricon::Stopwatch w;
   k.norm_Q = qp::estimate_norm(k.A(), 3 * m, 200, 1e-10);  // the driver's settings
   k.power_ms = 1e3 * w.seconds();
@@ -359,8 +352,7 @@ double median_ms(const std::function<double()>& run_seconds, int reps) {
   std::vector<double> t;
   for (int i = 0; i < reps; ++i)
     t.push_back(1e3 * run_seconds());
-  std::sort(t.begin(), t.end());
-  return t[t.size() / 2];
+  return fricon::bench::median(t);
 }
 
 struct Settings {
@@ -481,44 +473,26 @@ void self_check(const Settings& s) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    Settings s;
-    std::vector<fs::path> dumps;
-    std::optional<fs::path> save_dir;
-    std::vector<Index> ns = {4, 8, 12, 16};
-    for (int i = 1; i < argc; ++i) {
-      const std::string a = argv[i];
-      auto value = [&]() -> std::string {
-        if (i + 1 >= argc) throw fricon::InputError(fmt::format("{} needs a value", a));
-        return argv[++i];
-      };
-      if (a == "--dump") {
-        dumps.emplace_back(value());
-        while (i + 1 < argc && std::string(argv[i + 1]).rfind("--", 0) != 0)
-          dumps.emplace_back(argv[++i]);
-      } else if (a == "--save") {
-        save_dir = value();
-      } else if (a == "--n") {
-        ns = fricon::bench::parse_list<Index>(value(),
-                                              [](const std::string& t) { return std::stol(t); });
-      } else if (a == "--kkt") {
-        s.kkt = std::stod(value());
-      } else if (a == "--reps") {
-        s.reps = std::stoi(value());
-      } else if (a == "--nsgs-max") {
-        s.nsgs_max = std::stoi(value());
-      } else if (a == "--pg-max") {
-        s.pg_max = std::stoi(value());
-      } else if (a == "--help" || a == "-h") {
-        fmt::print(
-            "usage: siconos_compare [--dump FILE ...] [--save DIR] [--n 4,8,12,16] [--kkt 1e-8]\n"
-            "                       [--reps 5] [--nsgs-max 20000] [--pg-max 200000]\n");
-        return 0;
-      } else {
-        throw fricon::InputError(fmt::format("unknown argument '{}' (see --help)", a));
-      }
-    }
-
+  CLI::App app{
+      "Peer comparison: the dual QP of one Tresca step by fricon's MPGP and by Siconos' Tresca "
+      "solvers, each timed at the loosest tolerance that reaches the same KKT accuracy.",
+      "siconos_compare"};
+  Settings s;
+  std::vector<std::string> dumps;
+  std::string save_dir;
+  std::vector<Index> ns = {4, 8, 12, 16};
+  app.add_option("--dump", dumps, "Dual files (docs/dual-format.md) instead of the brick");
+  app.add_option("--save", save_dir, "Write each problem's dual file into this folder");
+  fricon::bench::comma_list(app.add_option("--n", ns, "Mesh parameters n of the paper's brick"))
+      ->check(CLI::Range(Index{1}, Index{1000}))
+      ->capture_default_str();
+  app.add_option("--kkt", s.kkt, "The KKT accuracy every solver must reach")->capture_default_str();
+  app.add_option("--reps", s.reps, "Runs per time (the median is shown)")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  app.add_option("--nsgs-max", s.nsgs_max, "Most NSGS sweeps")->capture_default_str();
+  app.add_option("--pg-max", s.pg_max, "Most projected-gradient iterations")->capture_default_str();
+  return fricon::bench::run_main(app, argc, argv, [&] {
     fmt::print(
         "Peer comparison: fricon MPGP vs Siconos 4.4 Tresca solvers on the same dual QP.\n"
         "Target: KKT max (fricon::qp::kkt_residuals, relative) <= {:.0e}; each solver at the "
@@ -534,8 +508,8 @@ int main(int argc, char** argv) {
     fmt::print("Comparison:\n");
     print_header();
     auto run_case = [&](const Case& k) {
-      if (save_dir) {
-        const fs::path p = *save_dir / fmt::format("{}.dual", k.name);
+      if (!save_dir.empty()) {
+        const fs::path p = fs::path(save_dir) / fmt::format("{}.dual", k.name);
         fricon::io::write_dual(p, k.d);
       }
       print_rows(k, compare(k, s));
@@ -552,8 +526,5 @@ int main(int argc, char** argv) {
         run_case(paper_case(n));
     }
     return 0;
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "siconos_compare: {}\n", e.what());
-    return 1;
-  }
+  });
 }

@@ -7,14 +7,13 @@
 //   columns  MUMPS Cholesky of K alone, Q = B X with K X = B^T solved in blocks of columns
 //   direct   MUMPS called directly on the augmented matrix (distributed entries, Schur variables
 //            centralized): Q = -S, and the interior solve with the same factor gives K^-1 f
-// Run: mpirun -n P build/bench/petsc_schur_probe [n [--try-solve]]   (n: mesh parameter, default
+// Run: mpirun -n P build/bench/petsc_schur_probe [n] [--try-solve]   (n: mesh parameter, default
 // 8; --try-solve: try MatSolve with the Schur factor on several ranks too, which hangs with
-// PETSc 3.18)
+// PETSc 3.18; --help: the options)
 // The model is built on every rank (replicated input; each rank inserts its own rows).
 
 #include <dmumps_c.h>
 #include <petscmat.h>
-#include <sys/resource.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -23,6 +22,8 @@
 
 #include <fmt/format.h>
 
+#include "common/bench_args.hpp"
+#include "common/child_process.hpp"
 #include "fricon/core/timer.hpp"
 #include "fricon/driver/model.hpp"
 #include "fricon/dual/dual_operator.hpp"
@@ -244,17 +245,14 @@ Direct direct_way(const SparseMatrix& K, const SparseMatrix& B, const fricon::Ve
   return out;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+// The probe on every rank of the job; its exit code.
+int probe(int argc, char** argv, int n, bool try_solve) {
   if (PetscInitialize(&argc, &argv, nullptr, nullptr) != 0) return 1;
   int rank = 0, size = 1;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   MPI_Comm_size(PETSC_COMM_WORLD, &size);
   int status = 0;
   try {
-    const int n = argc > 1 ? std::stoi(argv[1]) : 8;
-    const bool try_solve = argc > 2 && std::string(argv[2]) == "--try-solve";
     const fricon::driver::Problem problem =
         fricon::io::read_problem(FRICON_SOURCE_DIR "/examples/paper-brick.toml",
                                  {fmt::format("mesh.cells=[{},{},{}]", 3 * n, n, n)});
@@ -281,9 +279,7 @@ int main(int argc, char** argv) {
     const double direct_s = clock.seconds();
     const fricon::VectorXd u0 = model.factor.solve(model.f);
     const double u0_difference = (direct.u0 - u0).cwiseAbs().maxCoeff() / u0.cwiseAbs().maxCoeff();
-    struct rusage usage {};
-    getrusage(RUSAGE_SELF, &usage);
-    const double peak_mib = static_cast<double>(usage.ru_maxrss) / 1024.0;
+    const double peak_mib = fricon::bench::peak_mib();
 
     if (rank == 0) {
       fmt::print(
@@ -322,4 +318,22 @@ int main(int argc, char** argv) {
   }
   PetscFinalize();
   return status;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // Read before PETSc starts, so that --help and a bad argument end every rank at once.
+  CLI::App app{
+      "Two ways of forming the paper brick's Q = B K^-1 B^T with MUMPS through PETSc on P ranks, "
+      "against fricon's own (run it with mpirun -n P).",
+      "petsc_schur_probe"};
+  int n = 8;
+  bool try_solve = false;
+  app.add_option("n", n, "Mesh parameter n of the paper's brick")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  app.add_flag("--try-solve", try_solve,
+               "Try MatSolve with the Schur factor on several ranks too (hangs with PETSc 3.18)");
+  return fricon::bench::run_main(app, argc, argv, [&] { return probe(argc, argv, n, try_solve); });
 }

@@ -11,14 +11,12 @@ the PETSc backend, as `FRICON --version` says. Every file must give exit code 1,
 exactly one line "fricon: error: ..." on stderr containing every fragment, no sanitizer report
 or traceback, no crash or hang (10 s each), and no file in the --out folder.
 """
-import pathlib
 import subprocess
 import sys
 
+import common
+
 TIMEOUT_S = 10
-# Text that only a crash, a sanitizer or an uncaught exception prints.
-ALARMS = ("AddressSanitizer", "UndefinedBehaviorSanitizer", "LeakSanitizer", "runtime error:",
-          "Traceback", "terminate called", "internal error", "Segmentation fault", "Aborted")
 
 
 def expectations(path):
@@ -37,8 +35,7 @@ def requirement(path):
 
 
 def has_petsc(exe):
-    version = subprocess.run([exe, "--version"], capture_output=True, text=True, check=True)
-    return "petsc" in version.stdout
+    return "petsc" in common.run_ok([exe, "--version"]).stdout
 
 
 def check(exe, path, out_root):
@@ -46,27 +43,24 @@ def check(exe, path, out_root):
     problems = []
     frags = expectations(path)
     if not frags:
-        return [f"no '# expect: ...' first line"]
+        return ["no '# expect: ...' first line"]
     out = out_root / path.stem
     try:
-        r = subprocess.run([exe, "solve", str(path), "--out", str(out)], capture_output=True,
-                           timeout=TIMEOUT_S)
+        r = common.run([exe, "solve", path, "--out", out], timeout=TIMEOUT_S)
     except subprocess.TimeoutExpired:
         return [f"did not finish within {TIMEOUT_S} s"]
-    stderr = r.stderr.decode("utf-8", errors="replace")
-    stdout = r.stdout.decode("utf-8", errors="replace")
+    stderr, stdout = r.stderr, r.stdout
     if r.returncode != 1:
         problems.append(f"exit code {r.returncode}, expected 1")
-    errors = [line for line in stderr.splitlines() if line.startswith("fricon: error:")]
+    errors = common.error_lines(stderr)
     if len(errors) != 1:
         problems.append(f"{len(errors)} lines start with 'fricon: error:', expected 1")
     message = errors[0] if errors else ""
     for f in frags:
         if f not in message:
             problems.append(f"message lacks {f!r}")
-    for alarm in ALARMS:
-        if alarm in stderr or alarm in stdout:
-            problems.append(f"output contains {alarm!r}")
+    for alarm in common.alarms(stderr, stdout):
+        problems.append(f"output contains {alarm!r}")
     if out.exists() and any(out.iterdir()):
         problems.append(f"wrote into {out}: {sorted(p.name for p in out.iterdir())}")
     if problems:
@@ -75,13 +69,10 @@ def check(exe, path, out_root):
 
 
 def main():
-    if len(sys.argv) != 4:
-        sys.exit(__doc__)
-    exe, corpus, out_root = sys.argv[1], pathlib.Path(sys.argv[2]), pathlib.Path(sys.argv[3])
-    out_root.mkdir(parents=True, exist_ok=True)
+    exe, corpus, out_root = common.arguments(__doc__)
     files = sorted(corpus.glob("*.toml"))
     if not files:
-        sys.exit(f"no *.toml files in {corpus}")
+        common.fail(f"no *.toml files in {corpus}")
     failed = 0
     petsc = has_petsc(exe)
     skipped = [p for p in files if requirement(p) == ("no-petsc" if petsc else "petsc")]

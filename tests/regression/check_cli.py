@@ -2,28 +2,21 @@
 
 Usage: check_cli.py FRICON EXAMPLES_DIR OUTDIR
 """
-import pathlib
-import subprocess
-import sys
+import common
 
-exe, examples, out = sys.argv[1], pathlib.Path(sys.argv[2]), pathlib.Path(sys.argv[3])
-out.mkdir(parents=True, exist_ok=True)
-failures = []
-
-
-def run(args):
-    return subprocess.run([exe] + args, capture_output=True, text=True)
+exe, examples, out = common.arguments(__doc__)
+failures = common.Failures()
 
 
 def expect(args, code, *fragments, results=None):
-    r = run(args)
+    r = common.run([exe] + args)
     if r.returncode != code:
-        failures.append(f"{args}: exit {r.returncode}, expected {code}\n{r.stdout}{r.stderr}")
+        failures.add(f"{args}: exit {r.returncode}, expected {code}\n{r.stdout}{r.stderr}")
     for frag in fragments:
         if frag not in r.stderr + r.stdout:
-            failures.append(f"{args}: output lacks {frag!r}\n{r.stderr}")
+            failures.add(f"{args}: output lacks {frag!r}\n{r.stderr}")
     if results is not None and (results / "report.json").exists():
-        failures.append(f"{args}: a failed run left {results / 'report.json'}")
+        failures.add(f"{args}: a failed run left {results / 'report.json'}")
 
 
 elastic = str(examples / "elastic-brick.toml")
@@ -62,11 +55,10 @@ expect(["solve", elastic, "--out", str(out / "set2"), "--set", "material.nonsens
        "nonsense", results=out / "set2")
 
 # --threads sets the BLAS threads (recorded in report.json) and refuses nonsense.
-import json
 expect(["solve", elastic, "--out", str(out / "threads"), "--threads", "1", "--quiet"], 0)
 report = out / "threads" / "report.json"
-if not report.exists() or json.loads(report.read_text())["factor"]["blas_threads"] != 1:
-    failures.append("--threads 1: report.json factor.blas_threads is not 1")
+if not report.exists() or common.read_report(out / "threads")["factor"]["blas_threads"] != 1:
+    failures.add("--threads 1: report.json factor.blas_threads is not 1")
 expect(["solve", elastic, "--out", str(out / "threads0"), "--threads", "0"], 1, "--threads",
        results=out / "threads0")
 
@@ -77,18 +69,16 @@ expect(["solve", paper, "--out", str(nc), "--set", "solver.outer_max=2"], 2, "NO
        "err(k)", results=nc)
 for name in ["report.not-converged.json", "solution.not-converged.vtu", "patches.not-converged.csv"]:
     if not (nc / name).exists():
-        failures.append(f"not converged run did not write {name}")
+        failures.add(f"not converged run did not write {name}")
 # The report of a run that did not converge says so, with the reason (README).
 if (nc / "report.not-converged.json").exists():
-    r = json.loads((nc / "report.not-converged.json").read_text())
+    r = common.read_report(nc, "report.not-converged.json")
     if r["status"] != "not_converged" or r["termination"] != "iteration_limit":
-        failures.append(f"report.not-converged.json: status {r['status']}, "
-                        f"termination {r['termination']}")
+        failures.add(f"report.not-converged.json: status {r['status']}, "
+                     f"termination {r['termination']}")
 # A later converged run in the same folder replaces the not-converged files.
 expect(["solve", paper, "--out", str(nc), "--quiet"], 0)
 if (nc / "report.not-converged.json").exists() or not (nc / "report.json").exists():
-    failures.append("a converged run must replace the not-converged results")
+    failures.add("a converged run must replace the not-converged results")
 
-if failures:
-    sys.exit("\n\n".join(failures))
-print("command line: exit codes and messages as documented")
+failures.finish("command line: exit codes and messages as documented")

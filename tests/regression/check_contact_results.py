@@ -15,20 +15,14 @@ Checks facts that hold independently of the solver's internals:
 Usage: check_contact_results.py FRICON PROBLEM.toml OUTDIR
 """
 import csv
-import json
-import pathlib
-import subprocess
-import sys
 
 import meshio
 import numpy as np
 
-exe, problem, out = sys.argv[1], sys.argv[2], pathlib.Path(sys.argv[3])
-run = subprocess.run([exe, "solve", problem, "--out", str(out)], capture_output=True, text=True)
-if run.returncode != 0:
-    sys.exit(f"fricon exited with {run.returncode}\n{run.stdout}\n{run.stderr}")
+import common
 
-report = json.loads((out / "report.json").read_text())
+exe, problem, out = common.arguments(__doc__)
+report = common.solve(exe, problem, out, quiet=False)
 for key in ["n_primal", "n_dual", "outer_iterations", "n_mult", "err_history", "time_s", "timings",
             "wn_pos_l2", "wn_pos_inf", "max_neg_wn", "max_wt", "max_lambda_n", "max_lambda_t",
             "total_normal_force", "kkt"]:

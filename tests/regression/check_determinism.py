@@ -4,12 +4,9 @@ Runs the paper's brick twice (n = 4 and n = 8) and compares every result file by
 report.json field by field except wall times and the command line.
 Usage: check_determinism.py FRICON PROBLEM.toml OUTDIR
 """
-import json
-import pathlib
-import subprocess
-import sys
+import common
 
-exe, problem, out = sys.argv[1], sys.argv[2], pathlib.Path(sys.argv[3])
+exe, problem, out = common.arguments(__doc__)
 TIMING_KEYS = {"timings", "time_s", "command_line", "seconds"}
 
 
@@ -25,14 +22,12 @@ for cells in ["[12,4,4]", "[24,8,8]"]:
     folders = []
     for run in ["a", "b"]:
         folder = out / f"{cells}-{run}"
-        r = subprocess.run([exe, "solve", problem, "--quiet", "--out", str(folder), "--set", f"mesh.cells={cells}"],
-                           capture_output=True, text=True)
-        assert r.returncode == 0, r.stderr
+        common.solve(exe, problem, folder, f"mesh.cells={cells}")
         folders.append(folder)
     a, b = folders
     for name in ["solution.vtu", "contact.vtu", "contact_nodes.csv", "patches.csv"]:
         assert (a / name).read_bytes() == (b / name).read_bytes(), f"{cells}: {name} differs between runs"
-    ra = strip(json.loads((a / "report.json").read_text()))
-    rb = strip(json.loads((b / "report.json").read_text()))
+    ra = strip(common.read_report(a))
+    rb = strip(common.read_report(b))
     assert ra == rb, f"{cells}: report.json differs between runs"
 print("two runs gave bitwise identical results")

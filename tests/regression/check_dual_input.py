@@ -12,16 +12,13 @@ say what must happen:
 Every bad file must give exactly one line "fricon: error: ..." on stderr containing every
 fragment, no crash, sanitizer report or hang (10 s each).
 """
-import pathlib
 import subprocess
-import sys
+
+import common
 
 TIMEOUT_S = 10
-ALARMS = ("AddressSanitizer", "UndefinedBehaviorSanitizer", "LeakSanitizer", "runtime error:",
-          "Traceback", "terminate called", "internal error", "Segmentation fault", "Aborted")
 
-exe, corpus, out = sys.argv[1], pathlib.Path(sys.argv[2]), pathlib.Path(sys.argv[3])
-out.mkdir(parents=True, exist_ok=True)
+exe, corpus, out = common.arguments(__doc__)
 
 
 def expectations(path):
@@ -43,19 +40,18 @@ def expectations(path):
 
 def check(path, exp):
     try:
-        r = subprocess.run([exe, "dual", "solve", str(path)], capture_output=True, text=True,
-                           timeout=TIMEOUT_S)
+        r = common.run([exe, "dual", "solve", path], timeout=TIMEOUT_S)
     except subprocess.TimeoutExpired:
         return [f"did not finish within {TIMEOUT_S} s"]
     problems = []
     if r.returncode != exp["exit"]:
         problems.append(f"exit code {r.returncode}, expected {exp['exit']}")
-    problems += [f"alarm {a!r} in the output" for a in ALARMS if a in r.stdout + r.stderr]
+    problems += [f"alarm {a!r} in the output" for a in common.alarms(r.stdout + r.stderr)]
     problems += [f"stdout lacks {f!r}" for f in exp["stdout"] if f not in r.stdout]
     if exp["exit"] == 0 and "  solved" not in r.stdout:
         problems.append("not 'solved'")
     if exp["stderr"]:
-        errors = [l for l in r.stderr.splitlines() if l.startswith("fricon: error:")]
+        errors = common.error_lines(r.stderr)
         if len(errors) != 1:
             problems.append(f"{len(errors)} 'fricon: error:' lines, expected 1")
         else:
@@ -66,20 +62,21 @@ def check(path, exp):
 
 
 files = sorted(p for p in corpus.iterdir() if p.suffix not in (".expect", ".md"))
-failures = []
+failures = common.Failures(separator="\n")
 for path in files:
     expect = path.with_suffix(".expect")
     if not expect.exists():
-        failures.append(f"{path.name}: no {expect.name}")
+        failures.add(f"{path.name}: no {expect.name}")
         continue
-    failures += [f"{path.name}: {p}" for p in check(path, expectations(expect))]
+    for p in check(path, expectations(expect)):
+        failures.add(f"{path.name}: {p}")
 orphans = [e.name for e in corpus.glob("*.expect")
            if not any(p.stem == e.stem for p in files)]
-failures += [f"{o}: no problem file" for o in orphans]
+for o in orphans:
+    failures.add(f"{o}: no problem file")
 good = sum(1 for p in files if expectations(p.with_suffix(".expect"))["exit"] == 0
            if p.with_suffix(".expect").exists())
 if len(files) < 10 or good < 3:
-    failures.append(f"the corpus is too small: {len(files)} files, {good} good")
-if failures:
-    sys.exit("\n".join(failures))
-print(f"dual input corpus: {len(files)} files ({good} good, {len(files) - good} bad) checked")
+    failures.add(f"the corpus is too small: {len(files)} files, {good} good")
+failures.finish(f"dual input corpus: {len(files)} files ({good} good, {len(files) - good} bad) "
+                "checked")

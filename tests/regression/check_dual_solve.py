@@ -8,14 +8,12 @@ is that answer.
 
 Usage: check_dual_solve.py FRICON SHARED_DATA_DIR OUTDIR   (exit 77, skipped, when the folder is absent)
 """
-import pathlib
 import re
-import subprocess
-import sys
 
-exe, data, out = sys.argv[1], pathlib.Path(sys.argv[2]), pathlib.Path(sys.argv[3])
-out.mkdir(parents=True, exist_ok=True)
-failures = []
+import common
+
+exe, data, out = common.arguments(__doc__)
+failures = common.Failures()
 
 # What is known of the third-party problems: every one but Capsules is solvable by fricon's
 # method. Capsules' W is not symmetric (max|W - W^T| = 9.45e-3 against max|W| = 7.07, as the
@@ -33,8 +31,7 @@ SYMMETRIC = "  W           symmetric ("
 
 
 def run(path, extra=()):
-    return subprocess.run([exe, "dual", "solve", str(path), *extra], capture_output=True,
-                          text=True, timeout=600)
+    return common.run([exe, "dual", "solve", path, *extra], timeout=600)
 
 
 def merit_of(text):
@@ -42,11 +39,7 @@ def merit_of(text):
     return float(m.group(1)) if m else None
 
 
-SKIPPED = 77  # CTest's SKIP_RETURN_CODE for this test (tests/regression/CMakeLists.txt)
-
-if not data.is_dir():
-    print(f"skipped: {data} is absent")
-    sys.exit(SKIPPED)
+common.skip_unless(data)
 
 files = sorted(p for p in data.iterdir() if p.suffix in (".hdf5", ".dat"))
 assert len(files) >= 10, files
@@ -56,34 +49,31 @@ for path in files:
     if path.name in NOT_SOLVED:
         if (r.returncode != 2 or "NOT SOLVED" not in text or "not positive semidefinite" in text
                 or not all(f in text for f in NOT_SOLVED[path.name])):
-            failures.append(f"{path.name}: expected 'not solved' with the reason\n{text}")
+            failures.add(f"{path.name}: expected 'not solved' with the reason\n{text}")
         continue
     if SYMMETRIC not in text:
-        failures.append(f"{path.name}: expected a symmetric W\n{text}")
+        failures.add(f"{path.name}: expected a symmetric W\n{text}")
     merit = merit_of(text)
     if r.returncode != 0 or merit is None or not merit <= 1e-8:
-        failures.append(f"{path.name}: exit {r.returncode}, merit {merit}\n{text}")
+        failures.add(f"{path.name}: exit {r.returncode}, merit {merit}\n{text}")
         continue
     back = run(out / (path.name + ".solution.hdf5"))
     ref = re.search(r"r_file\|\| = ([0-9.e+-]+)", back.stdout)
     if back.returncode != 0 or ref is None or not float(ref.group(1)) <= 1e-6:
-        failures.append(f"{path.name}: the written solution does not read back\n{back.stdout}")
+        failures.add(f"{path.name}: the written solution does not read back\n{back.stdout}")
 
 # The dual dump of fricon's own problem (a Tresca QP) is read back and solved the same way.
 dump = out / "paper-n4.dual"
-subprocess.run([exe, "solve", str(pathlib.Path(__file__).parents[2] / "examples/paper-brick.toml"),
-                "--quiet", "--out", str(out / "paper"), "--dump-dual", str(dump)], check=True)
+common.solve(exe, common.EXAMPLES / "paper-brick.toml", out / "paper", extra=["--dump-dual", dump])
 r = run(dump)
 if r.returncode != 0 or "Tresca" not in r.stdout or "solved" not in r.stdout:
-    failures.append(f"dual dump: exit {r.returncode}\n{r.stdout}{r.stderr}")
+    failures.add(f"dual dump: exit {r.returncode}\n{r.stdout}{r.stderr}")
 
 # A file that is not a problem is refused with exit 1 and its name.
 junk = out / "junk.txt"
 junk.write_text("hello\n")
 r = run(junk)
 if r.returncode != 1 or "junk.txt" not in r.stderr:
-    failures.append(f"junk file: exit {r.returncode}\n{r.stderr}")
+    failures.add(f"junk file: exit {r.returncode}\n{r.stderr}")
 
-if failures:
-    sys.exit("\n\n".join(failures))
-print(f"dual solve: {len(files)} third-party problems and fricon's own dump checked")
+failures.finish(f"dual solve: {len(files)} third-party problems and fricon's own dump checked")

@@ -8,23 +8,12 @@ Checks against independent facts, not against stored output:
   - the --set override of mesh.cells changes the mesh as asked, and is recorded in the report.
 Usage: check_elastic_vtu.py FRICON PROBLEM.toml OUTDIR
 """
-import json
-import pathlib
-import subprocess
-import sys
-
 import meshio
 import numpy as np
 
-exe, problem, out = sys.argv[1], sys.argv[2], pathlib.Path(sys.argv[3])
+import common
 
-
-def solve(extra, folder):
-    cmd = [exe, "solve", problem, "--out", str(folder)] + extra
-    run = subprocess.run(cmd, capture_output=True, text=True)
-    if run.returncode != 0:
-        sys.exit(f"{' '.join(cmd)} exited with {run.returncode}:\n{run.stdout}\n{run.stderr}")
-    return json.loads((folder / "report.json").read_text())
+exe, problem, out = common.arguments(__doc__)
 
 
 def check(folder, report, nx, ny, nz):
@@ -48,10 +37,10 @@ def check(folder, report, nx, ny, nz):
     assert report["n_primal"] == 3 * nx * (ny + 1) * (nz + 1)
 
 
-report = solve([], out / "default")
+report = common.solve(exe, problem, out / "default", quiet=False)
 check(out / "default", report, 12, 4, 4)
 assert report["n_primal"] == 900  # the paper's n_p for n = 4
-report = solve(["--set", "mesh.cells=[6,2,2]"], out / "coarse")
+report = common.solve(exe, problem, out / "coarse", "mesh.cells=[6,2,2]", quiet=False)
 check(out / "coarse", report, 6, 2, 2)
 assert report["overrides"] == ["mesh.cells=[6,2,2]"], report["overrides"]
 print("elastic brick: solution.vtu read back by meshio and checked")

@@ -11,30 +11,16 @@
   - parameter-study.sh runs and writes one CSV line per run.
 Usage: check_examples.py FRICON EXAMPLES_DIR OUTDIR
 """
-import csv
-import json
-import pathlib
-import subprocess
-import sys
+import common
 
-exe, examples, out = sys.argv[1], pathlib.Path(sys.argv[2]), pathlib.Path(sys.argv[3])
+exe, examples, out = common.arguments(__doc__)
 
 
 def solve(name):
     folder = out / name
-    r = subprocess.run([exe, "solve", str(examples / f"{name}.toml"), "--quiet", "--out", str(folder)],
-                       capture_output=True, text=True, timeout=120)
-    if r.returncode != 0:
-        sys.exit(f"example {name}: exit {r.returncode}\n{r.stdout}\n{r.stderr}")
-    report = json.loads((folder / "report.json").read_text())
+    report = common.solve(exe, examples / f"{name}.toml", folder, timeout=120)
     assert report["status"] == "converged", name
     return folder, report
-
-
-def patches(folder):
-    with open(folder / "patches.csv") as f:
-        return [{k: (v if k == "state" else float(v)) for k, v in row.items()}
-                for row in csv.DictReader(f)]
 
 
 names = sorted(p.stem for p in examples.glob("*.toml"))
@@ -42,20 +28,20 @@ assert len(names) >= 6, names
 reports = {name: solve(name) for name in names}
 
 folder, _ = reports["frictionless-block"]
-for p in patches(folder):
+for p in common.read_patches(folder):
     assert p["lambda_t1"] == 0.0 and p["lambda_t2"] == 0.0 and p["radius"] == 0.0, p
 
 folder, report = reports["tresca-constant"]
 assert report["outer_iterations"] == 2 and report["err_history"][1] < 1e-12, report["err_history"]
-for p in patches(folder):
+for p in common.read_patches(folder):
     assert abs(p["radius"] - 0.3 * 2e7) <= 1e-6, p
 
 folder, _ = reports["friction-table"]
-for p in patches(folder):
+for p in common.read_patches(folder):
     assert 0.25 * 2e7 - 1e-6 <= p["radius"] <= 0.4 * 2e7 + 1e-6, p
 
 folder, report = reports["friction-expression"]
-for p in patches(folder):
+for p in common.read_patches(folder):
     assert 0.1 * 2e7 - 1e-6 <= p["radius"] <= 0.5 * 2e7 + 1e-6, p
 assert "0.1 + 0.4*exp(-t/5e-5)" in report["contact"]["friction_law"], report["contact"]
 assert "1e-10" in report["contact"]["radius_integration"], report["contact"]
@@ -70,17 +56,14 @@ folder, report = reports["coulomb-brick"]
 assert report["model"] == "coulomb" and report["state_blocks"] == ["phi", "lambda_n"], report
 assert report["coulomb"]["residual"] <= report["coulomb"]["bound"], report["coulomb"]
 assert all(len(b) == 2 for b in report["block_err_history"])
-for p in patches(folder):
+for p in common.read_patches(folder):
     lt = (p["lambda_t1"] ** 2 + p["lambda_t2"] ** 2) ** 0.5
     assert p["lambda_n"] >= 0 and lt <= p["F"] * p["lambda_n"] * (1 + 1e-3) + 1e-6, p
     if p["state"] == "slip":
         assert abs(lt - p["F"] * p["lambda_n"]) <= 1e-3 * p["F"] * p["lambda_n"], p
 
 study = out / "study"
-r = subprocess.run(["bash", str(examples / "parameter-study.sh"), exe, str(study)],
-                   capture_output=True, text=True, timeout=300)
-if r.returncode != 0:
-    sys.exit(f"parameter-study.sh: exit {r.returncode}\n{r.stdout}\n{r.stderr}")
+common.run_ok(["bash", examples / "parameter-study.sh", exe, study], timeout=300)
 lines = (study / "summary.csv").read_text().splitlines()
 assert len(lines) == 1 + 6, lines
 print(f"{len(names)} examples and the parameter study checked")

@@ -22,30 +22,18 @@
     the same problem solved to qp_rtol = 1e-13 (a run the certificate passes is that accurate).
 Usage: check_geometry.py FRICON EXAMPLES_DIR OUTDIR
 """
-import csv
-import json
 import math
-import pathlib
-import subprocess
-import sys
 
-exe, examples, out = sys.argv[1], pathlib.Path(sys.argv[2]), pathlib.Path(sys.argv[3])
+import common
+
+exe, examples, out = common.arguments(__doc__)
 
 
 def solve(toml, name, *sets):
     folder = out / name
-    args = [exe, "solve", str(toml), "--quiet", "--out", str(folder)]
-    for s in sets:
-        args += ["--set", s]
-    r = subprocess.run(args, capture_output=True, text=True, timeout=300)
-    if r.returncode != 0:
-        sys.exit(f"{name}: exit {r.returncode}\n{r.stdout}\n{r.stderr}")
-    report = json.loads((folder / "report.json").read_text())
+    report = common.solve(exe, toml, folder, *sets, timeout=300)
     assert report["status"] == "converged", name
-    with open(folder / "patches.csv") as f:
-        patches = [{k: (v if k == "state" else float(v)) for k, v in row.items()}
-                   for row in csv.DictReader(f)]
-    return report, patches
+    return report, common.read_patches(folder)
 
 
 def check_against_tight(name, toml, patches, *sets):
@@ -143,11 +131,10 @@ def check_tilted_plane():
     normal = [2.5e-5, 1.0e-5, 1.0]
     length = math.sqrt(sum(c * c for c in normal))
     normal = [c / length for c in normal]
-    with open(out / "tilted" / "contact_nodes.csv") as f:
-        for row in csv.DictReader(f):
-            x = [float(row["x"]), float(row["y"]), float(row["z"]) + 2.0e-5]
-            expected = sum(a * b for a, b in zip(x, normal))
-            assert abs(float(row["gap"]) - expected) <= 1e-12, (row, expected)
+    for row in common.read_rows(out / "tilted" / "contact_nodes.csv"):
+        x = [float(row["x"]), float(row["y"]), float(row["z"]) + 2.0e-5]
+        expected = sum(a * b for a, b in zip(x, normal))
+        assert abs(float(row["gap"]) - expected) <= 1e-12, (row, expected)
     basis = report["contact_basis"]
     assert all(abs(b + a) <= 1e-12 for a, b in zip(normal, basis["n"])), basis
     # The tilt and the gap change the answer: contact is lighter than on the level plane.
@@ -163,9 +150,7 @@ def check_wheel():
     regions = {r["name"]: r for r in soft["regions"]}
     assert soft["n_regions"] == 2 and set(regions) == {"hub", "tyre"}, soft["regions"]
     # Figures on the curved tread, drawn in the plane's coordinates.
-    r = subprocess.run([exe, "plot", str(out / "wheel")], capture_output=True, text=True,
-                       timeout=300)
-    assert r.returncode == 0, r.stdout + r.stderr
+    common.run_ok([exe, "plot", out / "wheel"], timeout=300)
     assert list((out / "wheel" / "plots").glob("*.png")), "no figures"
     print(f"wheel: normal force {soft['total_normal_force']:.4e} N (aluminium hub), "
           f"{stiff['total_normal_force']:.4e} N (steel hub)")

@@ -5,14 +5,12 @@ The counts printed by `mesh info` must be those of the brick: (nx+1)(ny+1)(nz+1)
 
 Usage: check_gmsh_mesh.py FRICON UNUSED OUTDIR
 """
-import pathlib
 import re
-import subprocess
-import sys
 
-exe, out = sys.argv[1], pathlib.Path(sys.argv[3])
-out.mkdir(parents=True, exist_ok=True)
-failures = []
+import common
+
+exe, _, out = common.arguments(__doc__)
+failures = common.Failures(separator="\n")
 nx, ny, nz = 6, 4, 2
 blocks = {"x": (ny // 2) * (nz // 2), "y": (nz // 2) * (nx // 2), "z": (nx // 2) * (ny // 2)}
 squares = {"x": ny * nz, "y": nz * nx, "z": nx * ny}
@@ -20,9 +18,9 @@ sizes = {"x": 1.0 * 0.5, "y": 0.5 * 3.0, "z": 3.0 * 1.0}  # area of the side nor
 
 
 def run(args):
-    r = subprocess.run([exe] + args, capture_output=True, text=True)
+    r = common.run([exe] + args)
     if r.returncode != 0:
-        failures.append(f"{args}: exit {r.returncode}\n{r.stdout}{r.stderr}")
+        failures.add(f"{args}: exit {r.returncode}\n{r.stdout}{r.stderr}")
     return r.stdout
 
 
@@ -33,30 +31,26 @@ for version, binary in (("41", False), ("41", True), ("22", False)):
     info = run(["mesh", "info", str(msh)])
     head = re.search(r"(\d+) nodes, (\d+) tetrahedra, (\d+) boundary triangles", info)
     if not head:
-        failures.append(f"{msh}: no size line in\n{info}")
+        failures.add(f"{msh}: no size line in\n{info}")
         continue
     nodes, tets, triangles = map(int, head.groups())
     if nodes != (nx + 1) * (ny + 1) * (nz + 1) or tets != 5 * nx * ny * nz:
-        failures.append(f"{msh}: {nodes} nodes, {tets} tetrahedra")
+        failures.add(f"{msh}: {nodes} nodes, {tets} tetrahedra")
     if triangles != 4 * sum(squares.values()):
-        failures.append(f"{msh}: {triangles} boundary triangles")
+        failures.add(f"{msh}: {triangles} boundary triangles")
     region = re.search(r"body\s+(\d+) tetrahedra, volume (\S+) m\^3", info)
     if not region or int(region.group(1)) != tets or abs(float(region.group(2)) - 1.5) > 1e-12:
-        failures.append(f"{msh}: region line wrong in\n{info}")
+        failures.add(f"{msh}: region line wrong in\n{info}")
     for axis in "xyz":
         for side in "01":
             m = re.search(rf"{axis}{side}\s+(\d+) triangles, area (\S+) m\^2, (\d+) entities", info)
             expected = (2 * squares[axis], sizes[axis], blocks[axis])
             if not m or (int(m.group(1)), int(m.group(3))) != (expected[0], expected[2]) or abs(
                     float(m.group(2)) - expected[1]) > 1e-12:
-                failures.append(f"{msh}: tag {axis}{side} expected {expected} in\n{info}")
+                failures.add(f"{msh}: tag {axis}{side} expected {expected} in\n{info}")
 
-r = subprocess.run([exe, "mesh", "info", str(out / "missing.msh")], capture_output=True,
-                   text=True)
+r = common.run([exe, "mesh", "info", out / "missing.msh"])
 if r.returncode != 1 or "missing.msh: no such file" not in r.stderr:
-    failures.append(f"mesh info of a missing file: exit {r.returncode}\n{r.stderr}")
+    failures.add(f"mesh info of a missing file: exit {r.returncode}\n{r.stderr}")
 
-if failures:
-    print("\n".join(failures))
-    sys.exit(1)
-print("fricon mesh brick / mesh info: counts as expected")
+failures.finish("fricon mesh brick / mesh info: counts as expected")

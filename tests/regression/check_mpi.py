@@ -40,14 +40,14 @@ Agreement: the same number of outer iterations and err(k) to 1e-8; multipliers (
 1e-8 of the largest; contact-node displacements and the penetration measures to 1e-8 of max |u|;
 forces, max |u| and max von Mises to 1e-8 relative.
 """
-import csv
-import json
 import os
 import pathlib
 import signal
 import subprocess
 import sys
 import time
+
+import common
 
 TIGHT = ["--set", "solver.qp_rtol=1e-12", "--set", "solver.outer_tol=1e-10"]
 PETSC = ["--set", "solver.backend=petsc"]
@@ -87,24 +87,20 @@ def mpirun(mpi, ranks):
 
 
 def run(cmd, expect=0):
-    r = subprocess.run(cmd, capture_output=True, text=True, timeout=TIMEOUT_S)
-    if r.returncode != expect:
-        sys.exit(f"FAIL: {' '.join(cmd)}: exit code {r.returncode}, expected {expect}\n"
-                 f"stdout:\n{r.stdout}\nstderr:\n{r.stderr}")
-    return r
+    return common.run_ok(cmd, timeout=TIMEOUT_S, expect=expect)
 
 
 def read_csv(path):
+    """The numeric columns of a CSV file by name; {} when there is none (no contact)."""
     if not path.exists():  # no contact: no patches or contact nodes
         return {}
-    with open(path, newline="") as f:
-        rows = list(csv.DictReader(f))
+    rows = common.read_rows(path)
     return {k: [float(r[k]) for r in rows] for k in rows[0] if k != "state"} if rows else {}
 
 
 def results(folder):
     folder = pathlib.Path(folder)
-    return (json.loads((folder / "report.json").read_text()), read_csv(folder / "patches.csv"),
+    return (common.read_report(folder), read_csv(folder / "patches.csv"),
             read_csv(folder / "contact_nodes.csv"))
 
 
@@ -156,7 +152,7 @@ def serial_and_distributed(fricon, mpi, problem, out, ranks, extra=()):
     run([fricon, "solve", str(problem), *TIGHT, *extra, "-q", "-o", str(serial)])
     r = run(mpirun(mpi, ranks) + [fricon, "solve", str(problem), *TIGHT, *PETSC, *extra, "-o",
                                   str(distributed)])
-    report = json.loads((distributed / "report.json").read_text())
+    report = common.read_report(distributed)
     par = report.get("parallel", {})
     if par.get("n_ranks") != ranks or len(par.get("ranks", [])) != ranks:
         sys.exit(f"FAIL: report.json parallel = {par}, expected {ranks} ranks")
@@ -178,8 +174,8 @@ def serial_and_distributed(fricon, mpi, problem, out, ranks, extra=()):
 
 
 def expect_error(cmd, fragments, label, code=1, prefix="fricon: error:", env=None):
-    r = subprocess.run(cmd, capture_output=True, text=True, timeout=TIMEOUT_S, env=env)
-    errors = [line for line in r.stderr.splitlines() if line.startswith(prefix)]
+    r = common.run(cmd, timeout=TIMEOUT_S, env=env)
+    errors = common.error_lines(r.stderr, prefix)
     problems = []
     if r.returncode != code:
         problems.append(f"exit code {r.returncode}, expected {code}")
@@ -196,8 +192,7 @@ def expect_error(cmd, fragments, label, code=1, prefix="fricon: error:", env=Non
 
 def on_every_rank(cmd, message, ranks=2):
     """Runs cmd with every rank's own output kept: each rank must end with `message`, exit 1."""
-    r = subprocess.run(cmd, capture_output=True, text=True, timeout=TIMEOUT_S,
-                       env={**os.environ, "FRICON_RANK_OUTPUT": "all"})
+    r = common.run(cmd, timeout=TIMEOUT_S, env={**os.environ, "FRICON_RANK_OUTPUT": "all"})
     if r.returncode != 1 or r.stderr.count(message) != ranks:
         sys.exit(f"FAIL: every rank should end with {message!r} and exit code 1; exit code "
                  f"{r.returncode}, stderr:\n{r.stderr}")
@@ -235,7 +230,7 @@ def stop_signal(fricon, mpi, brick, outdir):
         sys.exit(f"FAIL: SIGUSR1: exit code {proc.returncode} (expected 2), files "
                  f"{sorted(p.name for p in outdir.iterdir()) if outdir.exists() else []}\n"
                  f"stderr:\n{''.join(seen)}{stderr}")
-    r = json.loads(report.read_text())
+    r = common.read_report(outdir, report.name)
     if r["termination"] != "interrupted" or r["outer_iterations"] < 2:
         sys.exit(f"FAIL: SIGUSR1: termination {r['termination']}, outer iterations "
                  f"{r['outer_iterations']}")
@@ -331,7 +326,7 @@ def injected_fault(fricon, mpi, brick, out, fault):
 
 def main():
     fricon, mpi, case, out = sys.argv[1], sys.argv[2], sys.argv[3], pathlib.Path(sys.argv[4])
-    examples = pathlib.Path(__file__).resolve().parents[2] / "examples"
+    examples = common.EXAMPLES
     brick = examples / "paper-brick.toml"
     out.mkdir(parents=True, exist_ok=True)
     if case.startswith("ranks"):
@@ -358,8 +353,7 @@ def main():
             dirs.append(out / kind)
             run(mpirun(mpi, 2) + [fricon, "solve", str(brick), *TIGHT, *PETSC, "--set",
                                   f"solver.partition={kind}", "-q", "-o", str(dirs[-1])])
-            tets = [x["n_tets"] for x in
-                    json.loads((dirs[-1] / "report.json").read_text())["parallel"]["ranks"]]
+            tets = [x["n_tets"] for x in common.read_report(dirs[-1])["parallel"]["ranks"]]
             print(f"     partition {kind}: tetrahedra per rank {tets}")
         agree("partition graph = partition blocks on 2 ranks", *dirs)
     elif case == "failing_rank":

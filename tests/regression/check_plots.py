@@ -11,7 +11,6 @@ Usage: check_plots.py FRICON EXAMPLES_DIR OUTDIR
 """
 import pathlib
 import shutil
-import subprocess
 import sys
 
 import matplotlib
@@ -20,28 +19,22 @@ matplotlib.use("Agg")
 import matplotlib.image as mpimg  # noqa: E402
 import numpy as np  # noqa: E402
 
-SCRIPT = pathlib.Path(__file__).resolve().parents[2] / "scripts" / "plot_results.py"
+import common  # noqa: E402
+
+SCRIPT = common.REPOSITORY / "scripts" / "plot_results.py"
 CONTACT_FIGURES = ["convergence", "friction_law", "contact_maps", "friction_coefficient",
                    "friction_circles", "deformed"]
-
-
-def run(cmd):
-    """Run a command, fail the test with its output if it does not exit with 0."""
-    r = subprocess.run([str(c) for c in cmd], capture_output=True, text=True)
-    if r.returncode != 0:
-        sys.exit(f"{' '.join(map(str, cmd))} exited with {r.returncode}\n{r.stdout}\n{r.stderr}")
-    return r
 
 
 def solve(exe, problem, out):
     """Solve `problem` into a fresh folder `out`."""
     shutil.rmtree(out, ignore_errors=True)
-    run([exe, "solve", problem, "--out", out])
+    common.solve(exe, problem, out, quiet=False)
 
 
 def plot(results, *extra):
     """Run the plotting script; return the files it reports, one per stdout line."""
-    r = run([sys.executable, SCRIPT, results, *extra])
+    r = common.run_ok([sys.executable, SCRIPT, results, *extra])
     return [pathlib.Path(line) for line in r.stdout.splitlines() if line.strip()]
 
 
@@ -66,8 +59,7 @@ def check_folder(folder, expected):
 
 
 def main():
-    exe, examples, out = sys.argv[1], pathlib.Path(sys.argv[2]), pathlib.Path(sys.argv[3])
-    out.mkdir(parents=True, exist_ok=True)
+    exe, examples, out = common.arguments(__doc__)
 
     brick = out / "paper-brick"
     solve(exe, examples / "paper-brick.toml", brick)
@@ -87,7 +79,7 @@ def main():
 
     empty = out / "not-a-results-folder"
     empty.mkdir(exist_ok=True)
-    r = subprocess.run([sys.executable, str(SCRIPT), str(empty)], capture_output=True, text=True)
+    r = common.run([sys.executable, SCRIPT, empty])
     assert r.returncode == 1, (r.returncode, r.stderr)
     assert "report.json" in r.stderr and "Traceback" not in r.stderr, r.stderr
     print("plots ok")

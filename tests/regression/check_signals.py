@@ -5,18 +5,17 @@ code 2 and no result files.
 
 Usage: check_signals.py FRICON EXAMPLES_DIR OUTDIR
 """
-import json
 import os
-import pathlib
 import signal
 import subprocess
 import sys
 import time
 
-exe, examples, out = sys.argv[1], pathlib.Path(sys.argv[2]), pathlib.Path(sys.argv[3])
-out.mkdir(parents=True, exist_ok=True)
+import common
+
+exe, examples, out = common.arguments(__doc__)
 paper = str(examples / "paper-brick.toml")
-failures = []
+failures = common.Failures()
 
 
 def start(args, outdir):
@@ -34,7 +33,7 @@ def wait_for_line(proc, fragment, timeout):
         lines.append(line)
         if fragment in line:
             return lines
-    failures.append(f"no progress line with {fragment!r} within {timeout} s: {lines}")
+    failures.add(f"no progress line with {fragment!r} within {timeout} s: {lines}")
     return None
 
 
@@ -54,29 +53,29 @@ def qp_phase(sig):
     _, stderr = proc.communicate(timeout=60)
     took = time.time() - t0
     if proc.returncode != 2 or "interrupted" not in stderr:
-        failures.append(f"{sig.name} in the QP phase: exit {proc.returncode}, expected 2 with "
-                        f"'interrupted'\n{stderr}")
+        failures.add(f"{sig.name} in the QP phase: exit {proc.returncode}, expected 2 with "
+                     f"'interrupted'\n{stderr}")
     if took > 5:
-        failures.append(f"{sig.name} in the QP phase: took {took:.1f} s to stop")
+        failures.add(f"{sig.name} in the QP phase: took {took:.1f} s to stop")
     if (outdir / "report.json").exists():
-        failures.append(f"{sig.name}: a report.json that looks complete was written")
+        failures.add(f"{sig.name}: a report.json that looks complete was written")
     report = outdir / "report.not-converged.json"
     if not report.exists():
-        failures.append(f"{sig.name}: no {report.name} with the last iterate")
+        failures.add(f"{sig.name}: no {report.name} with the last iterate")
         return
-    r = json.loads(report.read_text())
+    r = common.read_report(outdir, report.name)
     if r["status"] != "not_converged" or r["termination"] != "interrupted":
-        failures.append(f"{sig.name}: status {r['status']}, termination {r['termination']}")
+        failures.add(f"{sig.name}: status {r['status']}, termination {r['termination']}")
     if r["outer_iterations"] < 2 or "interrupted" not in r["message"]:
-        failures.append(f"{sig.name}: outer_iterations {r['outer_iterations']}, "
-                        f"message {r['message']!r}")
+        failures.add(f"{sig.name}: outer_iterations {r['outer_iterations']}, "
+                     f"message {r['message']!r}")
     for name in ["solution.not-converged.vtu", "contact.not-converged.vtu",
                  "patches.not-converged.csv", "contact_nodes.not-converged.csv"]:
         if not (outdir / name).exists():
-            failures.append(f"{sig.name}: {name} missing")
+            failures.add(f"{sig.name}: {name} missing")
     rows = (outdir / "patches.not-converged.csv").read_text().splitlines()[1:]
     if len(rows) != r["contact"]["n_patches"] or max(float(x.split(",")[3]) for x in rows) <= 0:
-        failures.append(f"{sig.name}: patches.not-converged.csv does not hold the multipliers")
+        failures.add(f"{sig.name}: patches.not-converged.csv does not hold the multipliers")
 
 
 def nothing_to_save():
@@ -87,10 +86,9 @@ def nothing_to_save():
         # With the cores taken, the BLAS runs on one thread (no spinning workers).
         time.sleep(0.5)
         small = out / "busy-threads"
-        subprocess.run([exe, "solve", paper, "--out", str(small), "--quiet"], check=True)
-        threads = json.loads((small / "report.json").read_text())["factor"]["blas_threads"]
+        threads = common.solve(exe, paper, small)["factor"]["blas_threads"]
         if threads != 1 and "OPENBLAS_NUM_THREADS" not in os.environ:
-            failures.append(f"with both cores busy the BLAS got {threads} threads, expected 1")
+            failures.add(f"with both cores busy the BLAS got {threads} threads, expected 1")
         outdir = out / "factorize"
         proc = start(["--set", "mesh.cells=[72,24,24]"], outdir)
         if wait_for_line(proc, "factorize", 120) is None:
@@ -105,17 +103,16 @@ def nothing_to_save():
         for b in busy:
             b.kill()
     if proc.returncode != 2 or "interrupted" not in stderr:
-        failures.append(f"SIGINT in the factorization: exit {proc.returncode}\n{stderr}")
+        failures.add(f"SIGINT in the factorization: exit {proc.returncode}\n{stderr}")
     if took > 1.0:
-        failures.append(f"SIGINT in the factorization: took {took:.2f} s to stop (limit 1 s)")
+        failures.add(f"SIGINT in the factorization: took {took:.2f} s to stop (limit 1 s)")
     if outdir.exists() and any(outdir.iterdir()):
-        failures.append(f"SIGINT in the factorization wrote {sorted(os.listdir(outdir))}")
+        failures.add(f"SIGINT in the factorization wrote {sorted(os.listdir(outdir))}")
 
 
 qp_phase(signal.SIGINT)
 qp_phase(signal.SIGTERM)
 qp_phase(signal.SIGUSR1)
 nothing_to_save()
-if failures:
-    sys.exit("\n\n".join(failures))
-print("signals: SIGINT/SIGTERM in the QP phase save the last iterate; before, the run ends at once")
+failures.finish("signals: SIGINT/SIGTERM in the QP phase save the last iterate; before, the run "
+                "ends at once")

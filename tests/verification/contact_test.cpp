@@ -7,6 +7,7 @@
 
 #include <cmath>
 
+#include "common/fixtures.hpp"
 #include "fricon/contact/b_matrix.hpp"
 #include "fricon/contact/contact_surface.hpp"
 #include "fricon/contact/radii.hpp"
@@ -189,25 +190,14 @@ TEST(ContactColumn, FrictionlessColumnUnderGravityCarriesHalfItsWeight) {
   // b = (0, 0, -b0), resting on the foundation at z = 0. The solution depends on z only, u_z is
   // quadratic and vanishes at both ends, so each end carries half the weight: a uniform contact
   // pressure lambda_n = b0 H / 2, and no tangential displacement.
-  Problem p;
-  p.mesh.size = {1.0, 1.0, 2.0};
-  p.mesh.cells = {4, 4, 8};
-  p.material.young = 1e9;
-  p.material.poisson = 0.3;
-  p.dirichlet = {{"z1", {true, true, true}},
-                 {"x0", {true, false, false}},
-                 {"x1", {true, false, false}},
-                 {"y0", {false, true, false}},
-                 {"y1", {false, true, false}}};
-  const Real b0 = 7.8e4, H = 2.0;
-  p.volume_force = Vec3(0, 0, -b0);
+  Problem p = test::gravity_column();
+  const Real b0 = test::kColumnWeight, H = test::kColumnHeight;
   ContactOptions c;
   c.boundary = "z0";
   c.slip_bound = 1e5;
   c.friction.law = contact::FrictionLawKind::Constant;
   c.friction.value = 0.0;
   p.contact = c;
-  p.solver.qp.rel_tolerance = 1e-12;
   const RunResult r = run(p);
   ASSERT_EQ(r.report.status, RunStatus::Converged) << r.report.message;
   const auto& f = *r.contact;

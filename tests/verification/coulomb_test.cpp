@@ -7,6 +7,7 @@
 
 #include <cmath>
 
+#include "common/fixtures.hpp"
 #include "fricon/contact/b_matrix.hpp"
 #include "fricon/contact/friction_law.hpp"
 #include "fricon/contact/radii.hpp"
@@ -23,25 +24,6 @@ Problem coulomb(Problem p, Real F) {
   p.contact->model = contact::FrictionModel::Coulomb;
   p.contact->friction.law = contact::FrictionLawKind::Constant;
   p.contact->friction.value = F;
-  return p;
-}
-
-// The gravity column of contact_test.cpp: clamped on top, rollers on the sides, its own weight
-// b0 on the foundation: a uniform contact pressure b0 H / 2 and no slip.
-Problem column() {
-  Problem p;
-  p.mesh.size = {1.0, 1.0, 2.0};
-  p.mesh.cells = {4, 4, 8};
-  p.material.young = 1e9;
-  p.material.poisson = 0.3;
-  p.dirichlet = {{"z1", {true, true, true}},
-                 {"x0", {true, false, false}},
-                 {"x1", {true, false, false}},
-                 {"y0", {false, true, false}},
-                 {"y1", {false, true, false}}};
-  p.volume_force = Vec3(0, 0, -7.8e4);
-  p.contact = ContactOptions{};
-  p.solver.qp.rel_tolerance = 1e-12;
   return p;
 }
 
@@ -104,9 +86,10 @@ TEST(Coulomb, WithoutFrictionItIsTheFrictionlessProblem) {
 }
 
 TEST(Coulomb, UnderAKnownUniformPressureItIsTrescaWithThatPressure) {
-  const Real pressure = 7.8e4 * 2.0 / 2.0;  // b0 H / 2
-  const Problem c = coulomb(column(), 0.3);
-  Problem t = column();
+  // The gravity column (tests/common/fixtures.hpp): a uniform contact pressure and no slip.
+  const Real pressure = test::kColumnWeight * test::kColumnHeight / 2.0;  // b0 H / 2
+  const Problem c = coulomb(test::gravity_column(), 0.3);
+  Problem t = test::gravity_column();
   t.contact->friction.law = contact::FrictionLawKind::Constant;
   t.contact->friction.value = 0.3;
   t.contact->slip_bound = pressure;

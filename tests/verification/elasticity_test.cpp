@@ -8,6 +8,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "common/fixtures.hpp"
 #include "fricon/fe/assembly.hpp"
 #include "fricon/fe/p1_element.hpp"
 #include "fricon/fe/quadrature.hpp"
@@ -156,11 +157,7 @@ TEST(Verification, CantileverTipDeflectionApproachesBeamTheory) {
   std::vector<Real> rel_error;
   for (Index n : {2, 4, 8}) {
     const mesh::TetMesh m = mesh::make_brick({Vec3(L, b, h), {6 * n, n, n}});
-    std::vector<bool> fixed(static_cast<size_t>(3 * m.n_nodes()), false);
-    for (Index a : m.nodes_with_tag("x0"))
-      for (int c = 0; c < 3; ++c)
-        fixed[static_cast<size_t>(3 * a + c)] = true;
-    const DofMap dofs(fixed);
+    const DofMap dofs = test::clamped_dofs(m);
     VectorXd f = VectorXd::Zero(dofs.n_free());
     add_traction(m, dofs, m.faces_with_tag("x1"), Vec3(0, 0, -P / A), f);
     linalg::CholeskyFactor chol;

@@ -14,6 +14,7 @@
 
 #include <Eigen/Geometry>
 
+#include "common/fixtures.hpp"
 #include "fricon/driver/paper.hpp"
 #include "fricon/driver/run.hpp"
 #include "fricon/mesh/brick.hpp"
@@ -59,7 +60,8 @@ Problem rotated(const Problem& p, const Mat3& R, const std::filesystem::path& fi
 TEST(Geometry, RotatingTheWholeProblemRotatesTheAnswer) {
   const Problem level = brick_over_plane();
   const Mat3 R = Eigen::AngleAxis<Real>(0.7, Vec3(1, 2, 3).normalized()).toRotationMatrix();
-  const auto file = std::filesystem::path(testing::TempDir()) / "fricon-rotated-brick.msh";
+  const test::TempDir dir;
+  const auto file = dir.path() / "rotated-brick.msh";
   const RunResult a = run(level);
   const RunResult b = run(rotated(level, R, file));
   ASSERT_EQ(a.report.status, RunStatus::Converged);
@@ -77,7 +79,6 @@ TEST(Geometry, RotatingTheWholeProblemRotatesTheAnswer) {
   }
   const Real u_scale = a.displacement.cwiseAbs().maxCoeff();
   EXPECT_LE((R * a.displacement - b.displacement).cwiseAbs().maxCoeff(), 1e-7 * u_scale);
-  std::filesystem::remove(file);
 }
 
 TEST(Geometry, AContactSurfaceInTwoPiecesIsOneProblem) {
@@ -95,14 +96,14 @@ TEST(Geometry, AContactSurfaceInTwoPiecesIsOneProblem) {
         3.0;
     if (x < 1.0 || x > 2.0) m.face_tag[static_cast<size_t>(f)] = feet;
   }
-  const auto file = std::filesystem::path(testing::TempDir()) / "fricon-feet.msh";
+  const test::TempDir dir;
+  const auto file = dir.path() / "feet.msh";
   mesh::write_gmsh(file, m);
   p.mesh.kind = MeshKind::Gmsh;
   p.mesh.file = file.string();
   p.contact->boundary = "feet";
   p.contact->patches = contact::PatchKind::Agglomerate;
   const RunResult r = run(p);
-  std::filesystem::remove(file);
   ASSERT_EQ(r.report.status, RunStatus::Converged);
   const ContactFields& c = *r.contact;
   // Patches lie in one piece each, and both pieces carry pressure.

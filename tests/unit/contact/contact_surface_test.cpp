@@ -3,8 +3,11 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <vector>
 
+#include "common/fixtures.hpp"
 #include "fricon/contact/b_matrix.hpp"
 #include "fricon/contact/contact_surface.hpp"
 #include "fricon/contact/friction_law.hpp"
@@ -17,31 +20,8 @@
 using namespace fricon;
 using namespace fricon::contact;
 
-namespace {
-
-struct Brick {
-  mesh::TetMesh mesh;
-  fe::DofMap dofs{0};
-  ContactSurface surface;
-  Patches patches;
-  SparseMatrix B;
-};
-
-Brick paper_brick(Index n) {
-  Brick b;
-  b.mesh = mesh::make_brick({Vec3(3, 1, 1), {3 * n, n, n}});
-  std::vector<bool> fixed(static_cast<size_t>(3 * b.mesh.n_nodes()), false);
-  for (Index a : b.mesh.nodes_with_tag("x0"))
-    for (int c = 0; c < 3; ++c)
-      fixed[static_cast<size_t>(3 * a + c)] = true;
-  b.dofs = fe::DofMap(fixed);
-  b.surface = make_contact_surface(b.mesh, b.dofs, "z0", "test");
-  b.patches = chessboard_patches(b.mesh, b.surface, "test");
-  b.B = assemble_b(b.mesh, b.dofs, b.surface, b.patches);
-  return b;
-}
-
-}  // namespace
+using test::paper_brick;
+using Brick = test::ClampedBrick;  // the paper's brick clamped at x0, contact on z0, with its B
 
 TEST(ContactSurface, PaperSizesAndBasis) {
   // Table 1: n_d = 36, 81, 144 for n = 4, 6, 8; 3n(n+1) contact nodes (theory.md §2.2).
@@ -233,13 +213,10 @@ TEST(ContactSurface, ADirichletComponentConstrainsThatComponentOnly) {
   const Index n = 4;
   const mesh::TetMesh m = mesh::make_brick({Vec3(3, 1, 1), {3 * n, n, n}});
   auto dofs_with = [&m](int component_on_z0) {
-    std::vector<bool> fixed(static_cast<size_t>(3 * m.n_nodes()), false);
-    for (Index a : m.nodes_with_tag("x0"))
-      for (int c = 0; c < 3; ++c)
-        fixed[static_cast<size_t>(3 * a + c)] = true;
+    std::vector<std::array<Index, 2>> on_z0;
     for (Index a : m.nodes_with_tag("z0"))
-      fixed[static_cast<size_t>(3 * a + component_on_z0)] = true;
-    return fe::DofMap(fixed);
+      on_z0.push_back({a, component_on_z0});
+    return test::clamped_dofs(m, "x0", on_z0);
   };
   const fe::DofMap roller = dofs_with(1);
   const ContactSurface s = make_contact_surface(m, roller, "z0", "test");

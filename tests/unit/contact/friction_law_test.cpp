@@ -10,13 +10,12 @@
 #include <iostream>
 #include <random>
 
+#include "common/fixtures.hpp"
 #include "fricon/contact/contact_surface.hpp"
 #include "fricon/contact/friction_law.hpp"
 #include "fricon/contact/patches.hpp"
 #include "fricon/contact/radii.hpp"
 #include "fricon/core/error.hpp"
-#include "fricon/fe/dof_map.hpp"
-#include "fricon/mesh/brick.hpp"
 
 using namespace fricon;
 using namespace fricon::contact;
@@ -31,27 +30,6 @@ const std::vector<Real> kPaperKinks = {1e-5, 1e-5 + 2.0 / 6e4};
 // A smooth law: 0.1 + 0.4 exp(-t / c), c [m].
 constexpr const char* kSmoothExpression = "0.1 + 0.4*exp(-t/5e-5)";
 constexpr Real kSmoothDecay = 5e-5;
-
-struct Surface {
-  mesh::TetMesh mesh;
-  fe::DofMap dofs{0};
-  ContactSurface surface;
-  Patches patches;
-};
-
-// The paper's brick 3 x 1 x 1 with 3n x n x n cubes, clamped at x = 0, contact on z = 0.
-Surface brick_surface(Index n) {
-  Surface b;
-  b.mesh = mesh::make_brick({Vec3(3, 1, 1), {3 * n, n, n}});
-  std::vector<bool> fixed(static_cast<size_t>(3 * b.mesh.n_nodes()), false);
-  for (Index a : b.mesh.nodes_with_tag("x0"))
-    for (int c = 0; c < 3; ++c)
-      fixed[static_cast<size_t>(3 * a + c)] = true;
-  b.dofs = fe::DofMap(fixed);
-  b.surface = make_contact_surface(b.mesh, b.dofs, "z0", "test");
-  b.patches = chessboard_patches(b.mesh, b.surface, "test");
-  return b;
-}
 
 FrictionLawSpec expression_spec(const std::string& expression, std::vector<Real> kinks = {},
                                 Real rtol = kDefaultQuadratureRtol) {
@@ -68,7 +46,7 @@ Real max_relative_difference(const VectorXd& a, const VectorXd& b) {
 }
 
 // Random nodal slips in [0, phi_max] [m] and slip bounds in [1e7, 3e7] Pa.
-void random_fields(const Surface& b, Real phi_max, VectorXd& phi, VectorXd& g) {
+void random_fields(const test::ClampedBrick& b, Real phi_max, VectorXd& phi, VectorXd& g) {
   std::mt19937 gen(12345);
   std::uniform_real_distribution<Real> u(0.0, 1.0);
   phi.resize(b.surface.n_nodes());
@@ -135,7 +113,7 @@ TEST(ExpressionLaw, NegativeOrNanValuesAreRejectedWithTheSlip) {
                  "must be finite and >= 0");
   }
   // In the radii, where the slips reach the negative part.
-  const Surface b = brick_surface(2);
+  const test::ClampedBrick b = test::paper_brick(2);
   VectorXd phi, g;
   random_fields(b, 4e-5, phi, g);
   EXPECT_THROW(patch_radii(b.mesh, b.surface, b.patches, *F, phi, g), InputError);
@@ -144,7 +122,7 @@ TEST(ExpressionLaw, NegativeOrNanValuesAreRejectedWithTheSlip) {
 }
 
 TEST(ExpressionLaw, PaperFormulaWithItsKinksGivesTheExactRadii) {
-  const Surface b = brick_surface(4);
+  const test::ClampedBrick b = test::paper_brick(4);
   const auto exact = paper_law(6e4);
   const auto E = make_friction_law(expression_spec(kPaperExpression, kPaperKinks));
   VectorXd phi, g;
@@ -174,7 +152,7 @@ TEST(Radii, SmoothLawConvergesToTheClosedFormAsTheToleranceTightens) {
   // 11 S apart (no cancellation), and a triangle spans up to ~60 S decay lengths of F, far more
   // than one Gauss-Kronrod interval resolves.
   const Index n = 4;
-  const Surface b = brick_surface(n);
+  const test::ClampedBrick b = test::paper_brick(n);
   const Real a = 0.1, bb = 0.4, G = 2e7, c = kSmoothDecay, S = 2.0, h = 1.0 / static_cast<Real>(n);
   const Index ns = b.surface.n_nodes();
   VectorXd phi(ns);
@@ -235,7 +213,7 @@ TEST(Radii, SmoothLawConvergesToTheClosedFormAsTheToleranceTightens) {
 }
 
 TEST(FunctionLaw, IsCalledInFewBatchesAndItsValuesAreChecked) {
-  const Surface b = brick_surface(4);
+  const test::ClampedBrick b = test::paper_brick(4);
   VectorXd phi, g;
   random_fields(b, 3e-4, phi, g);
   int calls = 0;
@@ -297,7 +275,7 @@ TEST(FunctionLaw, IsCalledInFewBatchesAndItsValuesAreChecked) {
 TEST(Radii, AJumpNotListedInKinksIsFoundByBisection) {
   // A jump of F that kinks does not list: its interval is bisected until the patch's error is
   // within the tolerance. With the jump given as a kink, every piece is integrated exactly.
-  const Surface b = brick_surface(2);
+  const test::ClampedBrick b = test::paper_brick(2);
   VectorXd phi, g;
   random_fields(b, 3e-5, phi, g);
   const std::string step = "t < 1.23456e-5 ? 0.3 : 0.1";
@@ -310,7 +288,7 @@ TEST(Radii, AJumpNotListedInKinksIsFoundByBisection) {
 }
 
 TEST(Radii, ALawThatOscillatesTooFastIsANumericalError) {
-  const Surface b = brick_surface(2);
+  const test::ClampedBrick b = test::paper_brick(2);
   VectorXd phi, g;
   random_fields(b, 3e-5, phi, g);
   const auto F = make_friction_law(expression_spec("0.2 + 0.1*sin(1e10*t)"));

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "common/fixtures.hpp"
 #include "fricon/contact/b_matrix.hpp"
 #include "fricon/contact/contact_surface.hpp"
 #include "fricon/contact/discretization.hpp"
@@ -25,30 +26,10 @@ namespace {
 
 const std::string kWhere = "t.toml:7:1";
 
-struct Case {
-  mesh::TetMesh mesh;
-  fe::DofMap dofs{0};
-  ContactSurface surface;
-};
-
-// Dirichlet data: all of x0 clamped, plus `extra` (node, component) pairs.
-fe::DofMap clamped_x0(const mesh::TetMesh& m, const std::vector<std::array<Index, 2>>& extra = {}) {
-  std::vector<bool> fixed(static_cast<size_t>(3 * m.n_nodes()), false);
-  for (Index a : m.nodes_with_tag("x0"))
-    for (int c = 0; c < 3; ++c)
-      fixed[static_cast<size_t>(3 * a + c)] = true;
-  for (const auto& [a, c] : extra)
-    fixed[static_cast<size_t>(3 * a + c)] = true;
-  return fe::DofMap(fixed);
-}
-
-// The paper's brick (size 3 x 1 x 1) with `cells`, x0 clamped, contact on z0.
+// The brick (size 3 x 1 x 1) with its surface z0, x0 clamped; no chessboard (odd cells too).
+using Case = test::ClampedBrick;
 Case brick(std::array<Index, 3> cells) {
-  Case s;
-  s.mesh = mesh::make_brick({Vec3(3, 1, 1), cells});
-  s.dofs = clamped_x0(s.mesh);
-  s.surface = make_contact_surface(s.mesh, s.dofs, "z0", "test");
-  return s;
+  return test::clamped_brick(cells, test::Chessboard::No);
 }
 
 // The same surface fields as make_contact_surface, without its planarity check (curved faces).
@@ -89,7 +70,7 @@ Case bent_brick(std::array<Index, 3> cells) {
   s.mesh = mesh::make_brick({Vec3(3, 1, 1), cells});
   for (Index a = 0; a < s.mesh.n_nodes(); ++a)
     s.mesh.nodes(2, a) += kBend * std::pow(s.mesh.nodes(0, a) - 1.5, 2);
-  s.dofs = clamped_x0(s.mesh);
+  s.dofs = test::clamped_dofs(s.mesh);
   s.surface = curved_surface(s.mesh, s.dofs, "z0");
   return s;
 }
@@ -297,7 +278,7 @@ TEST(Patches, UnstableAgglomerateIsCoarsened) {
   std::vector<std::array<Index, 2>> fixed{{free_node, 0}};
   for (Index node : s.mesh.nodes_with_tag("z0"))
     if (node != free_node) fixed.push_back({node, 2});
-  s.dofs = clamped_x0(s.mesh, fixed);
+  s.dofs = test::clamped_dofs(s.mesh, "x0", fixed);
   s.surface = make_contact_surface(s.mesh, s.dofs, "z0", "test");
 
   const Patches finest = agglomerate_patches(s.mesh, s.surface, 0.0, "test");

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "common/fixtures.hpp"
 #include "fricon/driver/local_solve.hpp"
 #include "fricon/io/local_problem_file.hpp"
 
@@ -34,7 +35,7 @@ std::vector<double> expected_reactions(const fs::path& expect) {
 }
 
 TEST(DualInputCorpus, GoodFilesSolveToTheirKnownReactions) {
-  const fs::path corpus = fs::path(FRICON_SOURCE_DIR) / "tests" / "dual_input";
+  const fs::path corpus = test::source_path("tests/dual_input");
   int checked = 0;
   for (const auto& entry : fs::directory_iterator(corpus)) {
     const fs::path& file = entry.path();

@@ -9,6 +9,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "common/fixtures.hpp"
 #include "fricon/core/error.hpp"
 #include "fricon/driver/problem.hpp"
 #include "fricon/fe/material.hpp"
@@ -23,21 +24,12 @@ constexpr Real kInf = std::numeric_limits<Real>::infinity();
 
 /// The message of the InputError that validate throws, or "" when it does not throw.
 std::string error_of(const Problem& p) {
-  try {
-    validate(p);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
+  return test::input_error_of([&p] { validate(p); });
 }
 
 /// A valid problem with every section: clamped at x0, pulled at x1, contact on z0.
 Problem base() {
-  Problem p;
-  p.dirichlet.push_back({"x0", {true, true, true}});
-  p.traction.push_back({"x1", Vec3(1e7, 0.0, 2e7)});
-  p.contact.emplace();
-  return p;
+  return test::clamped_problem();
 }
 
 /// The isotropic Hooke matrix of steel, as a general one.

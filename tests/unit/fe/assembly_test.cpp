@@ -3,6 +3,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "common/fixtures.hpp"
 #include "fricon/fe/assembly.hpp"
 #include "fricon/linalg/cholesky.hpp"
 #include "fricon/mesh/brick.hpp"
@@ -10,22 +11,12 @@
 using namespace fricon;
 using namespace fricon::fe;
 
-namespace {
-std::vector<bool> clamp(const mesh::TetMesh& m, const std::string& tag) {
-  std::vector<bool> fixed(static_cast<size_t>(3 * m.n_nodes()), false);
-  for (Index a : m.nodes_with_tag(tag))
-    for (int c = 0; c < 3; ++c)
-      fixed[static_cast<size_t>(3 * a + c)] = true;
-  return fixed;
-}
-}  // namespace
-
 TEST(Assembly, FreeDofsMatchThePapersNp) {
   // Table 1: n_p = 900, 2646, 5832 for n = 4, 6, 8.
   const std::map<Index, Index> n_p{{4, 900}, {6, 2646}, {8, 5832}};
   for (const auto& [n, expected] : n_p) {
     const mesh::TetMesh m = mesh::make_brick({Vec3(3, 1, 1), {3 * n, n, n}});
-    EXPECT_EQ(DofMap(clamp(m, "x0")).n_free(), expected) << "n = " << n;
+    EXPECT_EQ(test::clamped_dofs(m).n_free(), expected) << "n = " << n;
   }
 }
 

@@ -10,11 +10,10 @@
 #include <random>
 #include <string>
 
-#include <unistd.h>
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "common/fixtures.hpp"
 #include "fricon/core/error.hpp"
 
 namespace fricon::io {
@@ -23,36 +22,17 @@ namespace {
 using ::testing::HasSubstr;
 namespace fs = std::filesystem;
 
-/// A fresh folder per test, removed at the end.
-class DualDump : public ::testing::Test {
+/// A fresh folder per test (dir_), removed at the end.
+class DualDump : public test::TempDirTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() /
-           (std::string("fricon_dual_dump_") + info->name() + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
   fs::path write_text(const std::string& name, const std::string& text) const {
-    const fs::path p = dir_ / name;
-    std::ofstream(p, std::ios::binary) << text;
-    return p;
+    return dir_.write(name, text);
   }
 
   /// The message of the InputError that reading `text` throws, or "" if it does not throw.
   std::string error_of(const std::string& text) const {
-    const fs::path p = write_text("bad.dual", text);
-    try {
-      (void)read_dual(p);
-    } catch (const InputError& e) {
-      return e.what();
-    }
-    return "";
+    return read_error("bad.dual", text, [](const fs::path& p) { (void)read_dual(p); });
   }
-
-  fs::path dir_;
 };
 
 /// Doubles with every kind of bit pattern a dump can meet: random magnitudes over the whole
@@ -115,7 +95,7 @@ bool bitwise_equal(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
 TEST_F(DualDump, RoundTripIsBitwiseExact) {
   for (const Index m : {1, 2, 7}) {
     const auto d = random_snapshot(m, 1234u + static_cast<unsigned>(m));
-    const fs::path p = dir_ / ("round_trip_" + std::to_string(m) + ".dual");
+    const fs::path p = dir_.path() / ("round_trip_" + std::to_string(m) + ".dual");
     write_dual(p, d);
     EXPECT_FALSE(fs::exists(p.string() + ".tmp"));
     const auto r = read_dual(p);
@@ -130,8 +110,8 @@ TEST_F(DualDump, RoundTripIsBitwiseExact) {
 TEST_F(DualDump, EmptySourceRoundTrips) {
   auto d = random_snapshot(1, 7);
   d.source.clear();
-  write_dual(dir_ / "empty.dual", d);
-  EXPECT_EQ(read_dual(dir_ / "empty.dual").source, "");
+  write_dual(dir_.path() / "empty.dual", d);
+  EXPECT_EQ(read_dual(dir_.path() / "empty.dual").source, "");
 }
 
 // A tiny file written by hand: comments, blank lines, CRLF, tabs, a '+' sign and exponents.
@@ -187,8 +167,8 @@ TEST_F(DualDump, WrittenLayout) {
   d.radius = Eigen::VectorXd::Constant(1, 6e6);
   d.patch_area = Eigen::VectorXd::Constant(1, 0.0625);
   d.source = "x.toml";
-  write_dual(dir_ / "layout.dual", d);
-  std::ifstream f(dir_ / "layout.dual");
+  write_dual(dir_.path() / "layout.dual", d);
+  std::ifstream f(dir_.path() / "layout.dual");
   std::vector<std::string> lines;
   for (std::string l; std::getline(f, l);)
     if (!l.empty() && (l[0] != '#' || lines.empty())) lines.push_back(l);
@@ -208,11 +188,11 @@ TEST_F(DualDump, WrittenLayout) {
 TEST_F(DualDump, WriterRejectsInconsistentSizes) {
   auto d = random_snapshot(2, 3);
   d.h.resize(5);
-  EXPECT_THROW(write_dual(dir_ / "bad.dual", d), Error);
+  EXPECT_THROW(write_dual(dir_.path() / "bad.dual", d), Error);
   d = random_snapshot(2, 3);
   d.Q(0, 0) = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_THROW(write_dual(dir_ / "bad.dual", d), Error);
-  EXPECT_FALSE(fs::exists(dir_ / "bad.dual"));
+  EXPECT_THROW(write_dual(dir_.path() / "bad.dual", d), Error);
+  EXPECT_FALSE(fs::exists(dir_.path() / "bad.dual"));
 }
 
 // ------------------------------------------------------------------------------------------
@@ -267,7 +247,7 @@ TEST_F(DualDump, RejectsMalformedFilesNamingFileAndLine) {
 
 TEST_F(DualDump, MissingFileIsAnInputError) {
   try {
-    (void)read_dual(dir_ / "missing.dual");
+    (void)read_dual(dir_.path() / "missing.dual");
     FAIL() << "no exception";
   } catch (const InputError& e) {
     EXPECT_THAT(e.what(), HasSubstr("missing.dual"));

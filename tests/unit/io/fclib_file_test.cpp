@@ -22,6 +22,7 @@ extern "C" {
 #include <fclib.h>
 }
 
+#include "common/fixtures.hpp"
 #include "fricon/core/error.hpp"
 
 namespace fricon::io {
@@ -81,13 +82,13 @@ void store(const MatrixXd& A, Storage storage, Matrix& out) {
   out.finish(rows, cols, by_column ? -1 : -2);
 }
 
-class FclibFile : public ::testing::Test {
+class FclibFile : public test::TempDirTest {
  protected:
-  fs::path dir_ = fs::temp_directory_path() / "fricon_fclib_file_test";
-  void SetUp() override { fs::create_directories(dir_); }
-  fs::path fresh(const std::string& name) {
-    fs::remove(dir_ / name);
-    return dir_ / name;
+  /// A path in this test's folder where no file is (FCLIB's writers refuse to add a second
+  /// problem to a file).
+  fs::path fresh(const std::string& name) const {
+    fs::remove(dir_.path() / name);
+    return dir_.path() / name;
   }
 };
 
@@ -209,7 +210,7 @@ TEST_F(FclibFile, TripletsWithTheRowInPAreRefusedNamingTheFile) {
 // FCLIB's own global test problems (Siconos' data in ../shared): H is tall and in triplets, and
 // i reaches beyond its number of columns, so i holds the row and p the column.
 TEST(FclibThirdPartyFiles, TripletsKeepTheRowInI) {
-  const fs::path dir = fs::path(FRICON_SHARED_DIR) / "data" / "siconos-fc3d";
+  const fs::path dir = test::shared_data("siconos-fc3d");
   int checked = 0;
   for (const char* name : {"Box_Stacks-i0122-82-5.hdf5", "Spheres-i099-356-679.hdf5"}) {
     const fs::path file = dir / name;

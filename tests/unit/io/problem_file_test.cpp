@@ -17,6 +17,7 @@
 #include <gtest/gtest.h>
 #include <toml++/toml.h>
 
+#include "common/fixtures.hpp"
 #include "fricon/core/error.hpp"
 #include "fricon/fe/material.hpp"
 
@@ -25,16 +26,16 @@ namespace {
 
 using ::testing::HasSubstr;
 
-const std::string kExamples = std::string(FRICON_SOURCE_DIR) + "/examples/";
+const std::string kExamples = test::source_path("examples/").string();
 
 /// The message of the InputError that parsing throws, or "" when it does not throw.
 std::string error_of(const std::string& text, const std::vector<std::string>& overrides = {}) {
-  try {
-    (void)parse_problem(text, "t.toml", overrides);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
+  return test::input_error_of([&] { (void)parse_problem(text, "t.toml", overrides); });
+}
+
+/// The message of the InputError that reading `file` throws, or "" when it does not throw.
+std::string read_error(const std::string& file, const std::vector<std::string>& overrides = {}) {
+  return test::input_error_of([&] { (void)read_problem(file, overrides); });
 }
 
 // ------------------------------------------------------------------------------------------
@@ -228,13 +229,9 @@ TEST(ProblemFileOverrides, FrictionLawSwitchDropsTheFileParameters) {
                                        "contact.friction.f=[0.3, 0.1]"});
   EXPECT_EQ(r.contact->friction.f, (std::vector<Real>{0.3, 0.1}));
   // A parameter of another law given on the command line is still an error.
-  try {
-    (void)read_problem(kPaper, {"contact.friction.law=constant", "contact.friction.param=1"});
-    FAIL() << "no error";
-  } catch (const InputError& e) {
-    EXPECT_THAT(e.what(), HasSubstr("--set contact.friction.param=1: contact.friction.param: "
-                                    "not used by law \"constant\""));
-  }
+  EXPECT_THAT(read_error(kPaper, {"contact.friction.law=constant", "contact.friction.param=1"}),
+              HasSubstr("--set contact.friction.param=1: contact.friction.param: not used by law "
+                        "\"constant\""));
 }
 
 TEST(ProblemFileOverrides, CoulombFromTheCommandLineDropsTheFileSlipBound) {
@@ -243,13 +240,9 @@ TEST(ProblemFileOverrides, CoulombFromTheCommandLineDropsTheFileSlipBound) {
   const auto p = read_problem(kPaper, {"contact.model=coulomb"});
   EXPECT_EQ(p.contact->model, contact::FrictionModel::Coulomb);
   EXPECT_FALSE(p.contact->start_slip_bound.has_value());
-  try {
-    (void)read_problem(kPaper, {"contact.model=coulomb", "contact.slip_bound=1e7"});
-    FAIL() << "no error";
-  } catch (const InputError& e) {
-    EXPECT_THAT(e.what(), HasSubstr("--set contact.slip_bound=1e7: contact.slip_bound: not used "
-                                    "by model \"coulomb\""));
-  }
+  EXPECT_THAT(read_error(kPaper, {"contact.model=coulomb", "contact.slip_bound=1e7"}),
+              HasSubstr("--set contact.slip_bound=1e7: contact.slip_bound: not used by model "
+                        "\"coulomb\""));
 }
 
 TEST(ProblemFileOverrides, ArrayOfTablesByIndex) {
@@ -548,12 +541,8 @@ TEST(ProblemFile, PartialConstraintOnContactFaceIsAllowed) {
 }
 
 TEST(ProblemFile, MissingFile) {
-  try {
-    (void)read_problem("/nonexistent/problem.toml");
-    FAIL() << "no error";
-  } catch (const InputError& e) {
-    EXPECT_THAT(e.what(), HasSubstr("/nonexistent/problem.toml: cannot open"));
-  }
+  EXPECT_THAT(read_error("/nonexistent/problem.toml"),
+              HasSubstr("/nonexistent/problem.toml: cannot open"));
 }
 
 // ------------------------------------------------------------------------------------------
@@ -576,12 +565,7 @@ f = [0.3, 0.2, 0.1]
 
 /// The message of the InputError that driver::validate throws, or "" when it does not throw.
 std::string validate_error(const driver::Problem& p) {
-  try {
-    driver::validate(p);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
+  return test::input_error_of([&p] { driver::validate(p); });
 }
 
 TEST(ProblemFilePositions, RecordsEveryKeyReadAndItsTables) {

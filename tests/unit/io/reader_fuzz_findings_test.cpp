@@ -3,16 +3,14 @@
 // wrong; before the fixes each one escaped as another exception (an internal error, exit code 3),
 // allocated gigabytes, or read or wrote outside an array (under AddressSanitizer: a report).
 
-#include <unistd.h>
-
 #include <filesystem>
-#include <fstream>
 #include <functional>
 #include <string>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "common/fixtures.hpp"
 #include "fricon/core/error.hpp"
 #include "fricon/io/dual_dump.hpp"
 #include "fricon/io/siconos_dat.hpp"
@@ -23,30 +21,18 @@ namespace {
 using ::testing::HasSubstr;
 namespace fs = std::filesystem;
 
-class ReaderFuzzFinding : public ::testing::Test {
+class ReaderFuzzFinding : public test::TempDirTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() /
-           (std::string("fricon_fuzz_finding_") + info->name() + "_" + std::to_string(::getpid()));
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
   /// The message of the InputError that `read` throws on a file holding `text`, or what else
   /// happened.
   std::string error_of(const std::function<void(const fs::path&)>& read,
                        const std::string& text) const {
-    const fs::path p = dir_ / "input";
-    std::ofstream(p, std::ios::binary) << text;
     try {
-      read(p);
-    } catch (const InputError& e) {
-      return e.what();
+      const std::string message = read_error("input", text, read);
+      return message.empty() ? "read without an error" : message;
     } catch (const std::exception& e) {
       return std::string("not an InputError: ") + e.what();
     }
-    return "read without an error";
   }
   std::string siconos(const std::string& text) const {
     return error_of([](const fs::path& p) { (void)read_siconos_dat(p); }, text);
@@ -54,8 +40,6 @@ class ReaderFuzzFinding : public ::testing::Test {
   std::string dual(const std::string& text) const {
     return error_of([](const fs::path& p) { (void)read_dual(p); }, text);
   }
-
-  fs::path dir_;
 };
 
 // The header of a local problem of 2 contacts with W 6 x 6 in sparse-block storage (1), as

@@ -6,22 +6,20 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
+#include <sstream>
 
 #include <Eigen/Dense>
 
+#include "common/fixtures.hpp"
 #include "fricon/core/error.hpp"
 
 namespace fricon::io {
 namespace {
 
-class SiconosDat : public ::testing::Test {
+class SiconosDat : public test::TempDirTest {
  protected:
-  std::filesystem::path dir_ = std::filesystem::temp_directory_path() / "fricon_siconos_dat";
-  void SetUp() override { std::filesystem::create_directories(dir_); }
   std::filesystem::path write(const std::string& name, const std::string& text) {
-    std::ofstream(dir_ / name) << text;
-    return dir_ / name;
+    return dir_.write(name, text);
   }
 };
 

@@ -1,8 +1,10 @@
 // The CHOLMOD wrapper against dense algebra, and its failure on a singular K.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 
+#include "common/fixtures.hpp"
 #include "fricon/core/error.hpp"
 #include "fricon/fe/assembly.hpp"
 #include "fricon/linalg/cholesky.hpp"
@@ -17,13 +19,19 @@ SparseMatrix random_spd(Index n, unsigned seed) {
   const MatrixXd A = R * R.transpose() + static_cast<Real>(n) * MatrixXd::Identity(n, n);
   return A.sparseView().cast<Real>();
 }
-// The dofs of a brick clamped on its face x = 0.
-fe::DofMap clamped_at_x0(const mesh::TetMesh& m) {
-  std::vector<bool> fixed(static_cast<size_t>(3 * m.n_nodes()), false);
-  for (Index a : m.nodes_with_tag("x0"))
-    for (int c = 0; c < 3; ++c)
-      fixed[static_cast<size_t>(3 * a + c)] = true;
-  return fe::DofMap(fixed);
+
+// A steel brick of edge lengths `size` and `cells` clamped at x0: its dofs and stiffness matrix.
+struct ClampedSteel {
+  mesh::TetMesh m;
+  fe::DofMap dofs{0};
+  SparseMatrix K;
+};
+ClampedSteel clamped_steel(const Vec3& size, const std::array<Index, 3>& cells) {
+  ClampedSteel b;
+  b.m = mesh::make_brick({size, cells});
+  b.dofs = test::clamped_dofs(b.m);
+  b.K = fe::assemble_stiffness(b.m, fe::isotropic(2e11, 0.3), b.dofs);
+  return b;
 }
 }  // namespace
 
@@ -58,9 +66,7 @@ TEST(Cholesky, UnclampedStiffnessIsReportedAsNotPositiveDefinite) {
 TEST(Cholesky, TrailingBlockIsTheFactorOfTheSchurComplement) {
   // Constrain the dofs of the bottom face to come last; then L22 L22^T must equal the Schur
   // complement S = K22 - K21 K11^-1 K12 computed with dense algebra.
-  const mesh::TetMesh m = mesh::make_brick({Vec3(2, 1, 1), {4, 2, 2}});
-  const fe::DofMap dofs = clamped_at_x0(m);
-  const SparseMatrix K = fe::assemble_stiffness(m, fe::isotropic(2e11, 0.3), dofs);
+  const auto [m, dofs, K] = clamped_steel(Vec3(2, 1, 1), {4, 2, 2});
   const std::vector<Index> last = dofs.free_dofs(m.nodes_with_tag("z0"));
   linalg::CholeskyFactor chol;
   chol.factorize(K, last);
@@ -110,9 +116,7 @@ SparseMatrix bottom_columns(const mesh::TetMesh& m, const fe::DofMap& dofs, Inde
 
 TEST(Cholesky, InverseGramOnTheReachIsTheDualHessian) {
   // B^T K^-1 B from the forward sweep over the reach of B, against dense solves with K.
-  const mesh::TetMesh m = mesh::make_brick({Vec3(3, 1, 1), {12, 4, 4}});
-  const fe::DofMap dofs = clamped_at_x0(m);
-  const SparseMatrix K = fe::assemble_stiffness(m, fe::isotropic(2e11, 0.3), dofs);
+  const auto [m, dofs, K] = clamped_steel(Vec3(3, 1, 1), {12, 4, 4});
   const SparseMatrix B = bottom_columns(m, dofs, 10);
   linalg::CholeskyFactor chol;
   chol.factorize(K);
@@ -128,9 +132,7 @@ TEST(Cholesky, InverseGramOnTheReachIsTheDualHessian) {
 }
 
 TEST(Cholesky, SolveOnTheReachIsExactOnItsDofs) {
-  const mesh::TetMesh m = mesh::make_brick({Vec3(3, 1, 1), {12, 4, 4}});
-  const fe::DofMap dofs = clamped_at_x0(m);
-  const SparseMatrix K = fe::assemble_stiffness(m, fe::isotropic(2e11, 0.3), dofs);
+  const auto [m, dofs, K] = clamped_steel(Vec3(3, 1, 1), {12, 4, 4});
   const std::vector<Index> surface = dofs.free_dofs(m.nodes_with_tag("z0"));
   linalg::CholeskyFactor chol;
   chol.factorize(K);

@@ -4,7 +4,6 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <functional>
 #include <map>
 #include <set>
@@ -12,6 +11,7 @@
 #include <thread>
 #include <vector>
 
+#include "common/fixtures.hpp"
 #include "fricon/core/error.hpp"
 #include "fricon/mesh/brick.hpp"
 #include "fricon/mesh/gmsh_file.hpp"
@@ -22,28 +22,15 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path test_dir() {
-  const fs::path dir = fs::temp_directory_path() / "fricon_gmsh_file_test";
-  fs::create_directories(dir);
-  return dir;
-}
-
-fs::path write_file(const std::string& name, const std::string& content) {
-  const fs::path path = test_dir() / name;
-  std::ofstream(path) << content;
-  return path;
-}
-
 // Runs `f`, which must throw InputError whose message contains every one of `parts`.
 void expect_input_error(const std::function<void()>& f, const std::vector<std::string>& parts) {
-  try {
-    f();
+  const std::string message = test::input_error_of(f);
+  if (message.empty()) {
     ADD_FAILURE() << "no InputError thrown";
-  } catch (const InputError& e) {
-    for (const auto& part : parts)
-      EXPECT_NE(std::string(e.what()).find(part), std::string::npos)
-          << "'" << part << "' not in: " << e.what();
+    return;
   }
+  for (const auto& part : parts)
+    EXPECT_NE(message.find(part), std::string::npos) << "'" << part << "' not in: " << message;
 }
 
 using Key3 = std::array<Index, 3>;
@@ -102,9 +89,19 @@ Vec3 tag_area_normal(const TetMesh& m, const std::string& tag) {
   return s;
 }
 
+// Each test writes its files in a fresh folder of its own.
+class GmshFile : public test::TempDirTest {
+ protected:
+  fs::path test_dir() const { return dir_.path(); }
+  fs::path write_file(const std::string& name, const std::string& content) const {
+    return dir_.write(name, content);
+  }
+  void expect_round_trip(int version, bool binary, const std::string& name) const;
+};
+
 // @sect: round trips.
 
-void expect_round_trip(int version, bool binary, const std::string& name) {
+void GmshFile::expect_round_trip(int version, bool binary, const std::string& name) const {
   const TetMesh brick = make_brick(BrickSpec{Vec3(3.0, 1.0, 1.0), {6, 2, 3}});
   const fs::path file = test_dir() / name;
   write_gmsh(file, brick, version, binary);
@@ -126,19 +123,19 @@ void expect_round_trip(int version, bool binary, const std::string& name) {
         << "temporary file left behind: " << entry.path();
 }
 
-TEST(GmshFile, BrickRoundTripMsh41Ascii) {
+TEST_F(GmshFile, BrickRoundTripMsh41Ascii) {
   expect_round_trip(kMsh41, false, "brick41.msh");
 }
 
-TEST(GmshFile, BrickRoundTripMsh41Binary) {
+TEST_F(GmshFile, BrickRoundTripMsh41Binary) {
   expect_round_trip(kMsh41, true, "brick41b.msh");
 }
 
-TEST(GmshFile, BrickRoundTripMsh22Ascii) {
+TEST_F(GmshFile, BrickRoundTripMsh22Ascii) {
   expect_round_trip(kMsh22, false, "brick22.msh");
 }
 
-TEST(GmshFile, RegionsRoundTrip) {
+TEST_F(GmshFile, RegionsRoundTrip) {
   TetMesh m = make_brick(BrickSpec{Vec3(2.0, 1.0, 1.0), {2, 1, 1}});
   m.region_names = {"left", "right"};
   m.tet_region.resize(static_cast<size_t>(m.n_tets()));
@@ -165,18 +162,10 @@ TEST(GmshFile, RegionsRoundTrip) {
   }
 }
 
-TEST(GmshFile, TriangleInTwoTagsRoundTrips) {
+TEST_F(GmshFile, TriangleInTwoTagsRoundTrips) {
   // The bottom's triangles also in a tag "contact", on the same entities; and faces of no entity.
   TetMesh m = make_brick(BrickSpec{Vec3(2.0, 1.0, 1.0), {4, 2, 2}});
-  const std::vector<Index> bottom = m.faces_with_tag("z0");
-  const Index n = m.n_faces();
-  m.faces.conservativeResize(3, n + static_cast<Index>(bottom.size()));
-  m.tag_names.push_back("contact");
-  for (size_t i = 0; i < bottom.size(); ++i) {
-    m.faces.col(n + static_cast<Index>(i)) = m.faces.col(bottom[i]);
-    m.face_tag.push_back(static_cast<int>(m.tag_names.size()) - 1);
-    m.face_entity.push_back(m.face_entity[bottom[i]]);
-  }
+  test::add_second_tag(m, "z0", "contact");
   for (Index f : m.faces_with_tag("x0"))
     m.face_entity[f] = -1;
   for (int version : {kMsh41, kMsh22}) {
@@ -195,7 +184,7 @@ TEST(GmshFile, TriangleInTwoTagsRoundTrips) {
   }
 }
 
-TEST(GmshFile, WriteRefusesBadVersionAndName) {
+TEST_F(GmshFile, WriteRefusesBadVersionAndName) {
   const TetMesh m = make_brick(BrickSpec{Vec3(1, 1, 1), {1, 1, 1}});
   expect_input_error([&] { write_gmsh(test_dir() / "v3.msh", m, 30); }, {"v3.msh", "30"});
   expect_input_error([&] { write_gmsh(test_dir() / "mesh.vtk", m); }, {"mesh.vtk", ".msh"});
@@ -212,7 +201,7 @@ Physical Surface("top") = {6};
 Physical Surface("all") = {1, 2, 3, 4, 5, 6};
 )";
 
-TEST(GmshFile, GeoBoxIsMeshedWithOutwardFaces) {
+TEST_F(GmshFile, GeoBoxIsMeshedWithOutwardFaces) {
   const TetMesh m = read_gmsh(write_file("box.geo", kBoxGeo));
   EXPECT_NEAR(total_volume(m), 2.0, 1e-12);
   EXPECT_EQ(m.region_names, std::vector<std::string>{"solid"});
@@ -236,14 +225,14 @@ TEST(GmshFile, GeoBoxIsMeshedWithOutwardFaces) {
   EXPECT_EQ(all_entities.size(), 6u);
 }
 
-TEST(GmshFile, SizeFactorRefines) {
+TEST_F(GmshFile, SizeFactorRefines) {
   const fs::path geo = write_file("box_factor.geo", kBoxGeo);
   EXPECT_GT(read_gmsh(geo, 0.5).n_tets(), read_gmsh(geo, 1.0).n_tets());
 }
 
 // Gmsh 4.8 kept the rest of a .geo file it failed to parse and read it as the start of the next
 // one: the box then failed with "syntax error (;)" (issue 23; gmsh_api::flush_geo_parser).
-TEST(GmshFile, AGeoFileThatFailedToParseDoesNotSpoilTheNext) {
+TEST_F(GmshFile, AGeoFileThatFailedToParseDoesNotSpoilTheNext) {
   for (const char* bad : {"this is not Gmsh;\n", "this is not Gmsh's language;\n"}) {
     expect_input_error([&] { read_gmsh(write_file("bad.geo", bad)); }, {"bad.geo"});
     EXPECT_NEAR(total_volume(read_gmsh(write_file("box_after_bad.geo", kBoxGeo))), 2.0, 1e-12)
@@ -254,7 +243,7 @@ TEST(GmshFile, AGeoFileThatFailedToParseDoesNotSpoilTheNext) {
 // Gmsh's state is the process's: threads that read .geo files at once took turns in it before
 // issue 23 only by chance (they crashed, or read each other's models). Each now gets the mesh
 // it would get alone, and one thread's bad file is its own error.
-TEST(GmshFile, ThreadsReadingGeoFilesAtOnceGetTheMeshOfOne) {
+TEST_F(GmshFile, ThreadsReadingGeoFilesAtOnceGetTheMeshOfOne) {
   const fs::path box = write_file("box_threads.geo", kBoxGeo);
   const fs::path bad = write_file("bad_threads.geo", "this is not Gmsh;\n");
   const TetMesh alone = read_gmsh(box);
@@ -283,13 +272,13 @@ TEST(GmshFile, ThreadsReadingGeoFilesAtOnceGetTheMeshOfOne) {
   }
 }
 
-TEST(GmshFile, SizeFactorOnlyForGeo) {
+TEST_F(GmshFile, SizeFactorOnlyForGeo) {
   const fs::path file = test_dir() / "factor.msh";
   write_gmsh(file, make_brick(BrickSpec{Vec3(1, 1, 1), {1, 1, 1}}));
   expect_input_error([&] { read_gmsh(file, 0.5); }, {"factor.msh", ".geo"});
 }
 
-TEST(GmshFile, SphereVolumeConverges) {
+TEST_F(GmshFile, SphereVolumeConverges) {
   const fs::path geo = write_file("sphere.geo", R"(SetFactory("OpenCASCADE");
 Sphere(1) = {0,0,0,1};
 Mesh.MeshSizeMax = 0.5;
@@ -301,7 +290,7 @@ Mesh.MeshSizeMax = 0.5;
   EXPECT_LT(fine / exact, 0.05);
 }
 
-TEST(GmshFile, TwoPhysicalVolumesAreTwoRegions) {
+TEST_F(GmshFile, TwoPhysicalVolumesAreTwoRegions) {
   const TetMesh m = read_gmsh(write_file("two.geo", R"(SetFactory("OpenCASCADE");
 Box(1) = {0,0,0, 1,1,1};
 Box(2) = {1,0,0, 1,1,1};
@@ -321,7 +310,7 @@ Physical Volume(7) = {2};
 
 // @sect: refused meshes.
 
-TEST(GmshFile, RefusesSecondOrder) {
+TEST_F(GmshFile, RefusesSecondOrder) {
   const fs::path geo = write_file("order2.geo", R"(SetFactory("OpenCASCADE");
 Box(1) = {0,0,0, 1,1,1};
 Mesh.MeshSizeMax = 1;
@@ -351,7 +340,7 @@ $Elements
 $EndElements
 )";
 
-TEST(GmshFile, RefusesHexahedra) {
+TEST_F(GmshFile, RefusesHexahedra) {
   expect_input_error([&] { read_gmsh(write_file("hex.msh", kHexMsh)); },
                      {"hex.msh", "Hexahedron", "Recombine"});
 }
@@ -367,25 +356,25 @@ std::string one_tet_msh(const std::string& tet_nodes, const std::string& extra_n
          "\n7 4 2 0 1 " + tet_nodes + "\n" + extra_elements + "$EndElements\n";
 }
 
-TEST(GmshFile, AcceptsTheHandWrittenTetrahedron) {
+TEST_F(GmshFile, AcceptsTheHandWrittenTetrahedron) {
   const TetMesh m = read_gmsh(write_file("tet.msh", one_tet_msh("1 2 3 4")));
   EXPECT_EQ(m.n_tets(), 1);
   EXPECT_NEAR(total_volume(m), 1.0 / 6.0, 1e-15);
 }
 
-TEST(GmshFile, RefusesInvertedTetrahedron) {
+TEST_F(GmshFile, RefusesInvertedTetrahedron) {
   expect_input_error([&] { read_gmsh(write_file("inverted.msh", one_tet_msh("1 3 2 4"))); },
                      {"inverted.msh", "inverted", "Gmsh element 7"});
 }
 
-TEST(GmshFile, RefusesNodeOfNoTetrahedron) {
+TEST_F(GmshFile, RefusesNodeOfNoTetrahedron) {
   // Gmsh node 15 carries only a point element (Gmsh type 15): it belongs to no tetrahedron.
   const std::string msh = one_tet_msh("1 2 3 4", "15 5 5 5\n", 1, "9 15 2 0 3 15\n", 1);
   expect_input_error([&] { read_gmsh(write_file("unused.msh", msh)); },
                      {"unused.msh", "Gmsh node 15"});
 }
 
-TEST(GmshFile, RefusesTaggedTriangleThatIsNoTetFace) {
+TEST_F(GmshFile, RefusesTaggedTriangleThatIsNoTetFace) {
   // A second tetrahedron (2 3 4 5) and the triangle 1 2 5 (Gmsh element 20) on neither.
   const std::string msh =
       one_tet_msh("1 2 3 4", "5 1 1 1\n", 1, "8 4 2 0 1 2 3 4 5\n20 2 2 3 5 1 2 5\n", 2);
@@ -393,12 +382,12 @@ TEST(GmshFile, RefusesTaggedTriangleThatIsNoTetFace) {
                      {"loose.msh", "Gmsh element 20", "contact"});
 }
 
-TEST(GmshFile, RefusesMissingFile) {
+TEST_F(GmshFile, RefusesMissingFile) {
   expect_input_error([&] { read_gmsh(test_dir() / "nowhere.msh"); },
                      {"nowhere.msh", "no such file"});
 }
 
-TEST(GmshFile, RefusesGarbage) {
+TEST_F(GmshFile, RefusesGarbage) {
   expect_input_error(
       [&] { read_gmsh(write_file("garbage.msh", "this is not a mesh\n1 2 3\n$Nodes\nx\n")); },
       {"garbage.msh"});

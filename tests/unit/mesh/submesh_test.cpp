@@ -5,6 +5,7 @@
 
 #include <vector>
 
+#include "common/fixtures.hpp"
 #include "fricon/mesh/brick.hpp"
 
 using namespace fricon;
@@ -16,15 +17,7 @@ namespace {
 // two regions.
 TetMesh brick_with_a_second_tag() {
   TetMesh m = make_brick(BrickSpec{Vec3(3.0, 1.0, 1.0), {6, 2, 2}});
-  const std::vector<Index> top = m.faces_with_tag("z1");
-  const Index n = m.n_faces();
-  m.faces.conservativeResize(3, n + static_cast<Index>(top.size()));
-  m.tag_names.push_back("top");
-  for (size_t k = 0; k < top.size(); ++k) {
-    m.faces.col(n + static_cast<Index>(k)) = m.faces.col(top[k]);
-    m.face_tag.push_back(static_cast<int>(m.tag_names.size()) - 1);
-    m.face_entity.push_back(m.face_entity[static_cast<size_t>(top[k])]);
-  }
+  test::add_second_tag(m, "z1", "top");
   m.region_names = {"left", "right"};
   for (Index t = 0; t < m.n_tets(); ++t)
     m.tet_region.push_back(m.nodes(0, m.tets(0, t)) < 1.5 ? 0 : 1);

@@ -10,6 +10,7 @@
 
 #include <Eigen/Dense>
 
+#include "common/random_spd.hpp"
 #include "fricon/qp/constraints.hpp"
 #include "fricon/qp/operator.hpp"
 
@@ -23,21 +24,7 @@ inline Operator dense_operator(const Eigen::MatrixXd& M, long* calls = nullptr) 
   };
 }
 
-/// Random SPD matrix with eigenvalues log-spaced in [1, cond], times `scale`.
-inline Eigen::MatrixXd random_spd(Index n, double cond, std::mt19937& rng, double scale = 1.0) {
-  std::normal_distribution<double> N(0.0, 1.0);
-  Eigen::MatrixXd G(n, n);
-  for (Index j = 0; j < n; ++j)
-    for (Index i = 0; i < n; ++i)
-      G(i, j) = N(rng);
-  const Eigen::MatrixXd Q = Eigen::HouseholderQR<Eigen::MatrixXd>(G).householderQ();
-  Eigen::VectorXd lam(n);
-  for (Index i = 0; i < n; ++i) {
-    lam(i) = n == 1 ? 1.0 : std::pow(cond, static_cast<double>(i) / static_cast<double>(n - 1));
-  }
-  Eigen::MatrixXd M = scale * Q * lam.asDiagonal() * Q.transpose();
-  return 0.5 * (M + M.transpose());
-}
+using fricon::test::random_spd;  // tests/common/random_spd.hpp, shared with bench/qp_bench.cpp
 
 inline Eigen::VectorXd random_vector(Index n, std::mt19937& rng) {
   std::normal_distribution<double> N(0.0, 1.0);

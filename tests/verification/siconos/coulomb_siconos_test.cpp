@@ -5,13 +5,7 @@
 // paper's F(||u_t||) frozen at fricon's solution. Built only where Siconos is installed.
 #include <gtest/gtest.h>
 
-#include <vector>
-
-#include "FrictionContactProblem.h"
-#include "Friction_cst.h"
-#include "NonSmoothDrivers.h"
-#include "NumericsMatrix.h"
-#include "SolverOptions.h"
+#include "common/siconos_solve.hpp"
 #include "fricon/driver/paper.hpp"
 #include "fricon/driver/run.hpp"
 
@@ -43,26 +37,11 @@ Coulomb fricon_coulomb(contact::FrictionLawKind law) {
 // solution do not change under the scaling; it only brings Siconos' absolute tolerances to a
 // meaningful size).
 VectorXd siconos_solve(const Coulomb& c, int solver) {
-  const int n = static_cast<int>(c.q.size());
   const double norm_W = c.W.norm(), L = c.lambda.cwiseAbs().maxCoeff();
-  NumericsMatrix* M = NM_create(NM_DENSE, n, n);
-  Eigen::Map<MatrixXd>(M->matrix0, n, n) = c.W / norm_W;
-  VectorXd q = c.q / (norm_W * L), mu = c.mu;
-  FrictionContactProblem fcp{};
-  fcp.dimension = 3;
-  fcp.numberOfContacts = n / 3;
-  fcp.M = M;
-  fcp.q = q.data();
-  fcp.mu = mu.data();
-  SolverOptions* o = solver_options_create(solver);
-  o->dparam[SICONOS_DPARAM_TOL] = 1e-13;
-  o->iparam[SICONOS_IPARAM_MAX_ITER] = 100000;
-  std::vector<double> r(static_cast<size_t>(n), 0.0), u(static_cast<size_t>(n), 0.0);
-  const int info = fc3d_driver(&fcp, r.data(), u.data(), o);
-  EXPECT_EQ(info, 0) << "Siconos solver " << solver << " did not converge";
-  solver_options_delete(o);
-  NM_free(M);
-  return L * Eigen::Map<VectorXd>(r.data(), n);
+  const test::SiconosSolution s =
+      test::siconos_solve(c.W / norm_W, c.q / (norm_W * L), c.mu, solver, 1e-13, 100000);
+  EXPECT_EQ(s.info, 0) << "Siconos solver " << solver << " did not converge";
+  return L * s.r;
 }
 
 void expect_same_multipliers(contact::FrictionLawKind law) {

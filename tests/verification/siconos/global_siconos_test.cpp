@@ -32,6 +32,7 @@
 #include "NumericsSparseMatrix.h"
 #include "SolverOptions.h"
 
+#include "common/fixtures.hpp"
 #include "fricon/driver/local_solve.hpp"
 #include "fricon/io/fclib_file.hpp"
 #include "fricon/io/local_problem_file.hpp"
@@ -53,7 +54,7 @@ constexpr int kSiconosIterations = 10000;
 constexpr double kDefinite = 1e-10;  // W counts as definite above this lambda_min / lambda_max
 
 fs::path shared_file(const std::string& name) {
-  return fs::path(FRICON_SHARED_DIR) / "data" / "siconos-fc3d" / name;
+  return test::shared_data("siconos-fc3d") / name;
 }
 
 struct GlobalDeleter {
