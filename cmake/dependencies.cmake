@@ -68,16 +68,17 @@ endif()
 find_library(SICONOS_NUMERICS siconos_numerics)
 find_path(SICONOS_NUMERICS_INCLUDE_DIR fc3d_Solvers.h PATH_SUFFIXES siconos/numerics)
 find_path(SICONOS_INCLUDE_DIR SiconosConfig.h PATH_SUFFIXES siconos)
+set(SICONOS_NUMERICS_FOUND_ALL FALSE)
 if(SICONOS_NUMERICS AND SICONOS_NUMERICS_INCLUDE_DIR AND SICONOS_INCLUDE_DIR)
+  set(SICONOS_NUMERICS_FOUND_ALL TRUE)
   message(STATUS "Siconos numerics found (${SICONOS_NUMERICS})")
   add_library(fricon_siconos INTERFACE)
   target_include_directories(fricon_siconos SYSTEM INTERFACE ${SICONOS_NUMERICS_INCLUDE_DIR}
                                                              ${SICONOS_INCLUDE_DIR})
   target_link_libraries(fricon_siconos INTERFACE ${SICONOS_NUMERICS})
-else()
-  message(STATUS "Siconos numerics not found (libsiconos-numerics-dev): the comparisons with it "
-                 "are not built")
 endif()
+fricon_optional("Siconos numerics" "${SICONOS_NUMERICS_FOUND_ALL}" libsiconos-numerics-dev
+                "the comparisons with Siconos (bench, verification)")
 
 # PETSc 3.18 with MPI (OpenMPI) and MUMPS (Debian: petsc-dev): the distributed backend
 # ([solver] backend = "petsc", docs/parallel.md). Optional: without it (or with
@@ -95,6 +96,22 @@ if(FRICON_WITH_PETSC AND MPI_FOUND AND PETSC_FOUND AND DMUMPS_LIBRARY AND MUMPS_
   target_link_libraries(fricon_petsc INTERFACE PkgConfig::PETSC ${DMUMPS_LIBRARY}
                         ${MUMPS_COMMON_LIBRARY} MPI::MPI_CXX MPI::MPI_C)
   find_program(FRICON_MPIEXEC NAMES mpirun mpiexec)
-else()
-  message(STATUS "PETSc backend not built (petsc-dev not found or FRICON_WITH_PETSC=OFF)")
+elseif(NOT FRICON_WITH_PETSC)
+  message(STATUS "PETSc backend not built (FRICON_WITH_PETSC=OFF)")
+endif()
+if(FRICON_WITH_PETSC)
+  set(_petsc_found FALSE)
+  if(TARGET fricon_petsc)
+    set(_petsc_found TRUE)
+  endif()
+  fricon_optional("PETSc with MPI and MUMPS" "${_petsc_found}" petsc-dev
+                  "the PETSc backend and its tests")
+  if(TARGET fricon_petsc)
+    set(_mpiexec_found FALSE)
+    if(FRICON_MPIEXEC)
+      set(_mpiexec_found TRUE)
+    endif()
+    fricon_optional("mpirun" "${_mpiexec_found}" "openmpi-bin (petsc-dev brings it)"
+                    "the tests under mpirun (label mpi)")
+  endif()
 endif()

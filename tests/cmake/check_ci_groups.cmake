@@ -1,0 +1,15 @@
+# The optional groups a CI build must have (cmake/optional_dependencies.cmake): Siconos, and the
+# PETSc backend unless the build turned it off; the Python module outside the sanitizer build.
+set(_missing)
+if(NOT HAVE_SICONOS)
+  list(APPEND _missing "Siconos")
+endif()
+if(WITH_PETSC AND NOT HAVE_PETSC)
+  list(APPEND _missing "PETSc backend")
+endif()
+if(NOT SANITIZE AND NOT HAVE_PYTHON)
+  list(APPEND _missing "Python module")
+endif()
+if(_missing)
+  message(FATAL_ERROR "CI build without: ${_missing}")
+endif()
