@@ -273,6 +273,9 @@ qp::LocalProblem read_siconos_dat(const std::filesystem::path& path) {
     const long nc = t.integer("the number of contacts");
     if (dim != 3 || nc <= 0)
       throw fail(fmt::format("dimension {} with {} contacts; fricon solves 3D problems", dim, nc));
+    // Each contact has its coefficient (and 3 entries of q) in the file.
+    if (static_cast<size_t>(nc) > t.total())
+      throw fail(fmt::format("{} contacts, more than the file's {} numbers", nc, t.total()));
     const SparseMatrix first = read_matrix(t, "W (local) or M (global)");
     // Local (W, q, mu) or global (M, H, q, b, mu): the file says which only by how its tokens
     // add up, so both readings are tried to the end of the file; exactly one must fit.

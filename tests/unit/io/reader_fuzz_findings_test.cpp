@@ -83,6 +83,12 @@ TEST_F(ReaderFuzzFinding, SiconosEmptyMatrixLargerThanTheFileIsRefused) {
   EXPECT_THAT(siconos("3\n2\n1\n6\n9223372036854775807\n0\n"), HasSubstr("larger than the file's"));
 }
 
+// Found by siconos_dat_fuzz: 3074457345618258603 contacts made 3 n_contacts overflow (UBSan).
+TEST_F(ReaderFuzzFinding, SiconosContactsBeyondTheFileAreRefused) {
+  EXPECT_THAT(siconos("3\n3074457345618258603\n0\n3\n3\n3 3\n1 0 0 0 1 0 0 0 1\n"),
+              HasSubstr("3074457345618258603 contacts, more than the file's"));
+}
+
 // A block whose cumulative sizes reach past the matrix (columns 0..5 of a 4 x 4 M) was written
 // outside Eigen's arrays by setFromTriplets (AddressSanitizer: heap-buffer-overflow).
 TEST_F(ReaderFuzzFinding, SiconosBlocksOutsideTheMatrixAreRefused) {
