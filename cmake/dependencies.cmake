@@ -1,3 +1,4 @@
+include(${CMAKE_CURRENT_LIST_DIR}/optional_dependencies.cmake)
 # Every dependency is a Debian package installed by scripts/install-deps.sh; nothing is downloaded.
 find_package(Eigen3 3.4 REQUIRED NO_MODULE)
 find_package(fmt REQUIRED)
