@@ -49,7 +49,7 @@ Row measure(long n, const Settings& s, int repeat) {
   Row r;
   r.n = n;
   driver::Problem p = driver::paper_problem(n, 6e4);
-  p.contact->model = s.model;
+  p.contact.front().model = s.model;
   p.solver.dual_operator = s.mode;
   p.solver.qp.variant = s.variant;
   for (int k = 0; k < repeat; ++k) {

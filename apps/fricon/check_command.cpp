@@ -22,7 +22,7 @@ int check(const std::string& file, const std::vector<std::string>& sets) {
   (void)driver::make_materials(problem, mesh);  // every region has its material
   const fe::DofMap dofs = driver::make_dofs(problem, mesh);
   std::optional<contact::ContactDiscretization> disc;
-  if (problem.contact) disc = driver::discretize_contact(problem, mesh, dofs);
+  if (!problem.contact.empty()) disc = driver::discretize_contact(problem, mesh, dofs);
   fmt::print("{}: valid\n", file);
   fmt::print("  mesh       {} nodes, {} tetrahedra, {} regions, {} boundary triangles (tags: {})\n",
              mesh.n_nodes(), mesh.n_tets(), mesh.n_regions(), mesh.n_faces(), mesh.tag_list());
@@ -32,11 +32,11 @@ int check(const std::string& file, const std::vector<std::string>& sets) {
         "  contact    '{}': {} surface nodes ({} contact nodes), {} patches ({}), n_dual = {}, "
         "stability sigma_min/sigma_max(B) = {:.3g}, initial gap {:.3g} to {:.3g} m\n",
         disc->surface.tag, disc->surface.n_nodes(), disc->surface.n_contact_nodes(),
-        disc->n_patches(), enum_name(problem.contact->patches), disc->n_dual(),
+        disc->n_patches(), enum_name(problem.contact.front().patches), disc->n_dual(),
         disc->stability.ratio, disc->gap.minCoeff(), disc->gap.maxCoeff());
     if (!disc->partition_note.empty()) fmt::print("  partition  {}\n", disc->partition_note);
     fmt::print("  friction   {}\n",
-               contact::make_friction_law(problem.contact->friction)->describe());
+               contact::make_friction_law(problem.contact.front().friction)->describe());
   }
   fmt::print("effective problem:\n{}\n", io::to_json(problem).dump(2));
   return kConverged;

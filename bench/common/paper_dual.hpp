@@ -41,7 +41,7 @@ inline std::unique_ptr<PaperDual> problem_dual(driver::Problem problem) {
   d->Q = dual::make_dual_operator(
       dual::DualOperatorKind::Forward,
       {d->model.factor, d->disc.B, d->model.f, d->disc.dofs, {}, &d->disc.offset});
-  d->law = contact::make_friction_law(d->problem.contact->friction);
+  d->law = contact::make_friction_law(d->problem.contact.front().friction);
   d->radius = contact::patch_radii(d->model.mesh, d->disc.surface, d->disc.patches, *d->law,
                                    VectorXd::Zero(d->disc.surface.n_nodes()), d->disc.slip_bound);
   return d;

@@ -58,7 +58,7 @@ driver::Problem clamped_problem(bool with_contact) {
   driver::Problem p;
   p.dirichlet.push_back({"x0", {true, true, true}});
   p.traction.push_back({"x1", Vec3(1e7, 0.0, 2e7)});
-  if (with_contact) p.contact.emplace();
+  if (with_contact) p.contact.emplace_back();
   return p;
 }
 
@@ -74,7 +74,7 @@ driver::Problem gravity_column() {
                  {"y0", {false, true, false}},
                  {"y1", {false, true, false}}};
   p.volume_force = Vec3(0, 0, -kColumnWeight);
-  p.contact = driver::ContactOptions{};
+  p.contact = {driver::ContactOptions{}};
   p.solver.qp.rel_tolerance = 1e-12;
   return p;
 }

@@ -22,12 +22,12 @@ namespace {
 // gap, and of that part only two patches end up pressing; Coulomb friction 0.3.
 Problem tilted_coulomb_brick() {
   Problem p = paper_problem(4, 6e4);
-  p.contact->model = contact::FrictionModel::Coulomb;
-  p.contact->friction.law = contact::FrictionLawKind::Constant;
-  p.contact->friction.value = 0.3;
+  p.contact.front().model = contact::FrictionModel::Coulomb;
+  p.contact.front().friction.law = contact::FrictionLawKind::Constant;
+  p.contact.front().friction.value = 0.3;
   // z = -1e-5 - 2e-3 x [m] (nearly).
-  p.contact->obstacle =
-      ObstacleOptions{ObstacleKind::Plane, Vec3(0.0, 0.0, -1.0e-5), Vec3(2.0e-3, 0.0, 1.0)};
+  p.contact.front().obstacle =
+      ObstacleOptions{ObstacleKind::Plane, Vec3(0.0, 0.0, -1.0e-5), Vec3(2.0e-3, 0.0, 1.0), ""};
   p.solver.qp.rel_tolerance = 1e-10;
   p.solver.outer.tol = 1e-8;
   return p;
@@ -105,8 +105,8 @@ TEST(ContactSearch, AFirstSetTooSmallGrowsUntilNoPatchLeftOutPenetrates) {
 TEST(ContactSearch, TrescaWithAPositiveBoundUsesEveryPatch) {
   // The Tresca bound g F acts without pressure: no patch can be left out.
   Problem p = paper_problem(4, 6e4);
-  p.contact->obstacle =
-      ObstacleOptions{ObstacleKind::Plane, Vec3(0.0, 0.0, -1.0e-5), Vec3(1.0e-4, 0.0, 1.0)};
+  p.contact.front().obstacle =
+      ObstacleOptions{ObstacleKind::Plane, Vec3(0.0, 0.0, -1.0e-5), Vec3(1.0e-4, 0.0, 1.0), ""};
   const RunResult r = run(p);
   ASSERT_EQ(r.report.status, RunStatus::Converged) << r.report.message;
   EXPECT_EQ(r.report.contact->search_rounds, 0);

@@ -168,9 +168,10 @@ TEST(PaperBrick, ReturnedSlipIsAFixedPointOfPsi) {
   ASSERT_EQ(r.report.status, RunStatus::Converged) << r.report.message;
   const auto& c = *r.contact;
   const VectorXd phi = (c.wt1.array().square() + c.wt2.array().square()).sqrt().matrix();
-  const auto law = contact::make_friction_law(p.contact->friction);
-  const VectorXd rho = contact::patch_radii(r.model.mesh, c.surface, c.patches, *law, phi,
-                                            VectorXd::Constant(phi.size(), p.contact->slip_bound));
+  const auto law = contact::make_friction_law(p.contact.front().friction);
+  const VectorXd rho =
+      contact::patch_radii(r.model.mesh, c.surface, c.patches, *law, phi,
+                           VectorXd::Constant(phi.size(), p.contact.front().slip_bound));
   const DenseDual d = dense_dual(r);
   const VectorXd w = d.u0 - d.KinvBt * fista(d.Q, d.h, rho);
   VectorXd psi(phi.size());
@@ -197,7 +198,7 @@ TEST(ContactColumn, FrictionlessColumnUnderGravityCarriesHalfItsWeight) {
   c.slip_bound = 1e5;
   c.friction.law = contact::FrictionLawKind::Constant;
   c.friction.value = 0.0;
-  p.contact = c;
+  p.contact = {c};
   const RunResult r = run(p);
   ASSERT_EQ(r.report.status, RunStatus::Converged) << r.report.message;
   const auto& f = *r.contact;
@@ -269,9 +270,9 @@ TEST(PaperBrick, AnOuterLoopThatDoesNotContractStopsAndSaysSo) {
   // name the cause. (Which iteration it stops at depends on rounding, hence on the CPU's BLAS
   // kernels and thread count: only what is robust is asserted.)
   Problem p = paper_problem(4, 6e4);
-  p.contact->friction.law = contact::FrictionLawKind::Table;
-  p.contact->friction.t = {1.0e-5, 1.1e-5};
-  p.contact->friction.f = {0.0, 3.0};
+  p.contact.front().friction.law = contact::FrictionLawKind::Table;
+  p.contact.front().friction.t = {1.0e-5, 1.1e-5};
+  p.contact.front().friction.f = {0.0, 3.0};
   p.solver.outer.max_iterations = 50;
   const RunResult r = run(p);
   EXPECT_EQ(r.report.status, RunStatus::NotConverged);

@@ -21,9 +21,9 @@ using namespace fricon::driver;
 namespace {
 
 Problem coulomb(Problem p, Real F) {
-  p.contact->model = contact::FrictionModel::Coulomb;
-  p.contact->friction.law = contact::FrictionLawKind::Constant;
-  p.contact->friction.value = F;
+  p.contact.front().model = contact::FrictionModel::Coulomb;
+  p.contact.front().friction.law = contact::FrictionLawKind::Constant;
+  p.contact.front().friction.value = F;
   return p;
 }
 
@@ -51,7 +51,7 @@ CoulombCheck check_coulomb(const RunResult& r, const Problem& p) {
   const VectorXd w = r.model.dofs.from_nodal(r.displacement);
   const VectorXd g = -(B * w);  // Q l - h = B K^-1 (B^T l - f) = -B w
   const VectorXd slip = (c.wt1.array().square() + c.wt2.array().square()).sqrt().matrix();
-  const auto law = contact::make_friction_law(p.contact->friction);
+  const auto law = contact::make_friction_law(p.contact.front().friction);
   const VectorXd mu = contact::patch_radii(r.model.mesh, c.surface, c.patches, *law, slip,
                                            VectorXd::Ones(slip.size()));
   const Real alpha = 1.0 / r.report.contact->norm_Q;
@@ -74,8 +74,8 @@ CoulombCheck check_coulomb(const RunResult& r, const Problem& p) {
 
 TEST(Coulomb, WithoutFrictionItIsTheFrictionlessProblem) {
   Problem frictionless = paper_problem(4, 6e4);
-  frictionless.contact->friction.law = contact::FrictionLawKind::Constant;
-  frictionless.contact->friction.value = 0.0;
+  frictionless.contact.front().friction.law = contact::FrictionLawKind::Constant;
+  frictionless.contact.front().friction.value = 0.0;
   frictionless.solver.qp.rel_tolerance = 1e-10;
   const Problem c = coulomb(frictionless, 0.0);
   const RunResult a = run(frictionless), b = run(c);
@@ -90,9 +90,9 @@ TEST(Coulomb, UnderAKnownUniformPressureItIsTrescaWithThatPressure) {
   const Real pressure = test::kColumnWeight * test::kColumnHeight / 2.0;  // b0 H / 2
   const Problem c = coulomb(test::gravity_column(), 0.3);
   Problem t = test::gravity_column();
-  t.contact->friction.law = contact::FrictionLawKind::Constant;
-  t.contact->friction.value = 0.3;
-  t.contact->slip_bound = pressure;
+  t.contact.front().friction.law = contact::FrictionLawKind::Constant;
+  t.contact.front().friction.value = 0.3;
+  t.contact.front().slip_bound = pressure;
   const RunResult a = run(t), b = run(c);
   ASSERT_EQ(b.report.status, RunStatus::Converged) << b.report.message;
   for (Index q = 0; q < b.contact->patches.size(); ++q)
@@ -107,7 +107,7 @@ TEST(Coulomb, EveryFixedPointReturnedSatisfiesTheCoulombConditions) {
   // of the surface slips, part sticks and part lifts off.
   for (const bool paper_law : {false, true}) {
     Problem p = coulomb(paper_problem(4, 6e4), 0.3);
-    if (paper_law) p.contact->friction.law = contact::FrictionLawKind::Paper;
+    if (paper_law) p.contact.front().friction.law = contact::FrictionLawKind::Paper;
     p.solver.qp.rel_tolerance = 1e-10;
     p.solver.outer.tol = 1e-8;
     const RunResult r = run(p);
@@ -134,7 +134,7 @@ TEST(Coulomb, ATrescaStartReachesTheSameFixedPoint) {
   p.solver.qp.rel_tolerance = 1e-10;
   p.solver.outer.tol = 1e-9;
   Problem started = p;
-  started.contact->start_slip_bound = 3.0e7;
+  started.contact.front().start_slip_bound = 3.0e7;
   const RunResult a = run(p), b = run(started);
   ASSERT_EQ(b.report.status, RunStatus::Converged) << b.report.message;
   EXPECT_LT((b.contact->lambda - a.contact->lambda).norm(), 1e-6 * a.contact->lambda.norm());
@@ -143,9 +143,9 @@ TEST(Coulomb, ATrescaStartReachesTheSameFixedPoint) {
 TEST(Coulomb, ALoopThatDoesNotContractIsReportedWithItsRatio) {
   // F rises from 0 to 3 over one micrometre of slip: the successive approximations cycle.
   Problem p = coulomb(paper_problem(4, 6e4), 0.0);
-  p.contact->friction.law = contact::FrictionLawKind::Table;
-  p.contact->friction.t = {1.0e-5, 1.1e-5};
-  p.contact->friction.f = {0.0, 3.0};
+  p.contact.front().friction.law = contact::FrictionLawKind::Table;
+  p.contact.front().friction.t = {1.0e-5, 1.1e-5};
+  p.contact.front().friction.f = {0.0, 3.0};
   const RunResult r = run(p);
   EXPECT_EQ(r.report.status, RunStatus::NotConverged);
   EXPECT_EQ(r.report.contact->termination, outer::OuterTermination::Stalled);

@@ -52,9 +52,9 @@ TEST(FrictionLawKinds, PaperLawAsAnExpressionGivesThePaperSolution) {
   EXPECT_EQ(ref.report.contact->radius_integration, contact::kRadiusIntegration);
 
   Problem p = tight_paper_problem();
-  p.contact->friction.law = contact::FrictionLawKind::Expression;
-  p.contact->friction.expression = kPaperExpression;
-  p.contact->friction.kinks = kPaperKinks;
+  p.contact.front().friction.law = contact::FrictionLawKind::Expression;
+  p.contact.front().friction.expression = kPaperExpression;
+  p.contact.front().friction.kinks = kPaperKinks;
   const RunResult r = run(p);
   expect_same_solution(r, ref);
   EXPECT_EQ(r.report.contact->friction_law,
@@ -69,10 +69,10 @@ TEST(FrictionLawKinds, PaperLawAsAFunctionGivesThePaperSolutionInFewCalls) {
   const auto paper = contact::paper_law(6e4);
   int calls = 0;
   Problem p = tight_paper_problem();
-  p.contact->friction.law = contact::FrictionLawKind::Function;
-  p.contact->friction.kinks = kPaperKinks;
-  p.contact->friction.function_name = "paper_copy";
-  p.contact->friction.function = [&](std::span<const Real> t, std::span<Real> out) {
+  p.contact.front().friction.law = contact::FrictionLawKind::Function;
+  p.contact.front().friction.kinks = kPaperKinks;
+  p.contact.front().friction.function_name = "paper_copy";
+  p.contact.front().friction.function = [&](std::span<const Real> t, std::span<Real> out) {
     ++calls;
     for (size_t i = 0; i < t.size(); ++i)
       out[i] = (*paper)(t[i]);

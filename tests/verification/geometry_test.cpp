@@ -33,8 +33,9 @@ Problem brick_over_plane() {
   Problem p = paper_problem(4, 6e4);
   p.solver.qp.rel_tolerance = 1e-10;
   p.solver.outer.tol = 1e-8;
-  p.contact->patches = contact::PatchKind::Mesh;
-  p.contact->obstacle = ObstacleOptions{ObstacleKind::Plane, Vec3(0, 0, -kGap), Vec3(0, 0, 1)};
+  p.contact.front().patches = contact::PatchKind::Mesh;
+  p.contact.front().obstacle =
+      ObstacleOptions{ObstacleKind::Plane, Vec3(0, 0, -kGap), Vec3(0, 0, 1), ""};
   return p;
 }
 
@@ -52,8 +53,8 @@ Problem rotated(const Problem& p, const Mat3& R, const std::filesystem::path& fi
   for (auto& t : q.traction)
     t.value = R * t.value;
   q.volume_force = R * q.volume_force;
-  q.contact->obstacle->point = R * q.contact->obstacle->point;
-  q.contact->obstacle->normal = R * q.contact->obstacle->normal;
+  q.contact.front().obstacle->point = R * q.contact.front().obstacle->point;
+  q.contact.front().obstacle->normal = R * q.contact.front().obstacle->normal;
   return q;
 }
 
@@ -101,8 +102,8 @@ TEST(Geometry, AContactSurfaceInTwoPiecesIsOneProblem) {
   mesh::write_gmsh(file, m);
   p.mesh.kind = MeshKind::Gmsh;
   p.mesh.file = file.string();
-  p.contact->boundary = "feet";
-  p.contact->patches = contact::PatchKind::Agglomerate;
+  p.contact.front().boundary = "feet";
+  p.contact.front().patches = contact::PatchKind::Agglomerate;
   const RunResult r = run(p);
   ASSERT_EQ(r.report.status, RunStatus::Converged);
   const ContactFields& c = *r.contact;
@@ -157,16 +158,17 @@ TEST(Geometry, AGapIsTakenUpByAPrescribedApproach) {
   top.boundary = "z1";
   top.value = Vec3(0, 0, -kDelta);
   p.dirichlet = {top};
-  p.contact.emplace();
-  p.contact->boundary = "z0";
-  p.contact->slip_bound = 1e7;
-  p.contact->friction.law = contact::FrictionLawKind::Constant;
-  p.contact->friction.value = 0.2;
-  p.contact->obstacle = ObstacleOptions{ObstacleKind::Plane, Vec3::Zero(), Vec3(0, 0, 1)};
+  p.contact.emplace_back();
+  p.contact.front().boundary = "z0";
+  p.contact.front().slip_bound = 1e7;
+  p.contact.front().friction.law = contact::FrictionLawKind::Constant;
+  p.contact.front().friction.value = 0.2;
+  p.contact.front().obstacle =
+      ObstacleOptions{ObstacleKind::Plane, Vec3::Zero(), Vec3(0, 0, 1), ""};
   p.solver.qp.rel_tolerance = 1e-10;
   p.solver.outer.tol = 1e-8;
   Problem q = p;
-  q.contact->obstacle->point = Vec3(0, 0, -kGapDown);
+  q.contact.front().obstacle->point = Vec3(0, 0, -kGapDown);
   q.dirichlet[0].value = Vec3(0, 0, -kDelta - kGapDown);
   const RunResult a = run(p), b = run(q);
   ASSERT_EQ(a.report.status, RunStatus::Converged);

@@ -43,7 +43,8 @@ mesh::TetMesh second_brick() {
 Problem tight(Problem p) {
   p.solver.qp.rel_tolerance = kQpTolerance;
   p.solver.outer.tol = kOuterTolerance;
-  p.contact->patches = contact::PatchKind::Mesh;  // the chessboard squares, kept by the union
+  p.contact.front().patches =
+      contact::PatchKind::Mesh;  // the chessboard squares, kept by the union
   return p;
 }
 

@@ -14,11 +14,36 @@
 
 namespace fricon::contact {
 
+Frames patch_frames(const mesh::TetMesh& mesh, const ContactSurface& surface,
+                    const Patches& patches) {
+  if (surface.master.size() == 0)
+    return Frames::constant(surface.n, surface.t1, surface.t2, patches.size());
+  Frames f;
+  f.n.resize(3, patches.size());
+  f.t1.resize(3, patches.size());
+  f.t2.resize(3, patches.size());
+  for (Index p = 0; p < patches.size(); ++p) {
+    Vec3 sum = Vec3::Zero();
+    for (Index k : patches.faces[static_cast<size_t>(p)]) {
+      const Index face = surface.faces[static_cast<size_t>(k)];
+      sum += mesh::face_area(mesh, face) * mesh::face_normal(mesh, face);
+    }
+    const Vec3 n = sum.normalized();
+    const auto [t1, t2] = Frames::tangents(n);
+    f.n.col(p) = n;
+    f.t1.col(p) = t1;
+    f.t2.col(p) = t2;
+  }
+  return f;
+}
+
 SparseMatrix assemble_b(const mesh::TetMesh& mesh, const fe::DofMap& dofs,
-                        const ContactSurface& surface, const Patches& patches) {
+                        const ContactSurface& surface, const Patches& patches, const Frames& frames,
+                        const SparseMatrix* mortar) {
   std::vector<Eigen::Triplet<Real, SparseIndex>> triplets;
-  const Vec3 dirs[3] = {surface.n, surface.t1, surface.t2};
-  for (Index p = 0; p < patches.size(); ++p)
+  // @sect: the slave's part, int_R phi_a dir dS over R's triangles.
+  for (Index p = 0; p < patches.size(); ++p) {
+    const Mat3 dirs = frames.rows(p);
     for (Index k : patches.faces[static_cast<size_t>(p)]) {
       const Index f = surface.faces[static_cast<size_t>(k)];
       const Real share = mesh::face_area(mesh, f) / 3.0;  // int_T phi_a = |T|/3
@@ -26,13 +51,32 @@ SparseMatrix assemble_b(const mesh::TetMesh& mesh, const fe::DofMap& dofs,
         for (int r = 0; r < 3; ++r)
           for (int c = 0; c < 3; ++c) {
             const Index col = dofs.dof(mesh.faces(v, f), c);
-            if (col >= 0 && dirs[r](c) != 0.0)
-              triplets.emplace_back(3 * p + r, col, share * dirs[r](c));
+            if (col >= 0 && dirs(r, c) != 0.0)
+              triplets.emplace_back(3 * p + r, col, share * dirs(r, c));
           }
     }
+  }
+  // @sect: the master's part, minus int_R phi_a(projection) dir dS.
+  if (mortar != nullptr)
+    for (Index node = 0; node < mortar->outerSize(); ++node)
+      for (SparseMatrix::InnerIterator it(*mortar, node); it; ++it) {
+        const Index p = it.row();
+        const Mat3 dirs = frames.rows(p);
+        for (int r = 0; r < 3; ++r)
+          for (int c = 0; c < 3; ++c) {
+            const Index col = dofs.dof(node, c);
+            if (col >= 0 && dirs(r, c) != 0.0)
+              triplets.emplace_back(3 * p + r, col, -it.value() * dirs(r, c));
+          }
+      }
   SparseMatrix B(3 * patches.size(), dofs.n_free());
   B.setFromTriplets(triplets.begin(), triplets.end());
   return B;
+}
+
+SparseMatrix assemble_b(const mesh::TetMesh& mesh, const fe::DofMap& dofs,
+                        const ContactSurface& surface, const Patches& patches) {
+  return assemble_b(mesh, dofs, surface, patches, patch_frames(mesh, surface, patches));
 }
 
 namespace {

@@ -12,9 +12,22 @@
 
 namespace fricon::contact {
 
-/// B over the free dofs: n_dual = 3 n_patches rows ordered (n, t1, t2) per patch,
-/// (B v)_{n,p} = int_{R_p} v.n dS and likewise for t1, t2 [m^2], exact for the P1 traces; fixed
-/// dofs have no column.
+/// The frame of each patch, in which its multipliers act: the surface's (n, t1, t2) against a
+/// plane; against a body the frame of the patch's area-weighted mean outward normal
+/// (Frames::tangents).
+Frames patch_frames(const mesh::TetMesh& mesh, const ContactSurface& surface,
+                    const Patches& patches);
+
+/// B over the free dofs: n_dual = 3 n_patches rows ordered (n, t1, t2) per patch, in the patch's
+/// frame (frames, one per patch), (B v)_{n,p} = int_{R_p} v.n_p dS and likewise for t1, t2
+/// [m^2], exact for the P1 traces; fixed dofs have no column. With `mortar` (against a body:
+/// n_patches x mesh nodes, mortar(p, a) = int_{R_p} of master node a's shape function at the
+/// projection, theory.md §2.8), the master's displacement is subtracted:
+/// (B v)_{n,p} = int_{R_p} (v - v_master).n_p dS.
+SparseMatrix assemble_b(const mesh::TetMesh& mesh, const fe::DofMap& dofs,
+                        const ContactSurface& surface, const Patches& patches, const Frames& frames,
+                        const SparseMatrix* mortar = nullptr);
+/// B against a plane: assemble_b with patch_frames(mesh, surface, patches), without master.
 SparseMatrix assemble_b(const mesh::TetMesh& mesh, const fe::DofMap& dofs,
                         const ContactSurface& surface, const Patches& patches);
 

@@ -84,15 +84,23 @@ ContactDiscretization restrict_to_patches(const ContactDiscretization& disc,
   sub.stability = disc.stability;
   sub.partition_note = disc.partition_note;
   sub.radius_integration = disc.radius_integration;
+  sub.pairs = disc.pairs;
   const auto n = static_cast<Index>(subset.size());
   sub.patches.area.resize(n);
   sub.patches.centroid.resize(3, n);
+  sub.patch_frames.n.resize(3, n);
+  sub.patch_frames.t1.resize(3, n);
+  sub.patch_frames.t2.resize(3, n);
   sub.offset.resize(3 * n);
   for (Index i = 0; i < n; ++i) {
     const Index p = subset[static_cast<size_t>(i)];
     sub.patches.faces.push_back(disc.patches.faces[static_cast<size_t>(p)]);
     sub.patches.area(i) = disc.patches.area(p);
     sub.patches.centroid.col(i) = disc.patches.centroid.col(p);
+    sub.patch_frames.n.col(i) = disc.patch_frames.n.col(p);
+    sub.patch_frames.t1.col(i) = disc.patch_frames.t1.col(p);
+    sub.patch_frames.t2.col(i) = disc.patch_frames.t2.col(p);
+    sub.patch_pair.push_back(disc.patch_pair[static_cast<size_t>(p)]);
     sub.offset.segment<3>(3 * i) = disc.offset.segment<3>(3 * p);
     if (rows == PatchRows::Normal) sub.offset.segment<2>(3 * i + 1).setZero();
   }

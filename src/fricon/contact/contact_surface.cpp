@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <tuple>
 #include <utility>
 
 #include <fmt/format.h>
@@ -10,6 +11,30 @@
 #include "fricon/core/error.hpp"
 
 namespace fricon::contact {
+
+Mat3 Frames::rows(Index k) const {
+  Mat3 m;
+  m.row(0) = n.col(k).transpose();
+  m.row(1) = t1.col(k).transpose();
+  m.row(2) = t2.col(k).transpose();
+  return m;
+}
+
+Frames Frames::constant(const Vec3& n, const Vec3& t1, const Vec3& t2, Index count) {
+  Frames f;
+  f.n = n.replicate(1, count);
+  f.t1 = t1.replicate(1, count);
+  f.t2 = t2.replicate(1, count);
+  return f;
+}
+
+std::pair<Vec3, Vec3> Frames::tangents(const Vec3& n) {
+  // e1, unless n is within about 25 degrees of it: then e2 (a well-conditioned projection).
+  constexpr Real kNearAxis = 0.9;
+  const Vec3 e = std::abs(n(0)) < kNearAxis ? Vec3::UnitX() : Vec3::UnitY();
+  const Vec3 t1 = (e - e.dot(n) * n).normalized();
+  return {t1, t1.cross(n)};
+}
 
 Index ContactSurface::n_contact_nodes() const {
   return static_cast<Index>(std::count(contact_node.begin(), contact_node.end(), true));
@@ -92,9 +117,10 @@ void mark_fixed_components(const fe::DofMap& dofs, ContactSurface& s, const std:
   s.contact_node.resize(s.nodes.size());
   for (size_t k = 0; k < s.nodes.size(); ++k) {
     bool normal_free = false;
+    const Vec3 n = s.node_frames.n.col(static_cast<Index>(k));
     for (int c = 0; c < 3; ++c) {
       s.fixed[k][static_cast<size_t>(c)] = dofs.is_fixed(s.nodes[k], c);
-      if (!s.fixed[k][static_cast<size_t>(c)] && std::abs(s.n(c)) > kNormalShareTolerance)
+      if (!s.fixed[k][static_cast<size_t>(c)] && std::abs(n(c)) > kNormalShareTolerance)
         normal_free = true;
     }
     s.contact_node[k] = normal_free;
@@ -130,11 +156,64 @@ ContactSurface make_contact_surface(const mesh::TetMesh& mesh, const fe::DofMap&
   check_manifold(mesh, s, where);
   s.n = obstacle ? Vec3(-obstacle->normal.normalized()) : flat_surface_normal(mesh, s, where);
   if (obstacle) require_facing_obstacle(mesh, s, where);
-  const Vec3 e = std::abs(s.n(0)) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
-  s.t1 = (e - e.dot(s.n) * s.n).normalized();
-  s.t2 = s.t1.cross(s.n);
+  std::tie(s.t1, s.t2) = Frames::tangents(s.n);
+  s.node_frames = Frames::constant(s.n, s.t1, s.t2, s.n_nodes());
+  s.node_pair.assign(s.nodes.size(), 0);
   mark_fixed_components(dofs, s, where);
   return s;
+}
+
+ContactSurface surface_of_faces(const mesh::TetMesh& mesh, const fe::DofMap& dofs,
+                                const std::string& tag, const std::vector<Index>& faces,
+                                const std::string& where) {
+  ContactSurface s;
+  s.tag = tag;
+  s.faces = faces;
+  std::map<Index, Index> position;
+  for (Index f : faces)
+    for (int v = 0; v < 3; ++v)
+      position.emplace(mesh.faces(v, f), 0);
+  for (auto& [node, k] : position) {
+    k = static_cast<Index>(s.nodes.size());
+    s.nodes.push_back(node);
+  }
+  s.face_nodes.resize(3, static_cast<Index>(faces.size()));
+  Vec3 normal_sum = Vec3::Zero();
+  for (size_t k = 0; k < faces.size(); ++k) {
+    for (int v = 0; v < 3; ++v)
+      s.face_nodes(v, static_cast<Index>(k)) = position[mesh.faces(v, faces[k])];
+    s.area += mesh::face_area(mesh, faces[k]);
+    normal_sum += mesh::face_area(mesh, faces[k]) * mesh::face_normal(mesh, faces[k]);
+  }
+  check_manifold(mesh, s, where);
+  s.n = normal_sum.normalized();
+  std::tie(s.t1, s.t2) = Frames::tangents(s.n);
+  s.node_frames = nodal_frames(mesh, s);
+  s.node_pair.assign(s.nodes.size(), 0);
+  mark_fixed_components(dofs, s, where);
+  return s;
+}
+
+Frames nodal_frames(const mesh::TetMesh& mesh, const ContactSurface& s) {
+  Eigen::Matrix<Real, 3, Eigen::Dynamic> sum =
+      Eigen::Matrix<Real, 3, Eigen::Dynamic>::Zero(3, s.n_nodes());
+  for (size_t k = 0; k < s.faces.size(); ++k) {
+    const Vec3 weighted = mesh::face_area(mesh, s.faces[k]) * mesh::face_normal(mesh, s.faces[k]);
+    for (int v = 0; v < 3; ++v)
+      sum.col(s.face_nodes(v, static_cast<Index>(k))) += weighted;
+  }
+  Frames f;
+  f.n.resize(3, s.n_nodes());
+  f.t1.resize(3, s.n_nodes());
+  f.t2.resize(3, s.n_nodes());
+  for (Index k = 0; k < s.n_nodes(); ++k) {
+    const Vec3 n = sum.col(k).normalized();
+    const auto [t1, t2] = Frames::tangents(n);
+    f.n.col(k) = n;
+    f.t1.col(k) = t1;
+    f.t2.col(k) = t2;
+  }
+  return f;
 }
 
 VectorXd initial_gap(const mesh::TetMesh& mesh, const ContactSurface& surface,
@@ -175,11 +254,23 @@ SurfaceDisplacement surface_displacement(const ContactSurface& s, const fe::DofM
       const Index dof = dofs.dof(s.nodes[static_cast<size_t>(k)], c);
       if (dof >= 0) u(c) = w(dof);
     }
-    d.wn(k) = u.dot(s.n);
-    d.wt1(k) = u.dot(s.t1);
-    d.wt2(k) = u.dot(s.t2);
+    if (s.master.size() > 0) u -= master_displacement(s, dofs, w, k);
+    d.wn(k) = u.dot(s.node_frames.n.col(k));
+    d.wt1(k) = u.dot(s.node_frames.t1.col(k));
+    d.wt2(k) = u.dot(s.node_frames.t2.col(k));
   }
   return d;
+}
+
+Vec3 master_displacement(const ContactSurface& s, const fe::DofMap& dofs, const VectorXd& w,
+                         Index k) {
+  Vec3 u = s.master_prescribed.size() > 0 ? Vec3(s.master_prescribed.col(k)) : Vec3::Zero();
+  for (decltype(s.master)::InnerIterator it(s.master, k); it; ++it)
+    for (int c = 0; c < 3; ++c) {
+      const Index dof = dofs.dof(it.col(), c);
+      if (dof >= 0) u(c) += it.value() * w(dof);
+    }
+  return u;
 }
 
 Real surface_l2_norm(const mesh::TetMesh& mesh, const ContactSurface& surface, const VectorXd& v) {

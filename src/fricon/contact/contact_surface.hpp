@@ -26,6 +26,19 @@ struct Plane {
   Vec3 normal = Vec3(0.0, 0.0, 1.0);  ///< unit
 };
 
+/// Orthonormal frames (n, t1, t2), one per column: n the direction of penetration, t2 = t1 x n.
+struct Frames {
+  Eigen::Matrix<Real, 3, Eigen::Dynamic> n, t1, t2;
+  Index size() const { return n.cols(); }
+  /// The frame of column k as a matrix with rows n, t1, t2: (F u) = (u.n, u.t1, u.t2).
+  Mat3 rows(Index k) const;
+  /// `count` copies of one frame.
+  static Frames constant(const Vec3& n, const Vec3& t1, const Vec3& t2, Index count);
+  /// The frame of unit normal n with t1 the projection of e1 on its plane (of e2 when n is
+  /// near e1) and t2 = t1 x n: the rule of ContactSurface's (n, t1, t2).
+  static std::pair<Vec3, Vec3> tangents(const Vec3& n);
+};
+
 struct ContactSurface {
   std::string tag;
   std::vector<Index> faces;  ///< boundary triangles of the tag (mesh face indices)
@@ -40,7 +53,8 @@ struct ContactSurface {
   /// Per surface node: position in `nodes` of each vertex of each face (3 x faces.size()).
   Eigen::Matrix<Index, 3, Eigen::Dynamic> face_nodes;
   /// Unit normal of the contact: -(the obstacle's normal); without an obstacle the outward normal
-  /// of the (flat) surface.
+  /// of the (flat) surface; against a body the mean outward normal (the frame in which the
+  /// patches are laid out).
   Vec3 n = Vec3::Zero();
   Vec3 t1 = Vec3::Zero();  ///< first tangent (e1 projected on the plane, or e2 if n is near e1)
   Vec3 t2 = Vec3::Zero();  ///< second tangent, t1 x n (e2 on the brick's bottom, as in the paper)
@@ -48,6 +62,20 @@ struct ContactSurface {
   /// Per surface node: the prescribed displacement [m] of its fixed components (zero elsewhere;
   /// 3 x n_nodes, or empty when nothing is prescribed).
   Eigen::Matrix<Real, 3, Eigen::Dynamic> prescribed;
+  /// Per surface node: its frame, in which its relative displacement is split into normal and
+  /// tangential parts (the slip). Against a plane every node has (n, t1, t2); against a body
+  /// n is the node's mean outward normal (theory.md §2.8).
+  Frames node_frames;
+  /// Against a body: the master's displacement at each node's projection, as weights of the mesh
+  /// nodes (n_nodes x mesh nodes, three per row: the P1 shape functions of the master triangle
+  /// the node's normal meets); empty against a plane. The relative displacement of surface node
+  /// k is u(nodes[k]) - sum_a master(k, a) u(a).
+  Eigen::SparseMatrix<Real, Eigen::RowMajor, SparseIndex> master;
+  /// Against a body: sum_a master(k, a) u_p(a) per surface node, the master's prescribed
+  /// displacement at the projection [m] (3 x n_nodes, or empty when nothing is prescribed).
+  Eigen::Matrix<Real, 3, Eigen::Dynamic> master_prescribed;
+  /// Per surface node: the contact pair it belongs to (0 with one pair).
+  std::vector<Index> node_pair;
 
   Index n_nodes() const { return static_cast<Index>(nodes.size()); }
   /// Number of contact nodes (see contact_node).
@@ -70,7 +98,9 @@ ContactSurface make_contact_surface(const mesh::TetMesh& mesh, const fe::DofMap&
 VectorXd initial_gap(const mesh::TetMesh& mesh, const ContactSurface& surface,
                      const Plane& obstacle, const std::string& where);
 
-/// The displacement w on the surface in the local basis, per surface node [m].
+/// The relative displacement on the surface in each node's frame, per surface node [m]: the
+/// displacement itself against a plane, minus the master's at the node's projection against a
+/// body.
 struct SurfaceDisplacement {
   VectorXd wn, wt1, wt2;  ///< w.n, w.t1, w.t2 (fixed components count as zero)
   /// phi = ||w_t|| = sqrt(wt1^2 + wt2^2), the tangential slip.
@@ -78,9 +108,26 @@ struct SurfaceDisplacement {
 };
 
 /// The components of w (a vector over the free dofs, or over the contact dofs with the rest
-/// unread) at the surface nodes, the prescribed displacements of the fixed components included.
+/// unread) at the surface nodes in their frames, the prescribed displacements of the fixed
+/// components included, relative to the master's against a body.
 SurfaceDisplacement surface_displacement(const ContactSurface& surface, const fe::DofMap& dofs,
                                          const VectorXd& w);
+
+/// Against a body: the master's displacement [m] at the projection of surface node k, from w
+/// over the free dofs and the master's prescribed displacements.
+Vec3 master_displacement(const ContactSurface& surface, const fe::DofMap& dofs, const VectorXd& w,
+                         Index k);
+
+/// The surface of the given boundary faces (mesh face indices) of tag `tag`: its nodes, its mean
+/// outward normal as n (with t1, t2), each node's frame from its mean outward normal
+/// (nodal_frames), and the fixed components. The step a surface against a body ends with.
+/// Throws InputError naming `where` when the faces are not a manifold or no node can move.
+ContactSurface surface_of_faces(const mesh::TetMesh& mesh, const fe::DofMap& dofs,
+                                const std::string& tag, const std::vector<Index>& faces,
+                                const std::string& where);
+
+/// Per surface node: the frame of its area-weighted mean outward normal (Frames::tangents).
+Frames nodal_frames(const mesh::TetMesh& mesh, const ContactSurface& surface);
 
 /// Exact L2 norm over the surface of the P1 function with nodal values v (per surface node).
 Real surface_l2_norm(const mesh::TetMesh& mesh, const ContactSurface& surface, const VectorXd& v);

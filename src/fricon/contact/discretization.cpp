@@ -1,5 +1,7 @@
 #include "fricon/contact/discretization.hpp"
 
+#include <algorithm>
+
 #include <fmt/format.h>
 
 #include "fricon/contact/radii.hpp"
@@ -21,21 +23,31 @@ Eigen::Matrix<Real, 3, Eigen::Dynamic> prescribed_on_surface(
 }
 
 /// c of ContactDiscretization::offset: the P1 integrals over each patch (exact: |T|/3 times the
-/// sum of the vertex values on each triangle).
+/// sum of the vertex values on each triangle), in the patch frames; against a body the master's
+/// prescribed displacement enters through the mortar integrals (theory.md §2.8).
 VectorXd constraint_offset(const mesh::TetMesh& mesh, const ContactSurface& s,
-                           const Patches& patches, const VectorXd& gap) {
+                           const Patches& patches, const Frames& frames, const VectorXd& gap,
+                           const SparseMatrix& mortar,
+                           const Eigen::Matrix<Real, 3, Eigen::Dynamic>& prescribed) {
   VectorXd c = VectorXd::Zero(3 * patches.size());
-  for (Index p = 0; p < patches.size(); ++p)
+  for (Index p = 0; p < patches.size(); ++p) {
+    const Mat3 dirs = frames.rows(p);
     for (Index k : patches.faces[static_cast<size_t>(p)]) {
       const Real third = mesh::face_area(mesh, s.faces[static_cast<size_t>(k)]) / 3.0;
       for (int v = 0; v < 3; ++v) {
         const Index node = s.face_nodes(v, k);
         const Vec3 u = s.prescribed.size() > 0 ? Vec3(s.prescribed.col(node)) : Vec3::Zero();
-        c(3 * p) += third * (gap(node) - u.dot(s.n));
-        c(3 * p + 1) -= third * u.dot(s.t1);
-        c(3 * p + 2) -= third * u.dot(s.t2);
+        const Vec3 du = dirs * u;
+        c(3 * p) += third * (gap(node) - du(0));
+        c(3 * p + 1) -= third * du(1);
+        c(3 * p + 2) -= third * du(2);
       }
     }
+  }
+  if (mortar.size() == 0 || prescribed.size() == 0) return c;
+  for (Index a = 0; a < mortar.outerSize(); ++a)
+    for (SparseMatrix::InnerIterator it(mortar, a); it; ++it)
+      c.segment<3>(3 * it.row()) += it.value() * (frames.rows(it.row()) * prescribed.col(a));
   return c;
 }
 
@@ -45,20 +57,34 @@ constexpr Real kMinStabilityRatio = 1e-8;
 // size, so four go from patches of a few triangles to a few patches on a typical surface.
 constexpr int kMaxCoarsenings = 4;
 
-// One partition of the surface with its B and its stability ratio (not yet judged).
+// One partition of the surface with its frames, mortar integrals, B and stability ratio (not
+// yet judged).
 struct Partition {
   Patches patches;
+  Frames frames;
+  SparseMatrix mortar;  // against a body only
+  Real coverage = 1.0;  // against a body only
   SparseMatrix B;
   StabilityReport stability;
   bool stable() const { return stability.ratio >= kMinStabilityRatio; }
 };
 
+// The frames, mortar integrals and B of p.patches.
+void couple(const mesh::TetMesh& mesh, const fe::DofMap& dofs, const ContactSurface& surface,
+            const ContactSpec& spec, Real search_distance, Partition& p) {
+  p.frames = patch_frames(mesh, surface, p.patches);
+  if (spec.master)
+    p.mortar = mortar_matrix(mesh, surface, p.patches, p.frames, spec.master->boundary,
+                             search_distance, p.coverage);
+  p.B = assemble_b(mesh, dofs, surface, p.patches, p.frames, spec.master ? &p.mortar : nullptr);
+}
+
 Partition measure_partition(const mesh::TetMesh& mesh, const fe::DofMap& dofs,
                             const ContactSurface& surface, const ContactSpec& spec,
-                            Real patch_size) {
+                            Real search_distance, Real patch_size) {
   Partition p;
   p.patches = make_patches(spec.patches, mesh, surface, patch_size, spec.where_patches);
-  p.B = assemble_b(mesh, dofs, surface, p.patches);
+  couple(mesh, dofs, surface, spec, search_distance, p);
   p.stability = check_stability(p.B, spec.where_patches, /*min_ratio=*/0.0);
   return p;
 }
@@ -75,16 +101,16 @@ Real mean_patch_diameter(const mesh::TetMesh& mesh, const ContactSurface& surfac
 // unstable, at most kMaxCoarsenings times; `note` says what was done.
 Partition coarsened_agglomerate(const mesh::TetMesh& mesh, const fe::DofMap& dofs,
                                 const ContactSurface& surface, const ContactSpec& spec,
-                                std::string& note) {
+                                Real search_distance, std::string& note) {
   Real patch_size = spec.patch_size;
-  Partition p = measure_partition(mesh, dofs, surface, spec, patch_size);
+  Partition p = measure_partition(mesh, dofs, surface, spec, search_distance, patch_size);
   std::string tried;
   for (int coarsening = 1; !p.stable() && coarsening <= kMaxCoarsenings; ++coarsening) {
     tried +=
         fmt::format("{}patch_size {:.3g} m: {} patches, ratio {:.2e}", tried.empty() ? "" : "; ",
                     patch_size, p.patches.size(), p.stability.ratio);
     patch_size = 2.0 * mean_patch_diameter(mesh, surface, p.patches);
-    p = measure_partition(mesh, dofs, surface, spec, patch_size);
+    p = measure_partition(mesh, dofs, surface, spec, search_distance, patch_size);
   }
   if (!p.stable())
     throw NumericalError(fmt::format(
@@ -104,8 +130,9 @@ Partition coarsened_agglomerate(const mesh::TetMesh& mesh, const fe::DofMap& dof
 
 // The mesh file's partition, refused with advice when unstable.
 Partition checked_entity_partition(const mesh::TetMesh& mesh, const fe::DofMap& dofs,
-                                   const ContactSurface& surface, const ContactSpec& spec) {
-  Partition p = measure_partition(mesh, dofs, surface, spec, spec.patch_size);
+                                   const ContactSurface& surface, const ContactSpec& spec,
+                                   Real search_distance) {
+  Partition p = measure_partition(mesh, dofs, surface, spec, search_distance, spec.patch_size);
   if (!p.stable())
     throw NumericalError(fmt::format(
         "{}: contact.patches = \"mesh\": the partition drawn in the mesh (one patch per "
@@ -118,26 +145,61 @@ Partition checked_entity_partition(const mesh::TetMesh& mesh, const fe::DofMap& 
   return p;
 }
 
-// Patches, B and its checked stability of d.surface, the partition coarsened if need be.
-void partition_stably(const mesh::TetMesh& mesh, const fe::DofMap& dofs, const ContactSpec& spec,
-                      ContactDiscretization& d) {
+// Patches, frames, B and its checked stability of d.surface, the partition coarsened if need be.
+Partition partition_stably(const mesh::TetMesh& mesh, const fe::DofMap& dofs,
+                           const ContactSpec& spec, Real search_distance,
+                           ContactDiscretization& d) {
   Partition p;
   switch (spec.patches) {
     case PatchKind::Agglomerate:
-      p = coarsened_agglomerate(mesh, dofs, d.surface, spec, d.partition_note);
+      p = coarsened_agglomerate(mesh, dofs, d.surface, spec, search_distance, d.partition_note);
       break;
     case PatchKind::Mesh:
-      p = checked_entity_partition(mesh, dofs, d.surface, spec);
+      p = checked_entity_partition(mesh, dofs, d.surface, spec, search_distance);
       break;
     case PatchKind::Chessboard:
       p.patches = make_patches(spec.patches, mesh, d.surface, spec.patch_size, spec.where_patches);
-      p.B = assemble_b(mesh, dofs, d.surface, p.patches);
+      couple(mesh, dofs, d.surface, spec, search_distance, p);
       p.stability = check_stability(p.B, spec.where_patches, kMinStabilityRatio);
       break;
   }
-  d.patches = std::move(p.patches);
-  d.B = std::move(p.B);
-  d.stability = p.stability;
+  return p;
+}
+
+// The surface and the gap of the pair: against the plane (or the flat surface's own), or against
+// a master surface (master_surface.hpp).
+void make_surface(const mesh::TetMesh& mesh, const fe::DofMap& dofs, const ContactSpec& spec,
+                  ContactDiscretization& d) {
+  PairInfo& pair = d.pairs.emplace_back();
+  pair.key = spec.key;
+  pair.boundary = spec.boundary;
+  if (spec.master) {
+    SlaveSurface slave = make_slave_surface(mesh, dofs, spec.boundary, spec.where_boundary,
+                                            *spec.master, spec.prescribed);
+    d.surface = std::move(slave.surface);
+    d.surface.prescribed = prescribed_on_surface(d.surface, spec.prescribed);
+    d.gap = std::move(slave.gap);
+    pair.master = spec.master->boundary;
+    pair.n_tag_faces = slave.n_tag_faces;
+    pair.search_distance = slave.search_distance;
+    pair.master_element_size = slave.master_element_size;
+    return;
+  }
+  d.surface = make_contact_surface(mesh, dofs, spec.boundary, spec.where_boundary, spec.obstacle);
+  d.surface.prescribed = prescribed_on_surface(d.surface, spec.prescribed);
+  d.gap = spec.obstacle ? initial_gap(mesh, d.surface, *spec.obstacle, spec.where_obstacle)
+                        : VectorXd::Zero(d.surface.n_nodes());
+  pair.n_tag_faces = static_cast<Index>(d.surface.faces.size());
+}
+
+// The nodes the rows of B touch: the surface's, and the master's against a body.
+std::vector<Index> coupled_nodes(const ContactSurface& s, const SparseMatrix& mortar) {
+  std::vector<Index> nodes = s.nodes;
+  for (Index a = 0; a < mortar.outerSize(); ++a)
+    if (SparseMatrix::InnerIterator(mortar, a)) nodes.push_back(a);
+  std::sort(nodes.begin(), nodes.end());
+  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+  return nodes;
 }
 
 }  // namespace
@@ -145,15 +207,129 @@ void partition_stably(const mesh::TetMesh& mesh, const fe::DofMap& dofs, const C
 ContactDiscretization discretize_contact(const mesh::TetMesh& mesh, const fe::DofMap& dofs,
                                          const ContactSpec& spec) {
   ContactDiscretization d;
-  d.surface = make_contact_surface(mesh, dofs, spec.boundary, spec.where_boundary, spec.obstacle);
-  d.surface.prescribed = prescribed_on_surface(d.surface, spec.prescribed);
-  partition_stably(mesh, dofs, spec, d);
+  make_surface(mesh, dofs, spec, d);
+  Partition p = partition_stably(mesh, dofs, spec, d.pairs.front().search_distance, d);
+  d.patches = std::move(p.patches);
+  d.B = std::move(p.B);
+  d.stability = p.stability;
+  d.patch_frames = std::move(p.frames);
+  d.patch_pair.assign(static_cast<size_t>(d.patches.size()), 0);
+  d.pairs.front().stability = p.stability;
+  d.pairs.front().master_coverage = p.coverage;
   d.slip_bound = VectorXd::Constant(d.surface.n_nodes(), spec.slip_bound);
-  d.gap = spec.obstacle ? initial_gap(mesh, d.surface, *spec.obstacle, spec.where_obstacle)
-                        : VectorXd::Zero(d.surface.n_nodes());
-  d.offset = constraint_offset(mesh, d.surface, d.patches, d.gap);
-  d.dofs = dofs.free_dofs(d.surface.nodes);
+  d.offset = constraint_offset(mesh, d.surface, d.patches, d.patch_frames, d.gap, p.mortar,
+                               spec.prescribed);
+  d.dofs = dofs.free_dofs(coupled_nodes(d.surface, p.mortar));
   d.radius_integration = kRadiusIntegration;
+  return d;
+}
+
+namespace {
+
+using Matrix3X = Eigen::Matrix<Real, 3, Eigen::Dynamic>;
+
+/// [a b] for a of na columns and b of nb, each of which may be empty (meaning zero); empty when
+/// both are.
+Matrix3X stack_columns(const Matrix3X& a, Index na, const Matrix3X& b, Index nb) {
+  if (a.size() == 0 && b.size() == 0) return Matrix3X();
+  Matrix3X out = Matrix3X::Zero(3, na + nb);
+  if (a.size() > 0) out.leftCols(na) = a;
+  if (b.size() > 0) out.rightCols(nb) = b;
+  return out;
+}
+
+VectorXd stack(const VectorXd& a, const VectorXd& b) {
+  VectorXd out(a.size() + b.size());
+  out << a, b;
+  return out;
+}
+
+template <typename Sparse>
+Sparse stack_rows(const Sparse& a, const Sparse& b, Index cols) {
+  std::vector<Eigen::Triplet<Real, SparseIndex>> t;
+  for (int part = 0; part < 2; ++part) {
+    const Sparse& m = part == 0 ? a : b;
+    const Index shift = part == 0 ? 0 : a.rows();
+    for (Index o = 0; o < m.outerSize(); ++o)
+      for (typename Sparse::InnerIterator it(m, o); it; ++it)
+        t.emplace_back(shift + it.row(), it.col(), it.value());
+  }
+  Sparse out(a.rows() + b.rows(), cols);
+  out.setFromTriplets(t.begin(), t.end());
+  return out;
+}
+
+Frames stack(const Frames& a, const Frames& b) {
+  Frames f;
+  f.n = stack_columns(a.n, a.size(), b.n, b.size());
+  f.t1 = stack_columns(a.t1, a.size(), b.t1, b.size());
+  f.t2 = stack_columns(a.t2, a.size(), b.t2, b.size());
+  return f;
+}
+
+/// b's surface appended to a's: nodes (a node of two pairs appears twice), triangles, frames,
+/// master rows; a's n, t1, t2 kept.
+void append_surface(ContactSurface& a, const ContactSurface& b, Index pair, Index mesh_nodes) {
+  const Index node_shift = a.n_nodes();
+  a.tag += ", " + b.tag;
+  a.faces.insert(a.faces.end(), b.faces.begin(), b.faces.end());
+  a.nodes.insert(a.nodes.end(), b.nodes.begin(), b.nodes.end());
+  a.fixed.insert(a.fixed.end(), b.fixed.begin(), b.fixed.end());
+  a.contact_node.insert(a.contact_node.end(), b.contact_node.begin(), b.contact_node.end());
+  Eigen::Matrix<Index, 3, Eigen::Dynamic> faces(3, a.face_nodes.cols() + b.face_nodes.cols());
+  faces << a.face_nodes, (b.face_nodes.array() + node_shift).matrix();
+  a.face_nodes = std::move(faces);
+  a.area += b.area;
+  a.prescribed = stack_columns(a.prescribed, node_shift, b.prescribed, b.n_nodes());
+  a.master_prescribed =
+      stack_columns(a.master_prescribed, node_shift, b.master_prescribed, b.n_nodes());
+  a.node_frames = stack(a.node_frames, b.node_frames);
+  using Weights = decltype(a.master);
+  const Weights none_a = a.master.size() > 0 ? a.master : Weights(node_shift, mesh_nodes);
+  const Weights none_b = b.master.size() > 0 ? b.master : Weights(b.n_nodes(), mesh_nodes);
+  a.master = (a.master.size() > 0 || b.master.size() > 0) ? stack_rows(none_a, none_b, mesh_nodes)
+                                                          : Weights();
+  a.node_pair.insert(a.node_pair.end(), static_cast<size_t>(b.n_nodes()), pair);
+}
+
+}  // namespace
+
+ContactDiscretization merge_pairs(std::vector<ContactDiscretization> pairs) {
+  FRICON_CHECK(!pairs.empty(), "merge_pairs: no pair");
+  ContactDiscretization d = std::move(pairs.front());
+  for (size_t i = 1; i < pairs.size(); ++i) {
+    const ContactDiscretization& b = pairs[i];
+    const auto pair = static_cast<Index>(i);
+    const Index face_shift = static_cast<Index>(d.surface.faces.size());
+    const Index mesh_nodes =
+        b.surface.master.cols() > 0 ? b.surface.master.cols() : d.surface.master.cols();
+    append_surface(d.surface, b.surface, pair, std::max<Index>(mesh_nodes, 0));
+    for (const auto& faces : b.patches.faces) {
+      std::vector<Index> shifted = faces;
+      for (Index& k : shifted)
+        k += face_shift;
+      d.patches.faces.push_back(std::move(shifted));
+    }
+    d.patches.area = stack(d.patches.area, b.patches.area);
+    d.patches.centroid = stack_columns(d.patches.centroid, d.patches.size() - b.patches.size(),
+                                       b.patches.centroid, b.patches.size());
+    d.patch_frames = stack(d.patch_frames, b.patch_frames);
+    d.patch_pair.insert(d.patch_pair.end(), static_cast<size_t>(b.patches.size()), pair);
+    d.B = stack_rows(d.B, b.B, d.B.cols());
+    d.slip_bound = stack(d.slip_bound, b.slip_bound);
+    d.gap = stack(d.gap, b.gap);
+    d.offset = stack(d.offset, b.offset);
+    std::vector<Index> dofs = d.dofs;
+    dofs.insert(dofs.end(), b.dofs.begin(), b.dofs.end());
+    std::sort(dofs.begin(), dofs.end());
+    dofs.erase(std::unique(dofs.begin(), dofs.end()), dofs.end());
+    d.dofs = std::move(dofs);
+    if (b.stability.ratio < d.stability.ratio) d.stability = b.stability;
+    if (!b.partition_note.empty())
+      d.partition_note +=
+          (d.partition_note.empty() ? "" : "; ") + b.pairs.front().key + ": " + b.partition_note;
+    d.pairs.push_back(b.pairs.front());
+  }
   return d;
 }
 

@@ -10,6 +10,7 @@
 
 #include "fricon/contact/b_matrix.hpp"
 #include "fricon/contact/contact_surface.hpp"
+#include "fricon/contact/master_surface.hpp"
 #include "fricon/contact/patches.hpp"
 #include "fricon/core/types.hpp"
 #include "fricon/fe/dof_map.hpp"
@@ -26,8 +27,12 @@ struct ContactSpec {
   Real patch_size = 0.0;
   Real slip_bound = 0.0;  ///< g [Pa], the same at every surface node
   /// The rigid plane: a point of it [m] and its unit normal pointing out of the obstacle, towards
-  /// the body. Absent: the plane of a flat contact surface, at zero gap.
+  /// the body. Absent: the plane of a flat contact surface, at zero gap (or a master, below).
   std::optional<Plane> obstacle;
+  /// Against a body (theory.md §2.8): the master surface; exclusive with `obstacle`.
+  std::optional<MasterSpec> master;
+  /// The pair's key path ("contact", "contact[1]"), for reports.
+  std::string key = "contact";
   /// The prescribed displacement [m] of every mesh node (3 x n_nodes, zero where nothing is
   /// prescribed), or empty when nothing is.
   Eigen::Matrix<Real, 3, Eigen::Dynamic> prescribed;
@@ -35,6 +40,18 @@ struct ContactSpec {
   std::string where_patches = "contact.patches";
   std::string where_patch_size = "contact.patch_size";
   std::string where_obstacle = "contact.obstacle";
+};
+
+/// One contact pair of a discretization: what the reports say of it.
+struct PairInfo {
+  std::string key;        ///< "contact" or "contact[i]"
+  std::string boundary;   ///< the contact surface's tag (the slave)
+  std::string master;     ///< the master surface's tag; empty against a plane
+  Index n_tag_faces = 0;  ///< triangles of the slave tag (against a body: some may be out of reach)
+  Real search_distance = 0.0;      ///< against a body: d [m]
+  Real master_coverage = 1.0;      ///< against a body: share of the surface opposite the master
+  Real master_element_size = 0.0;  ///< against a body: the master's mean edge [m]
+  StabilityReport stability;       ///< condition (5.1) of the pair's own B
 };
 
 struct ContactDiscretization {
@@ -51,7 +68,13 @@ struct ContactDiscretization {
   VectorXd offset;
   /// The free dofs of the surface nodes, node by node: the only columns B touches.
   std::vector<Index> dofs;
-  StabilityReport stability;  ///< condition (5.1), checked
+  /// Per patch: the frame (n, t1, t2) of its multipliers (b_matrix.hpp, patch_frames).
+  Frames patch_frames;
+  /// Per patch: its pair (an index into `pairs`); the surface's node_pair does the same for nodes.
+  std::vector<Index> patch_pair;
+  std::vector<PairInfo> pairs;  ///< the contact pairs, in the problem's order
+  /// Condition (5.1), checked for each pair; here the smallest ratio of all.
+  StabilityReport stability;
   /// How the partition was made stable: empty when the partition asked for passed condition
   /// (5.1) as built; for PatchKind::Agglomerate, the coarsenings that made it pass (the patch
   /// sizes tried and their ratios), for the log and the report.
@@ -72,5 +95,10 @@ struct ContactDiscretization {
 /// agglomerate one still unstable after the coarsenings), naming the key's position.
 ContactDiscretization discretize_contact(const mesh::TetMesh& mesh, const fe::DofMap& dofs,
                                          const ContactSpec& spec);
+
+/// Several pairs as one discretization: surfaces, patches and rows of B in the order of `pairs`
+/// (each discretize_contact of one pair), the pair of every node and patch recorded. One pair is
+/// returned as it is.
+ContactDiscretization merge_pairs(std::vector<ContactDiscretization> pairs);
 
 }  // namespace fricon::contact

@@ -37,8 +37,8 @@ Index state_size(const TrescaMap& map) {
 ContactReport describe(const Problem& problem, const contact::ContactDiscretization& disc,
                        const dual::DualOperator& Q, const contact::FrictionLaw& law) {
   ContactReport rep;
-  rep.model = problem.contact->model;
-  rep.boundary = problem.contact->boundary;
+  rep.model = problem.contact.front().model;
+  rep.boundary = disc.surface.tag;
   rep.friction_law = law.describe();
   rep.dual_operator = Q.kind();
   rep.n_patches = disc.n_patches();
@@ -307,11 +307,12 @@ std::unique_ptr<contact::SlipBounds> make_slip_bounds(const Problem& problem,
                                                       const mesh::TetMesh& mesh,
                                                       const contact::ContactDiscretization& disc,
                                                       const contact::FrictionLaw& law) {
-  switch (problem.contact->model) {
+  switch (problem.contact.front().model) {
     case contact::FrictionModel::Tresca:
       return contact::make_tresca_bounds(mesh, disc, law);
     case contact::FrictionModel::Coulomb:
-      return contact::make_coulomb_bounds(mesh, disc, law, problem.contact->start_slip_bound);
+      return contact::make_coulomb_bounds(mesh, disc, law,
+                                          problem.contact.front().start_slip_bound);
   }
   throw Error("make_slip_bounds: invalid friction model");
 }
@@ -321,7 +322,7 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m,
                              const dual::DualOperator& Q, PhaseTimes& times,
                              const RunOptions& options, const PatchSelection* selection) {
   ContactOutcome out;
-  const auto law = contact::make_friction_law(problem.contact->friction);
+  const auto law = contact::make_friction_law(problem.contact.front().friction);
   out.report = describe(problem, disc, Q, *law);
   ContactReport& rep = out.report;
   rep.n_candidate_patches = disc.n_patches();

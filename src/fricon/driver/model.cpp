@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "fricon/core/error.hpp"
+#include "fricon/driver/option_table.hpp"
 #include "fricon/fe/rigid_motions.hpp"
 #include "fricon/mesh/brick.hpp"
 #include "fricon/mesh/gmsh_file.hpp"
@@ -303,23 +304,49 @@ void factorize_model(Model& model, const dual::FactorizationRequest& request, Ph
   model.factor.factorize(model.K, request.last);
 }
 
-contact::ContactDiscretization discretize_contact(const Problem& problem, const mesh::TetMesh& mesh,
-                                                  const fe::DofMap& dofs) {
-  FRICON_CHECK(problem.contact.has_value(), "discretize_contact: the problem has no [contact]");
-  const ContactOptions& c = *problem.contact;
+namespace {
+
+// The spec of pair i of the problem, the positions of its keys for messages.
+contact::ContactSpec pair_spec(const Problem& problem, std::size_t i, const mesh::TetMesh& mesh,
+                               const Eigen::Matrix<Real, 3, Eigen::Dynamic>& prescribed) {
+  const ContactOptions& c = problem.contact[i];
+  const std::string key = problem.contact_key(i);
+  const auto where = [&](std::string_view k) { return problem.where(join_key(key, k)); };
   contact::ContactSpec spec;
+  spec.key = key;
   spec.boundary = c.boundary;
   spec.patches = c.patches;
   spec.slip_bound = c.slip_bound;
   if (c.patch_size) spec.patch_size = *c.patch_size;
-  if (c.obstacle)
+  if (c.obstacle && c.obstacle->kind == ObstacleKind::Plane)
     spec.obstacle = contact::Plane{c.obstacle->point, c.obstacle->normal.normalized()};
-  spec.prescribed = make_prescribed(problem, mesh);
-  spec.where_boundary = problem.where("contact.boundary");
-  spec.where_patches = problem.where("contact.patches");
-  spec.where_patch_size = problem.where("contact.patch_size");
-  spec.where_obstacle = problem.where("contact.obstacle");
-  return contact::discretize_contact(mesh, dofs, spec);
+  if (c.obstacle && c.obstacle->kind == ObstacleKind::Body) {
+    contact::MasterSpec master;
+    master.boundary = c.obstacle->boundary;
+    master.search_distance = c.search_distance.value_or(0.0);
+    master.node_body = mesh::find_bodies(mesh).node_body;
+    master.where_boundary = where("obstacle.boundary");
+    spec.master = std::move(master);
+  }
+  spec.prescribed = prescribed;
+  spec.where_boundary = where("boundary");
+  spec.where_patches = where("patches");
+  spec.where_patch_size = where("patch_size");
+  spec.where_obstacle = where("obstacle");
+  return spec;
+}
+
+}  // namespace
+
+contact::ContactDiscretization discretize_contact(const Problem& problem, const mesh::TetMesh& mesh,
+                                                  const fe::DofMap& dofs) {
+  FRICON_CHECK(!problem.contact.empty(), "discretize_contact: the problem has no [contact]");
+  const Eigen::Matrix<Real, 3, Eigen::Dynamic> prescribed = make_prescribed(problem, mesh);
+  std::vector<contact::ContactDiscretization> pairs;
+  for (std::size_t i = 0; i < problem.contact.size(); ++i)
+    pairs.push_back(
+        contact::discretize_contact(mesh, dofs, pair_spec(problem, i, mesh, prescribed)));
+  return contact::merge_pairs(std::move(pairs));
 }
 
 Model build_model(const Problem& problem, PhaseTimes& times, const PhaseCallback& on_phase_start) {

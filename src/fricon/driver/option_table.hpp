@@ -418,6 +418,29 @@ class OptionTableBuilder {
     return o;
   }
 
+  /// One table or an array of tables, both read into one vector `many` (each entry described
+  /// by `table`): [contact] is one entry, [[contact]] one per table; written back as a table
+  /// when there is one entry. Absent: empty.
+  template <typename F>
+  Option& table_or_tables(std::string_view key, F many, const OptionTable& (*entry_table)(),
+                          std::string_view doc) {
+    Option& o = nested(key, doc, OptionType::TableOrArray, entry_table);
+    o.array_table = entry_table;
+    o.optional = true;
+    o.child = [many](const void* s) -> const void* {
+      const auto& v = std::invoke(many, const_cast<S&>(*static_cast<const S*>(s)));
+      return v.size() == 1 ? &v.front() : nullptr;
+    };
+    o.open = [many](void* s) -> void* {
+      return &std::invoke(many, *static_cast<S*>(s)).emplace_back();
+    };
+    o.is_array = [many](const void* s) {
+      return std::invoke(many, const_cast<S&>(*static_cast<const S*>(s))).size() > 1;
+    };
+    set_array_access(o, many);
+    return o;
+  }
+
   /// The last key added is used only when `used(section)`; else `why(section)` is the message;
   /// `doc` says when it is used, for the docs.
   template <typename Used, typename Why>

@@ -20,7 +20,7 @@ Problem paper_problem(Index n, Real param) {
   c.slip_bound = 2.0e7;
   c.friction.law = contact::FrictionLawKind::Paper;
   c.friction.param = param;
-  p.contact = c;
+  p.contact = {c};
   p.solver.outer.tol = 1e-4;
   p.solver.qp.rel_tolerance = 1e-6;
   p.solver.qp.variant = qp::MpgpVariant::Paper;  // the paper's plain MPGP, so that n_mult compares

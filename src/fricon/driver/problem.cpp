@@ -1,5 +1,7 @@
 #include "fricon/driver/problem.hpp"
 
+#include <fmt/format.h>
+
 #include "fricon/core/error.hpp"
 
 namespace fricon::driver {
@@ -14,6 +16,18 @@ std::span<const std::string_view> mesh_parameters(MeshKind kind) {
       return kGmsh;
     case MeshKind::Arrays:
       return {};
+  }
+  return {};
+}
+
+std::span<const std::string_view> obstacle_parameters(ObstacleKind kind) {
+  static constexpr std::string_view kPlane[] = {"point", "normal"};
+  static constexpr std::string_view kBody[] = {"boundary"};
+  switch (kind) {
+    case ObstacleKind::Plane:
+      return kPlane;
+    case ObstacleKind::Body:
+      return kBody;
   }
   return {};
 }
@@ -39,6 +53,10 @@ std::string Problem::where(std::string_view key) const {
     key = key.substr(0, cut);
   }
   return source;
+}
+
+std::string Problem::contact_key(std::size_t i) const {
+  return contact.size() == 1 ? std::string("contact") : fmt::format("contact[{}]", i);
 }
 
 }  // namespace fricon::driver

@@ -104,26 +104,37 @@ struct TractionOptions {
 /// [contact.friction]: the coefficient of friction F(t), t = ||u_t|| [m].
 using FrictionOptions = contact::FrictionLawSpec;
 
-/// The kind of rigid obstacle ([contact.obstacle] kind).
+/// What the contact surface touches ([contact.obstacle] kind).
 enum class ObstacleKind {
   Plane,  ///< a rigid plane (half-space)
+  Body,   ///< another surface of the mesh, usually of another elastic body (theory.md §2.8)
 };
 
-/// [contact.obstacle]: the rigid body the contact surface may touch.
+/// The keys of [contact.obstacle] that `kind` uses (besides kind).
+std::span<const std::string_view> obstacle_parameters(ObstacleKind kind);
+
+/// [contact.obstacle]: what the contact surface (the slave) may touch.
 struct ObstacleOptions {
   ObstacleKind kind = ObstacleKind::Plane;  ///< [contact.obstacle.kind]
   Vec3 point = Vec3::Zero();                ///< [contact.obstacle.point] a point of the plane [m]
   /// [contact.obstacle.normal] the plane's normal, pointing out of the obstacle towards the body;
   /// non-zero (it is normalized).
   Vec3 normal = Vec3(0.0, 0.0, 1.0);
+  /// [contact.obstacle.boundary] kind body: the tag of the master surface, a boundary of the same
+  /// mesh, facing the contact surface.
+  std::string boundary;
 };
 
-/// [contact]: frictional contact of a tagged boundary with a rigid obstacle.
+/// [contact] or one table of [[contact]]: one contact pair, a tagged boundary (the slave, which
+/// carries the patches and the multipliers) against a rigid plane or another surface.
 struct ContactOptions {
   std::string boundary = "z0";  ///< [contact.boundary] tag of the contact surface
-  /// [contact.obstacle] the rigid plane; absent: the plane of a flat contact surface, at zero gap
-  /// (the paper's setting).
+  /// [contact.obstacle] the rigid plane or the master surface; absent: the plane of a flat
+  /// contact surface, at zero gap (the paper's setting).
   std::optional<ObstacleOptions> obstacle;
+  /// [contact.search_distance] with obstacle kind body: how far along the slave's normal the
+  /// master is looked for [m], > 0; absent: a tenth of the slave surface's diameter.
+  std::optional<Real> search_distance;
   /// [contact.model] Tresca (slip bound F g) or Coulomb (slip bound F times the pressure).
   contact::FrictionModel model = contact::FrictionModel::Tresca;
   Real slip_bound = 2.0e7;  ///< [contact.slip_bound] g [Pa], >= 0 (Tresca only)
@@ -181,13 +192,17 @@ struct Problem {
   Vec3 volume_force = Vec3::Zero();  ///< [volume_force] body force [N/m^3], finite
   std::vector<DirichletOptions> dirichlet;
   std::vector<TractionOptions> traction;
-  std::optional<ContactOptions> contact;
+  /// [contact] (one pair) or [[contact]] (one entry per pair); empty: linear elasticity.
+  std::vector<ContactOptions> contact;
   SolverOptions solver;
   OutputOptions output;
 
   /// Where `key` was given, for the start of a message: its own position, else that of the
   /// closest enclosing key ("dirichlet[0]", "dirichlet"), else `source`.
   std::string where(std::string_view key) const;
+  /// The key path of contact pair i: "contact" for the one pair of [contact], "contact[i]" for
+  /// an entry of [[contact]].
+  std::string contact_key(std::size_t i) const;
 };
 
 /// Checks every value of the problem against its range and the consistency of the values with
@@ -203,4 +218,4 @@ FRICON_ENUM_NAMES(fricon::driver::MeshKind, "mesh.kind", {driver::MeshKind::Bric
 FRICON_ENUM_NAMES(fricon::driver::LengthUnit, "mesh.unit", {driver::LengthUnit::Metre, "m"},
                   {driver::LengthUnit::Centimetre, "cm"}, {driver::LengthUnit::Millimetre, "mm"});
 FRICON_ENUM_NAMES(fricon::driver::ObstacleKind, "contact.obstacle.kind",
-                  {driver::ObstacleKind::Plane, "plane"});
+                  {driver::ObstacleKind::Plane, "plane"}, {driver::ObstacleKind::Body, "body"});

@@ -131,18 +131,62 @@ void check_solver(const Problem& p, const std::string& path, const SolverOptions
 
 /// The contact face must keep some free dofs: the Dirichlet entries on it may not fix all of
 /// x, y and z.
-void check_contact_not_clamped(const Problem& p) {
-  if (!p.contact) return;
+void check_contact_not_clamped(const Problem& p, const std::string& key, const ContactOptions& c) {
   std::array<bool, 3> fixed{false, false, false};
   for (const auto& d : p.dirichlet)
-    if (d.boundary == p.contact->boundary)
+    if (d.boundary == c.boundary)
       for (std::size_t i = 0; i < 3; ++i)
         fixed[i] = fixed[i] || d.components[i];
   if (fixed[0] && fixed[1] && fixed[2])
-    fail(p, "contact.boundary",
+    fail(p, join_key(key, "boundary"),
          fmt::format("contact and Dirichlet on the same face \"{}\": [[dirichlet]] fixes all of "
                      "x, y, z there, so no contact node would be left",
-                     p.contact->boundary));
+                     c.boundary));
+}
+
+/// A pair's master is another surface than its slave (self-contact is not supported).
+void check_master(const Problem& p, const std::string& key, const ContactOptions& c) {
+  if (!c.obstacle || c.obstacle->kind != ObstacleKind::Body) return;
+  if (c.obstacle->boundary == c.boundary)
+    fail(p, join_key(key, "obstacle.boundary"),
+         fmt::format("expected the tag of another surface than the contact surface, got \"{}\" "
+                     "for both: self-contact is not supported",
+                     c.boundary));
+}
+
+bool same_friction(const FrictionOptions& a, const FrictionOptions& b) {
+  return a.law == b.law && a.param == b.param && a.value == b.value && a.t == b.t && a.f == b.f &&
+         a.expression == b.expression && a.kinks == b.kinks &&
+         a.quadrature_rtol == b.quadrature_rtol && a.function_name == b.function_name;
+}
+
+/// Every pair: free dofs on its surface, a master of its own; all pairs share the friction
+/// model and law (the outer loop has one law for now; slip bounds g may differ), and no surface
+/// is the contact surface of two pairs.
+void check_contact_pairs(const Problem& p) {
+  for (std::size_t i = 0; i < p.contact.size(); ++i) {
+    const ContactOptions& c = p.contact[i];
+    const std::string key = p.contact_key(i);
+    check_contact_not_clamped(p, key, c);
+    check_master(p, key, c);
+    if (i == 0) continue;
+    const ContactOptions& first = p.contact[0];
+    if (c.model != first.model)
+      fail(p, join_key(key, "model"),
+           fmt::format("expected the model of contact[0] (\"{}\"), got \"{}\": all pairs share "
+                       "one friction model",
+                       enum_name(first.model), enum_name(c.model)));
+    if (!same_friction(c.friction, first.friction))
+      fail(p, join_key(key, "friction"),
+           "expected the friction law of contact[0]: all pairs share one law F (their slip bounds "
+           "g may differ)");
+    for (std::size_t j = 0; j < i; ++j)
+      if (p.contact[j].boundary == c.boundary)
+        fail(p, join_key(key, "boundary"),
+             fmt::format("expected a surface of its own, got \"{}\", the contact surface of "
+                         "contact[{}] too",
+                         c.boundary, j));
+  }
 }
 
 constexpr std::string_view kComponentsPhrase = "a string of distinct letters from \"xyz\"";
@@ -188,12 +232,12 @@ const OptionTable& problem_table() {
              "prescribed displacements: see `[[dirichlet]]`");
     b.tables("traction", &Problem::traction, traction_table,
              "surface tractions: see `[[traction]]`");
-    b.table("contact", &Problem::contact, contact_table,
-            "frictional contact: see `[contact]`; absent: linear elasticity");
+    b.table_or_tables("contact", &Problem::contact, contact_table,
+                      "frictional contact: one pair `[contact]`, or one `[[contact]]` per pair "
+                      "(see `[contact]`); absent: linear elasticity");
     b.table("solver", &Problem::solver, solver_table, "see `[solver]`");
     b.table("output", &Problem::output, output_table, "see `[output]`");
-    b.check(
-        [](const Problem& p, const std::string&, const Problem&) { check_contact_not_clamped(p); });
+    b.check([](const Problem& p, const std::string&, const Problem&) { check_contact_pairs(p); });
     return b.build();
   }();
   return table;
@@ -304,8 +348,22 @@ const OptionTable& contact_table() {
     b.text("boundary", &ContactOptions::boundary, "a non-empty boundary tag",
            "the tag of the contact surface");
     b.table("obstacle", &ContactOptions::obstacle, obstacle_table,
-            "the rigid plane: see `[contact.obstacle]`; absent: the plane of a flat contact "
-            "surface, at zero gap (the paper's setting)");
+            "the rigid plane or the master surface: see `[contact.obstacle]`; absent: the plane "
+            "of a flat contact surface, at zero gap (the paper's setting)");
+    b.number("search_distance", &ContactOptions::search_distance, positive("m"),
+             "how far along the contact surface's normal the master surface is looked for; "
+             "parts of the contact surface farther away carry no multipliers. Absent: a tenth "
+             "of the contact surface's diameter");
+    b.when(
+        [](const ContactOptions& c) {
+          return c.obstacle && c.obstacle->kind == ObstacleKind::Body;
+        },
+        [](const ContactOptions&) {
+          return std::string(
+              "only used with obstacle kind \"body\" (a rigid plane is "
+              "everywhere: its gap is known at every node)");
+        },
+        "with `obstacle.kind = \"body\"`");
     b.choice("model", &ContactOptions::model,
              "`\"tresca\"`: the slip bound of a patch is F times a given g (the paper's model); "
              "`\"coulomb\"`: F times the patch's own contact pressure, solved by successive "
@@ -349,16 +407,26 @@ const OptionTable& obstacle_table() {
   static const OptionTable table = [] {
     OptionTableBuilder<ObstacleOptions> b(
         "contact.obstacle",
-        "a table { kind = \"plane\", point = [x, y, z], normal = [nx, ny, nz] }");
-    b.choice("kind", &ObstacleOptions::kind, "a rigid plane (half-space)");
+        "a table { kind = \"plane\", point = [x, y, z], normal = [nx, ny, nz] } or "
+        "{ kind = \"body\", boundary = \"tag\" }");
+    b.choice("kind", &ObstacleOptions::kind,
+             "`\"plane\"`: a rigid plane (half-space); `\"body\"`: a surface of the mesh, "
+             "usually of another elastic body (theory.md §2.8)");
+    b.selector("kind", &ObstacleOptions::kind, obstacle_parameters,
+               [](const ObstacleOptions& o, std::string_view) {
+                 return fmt::format("not used by kind \"{}\"", enum_name(o.kind));
+               });
     b.number("point", &ObstacleOptions::point, any_number("m"), "a point of the plane")
         .require("a point of the plane [m]");
     b.number("normal", &ObstacleOptions::normal, any_number(),
              "the plane's normal, non-zero (normalized by fricon), pointing out of the obstacle, "
              "towards the body")
         .require("the plane's normal, towards the body");
+    b.text("boundary", &ObstacleOptions::boundary, "a non-empty boundary tag",
+           "the tag of the master surface, facing the contact surface")
+        .require("kind \"body\" needs the tag of the master surface");
     b.check([](const Problem& p, const std::string& path, const ObstacleOptions& o) {
-      if (!(o.normal.norm() > 0.0))
+      if (o.kind == ObstacleKind::Plane && !(o.normal.norm() > 0.0))
         fail(p, join_key(path, "normal"),
              "expected a non-zero vector (the plane's normal, pointing towards the body), got "
              "[0, 0, 0]");

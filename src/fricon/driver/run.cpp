@@ -47,7 +47,7 @@ namespace {
 
 // Every radius is 0 whatever the state: F = 0, or Tresca with g = 0.
 bool frictionless(const Problem& problem, const contact::ContactDiscretization& disc) {
-  const ContactOptions& c = *problem.contact;
+  const ContactOptions& c = problem.contact.front();
   const bool no_coefficient =
       c.friction.law == contact::FrictionLawKind::Constant && c.friction.value == 0.0;
   const bool no_tresca_bound = c.model == contact::FrictionModel::Tresca &&
@@ -61,7 +61,8 @@ bool search_applies(const Problem& problem, const contact::ContactDiscretization
   if (problem.solver.contact_search == contact::ContactSearch::Off) return false;
   // A positive Tresca bound g F acts without pressure: every patch resists sliding.
   const bool tresca_with_friction =
-      problem.contact->model == contact::FrictionModel::Tresca && !frictionless(problem, disc);
+      problem.contact.front().model == contact::FrictionModel::Tresca &&
+      !frictionless(problem, disc);
   return !tresca_with_friction;
 }
 
@@ -221,7 +222,7 @@ RunResult run(const Problem& problem, const RunOptions& options) {
   // @sect: the elastic model and, with contact, its discretization on the contact surface.
   r.model = assemble_model(problem, rep.times, options.on_phase_start);
   std::optional<contact::ContactDiscretization> disc;
-  if (problem.contact) {
+  if (!problem.contact.empty()) {
     phase_start(options, "contact");
     ScopedPhase phase(rep.times, "contact");
     disc = discretize_contact(problem, r.model.mesh, r.model.dofs);

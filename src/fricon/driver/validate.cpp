@@ -98,8 +98,8 @@ void check_nested(const Problem& p, const std::string& key, const Option& o, con
     case OptionType::TableOrArray:
       if (o.is_array(section)) {
         entries(o.array_table());
-      } else {
-        check_section(p, o.table(), key, o.child(section));
+      } else if (const void* child = o.child(section)) {
+        check_section(p, o.table(), key, child);
       }
       break;
     default:

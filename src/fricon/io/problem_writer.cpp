@@ -2,6 +2,7 @@
 // problem file that reads back to the same Problem), walking the option tables
 // (driver/problem_options.cpp): a key that the section's choices do not use, and an optional
 // key that is absent, are left out.
+#include <algorithm>
 #include <cstdint>
 #include <sstream>
 #include <string>
@@ -70,8 +71,11 @@ nlohmann::json section_json(const OptionTable& table, const void* section) {
         j[std::string(o.key)] = entries_json(o, o.table(), section);
         break;
       case OptionType::TableOrArray:
-        j[std::string(o.key)] = o.is_array(section) ? entries_json(o, o.array_table(), section)
-                                                    : section_json(o.table(), o.child(section));
+        if (o.is_array(section)) {
+          j[std::string(o.key)] = entries_json(o, o.array_table(), section);
+        } else if (const void* child = o.child(section)) {
+          j[std::string(o.key)] = section_json(o.table(), child);
+        }
         break;
       default: {
         const OptionValue v = o.get(section);
@@ -129,8 +133,12 @@ toml::table toml_table(const nlohmann::json& j) {
 nlohmann::json to_json(const driver::Problem& p) {
   nlohmann::json j = section_json(driver::problem_table(), &p);
   // The name a friction law given by code has in reports (not a key of the file).
-  if (p.contact && p.contact->friction.law == contact::FrictionLawKind::Function)
-    j["contact"]["friction"]["name"] = p.contact->friction.function_name;
+  for (std::size_t i = 0; i < p.contact.size(); ++i) {
+    const auto& fr = p.contact[i].friction;
+    if (fr.law != contact::FrictionLawKind::Function) continue;
+    auto& entry = p.contact.size() == 1 ? j["contact"] : j["contact"][i];
+    entry["friction"]["name"] = fr.function_name;
+  }
   return j;
 }
 
@@ -140,7 +148,9 @@ std::string to_toml(const driver::Problem& problem) {
         fmt::format("{}: mesh.kind = \"arrays\": a mesh given by code cannot be "
                     "written to a problem file (write it as a Gmsh file)",
                     problem.where("mesh.kind")));
-  if (problem.contact && problem.contact->friction.law == contact::FrictionLawKind::Function)
+  if (std::any_of(problem.contact.begin(), problem.contact.end(), [](const auto& c) {
+        return c.friction.law == contact::FrictionLawKind::Function;
+      }))
     throw InputError(
         fmt::format("{}: contact.friction.law = \"function\": a friction law given "
                     "by code cannot be written to a problem file (write it as law = "

@@ -105,17 +105,18 @@ void add_contact_geometry(const driver::Problem& problem, const mesh::TetMesh& m
                           const driver::ContactFields& c, nlohmann::json& j) {
   const auto& s = c.surface;
   Vec3 point = Vec3::Zero();
-  if (problem.contact && problem.contact->obstacle) {
-    point = problem.contact->obstacle->point;
+  if (!problem.contact.empty() && problem.contact.front().obstacle) {
+    point = problem.contact.front().obstacle->point;
   } else {
     for (Index node : s.nodes)
       point += mesh.nodes.col(node);
     point /= static_cast<Real>(std::max<Index>(s.n_nodes(), 1));
   }
-  j["obstacle"] = {{"kind", "plane"},
-                   {"point", vec3(point)},
-                   {"normal", vec3(-s.n)},
-                   {"given", problem.contact && problem.contact->obstacle.has_value()}};
+  j["obstacle"] = {
+      {"kind", "plane"},
+      {"point", vec3(point)},
+      {"normal", vec3(-s.n)},
+      {"given", !problem.contact.empty() && problem.contact.front().obstacle.has_value()}};
   j["contact_basis"] = {{"n", vec3(s.n)}, {"t1", vec3(s.t1)}, {"t2", vec3(s.t2)}};
 }
 

@@ -60,11 +60,11 @@ TEST(Validate, DefaultsAndTheBaseAreValid) {
 
 TEST(Validate, EveryLawAndModelIsAccepted) {
   auto p = base();
-  p.contact->friction.law = contact::FrictionLawKind::Constant;
-  p.contact->friction.value = 0.0;
-  p.contact->slip_bound = 0.0;
+  p.contact.front().friction.law = contact::FrictionLawKind::Constant;
+  p.contact.front().friction.value = 0.0;
+  p.contact.front().slip_bound = 0.0;
   EXPECT_NO_THROW(validate(p));
-  p.contact->friction = table_law({0.0, 1e-5}, {0.3, 0.2});
+  p.contact.front().friction = table_law({0.0, 1e-5}, {0.3, 0.2});
   EXPECT_NO_THROW(validate(p));
   p.material.model = fe::MaterialModel::Anisotropic;
   p.material.voigt = steel_voigt();
@@ -74,8 +74,8 @@ TEST(Validate, EveryLawAndModelIsAccepted) {
 
 TEST(Validate, ParametersOfOtherLawsAreNotChecked) {
   auto p = base();
-  p.contact->friction.law = contact::FrictionLawKind::Constant;
-  p.contact->friction.param = -1.0;
+  p.contact.front().friction.law = contact::FrictionLawKind::Constant;
+  p.contact.front().friction.param = -1.0;
   EXPECT_NO_THROW(validate(p));
 }
 
@@ -186,62 +186,64 @@ std::vector<BadCase> load_and_support_cases() {
 std::vector<BadCase> contact_cases() {
   using K = contact::FrictionLawKind;
   return {
-      {"ContactBoundaryEmpty", [](Problem& p) { p.contact->boundary.clear(); },
+      {"ContactBoundaryEmpty", [](Problem& p) { p.contact.front().boundary.clear(); },
        "<memory>: contact.boundary: expected a non-empty boundary tag, got \"\""},
-      {"SlipBoundNegative", [](Problem& p) { p.contact->slip_bound = -2e7; },
+      {"SlipBoundNegative", [](Problem& p) { p.contact.front().slip_bound = -2e7; },
        "<memory>: contact.slip_bound: expected a number >= 0 [Pa], got -20000000.0"},
-      {"SlipBoundNan", [](Problem& p) { p.contact->slip_bound = kNan; },
+      {"SlipBoundNan", [](Problem& p) { p.contact.front().slip_bound = kNan; },
        "<memory>: contact.slip_bound: expected a number >= 0 [Pa], got nan (numbers must be "
        "finite)"},
-      {"PatchesCast", [](Problem& p) { p.contact->patches = static_cast<contact::PatchKind>(9); },
+      {"PatchesCast",
+       [](Problem& p) { p.contact.front().patches = static_cast<contact::PatchKind>(9); },
        "<memory>: contact.patches: expected one of \"chessboard\"", true},
-      {"LawCast", [](Problem& p) { p.contact->friction.law = static_cast<K>(9); },
+      {"LawCast", [](Problem& p) { p.contact.front().friction.law = static_cast<K>(9); },
        "<memory>: contact.friction.law: expected one of \"paper\", \"constant\", \"table\", "
        "\"expression\", \"function\", got 9",
        true},
-      {"ParamZero", [](Problem& p) { p.contact->friction.param = 0.0; },
+      {"ParamZero", [](Problem& p) { p.contact.front().friction.param = 0.0; },
        "<memory>: contact.friction.param: expected a positive number [1/m], got 0.0"},
-      {"ParamInfinite", [](Problem& p) { p.contact->friction.param = kInf; },
+      {"ParamInfinite", [](Problem& p) { p.contact.front().friction.param = kInf; },
        "<memory>: contact.friction.param: expected a positive number [1/m], got inf (numbers "
        "must be finite)"},
       {"ConstantNegative",
        [](Problem& p) {
-         p.contact->friction.law = K::Constant;
-         p.contact->friction.value = -0.1;
+         p.contact.front().friction.law = K::Constant;
+         p.contact.front().friction.value = -0.1;
        },
        "<memory>: contact.friction.value: expected a number >= 0, got -0.1"},
-      {"TableEmpty", [](Problem& p) { p.contact->friction = table_law({}, {}); },
+      {"TableEmpty", [](Problem& p) { p.contact.front().friction = table_law({}, {}); },
        "<memory>: contact.friction.t: expected a non-empty array of numbers, got an empty array"},
-      {"TableSlipNegative", [](Problem& p) { p.contact->friction = table_law({-1e-5}, {0.3}); },
+      {"TableSlipNegative",
+       [](Problem& p) { p.contact.front().friction = table_law({-1e-5}, {0.3}); },
        "<memory>: contact.friction.t[0]: expected a number >= 0 [m], got -1e-05"},
       {"TableNotIncreasing",
        [](Problem& p) {
-         p.contact->friction = table_law({0.0, 2e-5, 1e-5}, {0.3, 0.2, 0.1});
+         p.contact.front().friction = table_law({0.0, 2e-5, 1e-5}, {0.3, 0.2, 0.1});
        },
        "<memory>: contact.friction.t[2]: expected slips in strictly increasing order, got 1e-05 "
        "after 2e-05"},
       {"TableRepeated",
        [](Problem& p) {
-         p.contact->friction = table_law({0.0, 0.0}, {0.3, 0.2});
+         p.contact.front().friction = table_law({0.0, 0.0}, {0.3, 0.2});
        },
        "<memory>: contact.friction.t[1]: expected slips in strictly increasing order, got 0.0 "
        "after 0.0"},
-      {"TableFEmpty", [](Problem& p) { p.contact->friction = table_law({0.0}, {}); },
+      {"TableFEmpty", [](Problem& p) { p.contact.front().friction = table_law({0.0}, {}); },
        "<memory>: contact.friction.f: expected a non-empty array of numbers, got an empty array"},
       {"TableFNegative",
        [](Problem& p) {
-         p.contact->friction = table_law({0.0, 1.0}, {0.3, -0.2});
+         p.contact.front().friction = table_law({0.0, 1.0}, {0.3, -0.2});
        },
        "<memory>: contact.friction.f[1]: expected a number >= 0, got -0.2"},
       {"TableFNan",
        [](Problem& p) {
-         p.contact->friction = table_law({0.0, 1.0}, {0.3, kNan});
+         p.contact.front().friction = table_law({0.0, 1.0}, {0.3, kNan});
        },
        "<memory>: contact.friction.f[1]: expected a number >= 0, got nan (numbers must be "
        "finite)"},
       {"TableLengthsDiffer",
        [](Problem& p) {
-         p.contact->friction = table_law({0.0, 1.0}, {0.3, 0.2, 0.1});
+         p.contact.front().friction = table_law({0.0, 1.0}, {0.3, 0.2, 0.1});
        },
        "<memory>: contact.friction.f: expected as many values as contact.friction.t (2), got 3"},
   };
@@ -335,11 +337,11 @@ TEST(Validate, NamesThePositionOfTheKeyOrOfItsTable) {
   p.dirichlet.push_back({"", {true, true, true}});
   EXPECT_THAT(error_of(p), HasSubstr("f.toml:9:3: dirichlet[1].boundary: "));
   p.dirichlet.pop_back();
-  p.contact->friction = table_law({0.0, -1.0}, {0.3, 0.2});
+  p.contact.front().friction = table_law({0.0, -1.0}, {0.3, 0.2});
   EXPECT_THAT(error_of(p), HasSubstr("f.toml:22:9: contact.friction.t[1]: "));
-  p.contact->friction = table_law({0.0}, {-0.3});
+  p.contact.front().friction = table_law({0.0}, {-0.3});
   EXPECT_THAT(error_of(p), HasSubstr("f.toml:20:2: contact.friction.f[0]: "));
-  p.contact->friction = {};
+  p.contact.front().friction = {};
   p.dirichlet.push_back({"z0", {true, true, true}});
   EXPECT_THAT(error_of(p), HasSubstr("f.toml:20:2: contact.boundary: contact and Dirichlet"));
   p.dirichlet.pop_back();

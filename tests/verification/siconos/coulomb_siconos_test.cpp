@@ -21,9 +21,9 @@ struct Coulomb {
 // fricon's Coulomb solution of the paper's brick (n = 4), tight, and its final local problem.
 Coulomb fricon_coulomb(contact::FrictionLawKind law) {
   driver::Problem p = driver::paper_problem(4, 6e4);
-  p.contact->model = contact::FrictionModel::Coulomb;
-  p.contact->friction.law = law;
-  p.contact->friction.value = 0.3;
+  p.contact.front().model = contact::FrictionModel::Coulomb;
+  p.contact.front().friction.law = law;
+  p.contact.front().friction.value = 0.3;
   p.solver.qp.rel_tolerance = 1e-12;
   p.solver.outer.tol = 1e-11;
   driver::RunOptions o;

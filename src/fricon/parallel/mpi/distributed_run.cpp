@@ -234,7 +234,7 @@ RunResult run_on_rank(const driver::Problem& problem, const RunOptions& options,
     // f whole on rank 0, for the residuals of the postprocessing; every rank assembles its
     // part of it below.
     r.model = driver::assemble_loads(problem, rep.times, opts.on_phase_start);
-    if (problem.contact) {
+    if (!problem.contact.empty()) {
       driver::phase_start(opts, "contact");
       ScopedPhase phase(rep.times, "contact");
       disc = driver::discretize_contact(problem, r.model.mesh, r.model.dofs);
