@@ -27,6 +27,27 @@ namespace fricon::app {
 
 namespace {
 
+// One line per pair when there are several or one against a body: its patches and forces, and a
+// warning when its slips left small sliding (theory.md §2.8).
+void print_pairs(const driver::ContactReport& c) {
+  if (c.pairs.size() == 1 && c.pairs.front().master.empty()) return;
+  for (const driver::PairReport& p : c.pairs) {
+    const std::string against =
+        p.master.empty() ? std::string("the plane") : fmt::format("'{}'", p.master);
+    fmt::print(
+        "  {:<13} '{}' on {}: {} patches ({} stick, {} slip, {} separated), normal force "
+        "{:.4e} N, tangential force {:.4e} N\n",
+        p.key, p.boundary, against, p.n_patches, p.n_stick, p.n_slip, p.n_separated, p.normal_force,
+        p.tangential_force.norm());
+    if (!p.small_sliding)
+      fmt::print(
+          "  WARNING       {}: the largest relative slip {:.3e} m exceeds {} of the master's "
+          "element size {:.3e} m: the pairing, computed once in the reference configuration "
+          "(small sliding), may no longer hold\n",
+          p.key, p.max_slip, driver::kSmallSlidingShare, p.master_element_size);
+  }
+}
+
 void print_summary(const driver::RunResult& result, const std::filesystem::path& dir) {
   const auto& r = result.report;
   fmt::print("fricon {}: {}\n", FRICON_VERSION, enum_name(r.status));
@@ -74,6 +95,7 @@ void print_summary(const driver::RunResult& result, const std::filesystem::path&
           c.coulomb_residual <= c.coulomb_bound ? "passed" : "FAILED");
     fmt::print("  patches       {} stick, {} slip, {} separated\n", c.n_stick, c.n_slip,
                c.n_separated);
+    print_pairs(c);
     if (c.n_objective_increases > 0)
       fmt::print("  monotonicity  {} QP steps increased the objective (expected 0)\n",
                  c.n_objective_increases);

@@ -274,6 +274,42 @@ void classify_patches(const contact::SlipBounds& bounds, const VectorXd& radius,
   }
 }
 
+// Per pair: its patches' states and forces, and whether the slips kept to small sliding.
+void report_pairs(const contact::ContactDiscretization& disc, ContactOutcome& out) {
+  const ContactFields& f = out.fields;
+  std::vector<PairReport>& pairs = out.report.pairs;
+  for (const contact::PairInfo& info : disc.pairs) {
+    PairReport& r = pairs.emplace_back();
+    r.key = info.key;
+    r.boundary = info.boundary;
+    r.master = info.master;
+    r.stability_ratio = info.stability.ratio;
+    r.search_distance = info.search_distance;
+    r.master_coverage = info.master_coverage;
+    r.master_element_size = info.master_element_size;
+  }
+  for (Index p = 0; p < disc.n_patches(); ++p) {
+    PairReport& r = pairs[static_cast<size_t>(disc.patch_pair[static_cast<size_t>(p)])];
+    const Vec3 lambda = f.lambda.segment<3>(3 * p);
+    const Mat3 frame = disc.patch_frames.rows(p);
+    const Real area = disc.patches.area(p);
+    r.n_patches += 1;
+    r.normal_force += area * lambda(0);
+    r.force -= area * (frame.transpose() * lambda);
+    r.tangential_force -= area * (lambda(1) * frame.row(1) + lambda(2) * frame.row(2)).transpose();
+    const PatchState state = f.state[static_cast<size_t>(p)];
+    r.n_stick += state == PatchState::Stick ? 1 : 0;
+    r.n_slip += state == PatchState::Slip ? 1 : 0;
+    r.n_separated += state == PatchState::Separated ? 1 : 0;
+  }
+  for (Index k = 0; k < disc.surface.n_nodes(); ++k) {
+    PairReport& r = pairs[static_cast<size_t>(disc.surface.node_pair[static_cast<size_t>(k)])];
+    r.max_slip = std::max(r.max_slip, std::hypot(f.wt1(k), f.wt2(k)));
+  }
+  for (PairReport& r : pairs)
+    r.small_sliding = r.master.empty() || r.max_slip <= kSmallSlidingShare * r.master_element_size;
+}
+
 // The outcome's status: the loop's termination, unless a converged run fails its certificate
 // (the final QP's KKT residuals, and for Coulomb the residual of the Coulomb problem).
 void conclude(const outer::OuterReport& loop, ContactOutcome& out) {
@@ -369,6 +405,7 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m,
     out.fields.radius = result.radius;
     measure(m, whole, *law, result.lambda, out);
     classify_patches(result_bounds, result.radius, out);
+    report_pairs(whole, out);
     if (result_bounds.uses_pressure())
       rep.coulomb_residual =
           qp::coulomb_residual(result.lambda, result.g, out.fields.coefficient, 1.0 / rep.norm_Q);
@@ -377,6 +414,8 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m,
   rep.n_kinv = Q.n_kinv();
   out.fields.surface = whole.surface;
   out.fields.patches = whole.patches;
+  out.fields.patch_frames = whole.patch_frames;
+  out.fields.patch_pair = whole.patch_pair;
   out.fields.slip_bound = whole.slip_bound;
   out.fields.gap = whole.gap;
   out.fields.phi = map.slips(state);

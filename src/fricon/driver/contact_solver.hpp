@@ -43,6 +43,33 @@ enum class PatchState {
   Slip,       ///< ||lambda_t|| on the radius
 };
 
+/// One contact pair of the result (contact::PairInfo and what the solve found on it).
+struct PairReport {
+  std::string key;       ///< "contact" or "contact[i]"
+  std::string boundary;  ///< the contact surface (slave)
+  std::string master;    ///< the master surface; empty against a plane
+  Index n_patches = 0;
+  Index n_stick = 0, n_slip = 0, n_separated = 0;
+  Real normal_force = 0.0;  ///< sum lambda_n |R| [N]
+  /// The force of the obstacle (plane or master) on the contact surface [N], and its part
+  /// tangential to the patches.
+  Vec3 force = Vec3::Zero();
+  Vec3 tangential_force = Vec3::Zero();
+  Real stability_ratio = 0.0;  ///< condition (5.1) of the pair's own B
+  // Against a body (theory.md §2.8):
+  Real search_distance = 0.0;      ///< [m]
+  Real master_coverage = 1.0;      ///< share of the contact surface opposite the master
+  Real master_element_size = 0.0;  ///< the master's mean edge [m]
+  Real max_slip = 0.0;             ///< max relative tangential displacement [m]
+  /// Small sliding holds: max_slip is at most kSmallSlidingShare of master_element_size (the
+  /// pairing, computed once, stays valid).
+  bool small_sliding = true;
+};
+
+/// The share of the master's element size up to which the relative tangential displacement
+/// keeps the reference pairing valid (small sliding, theory.md §2.8).
+inline constexpr Real kSmallSlidingShare = 0.5;
+
 struct ContactReport {
   contact::FrictionModel model = contact::FrictionModel::Tresca;
   std::string boundary;
@@ -103,12 +130,15 @@ struct ContactReport {
   Real fixed_point_residual = 0.0;
   /// Observed contraction factor of the successive approximations (outer::OuterReport).
   Real contraction_ratio = 0.0;
+  std::vector<PairReport> pairs;  ///< per contact pair, in the problem's order
 };
 
 /// Fields on the contact surface, per surface node and per patch.
 struct ContactFields {
   contact::ContactSurface surface;
   contact::Patches patches;
+  contact::Frames patch_frames;   ///< per patch: the frame of its multipliers
+  std::vector<Index> patch_pair;  ///< per patch: its pair (ContactReport::pairs)
   VectorXd lambda;                ///< multipliers (lambda_n, lambda_t1, lambda_t2) per patch [Pa]
   VectorXd radius;                ///< slip bounds rho_p used by the last QP [Pa]
   VectorXd phi;                   ///< phi per surface node used for the last radii [m]

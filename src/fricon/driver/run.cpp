@@ -180,9 +180,11 @@ void postprocess(const Problem& problem, const VectorXd& u, RunResult& r) {
   rep.applied_force = applied_force_total(problem, m.mesh);
   rep.reaction_force = reaction_total(m, problem, r.displacement);
   // Relative to the largest of the three: a body pressed by a prescribed displacement has no
-  // applied load.
-  const Real scale = std::max(
-      {rep.applied_force.norm(), rep.contact_force.norm(), rep.reaction_force.norm(), 1e-300});
+  // applied load. Between two bodies the contact forces cancel in the sum: the magnitude of the
+  // contact force on the contact surfaces enters the scale.
+  const Real contact_magnitude = rep.contact ? rep.contact->total_normal_force : 0.0;
+  const Real scale = std::max({rep.applied_force.norm(), rep.contact_force.norm(),
+                               rep.reaction_force.norm(), contact_magnitude, 1e-300});
   rep.equilibrium_residual =
       (rep.applied_force + rep.contact_force + rep.reaction_force).norm() / scale;
 }

@@ -77,6 +77,29 @@ void add_contact_report(const driver::ContactReport& c, nlohmann::json& j) {
                   {"fixed_point_residual", c.fixed_point_residual},
                   {"history", history}};
   if (!c.partition_note.empty()) j["partition_note"] = c.partition_note;
+  nlohmann::json pairs = nlohmann::json::array();
+  for (const driver::PairReport& p : c.pairs) {
+    nlohmann::json pair = {
+        {"key", p.key},
+        {"boundary", p.boundary},
+        {"obstacle", p.master.empty() ? "plane" : "body"},
+        {"n_patches", p.n_patches},
+        {"patch_states", {{"stick", p.n_stick}, {"slip", p.n_slip}, {"separated", p.n_separated}}},
+        {"normal_force", p.normal_force},
+        {"force", vec3(p.force)},
+        {"tangential_force", vec3(p.tangential_force)},
+        {"stability_ratio", p.stability_ratio},
+        {"max_slip", p.max_slip}};
+    if (!p.master.empty()) {
+      pair["master"] = p.master;
+      pair["search_distance"] = p.search_distance;
+      pair["master_coverage"] = p.master_coverage;
+      pair["master_element_size"] = p.master_element_size;
+      pair["small_sliding"] = p.small_sliding;
+    }
+    pairs.push_back(std::move(pair));
+  }
+  j["pairs"] = std::move(pairs);
 }
 
 // The regions of the body: per region its name, number of tetrahedra and volume [m^3].
@@ -211,6 +234,10 @@ Table contact_node_table(const mesh::TetMesh& mesh, const driver::ContactFields&
   table.columns.push_back({"w_t2", c.wt2, {}});
   table.columns.push_back({"phi", phi, {}});
   table.columns.push_back({"F", c.F, {}});
+  VectorXd pair(n);
+  for (Index k = 0; k < n; ++k)
+    pair(k) = static_cast<Real>(c.surface.node_pair[static_cast<size_t>(k)]);
+  table.columns.push_back({"pair", pair, {}});
   return table;
 }
 
@@ -237,6 +264,10 @@ Table patch_table(const driver::ContactFields& c) {
     state.emplace_back(enum_name(c.state[static_cast<size_t>(p)]));
   }
   table.columns.push_back({"state", {}, std::move(state)});
+  VectorXd pair(n);
+  for (Index p = 0; p < n; ++p)
+    pair(p) = static_cast<Real>(c.patch_pair[static_cast<size_t>(p)]);
+  table.columns.push_back({"pair", pair, {}});
   return table;
 }
 
@@ -280,6 +311,10 @@ VtuGrid body_grid(const driver::RunResult& result) {
   for (Index t = 0; t < mesh.n_tets(); ++t)
     region(0, t) = mesh.region(t);
   body.cell_data.push_back({"region", region, VtuType::Int32});
+  MatrixXd body_index(1, mesh.n_tets());
+  for (Index t = 0; t < mesh.n_tets(); ++t)
+    body_index(0, t) = static_cast<Real>(result.model.bodies.tet_body[static_cast<size_t>(t)]);
+  body.cell_data.push_back({"body", body_index, VtuType::Int32});
   return body;
 }
 
@@ -294,25 +329,28 @@ VtuGrid contact_grid(const mesh::TetMesh& mesh, const driver::ContactFields& c) 
   surface.cells = s.face_nodes;
   MatrixXd w(3, s.n_nodes()), scalars(5, s.n_nodes());
   for (Index k = 0; k < s.n_nodes(); ++k) {
-    w.col(k) = c.wn(k) * s.n + c.wt1(k) * s.t1 + c.wt2(k) * s.t2;
+    w.col(k) = c.wn(k) * s.node_frames.n.col(k) + c.wt1(k) * s.node_frames.t1.col(k) +
+               c.wt2(k) * s.node_frames.t2.col(k);
     scalars.col(k) << c.wn(k), std::hypot(c.wt1(k), c.wt2(k)), c.phi(k), c.F(k), c.gap(k);
   }
   surface.point_data = {{"displacement", w},     {"gap", scalars.row(4)},
                         {"w_n", scalars.row(0)}, {"norm_w_t", scalars.row(1)},
                         {"phi", scalars.row(2)}, {"F", scalars.row(3)}};
   const Index nf = s.face_nodes.cols();
-  MatrixXd lambda_t(3, nf), per_face(6, nf);
+  MatrixXd lambda_t(3, nf), per_face(7, nf);
   for (Index p = 0; p < c.patches.size(); ++p)
     for (Index k : c.patches.faces[static_cast<size_t>(p)]) {
-      lambda_t.col(k) = c.lambda(3 * p + 1) * s.t1 + c.lambda(3 * p + 2) * s.t2;
+      lambda_t.col(k) = c.lambda(3 * p + 1) * c.patch_frames.t1.col(p) +
+                        c.lambda(3 * p + 2) * c.patch_frames.t2.col(p);
       per_face.col(k) << c.lambda(3 * p), c.lambda.segment<2>(3 * p + 1).norm(), c.radius(p),
           static_cast<Real>(p), c.coefficient(p),
-          static_cast<Real>(c.state[static_cast<size_t>(p)]);
+          static_cast<Real>(c.state[static_cast<size_t>(p)]),
+          static_cast<Real>(c.patch_pair[static_cast<size_t>(p)]);
     }
   surface.cell_data = {{"lambda_n", per_face.row(0)},      {"lambda_t", lambda_t},
                        {"norm_lambda_t", per_face.row(1)}, {"radius", per_face.row(2)},
                        {"patch", per_face.row(3)},         {"F_patch", per_face.row(4)},
-                       {"state", per_face.row(5)}};
+                       {"state", per_face.row(5)},         {"pair", per_face.row(6)}};
   return surface;
 }
 
