@@ -302,9 +302,16 @@ void report_pairs(const contact::ContactDiscretization& disc, ContactOutcome& ou
     r.n_slip += state == PatchState::Slip ? 1 : 0;
     r.n_separated += state == PatchState::Separated ? 1 : 0;
   }
-  for (Index k = 0; k < disc.surface.n_nodes(); ++k) {
-    PairReport& r = pairs[static_cast<size_t>(disc.surface.node_pair[static_cast<size_t>(k)])];
-    r.max_slip = std::max(r.max_slip, std::hypot(f.wt1(k), f.wt2(k)));
+  // Where the bodies touch: the nodes of the patches not separated (elsewhere the pairing is
+  // never used, however far the surfaces move).
+  for (Index p = 0; p < disc.n_patches(); ++p) {
+    if (f.state[static_cast<size_t>(p)] == PatchState::Separated) continue;
+    PairReport& r = pairs[static_cast<size_t>(disc.patch_pair[static_cast<size_t>(p)])];
+    for (Index face : disc.patches.faces[static_cast<size_t>(p)])
+      for (int v = 0; v < 3; ++v) {
+        const Index k = disc.surface.face_nodes(v, face);
+        r.max_slip = std::max(r.max_slip, std::hypot(f.wt1(k), f.wt2(k)));
+      }
   }
   for (PairReport& r : pairs)
     r.small_sliding = r.master.empty() || r.max_slip <= kSmallSlidingShare * r.master_element_size;

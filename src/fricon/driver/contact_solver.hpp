@@ -60,7 +60,8 @@ struct PairReport {
   Real search_distance = 0.0;      ///< [m]
   Real master_coverage = 1.0;      ///< share of the contact surface opposite the master
   Real master_element_size = 0.0;  ///< the master's mean edge [m]
-  Real max_slip = 0.0;             ///< max relative tangential displacement [m]
+  /// Max relative tangential displacement [m] at the nodes of the patches in contact.
+  Real max_slip = 0.0;
   /// Small sliding holds: max_slip is at most kSmallSlidingShare of master_element_size (the
   /// pairing, computed once, stays valid).
   bool small_sliding = true;

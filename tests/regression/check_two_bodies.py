@@ -1,0 +1,97 @@
+"""The two-body examples (examples/two-bodies) solve and agree with independent truth.
+
+  - hertz-spheres: two identical frictionless spheres (R = 50 mm, E = 20 GPa, nu = 0.3, quarter
+    models) pressed together by a total approach h = 4 mm of their flat faces (Code_Aster's
+    SSNV104 setup). Hertz (one sphere of radius R/2 on a plane, E* = E / (2 (1 - nu^2))) gives
+    for this approach a = sqrt(R h / 2) = 10 mm and p0 = E / (pi (1 - nu^2)) sqrt(2 h / R) =
+    2798 MPa. The contact radius from the pressure's second moment (a^2 = 5/2 int p r^2 / int p
+    for Hertz's p) is within 3 % of a; the largest patch pressure within 8 % of p0. It comes out
+    7 % above, unchanged by refining the mesh (0.7 x the element sizes: peak 3001 against 2998
+    MPa, a 9.99 against 9.98 mm): Hertz's half-spaces are not the model's hemispheres, whose flat
+    faces, where h is prescribed, lie at R from the contact, and a / R_eff = 0.4 is not small.
+    The reactions balance (the contact forces on the two bodies cancel, to 1e-6 of the force),
+    and the master covers the contact surface (coverage 1).
+  - sheared-blocks: Coulomb friction between two blocks; the certificate passes, the tangential
+    force of the pair is at most mu times its normal force, small sliding holds, and the
+    reactions of the clamped lower block balance the force on the upper block's top.
+  - stacked-blocks: two pairs (block on block, block on plane); report.json lists both, and
+    patches.csv, contact_nodes.csv and solution.vtu carry the pair and body indices.
+Usage: check_two_bodies.py FRICON EXAMPLES_DIR OUTDIR
+"""
+import math
+
+import meshio
+import numpy as np
+
+import common
+
+exe, examples, out = common.arguments(__doc__)
+
+E, NU, R, H = 2.0e10, 0.3, 0.05, 4.0e-3  # hertz-spheres.toml, hertz-spheres.geo
+MU_SHEARED = 0.3                         # sheared-blocks.toml
+
+
+def solve(name, *sets):
+    folder = out / name
+    report = common.solve(exe, examples / f"{name}.toml", folder, *sets, timeout=300)
+    assert report["status"] == "converged", name
+    return folder, report
+
+
+def check_hertz():
+    folder, report = solve("hertz-spheres")
+    patches = common.read_patches(folder)
+    [pair] = report["pairs"]
+    assert pair["obstacle"] == "body" and pair["master"] == "lower_contact", pair
+    assert abs(pair["master_coverage"] - 1.0) < 1e-6, pair["master_coverage"]
+    assert pair["small_sliding"], pair
+    # Quarter model: four times the force, the pressure's moments about the pole.
+    force = sum(p["lambda_n"] * p["area"] for p in patches)
+    second = sum(p["lambda_n"] * p["area"] * (p["x"] ** 2 + p["y"] ** 2) for p in patches)
+    a_h = math.sqrt(2.5 * second / force)
+    peak = max(p["lambda_n"] for p in patches)
+    a_approach = math.sqrt(R * H / 2.0)
+    p0_approach = E / (math.pi * (1.0 - NU ** 2)) * math.sqrt(2.0 * H / R)
+    print(f"hertz-spheres: P = {4.0 * force:.4e} N; a = {a_h * 1e3:.3f} mm against "
+          f"{a_approach * 1e3:.2f} mm ({a_h / a_approach - 1:+.2%}), peak {peak / 1e6:.1f} MPa "
+          f"against p0 = {p0_approach / 1e6:.1f} MPa ({peak / p0_approach - 1:+.2%})")
+    assert abs(a_h / a_approach - 1.0) <= 0.03, (a_h, a_approach)
+    assert abs(peak / p0_approach - 1.0) <= 0.08, (peak, p0_approach)
+    # The contact forces on the two bodies cancel: the reactions of the pressed faces and of
+    # the symmetry planes balance each other (in z, the flat faces alone).
+    assert abs(pair["normal_force"] - force) <= 1e-9 * force
+    assert abs(report["reaction_force"][2]) <= 1e-6 * force, report["reaction_force"]
+
+
+def check_sheared():
+    folder, report = solve("sheared-blocks")
+    [pair] = report["pairs"]
+    assert report["coulomb"]["residual"] <= report["coulomb"]["bound"], report["coulomb"]
+    tangential = math.hypot(*pair["tangential_force"])
+    print(f"sheared-blocks: normal force {pair['normal_force']:.4e} N, tangential "
+          f"{tangential:.4e} N = {tangential / pair['normal_force']:.4f} of it; "
+          f"{pair['patch_states']}")
+    assert tangential <= MU_SHEARED * pair["normal_force"] * (1 + 1e-6), (tangential, pair)
+    assert pair["patch_states"]["slip"] > 0 and pair["patch_states"]["stick"] > 0, pair
+    assert pair["small_sliding"], pair
+    assert report["equilibrium_residual"] <= 1e-8, report["equilibrium_residual"]
+
+
+def check_stacked():
+    folder, report = solve("stacked-blocks")
+    pairs = report["pairs"]
+    assert [p["obstacle"] for p in pairs] == ["body", "plane"], pairs
+    assert all(p["normal_force"] > 0 for p in pairs), pairs
+    for name in ("patches.csv", "contact_nodes.csv"):
+        rows = common.read_rows(folder / name)
+        assert {float(r["pair"]) for r in rows} == {0.0, 1.0}, name
+    mesh = meshio.read(folder / "solution.vtu")
+    bodies = np.unique(np.concatenate(mesh.cell_data["body"]))
+    assert list(bodies) == [0, 1], bodies
+    assert report["equilibrium_residual"] <= 1e-8, report["equilibrium_residual"]
+
+
+check_hertz()
+check_sheared()
+check_stacked()
+print("two bodies: passed")
