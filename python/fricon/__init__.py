@@ -56,6 +56,8 @@ def _toml_value(value):
                                for k, v in value.items()) + "}"
     if isinstance(value, (list, tuple)):
         return "[" + ", ".join(_toml_value(v) for v in value) + "]"
+    if isinstance(value, (_Section, _TableList)):  # a table of a problem, e.g. p.contact[0]
+        return _toml_value(value.to_dict() if isinstance(value, _Section) else value.to_list())
     raise InputError(f"cannot write a {type(value).__name__} as a problem-file value: {value!r}")
 
 
@@ -141,6 +143,24 @@ class _Section:
 
     def __repr__(self):
         return f"{'.'.join(map(str, self._path))} = {self.to_dict()!r}"
+
+
+class _Pair(_Section):
+    """The one contact pair of [contact]: a table (p.contact.friction) that is also the list of
+    the pairs, [p.contact] (p.contact[0], len(p.contact), iteration), as [[contact]] gives."""
+
+    def __getitem__(self, name):
+        if isinstance(name, int):
+            if name not in (0, -1):
+                raise IndexError(f"contact[{name}]: the problem has 1 contact pair")
+            return self
+        return super().__getitem__(name)
+
+    def __len__(self):
+        return 1
+
+    def __iter__(self):
+        return iter([self])
 
 
 class _TableList:
@@ -249,7 +269,7 @@ class Problem:
     def _view(self, path):
         v = self._value(path)
         if isinstance(v, dict):
-            return _Section(self, path)
+            return _Pair(self, path) if path == ["contact"] else _Section(self, path)
         if isinstance(v, list) and v and all(isinstance(e, dict) for e in v):
             return _TableList(self, path)
         if isinstance(v, list) and path[-1] in ("dirichlet", "traction"):
