@@ -79,23 +79,31 @@ def point_field(mesh, name):
     return a[:, 0] if a.ndim == 2 and a.shape[1] == 1 else a
 
 
-def plane_basis(report):
+def plane_basis(report, pair=None):
     """The tangents (t1, t2) of the obstacle plane and their axis names, from the report's
-    contact_basis; (e1, e2) named x, y for a folder written before the report had it."""
-    basis = report.get("contact_basis")
+    contact_basis (of pair `pair`'s surface: its basis in report.json's pairs); (e1, e2) named
+    x, y for a folder written before the report had it."""
+    basis = report["pairs"][pair]["basis"] if pair is not None else report.get("contact_basis")
     if basis is None:
         return np.eye(3)[:2], ["x", "y"]
     return np.array([basis["t1"], basis["t2"]], dtype=float), ["t1", "t2"]
 
 
-def load_contact(results, report):
+def first_pair(report):
+    """The problem's [contact] table, or the first of [[contact]] (all pairs share one law)."""
+    contact = report["problem"]["contact"]
+    return contact[0] if isinstance(contact, list) else contact
+
+
+def load_contact(results, report, pair=None):
     """The contact surface of contact.vtu in the plane's coordinates, or None without contact
     results.
 
     The nodes are placed at (x . t1, x . t2) and connected by the surface's own triangles (those
     of contact.vtu, not a Delaunay triangulation of the points: the surface may be curved or in
-    several pieces). Returns a dict with the 2D triangulation `tri`, the names of its two axes,
-    the nodal fields and the per-triangle (patch) fields, and the patch table (centroid, radius,
+    several pieces). With `pair`, only that contact pair's triangles (contact.vtu's "pair"),
+    seen along its own normal. Returns a dict with the 2D triangulation `tri`, the names of its
+    two axes, the nodal fields and the per-triangle (patch) fields, and the patch table (centroid, radius,
     lambda_t in the plane) computed from the triangles.
     """
     path = results / "contact.vtu"
@@ -103,17 +111,26 @@ def load_contact(results, report):
         return None
     mesh = meshio.read(path)
     triangles = np.asarray(mesh.cells[0].data)
-    tangents, axes = plane_basis(report)
+    # With `pair`: that pair's triangles only, each per-triangle field cut alike.
+    mine = (cell_field(mesh, "pair").astype(int) == pair if pair is not None
+            else np.ones(len(triangles), dtype=bool))
+    triangles = triangles[mine]
+
+    def cells(name):
+        return cell_field(mesh, name)[mine]
+
+    tangents, axes = plane_basis(report, pair)
     uv = np.asarray(mesh.points) @ tangents.T
     tri = mtri.Triangulation(uv[:, 0], uv[:, 1], triangles)
     # A curved surface seen along n: draw only the triangles that face the plane, so that its far
     # side (a wheel's top, say) does not hide the part in contact.
-    n = np.asarray(report.get("contact_basis", {}).get("n", [0.0, 0.0, -1.0]))
+    basis = report["pairs"][pair]["basis"] if pair is not None else report.get("contact_basis", {})
+    n = np.asarray(basis.get("n", [0.0, 0.0, -1.0]))
     p = np.asarray(mesh.points)[triangles]
     facing = np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]) @ n > 0
     if facing.any() and not facing.all():
         tri.set_mask(~facing)
-    patch = cell_field(mesh, "patch").astype(int)
+    patch = cells("patch").astype(int)
     w_n = point_field(mesh, "w_n")
     gap = point_field(mesh, "gap") if "gap" in mesh.point_data else np.zeros_like(w_n)
     surface = {
@@ -123,13 +140,13 @@ def load_contact(results, report):
         "opening": gap - w_n,
         "norm_w_t": point_field(mesh, "norm_w_t"),
         "F": point_field(mesh, "F"),
-        "lambda_n": cell_field(mesh, "lambda_n"),
-        "norm_lambda_t": cell_field(mesh, "norm_lambda_t"),
+        "lambda_n": cells("lambda_n"),
+        "norm_lambda_t": cells("norm_lambda_t"),
         "patch": patch,
     }
-    state = cell_field(mesh, "state") if "state" in mesh.cell_data else None
-    surface["patches"] = patch_table(tri, patch, cell_field(mesh, "radius"),
-                                     cell_field(mesh, "lambda_t") @ tangents.T, state)
+    state = cells("state") if "state" in mesh.cell_data else None
+    surface["patches"] = patch_table(tri, patch, cells("radius"),
+                                     cells("lambda_t") @ tangents.T, state)
     surface["patch_edges"] = patch_boundary_segments(tri, patch)
     return surface
 
@@ -316,7 +333,7 @@ def plot_convergence(report):
 
 def plot_friction_law(report, surface):
     """Fig. 3: F(t) of the run (and the paper's other parameters), with the slips reached."""
-    friction = report["problem"]["contact"].get("friction", {})
+    friction = first_pair(report).get("friction", {})
     curves = friction_curves(friction)
     phi = surface["norm_w_t"] if surface is not None else np.zeros(0)
     phi_max = float(phi.max()) if phi.size else float(report.get("max_wt", 0.0))
@@ -382,7 +399,7 @@ def plot_contact_maps(report, surface):
 def plot_friction_coefficient(report, surface):
     """Fig. 10: the coefficient F(||w_t||) on the contact surface."""
     tri = surface["tri"]
-    friction = report["problem"]["contact"].get("friction", {})
+    friction = first_pair(report).get("friction", {})
     lo, hi = law_range(friction)
     if hi - lo < 1e-12:
         lo, hi = lo - 0.05, hi + 0.05
@@ -489,6 +506,8 @@ def foundation_height(report, z_min):
     view), else None. Without the report's obstacle (an older folder): the brick's bottom z_min
     when it is the contact boundary."""
     obstacle = report.get("obstacle")
+    if obstacle is not None and obstacle.get("kind", "plane") != "plane":
+        return None  # another body: it is in the view itself
     if obstacle is None:
         boundary = report.get("problem", {}).get("contact", {}).get("boundary")
         return z_min if boundary == "z0" else None
@@ -616,11 +635,17 @@ def make_plots(results, out_dir, fmt):
             print(f"plot_results: {results}: no contact.vtu; the contact-surface figures are "
                   "skipped", file=sys.stderr)
         else:
-            save_figure(plot_contact_maps(report, surface), out_dir, "contact_maps", fmt, written)
-            save_figure(plot_friction_coefficient(report, surface), out_dir,
-                        "friction_coefficient", fmt, written)
-            save_figure(plot_friction_circles(report, surface), out_dir, "friction_circles",
-                        fmt, written)
+            # Several pairs: the maps of each, seen along its own normal (name-pairI).
+            pairs = report.get("pairs", [])
+            views = [(surface, "")] if len(pairs) <= 1 else [
+                (load_contact(results, report, i), f"-pair{i}") for i in range(len(pairs))]
+            for view, suffix in views:
+                save_figure(plot_contact_maps(report, view), out_dir, "contact_maps" + suffix,
+                            fmt, written)
+                save_figure(plot_friction_coefficient(report, view), out_dir,
+                            "friction_coefficient" + suffix, fmt, written)
+                save_figure(plot_friction_circles(report, view), out_dir,
+                            "friction_circles" + suffix, fmt, written)
     if (results / "solution.vtu").is_file():
         save_figure(plot_deformed(report, results), out_dir, "deformed", fmt, written)
     else:

@@ -15,7 +15,8 @@
     force of the pair is at most mu times its normal force, small sliding holds, and the
     reactions of the clamped lower block balance the force on the upper block's top.
   - stacked-blocks: two pairs (block on block, block on plane); report.json lists both, and
-    patches.csv, contact_nodes.csv and solution.vtu carry the pair and body indices.
+    patches.csv, contact_nodes.csv and solution.vtu carry the pair and body indices, and
+    `fricon plot` draws the maps of each pair.
 Usage: check_two_bodies.py FRICON EXAMPLES_DIR OUTDIR
 """
 import math
@@ -89,6 +90,11 @@ def check_stacked():
     bodies = np.unique(np.concatenate(mesh.cell_data["body"]))
     assert list(bodies) == [0, 1], bodies
     assert report["equilibrium_residual"] <= 1e-8, report["equilibrium_residual"]
+    # fricon plot draws each pair's maps, seen along its own normal.
+    common.run_ok([str(exe), "plot", str(folder)], timeout=120)
+    for pair in (0, 1):
+        for name in ("contact_maps", "friction_circles"):
+            assert (folder / "plots" / f"{name}-pair{pair}.png").is_file(), (name, pair)
 
 
 check_hertz()

@@ -208,6 +208,9 @@ ContactDiscretization discretize_contact(const mesh::TetMesh& mesh, const fe::Do
                                          const ContactSpec& spec) {
   ContactDiscretization d;
   make_surface(mesh, dofs, spec, d);
+  d.pairs.front().n = d.surface.n;
+  d.pairs.front().t1 = d.surface.t1;
+  d.pairs.front().t2 = d.surface.t2;
   Partition p = partition_stably(mesh, dofs, spec, d.pairs.front().search_distance, d);
   d.patches = std::move(p.patches);
   d.B = std::move(p.B);

@@ -52,6 +52,9 @@ struct PairInfo {
   Real master_coverage = 1.0;      ///< against a body: share of the surface opposite the master
   Real master_element_size = 0.0;  ///< against a body: the master's mean edge [m]
   StabilityReport stability;       ///< condition (5.1) of the pair's own B
+  /// The pair surface's own frame (ContactSurface::n, t1, t2): the plane's, or against a body
+  /// that of the surface's mean outward normal (the view of its maps).
+  Vec3 n = Vec3::Zero(), t1 = Vec3::Zero(), t2 = Vec3::Zero();
 };
 
 struct ContactDiscretization {

@@ -284,6 +284,9 @@ void report_pairs(const contact::ContactDiscretization& disc, ContactOutcome& ou
     r.boundary = info.boundary;
     r.master = info.master;
     r.stability_ratio = info.stability.ratio;
+    r.n = info.n;
+    r.t1 = info.t1;
+    r.t2 = info.t2;
     r.search_distance = info.search_distance;
     r.master_coverage = info.master_coverage;
     r.master_element_size = info.master_element_size;

@@ -56,6 +56,7 @@ struct PairReport {
   Vec3 force = Vec3::Zero();
   Vec3 tangential_force = Vec3::Zero();
   Real stability_ratio = 0.0;  ///< condition (5.1) of the pair's own B
+  Vec3 n = Vec3::Zero(), t1 = Vec3::Zero(), t2 = Vec3::Zero();  ///< contact::PairInfo's frame
   // Against a body (theory.md §2.8):
   Real search_distance = 0.0;      ///< [m]
   Real master_coverage = 1.0;      ///< share of the contact surface opposite the master

@@ -89,6 +89,7 @@ void add_contact_report(const driver::ContactReport& c, nlohmann::json& j) {
         {"force", vec3(p.force)},
         {"tangential_force", vec3(p.tangential_force)},
         {"stability_ratio", p.stability_ratio},
+        {"basis", {{"n", vec3(p.n)}, {"t1", vec3(p.t1)}, {"t2", vec3(p.t2)}}},
         {"max_slip", p.max_slip}};
     if (!p.master.empty()) {
       pair["master"] = p.master;
@@ -121,15 +122,22 @@ void add_regions(const mesh::TetMesh& mesh, nlohmann::json& j) {
   j["regions"] = regions;
 }
 
-// The obstacle plane (a point of it and its unit normal towards the body; without
-// [contact.obstacle] the plane of the flat contact surface, through its mean node) and the basis
-// (n, t1, t2) of the contact, in which the tangential components are given (README, Conventions).
+// The first pair's obstacle: the plane (a point of it and its unit normal towards the body;
+// without [contact.obstacle] the plane of the flat contact surface, through its mean node), or
+// the master's tag; and the basis (n, t1, t2) of the (first) contact surface, in which the
+// tangential components are given (README, Conventions; each pair's in report.json's pairs).
 void add_contact_geometry(const driver::Problem& problem, const mesh::TetMesh& mesh,
                           const driver::ContactFields& c, nlohmann::json& j) {
   const auto& s = c.surface;
+  j["contact_basis"] = {{"n", vec3(s.n)}, {"t1", vec3(s.t1)}, {"t2", vec3(s.t2)}};
+  const auto& first = problem.contact.front().obstacle;
+  if (first && first->kind == driver::ObstacleKind::Body) {
+    j["obstacle"] = {{"kind", "body"}, {"boundary", first->boundary}};
+    return;
+  }
   Vec3 point = Vec3::Zero();
-  if (!problem.contact.empty() && problem.contact.front().obstacle) {
-    point = problem.contact.front().obstacle->point;
+  if (first) {
+    point = first->point;
   } else {
     for (Index node : s.nodes)
       point += mesh.nodes.col(node);
@@ -139,8 +147,7 @@ void add_contact_geometry(const driver::Problem& problem, const mesh::TetMesh& m
       {"kind", "plane"},
       {"point", vec3(point)},
       {"normal", vec3(-s.n)},
-      {"given", !problem.contact.empty() && problem.contact.front().obstacle.has_value()}};
-  j["contact_basis"] = {{"n", vec3(s.n)}, {"t1", vec3(s.t1)}, {"t2", vec3(s.t2)}};
+      {"given", first.has_value()}};
 }
 
 // A distributed run: its ranks, partition and each rank's work and memory.
