@@ -3,7 +3,13 @@
 
     /usr/bin/python3 bench/hertz_bench.py build/apps/fricon/fricon \
         [--size-factors 1 0.7 0.5 0.35] [--ratio-size-factors 0.6 0.45] [--out DIR] \
-        [--markdown] [--threads N] [--repeat N]
+        [--markdown] [--threads N] [--repeat N] [--problem hemisphere|two-spheres]
+
+--problem two-spheres runs the same studies on examples/two-bodies/hertz-spheres.toml (two
+elastic spheres, R = 50 mm, E = 2e10 Pa, nu = 0.3, quarter models, pressed together by a total
+approach of 4 mm; Hertz's formulas with R / 2 and E* = E / (2 (1 - nu^2)), and the force of the
+whole spheres, four times the model's); the ratio target there is 1.5 at size factor 0.75
+(about 150k unknowns), e.g. --size-factors 1 0.75 --ratio-size-factors 0.75.
 
 Both studies solve examples/geometry/hertz-hemisphere.toml (an elastic hemisphere, R = 50 mm,
 E = 2e11 Pa, nu = 0.3, pressed without friction on a rigid plane by a prescribed displacement of
@@ -55,10 +61,22 @@ import tomllib
 import numpy as np
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
-HERTZ = ROOT / "examples" / "geometry" / "hertz-hemisphere.toml"
-RADIUS, YOUNG, POISSON = 0.05, 2.0e11, 0.3  # as in hertz-hemisphere.geo and .toml
+# The problems (--problem): the file, and Hertz's equivalent sphere on a rigid plane: its radius
+# [m] and the pair's modulus E* [Pa].
+PROBLEMS = {
+    # One hemisphere (R = 50 mm, E = 2e11 Pa, nu = 0.3) on the rigid plane: R, E / (1 - nu^2).
+    "hemisphere": (ROOT / "examples" / "geometry" / "hertz-hemisphere.toml", 0.05,
+                   2.0e11 / (1.0 - 0.3**2)),
+    # Two spheres (R = 50 mm, E = 2e10 Pa, nu = 0.3) pressed together: R / 2, E / (2 (1 - nu^2));
+    # quarter models, so the patches carry a quarter of the force.
+    "two-spheres": (ROOT / "examples" / "two-bodies" / "hertz-spheres.toml", 0.025,
+                    2.0e10 / (2.0 * (1.0 - 0.3**2))),
+}
+QUARTER = {"hemisphere": 1.0, "two-spheres": 4.0}  # the model's share of the whole
 PRODUCT_TARGET = 2.0  # n_mult of the finest mesh over that of the coarsest
-RATIO_TARGETS = {0.6: 1.15, 0.45: 1.3}  # time_s with contact over time_s without, per size factor
+# time_s with contact over time_s without, per problem and size factor (two spheres: about 150k
+# unknowns at 0.75)
+RATIO_TARGETS = {"hemisphere": {0.6: 1.15, 0.45: 1.3}, "two-spheres": {0.75: 1.5}}
 PHASES = ("mesh", "assembly", "contact", "factorize", "dual", "qp", "solve", "recovery",
           "postprocess")  # the order of a run; any other phase a report names follows
 
@@ -164,6 +182,9 @@ def read_patches(folder):
     return {k: np.array([float(r[k]) for r in rows]) for k in ("x", "y", "area", "lambda_n")}
 
 
+PROBLEM = "hemisphere"  # --problem
+
+
 def hertz_measures(report, patches):
     p, area = patches["lambda_n"], patches["area"]
     r = np.hypot(patches["x"], patches["y"])
@@ -171,9 +192,10 @@ def hertz_measures(report, patches):
     if abs(force - report["total_normal_force"]) > 1e-9 * abs(force):
         raise RunFailed(f"the patches' force {force:.6e} N is not the report's "
                         f"total_normal_force {report['total_normal_force']:.6e} N")
-    e_star = YOUNG / (1.0 - POISSON**2)
-    a = (3.0 * force * RADIUS / (4.0 * e_star)) ** (1.0 / 3.0)
-    p0 = 3.0 * force / (2.0 * math.pi * a * a)
+    _, radius, e_star = PROBLEMS[PROBLEM]
+    whole = QUARTER[PROBLEM] * force
+    a = (3.0 * whole * radius / (4.0 * e_star)) ** (1.0 / 3.0)
+    p0 = 3.0 * whole / (2.0 * math.pi * a * a)
     a_h = math.sqrt(2.5 * float(np.sum(p * area * r**2)) / force)
     hertz = p0 * np.sqrt(np.maximum(0.0, 1.0 - (r / a) ** 2))
     inner = r < 0.9 * a
@@ -257,7 +279,7 @@ def ratio_section(pairs, markdown):
     rows = []
     for sf, with_c, without in pairs:
         ratio = with_c["time_s"] / without["time_s"]
-        target = RATIO_TARGETS.get(sf)
+        target = RATIO_TARGETS[PROBLEM].get(sf)
         rows.append([f"{sf:g}", str(with_c["n_primal"]), f"{with_c['time_s']:.2f}",
                      f"{without['time_s']:.2f}", f"{ratio:.2f}",
                      f"{target:g}" if target else "-",
@@ -301,7 +323,13 @@ def main():
                     "from the machine's load)")
     ap.add_argument("--repeat", type=int, default=1, metavar="N", help="ratio study: alternate "
                     "the two runs N times, keep the fastest of each (default: 1)")
+    ap.add_argument("--problem", choices=sorted(PROBLEMS), default="hemisphere",
+                    help="hemisphere: examples/geometry/hertz-hemisphere.toml on the plane; "
+                    "two-spheres: examples/two-bodies/hertz-spheres.toml, two elastic bodies")
     opts = ap.parse_args()
+    global PROBLEM, HERTZ
+    PROBLEM = opts.problem
+    HERTZ = PROBLEMS[PROBLEM][0]
     if any(x <= 0 for x in opts.size_factors + opts.ratio_size_factors):
         ap.error("size factors must be > 0")
     if opts.repeat < 1:
@@ -364,7 +392,7 @@ def main():
     md = opts.markdown
     reports = [r for _, r, _ in runs] + [r for _, r, _ in pairs]
     threads = sorted({str(r["factor"]["blas_threads"]) for r in reports if "factor" in r})
-    lines = [f"Hertz's hemisphere ({HERTZ.relative_to(ROOT)}), default solver settings; "
+    lines = [f"Hertz ({HERTZ.relative_to(ROOT)}), default solver settings; "
              f"{version.stdout.strip()}, BLAS threads {', '.join(threads) or '-'}; load "
              f"average at the start {load:.2f} on {os.cpu_count()} cores", ""]
     lines += ["Refinement study (errors against Hertz's a, p0 and p(r) for the run's P; "
