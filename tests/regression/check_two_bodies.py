@@ -11,6 +11,13 @@
     faces, where h is prescribed, lie at R from the contact, and a / R_eff = 0.4 is not small.
     The reactions balance (the contact forces on the two bodies cancel, to 1e-6 of the force),
     and the master covers the contact surface (coverage 1).
+  - sphere-on-block: a frictionless steel hemisphere (R = 50 mm, E1 = 200 GPa, nu1 = 0.3) on an
+    aluminium block (E2 = 70 GPa, nu2 = 0.33), quarter models with non-matching meshes, pressed
+    by 0.45 mm. Hertz for the run's total force P (four times the quarter's) with the pair's
+    modulus 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2 (E* = 57.87 GPa): a = (3 P R / (4 E*))^(1/3),
+    p0 = 3 P / (2 pi a^2). The contact radius from the pressure's second moment is within 5 % of
+    a and the largest patch pressure within 5 % of p0 (both come out within 2 %: -1.4 % and
+    +0.8 %; at 0.7 x the element sizes -0.8 % and +2.1 %); the master covers the contact surface.
   - sheared-blocks: Coulomb friction between two blocks; the certificate passes, the tangential
     force of the pair is at most mu times its normal force, small sliding holds, and the
     reactions of the clamped lower block balance the force on the upper block's top.
@@ -29,6 +36,8 @@ import common
 exe, examples, out = common.arguments(__doc__)
 
 E, NU, R, H = 2.0e10, 0.3, 0.05, 4.0e-3  # hertz-spheres.toml, hertz-spheres.geo
+# sphere-on-block.toml, sphere-on-block.geo: steel ball, aluminium block, radius
+E_BALL, NU_BALL, E_BLOCK, NU_BLOCK, R_BALL = 2.0e11, 0.3, 7.0e10, 0.33, 0.05
 MU_SHEARED = 0.3                         # sheared-blocks.toml
 
 
@@ -61,6 +70,33 @@ def check_hertz():
     # The contact forces on the two bodies cancel: the reactions of the pressed faces and of
     # the symmetry planes balance each other (in z, the flat faces alone).
     assert abs(pair["normal_force"] - force) <= 1e-9 * force
+    assert abs(report["reaction_force"][2]) <= 1e-6 * force, report["reaction_force"]
+
+
+def check_sphere_on_block():
+    folder, report = solve("sphere-on-block")
+    patches = common.read_patches(folder)
+    [pair] = report["pairs"]
+    assert pair["obstacle"] == "body" and pair["master"] == "block_top", pair
+    assert abs(pair["master_coverage"] - 1.0) < 1e-6, pair["master_coverage"]
+    assert pair["small_sliding"], pair
+    # Quarter model: four times the force; Hertz for that force with the pair's modulus.
+    force = sum(p["lambda_n"] * p["area"] for p in patches)
+    assert abs(pair["normal_force"] - force) <= 1e-9 * force, (pair["normal_force"], force)
+    total = 4.0 * force
+    e_star = 1.0 / ((1.0 - NU_BALL ** 2) / E_BALL + (1.0 - NU_BLOCK ** 2) / E_BLOCK)
+    a = (3.0 * total * R_BALL / (4.0 * e_star)) ** (1.0 / 3.0)
+    p0 = 3.0 * total / (2.0 * math.pi * a * a)
+    second = sum(p["lambda_n"] * p["area"] * (p["x"] ** 2 + p["y"] ** 2) for p in patches)
+    a_h = math.sqrt(2.5 * second / force)
+    peak = max(p["lambda_n"] for p in patches)
+    print(f"sphere-on-block: E* = {e_star / 1e9:.2f} GPa, P = {total:.4e} N; a = "
+          f"{a_h * 1e3:.3f} mm against Hertz's {a * 1e3:.3f} mm ({a_h / a - 1:+.2%}), peak "
+          f"{peak / 1e6:.1f} MPa against p0 = {p0 / 1e6:.1f} MPa ({peak / p0 - 1:+.2%})")
+    assert abs(a_h / a - 1.0) <= 0.05, (a_h, a)
+    assert abs(peak / p0 - 1.0) <= 0.05, (peak, p0)
+    # The contact forces on the two bodies cancel: in z, the reactions of the ball's face and of
+    # the block's bottom balance each other.
     assert abs(report["reaction_force"][2]) <= 1e-6 * force, report["reaction_force"]
 
 
@@ -98,6 +134,7 @@ def check_stacked():
 
 
 check_hertz()
+check_sphere_on_block()
 check_sheared()
 check_stacked()
 print("two bodies: passed")
