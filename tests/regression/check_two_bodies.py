@@ -2,15 +2,19 @@
 
   - hertz-spheres: two identical frictionless spheres (R = 50 mm, E = 20 GPa, nu = 0.3, quarter
     models) pressed together by a total approach h = 4 mm of their flat faces (Code_Aster's
-    SSNV104 setup). Hertz (one sphere of radius R/2 on a plane, E* = E / (2 (1 - nu^2))) gives
-    for this approach a = sqrt(R h / 2) = 10 mm and p0 = E / (pi (1 - nu^2)) sqrt(2 h / R) =
-    2798 MPa. The contact radius from the pressure's second moment (a^2 = 5/2 int p r^2 / int p
-    for Hertz's p) is within 3 % of a; the largest patch pressure within 8 % of p0. It comes out
-    7 % above, unchanged by refining the mesh (0.7 x the element sizes: peak 3001 against 2998
-    MPa, a 9.99 against 9.98 mm): Hertz's half-spaces are not the model's hemispheres, whose flat
-    faces, where h is prescribed, lie at R from the contact, and a / R_eff = 0.4 is not small.
+    SSNV104 setup). By symmetry the interface stays the plane z = 0: the answer is that of the
+    upper sphere alone pressed by h / 2 on a rigid frictionless plane. That problem, solved on
+    the same upper mesh (the same file with the pair's obstacle made the plane z = 0), gives the
+    same total force to 0.5 %, contact radius to 1 % and peak patch pressure to 1.5 % (the
+    lower mesh does not match the upper one, and the patches differ). Against Hertz for the
+    approach (one sphere of radius R/2 on a plane, E* = E / (2 (1 - nu^2)): a = sqrt(R h / 2) =
+    10 mm and p0 = E / (pi (1 - nu^2)) sqrt(2 h / R) = 2798 MPa): the contact radius from the
+    pressure's second moment (a^2 = 5/2 int p r^2 / int p for Hertz's p) and the largest patch
+    pressure within 6 %; both come out about 4-5 % above, unchanged by refinement and equal to
+    the one-sphere-on-a-plane answer: Hertz's half-spaces are not the model's hemispheres, whose
+    flat faces, where h is prescribed, lie at R from the contact (a / R_eff = 0.4).
     The reactions balance (the contact forces on the two bodies cancel, to 1e-6 of the force),
-    and the master covers the contact surface (coverage 1).
+    and the master covers the contact surface (coverage 1 to 1e-3).
   - sphere-on-block: a frictionless steel hemisphere (R = 50 mm, E1 = 200 GPa, nu1 = 0.3) on an
     aluminium block (E2 = 70 GPa, nu2 = 0.33), quarter models with non-matching meshes, pressed
     by 0.45 mm. Hertz for the run's total force P (four times the quarter's) with the pair's
@@ -48,25 +52,57 @@ def solve(name, *sets):
     return folder, report
 
 
+def hertz_measures(patches):
+    """Force, contact radius from the pressure's second moment, and peak of a quarter model."""
+    force = sum(p["lambda_n"] * p["area"] for p in patches)
+    second = sum(p["lambda_n"] * p["area"] * (p["x"] ** 2 + p["y"] ** 2) for p in patches)
+    return force, math.sqrt(2.5 * second / force), max(p["lambda_n"] for p in patches)
+
+
+def on_the_plane(toml, copy):
+    """The problem file with its pair's master replaced by the rigid plane z = 0 (normal +z,
+    towards the upper body) and the mesh file's path made absolute."""
+    text = toml.read_text()
+    body = 'obstacle = { kind = "body", boundary = "lower_contact" }'
+    assert body in text, toml
+    text = text.replace(body, 'obstacle = { kind = "plane", point = [0.0, 0.0, 0.0], '
+                              'normal = [0.0, 0.0, 1.0] }')
+    text = "\n".join(line for line in text.splitlines()
+                     if not line.startswith("search_distance")) + "\n"
+    text = text.replace('file = "hertz-spheres.geo"',
+                        f'file = "{(toml.parent / "hertz-spheres.geo").resolve()}"')
+    copy.parent.mkdir(parents=True, exist_ok=True)
+    copy.write_text(text)
+    return copy
+
+
 def check_hertz():
     folder, report = solve("hertz-spheres")
     patches = common.read_patches(folder)
     [pair] = report["pairs"]
     assert pair["obstacle"] == "body" and pair["master"] == "lower_contact", pair
-    assert abs(pair["master_coverage"] - 1.0) < 1e-6, pair["master_coverage"]
+    # Curved surfaces projected along the patches' averaged normals: covered up to slivers.
+    assert abs(pair["master_coverage"] - 1.0) < 1e-3, pair["master_coverage"]
     assert pair["small_sliding"], pair
     # Quarter model: four times the force, the pressure's moments about the pole.
-    force = sum(p["lambda_n"] * p["area"] for p in patches)
-    second = sum(p["lambda_n"] * p["area"] * (p["x"] ** 2 + p["y"] ** 2) for p in patches)
-    a_h = math.sqrt(2.5 * second / force)
-    peak = max(p["lambda_n"] for p in patches)
+    force, a_h, peak = hertz_measures(patches)
+    # The symmetric problem: the upper sphere alone on the plane z = 0.
+    plane_toml = on_the_plane(examples / "hertz-spheres.toml", out / "hertz-on-plane.toml")
+    plane_report = common.solve(exe, plane_toml, out / "hertz-on-plane", timeout=300)
+    assert plane_report["status"] == "converged"
+    f_plane, a_plane, peak_plane = hertz_measures(common.read_patches(out / "hertz-on-plane"))
+    print(f"hertz-spheres: two bodies against one on the plane: force {force / f_plane - 1:+.3%}, "
+          f"a {a_h / a_plane - 1:+.3%}, peak {peak / peak_plane - 1:+.3%}")
+    assert abs(force / f_plane - 1.0) <= 0.005, (force, f_plane)
+    assert abs(a_h / a_plane - 1.0) <= 0.01, (a_h, a_plane)
+    assert abs(peak / peak_plane - 1.0) <= 0.015, (peak, peak_plane)
     a_approach = math.sqrt(R * H / 2.0)
     p0_approach = E / (math.pi * (1.0 - NU ** 2)) * math.sqrt(2.0 * H / R)
     print(f"hertz-spheres: P = {4.0 * force:.4e} N; a = {a_h * 1e3:.3f} mm against "
           f"{a_approach * 1e3:.2f} mm ({a_h / a_approach - 1:+.2%}), peak {peak / 1e6:.1f} MPa "
           f"against p0 = {p0_approach / 1e6:.1f} MPa ({peak / p0_approach - 1:+.2%})")
-    assert abs(a_h / a_approach - 1.0) <= 0.03, (a_h, a_approach)
-    assert abs(peak / p0_approach - 1.0) <= 0.08, (peak, p0_approach)
+    assert abs(a_h / a_approach - 1.0) <= 0.06, (a_h, a_approach)
+    assert abs(peak / p0_approach - 1.0) <= 0.06, (peak, p0_approach)
     # The contact forces on the two bodies cancel: the reactions of the pressed faces and of
     # the symmetry planes balance each other (in z, the flat faces alone).
     assert abs(pair["normal_force"] - force) <= 1e-9 * force

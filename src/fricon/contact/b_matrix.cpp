@@ -22,11 +22,15 @@ Frames patch_frames(const mesh::TetMesh& mesh, const ContactSurface& surface,
   f.n.resize(3, patches.size());
   f.t1.resize(3, patches.size());
   f.t2.resize(3, patches.size());
+  // Against a body: the area-weighted mean of the nodes' contact normals (theory.md §2.8).
   for (Index p = 0; p < patches.size(); ++p) {
     Vec3 sum = Vec3::Zero();
     for (Index k : patches.faces[static_cast<size_t>(p)]) {
       const Index face = surface.faces[static_cast<size_t>(k)];
-      sum += mesh::face_area(mesh, face) * mesh::face_normal(mesh, face);
+      Vec3 nodal = Vec3::Zero();
+      for (int v = 0; v < 3; ++v)
+        nodal += surface.node_frames.n.col(surface.face_nodes(v, k));
+      sum += mesh::face_area(mesh, face) * nodal;
     }
     const Vec3 n = sum.normalized();
     const auto [t1, t2] = Frames::tangents(n);

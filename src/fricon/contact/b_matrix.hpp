@@ -13,8 +13,8 @@
 namespace fricon::contact {
 
 /// The frame of each patch, in which its multipliers act: the surface's (n, t1, t2) against a
-/// plane; against a body the frame of the patch's area-weighted mean outward normal
-/// (Frames::tangents).
+/// plane; against a body the frame of the area-weighted mean of its nodes' contact normals
+/// (ContactSurface::node_frames; Frames::tangents).
 Frames patch_frames(const mesh::TetMesh& mesh, const ContactSurface& surface,
                     const Patches& patches);
 

@@ -24,10 +24,11 @@ constexpr Real kOverlapRoundoff = 1e-9;
 
 /// One slave node's search result.
 struct NodeHit {
-  bool found = false;  ///< a facing master triangle within the search distance
-  bool facing = true;  ///< false: the first hit faces away (same orientation as the slave)
-  Real gap = 0.0;      ///< [m], along the node's normal
-  Index face = -1;     ///< the master triangle (mesh face index)
+  bool found = false;          ///< a facing master triangle within the search distance
+  bool facing = true;          ///< false: the first hit faces away (same orientation as the slave)
+  Real gap = 0.0;              ///< [m], along `normal`
+  Vec3 normal = Vec3::Zero();  ///< the contact normal of the node (theory.md §2.8)
+  Index face = -1;             ///< the master triangle (mesh face index)
   std::array<Real, 3> weights{};  ///< its vertices' shape functions at the hit
 };
 
@@ -71,18 +72,34 @@ void require_two_bodies(const mesh::TetMesh& mesh, const std::vector<Index>& sla
     }
 }
 
-/// Step 1: every slave node's ray along its normal to the master.
+/// The hit of the ray x + t n on the master, if it meets a triangle facing n.
+std::optional<RayHit> facing_hit(const mesh::TetMesh& mesh, const SurfaceLocator& locator,
+                                 const Vec3& x, const Vec3& n, Real distance, bool& facing) {
+  const std::optional<RayHit> hit = locator.ray_hit(x, n, distance);
+  if (!hit) return std::nullopt;
+  facing = mesh::face_normal(mesh, hit->face).dot(n) < -kFacingCosine;
+  return facing ? hit : std::nullopt;
+}
+
+/// Step 1: every slave node's ray to the master: along its outward normal n_s, which finds the
+/// master triangle opposite and its normal n_m, then along the averaged normal
+/// n = (n_s - n_m) / |n_s - n_m| (theory.md §2.8), which is the node's contact normal.
 std::vector<NodeHit> search_master(const mesh::TetMesh& mesh, const ContactSurface& whole,
                                    const SurfaceLocator& locator, Real distance) {
   std::vector<NodeHit> hits(static_cast<size_t>(whole.n_nodes()));
   for (Index k = 0; k < whole.n_nodes(); ++k) {
-    const Vec3 x = mesh.nodes.col(whole.nodes[static_cast<size_t>(k)]);
-    const Vec3 n = whole.node_frames.n.col(k);
-    const std::optional<RayHit> hit = locator.ray_hit(x, n, distance);
-    if (!hit) continue;
     NodeHit& h = hits[static_cast<size_t>(k)];
-    h.facing = mesh::face_normal(mesh, hit->face).dot(n) < -kFacingCosine;
-    if (!h.facing) continue;
+    const Vec3 x = mesh.nodes.col(whole.nodes[static_cast<size_t>(k)]);
+    const Vec3 n_slave = whole.node_frames.n.col(k);
+    std::optional<RayHit> hit = facing_hit(mesh, locator, x, n_slave, distance, h.facing);
+    if (!hit) continue;
+    h.normal = n_slave;
+    const Vec3 averaged = (n_slave - mesh::face_normal(mesh, hit->face)).normalized();
+    bool facing = true;
+    if (const auto again = facing_hit(mesh, locator, x, averaged, distance, facing)) {
+      hit = again;
+      h.normal = averaged;
+    }
     h.found = true;
     h.gap = hit->distance;
     h.face = hit->face;
@@ -173,15 +190,17 @@ SlaveSurface make_slave_surface(const mesh::TetMesh& mesh, const fe::DofMap& dof
   if (kept.empty()) refuse_out_of_reach(whole, hits, slave, master, out.search_distance, where);
   out.surface = surface_of_faces(mesh, dofs, slave, kept, where);
   ContactSurface& s = out.surface;
-  // Against a body each node keeps the frame of the whole tag's normals (the rays' directions).
+  // Against a body each node's frame is that of its contact normal (its ray's direction).
   std::vector<Index> whole_position(static_cast<size_t>(mesh.n_nodes()), -1);
   for (Index k = 0; k < whole.n_nodes(); ++k)
     whole_position[static_cast<size_t>(whole.nodes[static_cast<size_t>(k)])] = k;
   for (Index k = 0; k < s.n_nodes(); ++k) {
     const Index w = whole_position[static_cast<size_t>(s.nodes[static_cast<size_t>(k)])];
-    s.node_frames.n.col(k) = whole.node_frames.n.col(w);
-    s.node_frames.t1.col(k) = whole.node_frames.t1.col(w);
-    s.node_frames.t2.col(k) = whole.node_frames.t2.col(w);
+    const Vec3 n = hits[static_cast<size_t>(w)].normal;
+    const auto [t1, t2] = Frames::tangents(n);
+    s.node_frames.n.col(k) = n;
+    s.node_frames.t1.col(k) = t1;
+    s.node_frames.t2.col(k) = t2;
   }
 
   // @sect: the gaps and the master's interpolation at each node's projection.
