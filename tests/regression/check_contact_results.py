@@ -65,7 +65,8 @@ def read_csv(path, header):
 PATCH_COLUMNS = ["x", "y", "z", "area", "lambda_n", "lambda_t1", "lambda_t2", "radius", "F",
                  "ratio"]
 P, rows = read_csv(out / "patches.csv", PATCH_COLUMNS)
-assert rows[0] == PATCH_COLUMNS + ["state"], rows[0]
+assert rows[0] == PATCH_COLUMNS + ["state", "pair"], rows[0]
+assert all(row[11] == "0" for row in rows[1:]), "one contact pair: pair 0 everywhere"
 assert P.shape == (12, 10)
 X, Y, Z, AREA, LN, LT1, LT2, RADIUS, F_R, RATIO = range(10)
 assert np.all(P[:, Z] == 0.0), "a patch centroid off the brick's bottom"
@@ -88,7 +89,8 @@ assert abs(lt.max() - report["max_lambda_t"]) <= 1e-9 * report["max_lambda_t"]
 
 NODE_COLUMNS = ["x", "y", "z", "gap", "w_n", "w_t1", "w_t2", "phi", "F"]
 N, rows = read_csv(out / "contact_nodes.csv", NODE_COLUMNS)
-assert rows[0] == NODE_COLUMNS, rows[0]
+assert rows[0] == NODE_COLUMNS + ["pair"], rows[0]
+assert all(row[9] == "0" for row in rows[1:]), "one contact pair: pair 0 everywhere"
 assert N.shape == (13 * 5, 9)
 X, Y, Z, GAP, WN, WT1, WT2, PHI, F = range(9)
 assert np.all(N[:, Z] == 0.0), "a contact node off the brick's bottom"
