@@ -77,14 +77,21 @@ def on_the_plane(toml, copy):
     return copy
 
 
-def check_hertz():
-    folder, report = solve("hertz-spheres")
-    patches = common.read_patches(folder)
+def solve_against(name, master, coverage_tolerance):
+    """Solves an example of one pair against the body surface `master`; checks that the master
+    covers the contact surface and that small sliding holds. Returns the report, the patches and
+    the pair's report."""
+    folder, report = solve(name)
     [pair] = report["pairs"]
-    assert pair["obstacle"] == "body" and pair["master"] == "lower_contact", pair
-    # Curved surfaces projected along the patches' averaged normals: covered up to slivers.
-    assert abs(pair["master_coverage"] - 1.0) < 1e-3, pair["master_coverage"]
+    assert pair["obstacle"] == "body" and pair["master"] == master, pair
+    assert abs(pair["master_coverage"] - 1.0) < coverage_tolerance, pair["master_coverage"]
     assert pair["small_sliding"], pair
+    return report, common.read_patches(folder), pair
+
+
+def check_hertz():
+    # Curved surfaces projected along the patches' averaged normals: covered up to slivers.
+    report, patches, pair = solve_against("hertz-spheres", "lower_contact", 1e-3)
     # Quarter model: four times the force, the pressure's moments about the pole.
     force, a_h, peak = hertz_measures(patches)
     # The symmetric problem: the upper sphere alone on the plane z = 0.
@@ -111,12 +118,7 @@ def check_hertz():
 
 
 def check_sphere_on_block():
-    folder, report = solve("sphere-on-block")
-    patches = common.read_patches(folder)
-    [pair] = report["pairs"]
-    assert pair["obstacle"] == "body" and pair["master"] == "block_top", pair
-    assert abs(pair["master_coverage"] - 1.0) < 1e-6, pair["master_coverage"]
-    assert pair["small_sliding"], pair
+    report, patches, pair = solve_against("sphere-on-block", "block_top", 1e-6)
     # Quarter model: four times the force; Hertz for that force with the pair's modulus.
     force = sum(p["lambda_n"] * p["area"] for p in patches)
     assert abs(pair["normal_force"] - force) <= 1e-9 * force, (pair["normal_force"], force)
