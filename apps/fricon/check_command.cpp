@@ -1,5 +1,6 @@
 // fricon check PROBLEM.toml: read and validate a problem, build its mesh and contact
 // discretization, print the sizes and the effective problem; nothing is solved.
+#include <algorithm>
 #include <memory>
 #include <optional>
 #include <string>
@@ -15,6 +16,27 @@
 namespace fricon::app {
 
 namespace {
+
+// One line per contact pair: its surfaces, patches, stability and (against a body) the reach.
+void print_pair(const contact::ContactDiscretization& d, std::size_t i) {
+  const contact::PairInfo& pair = d.pairs[i];
+  Index patches = 0, faces = 0;
+  for (Index p = 0; p < d.n_patches(); ++p)
+    if (d.patch_pair[static_cast<std::size_t>(p)] == static_cast<Index>(i)) {
+      ++patches;
+      faces += static_cast<Index>(d.patches.faces[static_cast<std::size_t>(p)].size());
+    }
+  const std::string against =
+      pair.master.empty()
+          ? std::string("the plane")
+          : fmt::format(
+                "'{}' ({} of the {} triangles of '{}' within {:.3g} m of it, coverage "
+                "{:.6f})",
+                pair.master, faces, pair.n_tag_faces, pair.boundary, pair.search_distance,
+                pair.master_coverage);
+  fmt::print("  {:<10} '{}' against {}: {} patches, sigma_min/sigma_max(B) = {:.3g}\n", pair.key,
+             pair.boundary, against, patches, pair.stability.ratio);
+}
 
 int check(const std::string& file, const std::vector<std::string>& sets) {
   const driver::Problem problem = io::read_problem(file, sets);
@@ -34,6 +56,9 @@ int check(const std::string& file, const std::vector<std::string>& sets) {
         disc->surface.tag, disc->surface.n_nodes(), disc->surface.n_contact_nodes(),
         disc->n_patches(), enum_name(problem.contact.front().patches), disc->n_dual(),
         disc->stability.ratio, disc->gap.minCoeff(), disc->gap.maxCoeff());
+    if (disc->pairs.size() > 1 || !disc->pairs.front().master.empty())
+      for (std::size_t i = 0; i < disc->pairs.size(); ++i)
+        print_pair(*disc, i);
     if (!disc->partition_note.empty()) fmt::print("  partition  {}\n", disc->partition_note);
     fmt::print("  friction   {}\n",
                contact::make_friction_law(problem.contact.front().friction)->describe());

@@ -151,7 +151,7 @@ VectorXd gaps_of(const mesh::TetMesh& mesh, const ContactSurface& s,
           "{}: contact.boundary: node {} of '{}' at ({:.6g}, {:.6g}, {:.6g}) starts inside the "
           "master surface (gap {:.4g} m < 0): the bodies must not overlap at the start",
           where, a, slave, mesh.nodes(0, a), mesh.nodes(1, a), mesh.nodes(2, a), h.gap));
-    gap(k) = std::max(h.gap, 0.0);
+    gap(k) = h.gap > 0.0 ? h.gap : 0.0;  // no "-0" from a gap rounded below zero
   }
   return gap;
 }
