@@ -30,21 +30,21 @@ namespace {
 // One line per pair when there are several or one against a body: its patches and forces, and a
 // warning when its slips left small sliding (theory.md §2.8).
 void print_pairs(const driver::ContactReport& c) {
-  if (c.pairs.size() == 1 && c.pairs.front().master.empty()) return;
+  if (c.pairs.size() == 1 && c.pairs.front().info.master.empty()) return;
   for (const driver::PairReport& p : c.pairs) {
     const std::string against =
-        p.master.empty() ? std::string("the plane") : fmt::format("'{}'", p.master);
+        p.info.master.empty() ? std::string("the plane") : fmt::format("'{}'", p.info.master);
     fmt::print(
         "  {:<13} '{}' on {}: {} patches ({} stick, {} slip, {} separated), normal force "
         "{:.4e} N, tangential force {:.4e} N\n",
-        p.key, p.boundary, against, p.n_patches, p.n_stick, p.n_slip, p.n_separated, p.normal_force,
-        p.tangential_force.norm());
+        p.info.key, p.info.boundary, against, p.n_patches, p.n_stick, p.n_slip, p.n_separated,
+        p.normal_force, p.tangential_force.norm());
     if (!p.small_sliding)
       fmt::print(
           "  WARNING       {}: the largest relative slip {:.3e} m exceeds {} of the master's "
           "element size {:.3e} m: the pairing, computed once in the reference configuration "
           "(small sliding), may no longer hold\n",
-          p.key, p.max_slip, driver::kSmallSlidingShare, p.master_element_size);
+          p.info.key, p.max_slip, driver::kSmallSlidingShare, p.info.master_element_size);
   }
 }
 

@@ -265,7 +265,7 @@ TEST(TwoBodiesContact, PatchTestNonMatching) {
     const Real pressure = kYoung * (kDelta - k.gap) / 2.0;
     const std::array<Real, 4> worst =
         expect_patch_test(r, Uniaxial{pressure, -pressure, -pressure, Mat3::Identity()});
-    EXPECT_NEAR(r.report.contact->pairs.front().master_coverage, 1.0, kMortarRoundoff);
+    EXPECT_NEAR(r.report.contact->pairs.front().info.master_coverage, 1.0, kMortarRoundoff);
     // With a gap the master's point lies g0 along the normal, where v differs by A g0 n.
     const Real mortar = k.gap == 0.0 ? affine_mortar_defect(p, r) : 0.0;
     EXPECT_LT(mortar, kMortarRoundoff);
@@ -419,7 +419,7 @@ TEST(TwoBodiesContact, MatchingMeshesSameAsNonMatchingPath) {
   ASSERT_GT(b_slave.cwiseAbs().maxCoeff(), 0.0);
   const Real mortar_error = b_glued.cwiseAbs().maxCoeff() / b_slave.cwiseAbs().maxCoeff();
   EXPECT_LT(mortar_error, kRoundoff);
-  EXPECT_NEAR(r.report.contact->pairs.front().master_coverage, 1.0, kRoundoff);
+  EXPECT_NEAR(r.report.contact->pairs.front().info.master_coverage, 1.0, kRoundoff);
 
   // (b) The mirror symmetry of the solution.
   const fe::NodalField& u = r.displacement;

@@ -1,6 +1,7 @@
 #include "fricon/contact/discretization.hpp"
 
 #include <algorithm>
+#include <memory>
 
 #include <fmt/format.h>
 
@@ -57,6 +58,13 @@ constexpr Real kMinStabilityRatio = 1e-8;
 // size, so four go from patches of a few triangles to a few patches on a typical surface.
 constexpr int kMaxCoarsenings = 4;
 
+// Against a body: the master, located once, and how far along a normal it is looked for. Against
+// a plane: no master.
+struct Reach {
+  std::shared_ptr<const SurfaceLocator> master;
+  Real distance = 0.0;  // [m]
+};
+
 // One partition of the surface with its frames, mortar integrals, B and stability ratio (not
 // yet judged).
 struct Partition {
@@ -71,20 +79,20 @@ struct Partition {
 
 // The frames, mortar integrals and B of p.patches.
 void couple(const mesh::TetMesh& mesh, const fe::DofMap& dofs, const ContactSurface& surface,
-            const ContactSpec& spec, Real search_distance, Partition& p) {
+            const Reach& reach, Partition& p) {
   p.frames = patch_frames(mesh, surface, p.patches);
-  if (spec.master)
-    p.mortar = mortar_matrix(mesh, surface, p.patches, p.frames, spec.master->boundary,
-                             search_distance, p.coverage);
-  p.B = assemble_b(mesh, dofs, surface, p.patches, p.frames, spec.master ? &p.mortar : nullptr);
+  if (reach.master)
+    p.mortar = mortar_matrix(mesh, surface, p.patches, p.frames, *reach.master, reach.distance,
+                             p.coverage);
+  p.B = assemble_b(mesh, dofs, surface, p.patches, p.frames, reach.master ? &p.mortar : nullptr);
 }
 
 Partition measure_partition(const mesh::TetMesh& mesh, const fe::DofMap& dofs,
                             const ContactSurface& surface, const ContactSpec& spec,
-                            Real search_distance, Real patch_size) {
+                            const Reach& reach, Real patch_size) {
   Partition p;
   p.patches = make_patches(spec.patches, mesh, surface, patch_size, spec.where_patches);
-  couple(mesh, dofs, surface, spec, search_distance, p);
+  couple(mesh, dofs, surface, reach, p);
   p.stability = check_stability(p.B, spec.where_patches, /*min_ratio=*/0.0);
   return p;
 }
@@ -101,16 +109,16 @@ Real mean_patch_diameter(const mesh::TetMesh& mesh, const ContactSurface& surfac
 // unstable, at most kMaxCoarsenings times; `note` says what was done.
 Partition coarsened_agglomerate(const mesh::TetMesh& mesh, const fe::DofMap& dofs,
                                 const ContactSurface& surface, const ContactSpec& spec,
-                                Real search_distance, std::string& note) {
+                                const Reach& reach, std::string& note) {
   Real patch_size = spec.patch_size;
-  Partition p = measure_partition(mesh, dofs, surface, spec, search_distance, patch_size);
+  Partition p = measure_partition(mesh, dofs, surface, spec, reach, patch_size);
   std::string tried;
   for (int coarsening = 1; !p.stable() && coarsening <= kMaxCoarsenings; ++coarsening) {
     tried +=
         fmt::format("{}patch_size {:.3g} m: {} patches, ratio {:.2e}", tried.empty() ? "" : "; ",
                     patch_size, p.patches.size(), p.stability.ratio);
     patch_size = 2.0 * mean_patch_diameter(mesh, surface, p.patches);
-    p = measure_partition(mesh, dofs, surface, spec, search_distance, patch_size);
+    p = measure_partition(mesh, dofs, surface, spec, reach, patch_size);
   }
   if (!p.stable())
     throw NumericalError(fmt::format(
@@ -131,8 +139,8 @@ Partition coarsened_agglomerate(const mesh::TetMesh& mesh, const fe::DofMap& dof
 // The mesh file's partition, refused with advice when unstable.
 Partition checked_entity_partition(const mesh::TetMesh& mesh, const fe::DofMap& dofs,
                                    const ContactSurface& surface, const ContactSpec& spec,
-                                   Real search_distance) {
-  Partition p = measure_partition(mesh, dofs, surface, spec, search_distance, spec.patch_size);
+                                   const Reach& reach) {
+  Partition p = measure_partition(mesh, dofs, surface, spec, reach, spec.patch_size);
   if (!p.stable())
     throw NumericalError(fmt::format(
         "{}: contact.patches = \"mesh\": the partition drawn in the mesh (one patch per "
@@ -147,19 +155,18 @@ Partition checked_entity_partition(const mesh::TetMesh& mesh, const fe::DofMap& 
 
 // Patches, frames, B and its checked stability of d.surface, the partition coarsened if need be.
 Partition partition_stably(const mesh::TetMesh& mesh, const fe::DofMap& dofs,
-                           const ContactSpec& spec, Real search_distance,
-                           ContactDiscretization& d) {
+                           const ContactSpec& spec, const Reach& reach, ContactDiscretization& d) {
   Partition p;
   switch (spec.patches) {
     case PatchKind::Agglomerate:
-      p = coarsened_agglomerate(mesh, dofs, d.surface, spec, search_distance, d.partition_note);
+      p = coarsened_agglomerate(mesh, dofs, d.surface, spec, reach, d.partition_note);
       break;
     case PatchKind::Mesh:
-      p = checked_entity_partition(mesh, dofs, d.surface, spec, search_distance);
+      p = checked_entity_partition(mesh, dofs, d.surface, spec, reach);
       break;
     case PatchKind::Chessboard:
       p.patches = make_patches(spec.patches, mesh, d.surface, spec.patch_size, spec.where_patches);
-      couple(mesh, dofs, d.surface, spec, search_distance, p);
+      couple(mesh, dofs, d.surface, reach, p);
       p.stability = check_stability(p.B, spec.where_patches, kMinStabilityRatio);
       break;
   }
@@ -167,9 +174,9 @@ Partition partition_stably(const mesh::TetMesh& mesh, const fe::DofMap& dofs,
 }
 
 // The surface and the gap of the pair: against the plane (or the flat surface's own), or against
-// a master surface (master_surface.hpp).
-void make_surface(const mesh::TetMesh& mesh, const fe::DofMap& dofs, const ContactSpec& spec,
-                  ContactDiscretization& d) {
+// a master surface (master_surface.hpp), whose reach it returns.
+Reach make_surface(const mesh::TetMesh& mesh, const fe::DofMap& dofs, const ContactSpec& spec,
+                   ContactDiscretization& d) {
   PairInfo& pair = d.pairs.emplace_back();
   pair.key = spec.key;
   pair.boundary = spec.boundary;
@@ -183,13 +190,14 @@ void make_surface(const mesh::TetMesh& mesh, const fe::DofMap& dofs, const Conta
     pair.n_tag_faces = slave.n_tag_faces;
     pair.search_distance = slave.search_distance;
     pair.master_element_size = slave.master_element_size;
-    return;
+    return {std::move(slave.master), slave.search_distance};
   }
   d.surface = make_contact_surface(mesh, dofs, spec.boundary, spec.where_boundary, spec.obstacle);
   d.surface.prescribed = prescribed_on_surface(d.surface, spec.prescribed);
   d.gap = spec.obstacle ? initial_gap(mesh, d.surface, *spec.obstacle, spec.where_obstacle)
                         : VectorXd::Zero(d.surface.n_nodes());
   pair.n_tag_faces = static_cast<Index>(d.surface.faces.size());
+  return {};
 }
 
 // The nodes the rows of B touch: the surface's, and the master's against a body.
@@ -207,11 +215,11 @@ std::vector<Index> coupled_nodes(const ContactSurface& s, const SparseMatrix& mo
 ContactDiscretization discretize_contact(const mesh::TetMesh& mesh, const fe::DofMap& dofs,
                                          const ContactSpec& spec) {
   ContactDiscretization d;
-  make_surface(mesh, dofs, spec, d);
+  const Reach reach = make_surface(mesh, dofs, spec, d);
   d.pairs.front().n = d.surface.n;
   d.pairs.front().t1 = d.surface.t1;
   d.pairs.front().t2 = d.surface.t2;
-  Partition p = partition_stably(mesh, dofs, spec, d.pairs.front().search_distance, d);
+  Partition p = partition_stably(mesh, dofs, spec, reach, d);
   d.patches = std::move(p.patches);
   d.B = std::move(p.B);
   d.stability = p.stability;
@@ -304,9 +312,8 @@ ContactDiscretization merge_pairs(std::vector<ContactDiscretization> pairs) {
     const ContactDiscretization& b = pairs[i];
     const auto pair = static_cast<Index>(i);
     const Index face_shift = static_cast<Index>(d.surface.faces.size());
-    const Index mesh_nodes =
-        b.surface.master.cols() > 0 ? b.surface.master.cols() : d.surface.master.cols();
-    append_surface(d.surface, b.surface, pair, std::max<Index>(mesh_nodes, 0));
+    const Index mesh_nodes = std::max(b.surface.master.cols(), d.surface.master.cols());
+    append_surface(d.surface, b.surface, pair, mesh_nodes);
     for (const auto& faces : b.patches.faces) {
       std::vector<Index> shifted = faces;
       for (Index& k : shifted)

@@ -184,8 +184,8 @@ SlaveSurface make_slave_surface(const mesh::TetMesh& mesh, const fe::DofMap& dof
   out.master_element_size = mean_edge(mesh, master_faces);
 
   // @sect: step 1, each node's ray to the master; step 2, the triangles in reach.
-  const SurfaceLocator locator(mesh, master_faces);
-  const std::vector<NodeHit> hits = search_master(mesh, whole, locator, out.search_distance);
+  out.master = std::make_shared<const SurfaceLocator>(mesh, master_faces);
+  const std::vector<NodeHit> hits = search_master(mesh, whole, *out.master, out.search_distance);
   const std::vector<Index> kept = faces_in_reach(whole, hits);
   if (kept.empty()) refuse_out_of_reach(whole, hits, slave, master, out.search_distance, where);
   out.surface = surface_of_faces(mesh, dofs, slave, kept, where);
@@ -221,8 +221,7 @@ SlaveSurface make_slave_surface(const mesh::TetMesh& mesh, const fe::DofMap& dof
 
 SparseMatrix mortar_matrix(const mesh::TetMesh& mesh, const ContactSurface& surface,
                            const Patches& patches, const Frames& frames,
-                           const std::string& master_tag, Real search_distance, Real& coverage) {
-  const SurfaceLocator locator(mesh, mesh.faces_with_tag(master_tag));
+                           const SurfaceLocator& master, Real search_distance, Real& coverage) {
   std::vector<Eigen::Triplet<Real, SparseIndex>> entries;
   Real covered = 0.0;
   for (Index p = 0; p < patches.size(); ++p)
@@ -231,7 +230,7 @@ SparseMatrix mortar_matrix(const mesh::TetMesh& mesh, const ContactSurface& surf
       const Triangle3 slave{mesh.nodes.col(mesh.faces(0, f)), mesh.nodes.col(mesh.faces(1, f)),
                             mesh.nodes.col(mesh.faces(2, f))};
       for (const MortarOverlap& o :
-           mortar_overlaps(slave, frames.n.col(p), locator, search_distance)) {
+           mortar_overlaps(slave, frames.n.col(p), master, search_distance)) {
         // Only the master triangles that face the slave (a thin master's far side does not).
         if (mesh::face_normal(mesh, o.master_face).dot(frames.n.col(p)) >= -kFacingCosine) continue;
         covered += o.area;

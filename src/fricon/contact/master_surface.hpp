@@ -13,6 +13,7 @@
 //      each patch, on the intersections of the slave triangles with the master triangles
 //      projected along the patch normal (mortar_geometry.hpp): the master's columns of B.
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -45,6 +46,8 @@ struct SlaveSurface {
   Real search_distance = 0.0;    ///< d as used [m]
   Index n_tag_faces = 0;         ///< triangles of the slave tag (the surface keeps those in reach)
   Real master_element_size = 0;  ///< mean edge length of the master triangles [m]
+  /// The master's triangles, located (built once: the rays and the mortar integrals use it).
+  std::shared_ptr<const SurfaceLocator> master;
 };
 
 /// Steps 1 and 2 above. Throws InputError naming `where` (the slave's contact.boundary) or
@@ -62,6 +65,6 @@ SlaveSurface make_slave_surface(const mesh::TetMesh& mesh, const fe::DofMap& dof
 /// triangle lies opposite the master).
 SparseMatrix mortar_matrix(const mesh::TetMesh& mesh, const ContactSurface& surface,
                            const Patches& patches, const Frames& frames,
-                           const std::string& master_tag, Real search_distance, Real& coverage);
+                           const SurfaceLocator& master, Real search_distance, Real& coverage);
 
 }  // namespace fricon::contact

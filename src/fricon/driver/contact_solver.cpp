@@ -278,19 +278,8 @@ void classify_patches(const contact::SlipBounds& bounds, const VectorXd& radius,
 void report_pairs(const contact::ContactDiscretization& disc, ContactOutcome& out) {
   const ContactFields& f = out.fields;
   std::vector<PairReport>& pairs = out.report.pairs;
-  for (const contact::PairInfo& info : disc.pairs) {
-    PairReport& r = pairs.emplace_back();
-    r.key = info.key;
-    r.boundary = info.boundary;
-    r.master = info.master;
-    r.stability_ratio = info.stability.ratio;
-    r.n = info.n;
-    r.t1 = info.t1;
-    r.t2 = info.t2;
-    r.search_distance = info.search_distance;
-    r.master_coverage = info.master_coverage;
-    r.master_element_size = info.master_element_size;
-  }
+  for (const contact::PairInfo& info : disc.pairs)
+    pairs.push_back({.info = info});
   for (Index p = 0; p < disc.n_patches(); ++p) {
     PairReport& r = pairs[static_cast<size_t>(disc.patch_pair[static_cast<size_t>(p)])];
     const Vec3 lambda = f.lambda.segment<3>(3 * p);
@@ -317,7 +306,8 @@ void report_pairs(const contact::ContactDiscretization& disc, ContactOutcome& ou
       }
   }
   for (PairReport& r : pairs)
-    r.small_sliding = r.master.empty() || r.max_slip <= kSmallSlidingShare * r.master_element_size;
+    r.small_sliding =
+        r.info.master.empty() || r.max_slip <= kSmallSlidingShare * r.info.master_element_size;
 }
 
 // The outcome's status: the loop's termination, unless a converged run fails its certificate

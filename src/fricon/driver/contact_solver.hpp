@@ -43,11 +43,9 @@ enum class PatchState {
   Slip,       ///< ||lambda_t|| on the radius
 };
 
-/// One contact pair of the result (contact::PairInfo and what the solve found on it).
+/// One contact pair of the result: its discretization's description and what the solve found.
 struct PairReport {
-  std::string key;       ///< "contact" or "contact[i]"
-  std::string boundary;  ///< the contact surface (slave)
-  std::string master;    ///< the master surface; empty against a plane
+  contact::PairInfo info;  ///< surfaces, frame, stability, reach of the master
   Index n_patches = 0;
   Index n_stick = 0, n_slip = 0, n_separated = 0;
   Real normal_force = 0.0;  ///< sum lambda_n |R| [N]
@@ -55,16 +53,10 @@ struct PairReport {
   /// tangential to the patches.
   Vec3 force = Vec3::Zero();
   Vec3 tangential_force = Vec3::Zero();
-  Real stability_ratio = 0.0;  ///< condition (5.1) of the pair's own B
-  Vec3 n = Vec3::Zero(), t1 = Vec3::Zero(), t2 = Vec3::Zero();  ///< contact::PairInfo's frame
-  // Against a body (theory.md §2.8):
-  Real search_distance = 0.0;      ///< [m]
-  Real master_coverage = 1.0;      ///< share of the contact surface opposite the master
-  Real master_element_size = 0.0;  ///< the master's mean edge [m]
   /// Max relative tangential displacement [m] at the nodes of the patches in contact.
   Real max_slip = 0.0;
-  /// Small sliding holds: max_slip is at most kSmallSlidingShare of master_element_size (the
-  /// pairing, computed once, stays valid).
+  /// Small sliding holds: max_slip is at most kSmallSlidingShare of the master's element size
+  /// (the pairing, computed once, stays valid).
   bool small_sliding = true;
 };
 

@@ -78,25 +78,26 @@ void add_contact_report(const driver::ContactReport& c, nlohmann::json& j) {
                   {"history", history}};
   if (!c.partition_note.empty()) j["partition_note"] = c.partition_note;
   nlohmann::json pairs = nlohmann::json::array();
-  for (const driver::PairReport& p : c.pairs) {
+  for (const driver::PairReport& r : c.pairs) {
+    const contact::PairInfo& p = r.info;
     nlohmann::json pair = {
         {"key", p.key},
         {"boundary", p.boundary},
         {"obstacle", p.master.empty() ? "plane" : "body"},
-        {"n_patches", p.n_patches},
-        {"patch_states", {{"stick", p.n_stick}, {"slip", p.n_slip}, {"separated", p.n_separated}}},
-        {"normal_force", p.normal_force},
-        {"force", vec3(p.force)},
-        {"tangential_force", vec3(p.tangential_force)},
-        {"stability_ratio", p.stability_ratio},
+        {"n_patches", r.n_patches},
+        {"patch_states", {{"stick", r.n_stick}, {"slip", r.n_slip}, {"separated", r.n_separated}}},
+        {"normal_force", r.normal_force},
+        {"force", vec3(r.force)},
+        {"tangential_force", vec3(r.tangential_force)},
+        {"stability_ratio", p.stability.ratio},
         {"basis", {{"n", vec3(p.n)}, {"t1", vec3(p.t1)}, {"t2", vec3(p.t2)}}},
-        {"max_slip", p.max_slip}};
+        {"max_slip", r.max_slip}};
     if (!p.master.empty()) {
       pair["master"] = p.master;
       pair["search_distance"] = p.search_distance;
       pair["master_coverage"] = p.master_coverage;
       pair["master_element_size"] = p.master_element_size;
-      pair["small_sliding"] = p.small_sliding;
+      pair["small_sliding"] = r.small_sliding;
     }
     pairs.push_back(std::move(pair));
   }
@@ -143,11 +144,10 @@ void add_contact_geometry(const driver::Problem& problem, const mesh::TetMesh& m
       point += mesh.nodes.col(node);
     point /= static_cast<Real>(std::max<Index>(s.n_nodes(), 1));
   }
-  j["obstacle"] = {
-      {"kind", "plane"},
-      {"point", vec3(point)},
-      {"normal", vec3(-s.n)},
-      {"given", first.has_value()}};
+  j["obstacle"] = {{"kind", "plane"},
+                   {"point", vec3(point)},
+                   {"normal", vec3(-s.n)},
+                   {"given", first.has_value()}};
 }
 
 // A distributed run: its ranks, partition and each rank's work and memory.
