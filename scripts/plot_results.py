@@ -13,9 +13,19 @@ per file into RESULTS_DIR/plots (or --out):
     friction_circles       lambda_t against the slip bound of each patch         (paper Fig. 11)
     deformed               the deformed body, displacement magnified             (paper Fig. 7)
 
+and, for a run along a loading path ([loading] steps > 1: the folder has steps.csv),
+
+    force_displacement     tangential and normal force against the displacement of the first
+                           load with a path, and their ratio
+    stick_slip_steps       the state of each patch (stick, slip, separated), one map per step
+                           (at most MAX_STEP_MAPS steps, evenly chosen)
+
 The maps of the contact surface are drawn in the obstacle plane's coordinates (t1, t2) =
 (x . t1, x . t2), with the basis of report.json's contact_basis (x, y for an older folder without
-it), on the surface's own triangles from contact.vtu.
+it), on the surface's own triangles from contact.vtu. They zoom to the contact zone (the patches
+with pressure or not separated) with a margin, and then show the whole surface and the zoomed
+window in a small inset in a corner; a zone that covers most of the surface is not zoomed
+(map_limits).
 
 A run without contact has no contact results: then only the deformed body is drawn. Every file is
 written atomically (temporary name in the same folder, then os.replace) and the list of files
@@ -40,8 +50,8 @@ import matplotlib.pyplot as plt  # noqa: E402  (the backend must be chosen first
 import matplotlib.tri as mtri  # noqa: E402
 import meshio  # noqa: E402
 import numpy as np  # noqa: E402
-from matplotlib.collections import LineCollection, PatchCollection  # noqa: E402
-from matplotlib.patches import Circle  # noqa: E402
+from matplotlib.collections import LineCollection, PatchCollection, PolyCollection  # noqa: E402
+from matplotlib.patches import Circle, Rectangle  # noqa: E402
 from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection  # noqa: E402
 
 DPI = 150
@@ -49,6 +59,23 @@ DPI = 150
 PAPER_PARAMS = (2.0e4, 6.0e4, 3.0e5)
 PAPER_T0 = 1.0e-5
 STUCK_RTOL = 1.0e-3  # a patch slips when ||lambda_t|| >= (1 - STUCK_RTOL) * radius
+
+# Zoom of the contact-surface maps (map_limits): the window is the contact zone's bounding box
+# padded on every side by ZOOM_MARGIN times the zone's larger side, at least one patch size; it
+# is used only when its area is below ZOOM_MAX_AREA_FRACTION of the whole surface's bounding box.
+ZOOM_MARGIN = 0.15
+ZOOM_MAX_AREA_FRACTION = 0.5
+INSET_SIZE = 0.25  # the longer side of the overview inset, as a fraction of the panel's
+INSET_GAP = 0.02  # between the inset and the panel's border, as a fraction of the panel
+# Figure sizes of the maps (map_figsize), inches: the map's width, at most MAP_MAX_HEIGHT high;
+# the window's height / width is kept within MAP_ASPECT_RANGE so that a thin strip stays legible.
+MAP_MAX_HEIGHT = 3.6
+MAP_ASPECT_RANGE = (0.2, 1.5)
+# The patch states of contact.vtu ("state") and patches.csv, and their colours on the maps.
+STATE_CODES = {"separated": 0, "stick": 1, "slip": 2}
+STATE_COLORS = {"stick": "C0", "slip": "C3", "separated": "0.82"}
+MAX_STEP_MAPS = 12  # stick_slip_steps draws at most this many steps
+CIRCLES_PAD = 0.02  # friction_circles, unzoomed: the surface padded by this part of its size
 
 
 # ----------------------------------------------------------------------------------------------
@@ -145,6 +172,7 @@ def load_contact(results, report, pair=None):
         "patch": patch,
     }
     state = cells("state") if "state" in mesh.cell_data else None
+    surface["state"] = state  # per triangle (its patch's), None in an older folder
     surface["patches"] = patch_table(tri, patch, cells("radius"),
                                      cells("lambda_t") @ tangents.T, state)
     surface["patch_edges"] = patch_boundary_segments(tri, patch)
@@ -180,6 +208,168 @@ def patch_boundary_segments(tri, patch):
     edges = [e for e, ts in owners.items() if len(ts) == 1 or patch[ts[0]] != patch[ts[1]]]
     xy = np.column_stack([tri.x, tri.y])
     return xy[np.array(edges, dtype=int).reshape(-1, 2)]
+
+
+# ----------------------------------------------------------------------------------------------
+# Zooming the maps to the contact zone
+# ----------------------------------------------------------------------------------------------
+
+def visible_triangles(tri):
+    """A mask of the triangles drawn (those facing the plane: load_contact masks the others)."""
+    return ~tri.mask if tri.mask is not None else np.ones(len(tri.triangles), dtype=bool)
+
+
+def triangle_areas(tri):
+    """The area of each triangle of the (2D) triangulation."""
+    xy = np.column_stack([tri.x, tri.y])[tri.triangles]
+    e1, e2 = xy[:, 1] - xy[:, 0], xy[:, 2] - xy[:, 0]
+    return 0.5 * np.abs(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0])
+
+
+def contact_triangles(surface, state=None, lambda_n=None):
+    """A mask of the triangles in contact: their patch has a pressure or is not separated.
+
+    `state` and `lambda_n` are per triangle (default: the surface's own, from contact.vtu); a
+    folder without the state uses the pressure alone."""
+    state = surface["state"] if state is None else state
+    lambda_n = surface["lambda_n"] if lambda_n is None else lambda_n
+    touching = np.asarray(lambda_n) > 0
+    if state is not None:
+        touching |= np.asarray(state) != STATE_CODES["separated"]
+    return touching & (surface["patch"] >= 0) & visible_triangles(surface["tri"])
+
+
+def bounding_box(x, y):
+    """((xmin, xmax), (ymin, ymax)) of the points."""
+    return (float(np.min(x)), float(np.max(x))), (float(np.min(y)), float(np.max(y)))
+
+
+def box_area(box):
+    """The area of ((xmin, xmax), (ymin, ymax))."""
+    return (box[0][1] - box[0][0]) * (box[1][1] - box[1][0])
+
+
+def map_limits(surface, in_contact=None):
+    """The axis limits of a map of the contact surface: a dict with "xlim", "ylim" (the window
+    drawn), "full" (the whole surface's bounding box, as (xlim, ylim)), "zoomed" and "in_contact"
+    (the mask of the triangles in contact the window was made for).
+
+    The window is the bounding box of the triangles in contact (`in_contact`, default
+    contact_triangles(surface)) padded on every side by ZOOM_MARGIN times the zone's larger side,
+    at least the mean size (sqrt of the area) of its patches, and cut to the surface's box. Without
+    contact, or when the window covers ZOOM_MAX_AREA_FRACTION of the surface's box or more, the
+    window is the whole surface ("zoomed" False)."""
+    tri = surface["tri"]
+    visible = visible_triangles(tri)
+    nodes = np.unique(tri.triangles[visible]) if visible.any() else np.arange(len(tri.x))
+    full = bounding_box(tri.x[nodes], tri.y[nodes])
+    in_contact = contact_triangles(surface) if in_contact is None else in_contact
+    limits = {"xlim": full[0], "ylim": full[1], "full": full, "zoomed": False,
+              "in_contact": in_contact}
+    if not in_contact.any() or box_area(full) <= 0:
+        return limits
+    corners = tri.triangles[in_contact]
+    zone = bounding_box(tri.x[corners], tri.y[corners])
+    patch_size = np.sqrt(triangle_areas(tri)[in_contact].sum()
+                         / len(np.unique(surface["patch"][in_contact])))
+    margin = max(ZOOM_MARGIN * max(zone[0][1] - zone[0][0], zone[1][1] - zone[1][0]), patch_size)
+    window = tuple((max(lo - margin, f_lo), min(hi + margin, f_hi))
+                   for (lo, hi), (f_lo, f_hi) in zip(zone, full))
+    if box_area(window) < ZOOM_MAX_AREA_FRACTION * box_area(full):
+        limits.update(xlim=window[0], ylim=window[1], zoomed=True)
+    return limits
+
+
+def surface_outline(tri):
+    """The border segments (n, 2, 2) of the drawn part of the surface (edges of one triangle)."""
+    owners = {}
+    for a, b, c in tri.triangles[visible_triangles(tri)]:
+        for e in ((a, b), (b, c), (c, a)):
+            key = (min(e), max(e))
+            owners[key] = owners.get(key, 0) + 1
+    edges = np.array([e for e, n in owners.items() if n == 1], dtype=int).reshape(-1, 2)
+    return np.column_stack([tri.x, tri.y])[edges]
+
+
+def inset_bounds(limits, corner):
+    """The inset's [x0, y0, width, height] in the panel's axes fraction at `corner` ("upper right",
+    ...): its longer side INSET_SIZE, its shape that of the whole surface (the panel has the
+    window's shape, equal aspect)."""
+    (fx, fy), (wx, wy) = limits["full"], (limits["xlim"], limits["ylim"])
+    # The surface's height / width on the page, in the panel's fractions of width and height.
+    shape = ((fy[1] - fy[0]) / (fx[1] - fx[0])) * ((wx[1] - wx[0]) / (wy[1] - wy[0]))
+    w, h = (INSET_SIZE, INSET_SIZE * shape) if shape <= 1 else (INSET_SIZE / shape, INSET_SIZE)
+    x0 = 1.0 - INSET_GAP - w if "right" in corner else INSET_GAP
+    y0 = 1.0 - INSET_GAP - h if "upper" in corner else INSET_GAP
+    return [x0, y0, w, h]
+
+
+def inset_corner(surface, limits):
+    """The corner of the panel where the inset hides the fewest triangles in contact (upper right
+    first when several are equal)."""
+    tri = surface["tri"]
+    centres = np.column_stack([tri.x, tri.y])[tri.triangles[limits["in_contact"]]].mean(axis=1)
+    (x0, x1), (y0, y1) = limits["xlim"], limits["ylim"]
+    u, v = (centres[:, 0] - x0) / (x1 - x0), (centres[:, 1] - y0) / (y1 - y0)
+
+    def hidden(corner):
+        bx, by, bw, bh = inset_bounds(limits, corner)
+        return np.count_nonzero((u >= bx) & (u <= bx + bw) & (v >= by) & (v <= by + bh))
+
+    return min(("upper right", "upper left", "lower right", "lower left"), key=hidden)
+
+
+def draw_overview_inset(ax, surface, limits):
+    """In a corner of a zoomed map: the whole surface (outline, contact zone filled) and the
+    window drawn (rectangle)."""
+    tri = surface["tri"]
+    inset = ax.inset_axes(inset_bounds(limits, inset_corner(surface, limits)))
+    inset.set_facecolor("white")
+    inset.add_collection(LineCollection(surface_outline(tri), colors="0.2", linewidths=0.6))
+    zone = np.column_stack([tri.x, tri.y])[tri.triangles[limits["in_contact"]]]
+    inset.add_collection(PolyCollection(zone, facecolors="C1", edgecolors="none"))
+    (x0, x1), (y0, y1) = limits["xlim"], limits["ylim"]
+    inset.add_patch(Rectangle((x0, y0), x1 - x0, y1 - y0, fill=False, edgecolor="C3",
+                              linewidth=1.0))
+    (fx0, fx1), (fy0, fy1) = limits["full"]
+    inset.set_xlim(fx0, fx1)
+    inset.set_ylim(fy0, fy1)
+    inset.set_aspect("equal", adjustable="datalim")
+    inset.set_xticks([])
+    inset.set_yticks([])
+    inset.set_title("whole surface", fontsize=6, pad=1.5)
+    return inset
+
+
+def map_figsize(limits, nrows, ncols, map_width, extra_width, extra_height, min_width=0.0):
+    """(width, height) in inches of a figure of nrows x ncols maps of the window `limits`: each
+    map `map_width` wide (less if it would be over MAP_MAX_HEIGHT high) plus `extra_width` and
+    `extra_height` for its colour bar, labels and titles."""
+    (x0, x1), (y0, y1) = limits["xlim"], limits["ylim"]
+    aspect = np.clip((y1 - y0) / (x1 - x0), *MAP_ASPECT_RANGE) if x1 > x0 else 1.0
+    width = min(map_width, MAP_MAX_HEIGHT / aspect)
+    return (max(ncols * (width + extra_width), min_width),
+            nrows * (width * aspect + extra_height))
+
+
+def padded_limits(limits, fraction):
+    """`limits` widened on every side by `fraction` of the window's larger side."""
+    (x0, x1), (y0, y1) = limits["xlim"], limits["ylim"]
+    pad = fraction * max(x1 - x0, y1 - y0)
+    return dict(limits, xlim=(x0 - pad, x1 + pad), ylim=(y0 - pad, y1 + pad))
+
+
+def window_range(surface, values, limits):
+    """(vmin, vmax) of nodal `values` over the nodes inside the window (all of them when the map
+    is not zoomed), for a colour scale that uses its whole range where the map looks."""
+    tri = surface["tri"]
+    inside = np.ones(len(values), dtype=bool)
+    if limits["zoomed"]:
+        (x0, x1), (y0, y1) = limits["xlim"], limits["ylim"]
+        inside = (tri.x >= x0) & (tri.x <= x1) & (tri.y >= y0) & (tri.y <= y1)
+    if not inside.any():
+        inside[:] = True
+    return float(values[inside].min()), float(values[inside].max())
 
 
 # ----------------------------------------------------------------------------------------------
@@ -234,20 +424,24 @@ def nice_round_down(x):
     return p
 
 
-def setup_plane_axes(ax, surface, title):
-    """Equal-aspect axes for a map of the contact surface, labelled with the plane's coordinates."""
+def setup_plane_axes(ax, surface, title, limits=None, fontsize=10):
+    """Equal-aspect axes for a map of the contact surface, labelled with the plane's coordinates,
+    showing the window `limits` (default map_limits(surface)) and, when it is zoomed, the whole
+    surface in an inset."""
+    limits = map_limits(surface) if limits is None else limits
     ax.set_aspect("equal")
     ax.set_xlabel(f"{surface['axes'][0]} [m]")
     ax.set_ylabel(f"{surface['axes'][1]} [m]")
-    ax.set_title(title, fontsize=10)
-    tri = surface["tri"]
-    ax.set_xlim(tri.x.min(), tri.x.max())
-    ax.set_ylim(tri.y.min(), tri.y.max())
+    ax.set_title(title, fontsize=fontsize)
+    ax.set_xlim(*limits["xlim"])
+    ax.set_ylim(*limits["ylim"])
+    if limits["zoomed"]:
+        draw_overview_inset(ax, surface, limits)
 
 
-def add_colorbar(fig, mappable, ax, label):
+def add_colorbar(fig, mappable, ax, label, extend="neither"):
     """A colour bar beside `ax` with scientific notation for very small or large values."""
-    cb = fig.colorbar(mappable, ax=ax, shrink=0.9, pad=0.02)
+    cb = fig.colorbar(mappable, ax=ax, shrink=0.9, pad=0.02, extend=extend)
     cb.set_label(label)
     cb.formatter.set_powerlimits((-2, 3))
     cb.update_ticks()
@@ -367,9 +561,14 @@ def plot_friction_law(report, surface):
 
 
 def plot_contact_maps(report, surface):
-    """Figs. 8-9: -w_n and ||w_t|| (nodal, P1) and lambda_n, ||lambda_t|| (per patch)."""
+    """Figs. 8-9: -w_n and ||w_t|| (nodal, P1) and lambda_n, ||lambda_t|| (per patch).
+
+    Zoomed to the contact zone (map_limits), the nodal fields are coloured over their range in
+    the window (the colour bar extends beyond it); the titles give the whole surface's range."""
     tri = surface["tri"]
-    fig, axs = plt.subplots(2, 2, figsize=(13.0, 6.0), layout="constrained")
+    limits = map_limits(surface)
+    fig, axs = plt.subplots(2, 2, figsize=map_figsize(limits, 2, 2, 4.8, 1.7, 1.0),
+                            layout="compressed")
     panels = [
         (axs[0, 0], surface["opening"], "nodal",
          "a) opening gap $- w_n$ (> 0: open, < 0: penetration)", (r"gap $- w_n$", "m"), "viridis"),
@@ -382,15 +581,22 @@ def plot_contact_maps(report, surface):
          (r"$\Vert \lambda_t\Vert$", "Pa"), "magma"),
     ]
     for ax, values, kind, title, (symbol, unit), cmap in panels:
+        extend, note = "neither", ""
         if kind == "nodal":
-            m = ax.tripcolor(tri, values, shading="gouraud", cmap=cmap)
+            vmin, vmax = window_range(surface, values, limits)
+            if vmin > values.min() or vmax < values.max():
+                extend = {(True, True): "both", (True, False): "min",
+                          (False, True): "max"}[(vmin > values.min(), vmax < values.max())]
+                note = "\n(colours: range in the window)"
+            m = ax.tripcolor(tri, values, shading="gouraud", cmap=cmap, vmin=vmin,
+                             vmax=vmax if vmax > vmin else None)
         else:
             m = ax.tripcolor(tri, facecolors=values, cmap=cmap, edgecolors="none")
         draw_patch_edges(ax, surface, color="w" if kind == "patch" else "k", lw=0.5,
                          alpha=0.5 if kind == "patch" else 0.25)
         setup_plane_axes(ax, surface, f"{title}\nmin {sci(values.min())} {unit}, "
-                                      f"max {sci(values.max())} {unit}")
-        add_colorbar(fig, m, ax, f"{symbol} [{unit}]")
+                                      f"max {sci(values.max())} {unit}", limits)
+        add_colorbar(fig, m, ax, f"{symbol} [{unit}]{note}", extend=extend)
     fig.suptitle(f"Contact surface: displacements (nodal) and multipliers (piecewise constant on "
                  f"patches)\n{run_label(report)}", fontsize=11)
     return fig
@@ -403,13 +609,16 @@ def plot_friction_coefficient(report, surface):
     lo, hi = law_range(friction)
     if hi - lo < 1e-12:
         lo, hi = lo - 0.05, hi + 0.05
-    fig, ax = plt.subplots(figsize=(9.5, 4.0), layout="constrained")
+    limits = map_limits(surface)
+    fig, ax = plt.subplots(figsize=map_figsize(limits, 1, 1, 7.5, 1.5, 1.2, min_width=8.0),
+                           layout="compressed")
     m = ax.tripcolor(tri, surface["F"], shading="gouraud", cmap="coolwarm", vmin=lo, vmax=hi)
     draw_patch_edges(ax, surface, color="k", lw=0.5, alpha=0.25)
     F = surface["F"]
     setup_plane_axes(ax, surface, r"Coefficient of friction F($\Vert w_t\Vert$) on the contact "
                      "surface "
-                     f"(nodal values; min {F.min():.3f}, max {F.max():.3f})\n{run_label(report)}")
+                     f"(nodal values; min {F.min():.3f}, max {F.max():.3f})\n{run_label(report)}",
+                     limits)
     cb = fig.colorbar(m, ax=ax, shrink=0.9, pad=0.02)
     cb.set_label("F [-]")
     return fig
@@ -427,21 +636,22 @@ def plot_friction_circles(report, surface):
         separated = np.zeros_like(slipping)
     side = np.sqrt(P["area"].min())
     scale = 0.45 * side / radius.max() if radius.max() > 0 else 0.0  # m on the plot per Pa
-    tri = surface["tri"]
-    fig, ax = plt.subplots(figsize=(12.0, 5.0), layout="constrained")
+    limits = map_limits(surface)
+    if not limits["zoomed"]:  # room for the circles of the patches on the border
+        limits = padded_limits(limits, CIRCLES_PAD)
+    x0, x1 = limits["xlim"]
+    fig, ax = plt.subplots(figsize=map_figsize(limits, 1, 1, 10.0, 1.0, 2.2, min_width=9.0),
+                           layout="compressed")
     draw_patch_edges(ax, surface, color="0.6", lw=0.6, alpha=1.0)
     colors = np.where(separated, "0.5", np.where(slipping, "C3", "C0"))
     ax.add_collection(PatchCollection([Circle(c, r * scale) for c, r in zip(centre, radius)],
                                       facecolors="none", edgecolors=colors, linewidths=1.2))
     q = ax.quiver(centre[:, 0], centre[:, 1], lt[:, 0] * scale, lt[:, 1] * scale, color=colors,
                   angles="xy", scale_units="xy", scale=1.0, units="xy",
-                  width=min(0.045 * side, 0.0035 * tri.x.ptp()),
+                  width=min(0.045 * side, 0.0035 * (x1 - x0)),
                   headwidth=3.5, headlength=4, headaxislength=3.6, zorder=3)
     ax.plot(centre[:, 0], centre[:, 1], ".", color="k", ms=1.5)
-    setup_plane_axes(ax, surface, "")
-    pad = 0.02 * max(tri.x.ptp(), tri.y.ptp())
-    ax.set_xlim(tri.x.min() - pad, tri.x.max() + pad)
-    ax.set_ylim(tri.y.min() - pad, tri.y.max() + pad)
+    setup_plane_axes(ax, surface, "", limits)
     rtol = 1e-6 if (P["state"] >= 0).all() else STUCK_RTOL  # fricon's test, or this script's
     ax.plot([], [], "-", color="C3", label=f"slipping: $\\Vert \\lambda_t\\Vert$ = radius "
             f"(within {rtol:g} rel.), {slipping.sum()} patches")
