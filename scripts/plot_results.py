@@ -36,6 +36,7 @@ Needs only matplotlib (Agg backend, no display), numpy and meshio: Debian's pyth
 python3-numpy and python3-meshio under /usr/bin/python3.
 """
 import argparse
+import csv
 import json
 import os
 import pathlib
@@ -75,6 +76,7 @@ MAP_ASPECT_RANGE = (0.2, 1.5)
 STATE_CODES = {"separated": 0, "stick": 1, "slip": 2}
 STATE_COLORS = {"stick": "C0", "slip": "C3", "separated": "0.82"}
 MAX_STEP_MAPS = 12  # stick_slip_steps draws at most this many steps
+STEPS_LEGEND_HEIGHT = 0.45  # inches below the maps of stick_slip_steps for the legend
 CIRCLES_PAD = 0.02  # friction_circles, unzoomed: the surface padded by this part of its size
 
 
@@ -682,6 +684,238 @@ def plot_friction_circles(report, surface):
     return fig
 
 
+# ----------------------------------------------------------------------------------------------
+# Loading paths: steps.csv and steps/patches-NNNN.csv
+# ----------------------------------------------------------------------------------------------
+
+def read_steps(results):
+    """steps.csv of a loading path as a dict of columns (numbers as float arrays, text such as
+    "status" as arrays of str), its column names in order under "columns"; None without it."""
+    path = results / "steps.csv"
+    if not path.is_file():
+        return None
+    with open(path, newline="") as f:
+        rows = list(csv.reader(f))
+    if not rows:
+        return None
+    header, body = rows[0], rows[1:]
+    steps = {"columns": header}
+    for j, name in enumerate(header):
+        values = [row[j] for row in body]
+        try:
+            steps[name] = np.array(values, dtype=float)
+        except ValueError:
+            steps[name] = np.array(values, dtype=str)
+    return steps
+
+
+def path_loads(steps):
+    """The keys of the loads with a path ("traction[0]", ...), in steps.csv's order."""
+    return [c[len("factor."):] for c in steps["columns"] if c.startswith("factor.")]
+
+
+def step_converged(steps):
+    """Per step, whether it converged (steps.csv "status"; every step for a file without it)."""
+    status = steps.get("status")
+    return (status == "converged") if status is not None else np.ones(len(steps["step"]), bool)
+
+
+def path_abscissa(steps):
+    """(x, label) for the figures along the path: the component with the largest range of the
+    mean displacement of the first load with one (displacement.KEY_x, _y, _z), else the step."""
+    for key in path_loads(steps):
+        names = [f"displacement.{key}_{c}" for c in "xyz"]
+        if all(n in steps for n in names):
+            d = np.column_stack([steps[n] for n in names])
+            c = int(np.argmax(np.ptp(d, axis=0)))
+            return d[:, c], f"mean displacement of {key}, {'xyz'[c]} component [m]"
+    return steps["step"], "step"
+
+
+def signed_tangential_force(steps):
+    """(values, direction): the tangential force of each step along the direction of the largest
+    one over the path (unit vector, global x y z; zeros and None when there is none)."""
+    T = np.column_stack([steps[f"tangential_force_{c}"] for c in "xyz"])
+    norms = np.linalg.norm(T, axis=1)
+    if not norms.size or norms.max() <= 0:
+        return np.zeros(len(T)), None
+    direction = T[np.argmax(norms)] / norms.max()
+    return T @ direction, direction
+
+
+def factor_label(steps, i, sep=", "):
+    """The factors of step row `i`: "traction[0] x0.5, dirichlet[1] x1"."""
+    return sep.join(f"{key} \u00d7{sci(steps['factor.' + key][i])}" for key in path_loads(steps))
+
+
+def steps_label(report, steps):
+    """"N steps", or "N of M steps" when the run stopped before the end of its path."""
+    n = len(steps["step"])
+    planned = report.get("problem", {}).get("loading", {}).get("steps")
+    return f"{n} of {planned} steps" if planned and planned != n else f"{n} steps"
+
+
+def annotate_ends(ax, x, y, steps, color, above=True):
+    """Labels "start (step a)" and "end (step b)" at the first and last points of a curve, above
+    or below it, towards the middle of the x range (inside the axes)."""
+    first, last = int(steps["step"][0]), int(steps["step"][-1])
+    middle = 0.5 * (np.min(x) + np.max(x))
+    for i, text in ((0, f"start (step {first})"), (-1, f"end (step {last})")):
+        right = x[i] > middle
+        ax.annotate(text, xy=(x[i], y[i]), xytext=(-5 if right else 5, 5 if above else -5),
+                    textcoords="offset points", ha="right" if right else "left",
+                    va="bottom" if above else "top", fontsize=8, color=color)
+
+
+def plot_force_displacement(report, steps):
+    """The tangential force (signed along its largest direction) and the normal force of each
+    step against the displacement of the first load with a path (else the step), and below their
+    ratio with the coefficient of a constant friction law."""
+    x, xlabel = path_abscissa(steps)
+    tangential, direction = signed_tangential_force(steps)
+    normal = steps["normal_force"]
+    converged = step_converged(steps)
+    fig, (ax, ax2) = plt.subplots(2, 1, sharex=True, figsize=(8.0, 7.5), layout="constrained",
+                                  height_ratios=(3, 2))
+    along = ("along (" + ", ".join(f"{c:.2f}" for c in direction) + ")" if direction is not None
+             else "(zero)")
+    for y, color, marker, above, label in (
+            (tangential, "C3", "o", False, f"tangential force {along}"),
+            (normal, "C0", "s", True, "normal force")):
+        ax.plot(x, y, "-", color=color, lw=1.2, label=label)
+        ax.plot(x[converged], y[converged], marker, color=color, ms=4, ls="none")
+        annotate_ends(ax, x, y, steps, color, above)
+    if not converged.all():
+        for y in (tangential, normal):
+            ax.plot(x[~converged], y[~converged], "x", color="k", ms=6, ls="none")
+        ax.plot([], [], "x", color="k", label="step not converged")
+    ax.axhline(0.0, color="0.6", lw=0.6)
+    ax.set_ylabel("force [N]")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8, loc="best")
+    ax.ticklabel_format(axis="y", style="sci", scilimits=(-3, 4))
+
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio = np.where(normal > 0, tangential / normal, np.nan)
+    ax2.plot(x, ratio, "o-", color="C2", ms=4, lw=1.2, label="tangential / normal force")
+    finite = np.isfinite(ratio)
+    if finite.any():
+        annotate_ends(ax2, x[finite], ratio[finite], {"step": steps["step"][finite]}, "C2",
+                      above=False)
+    friction = first_pair(report).get("friction", {}) if "contact" in report.get(
+        "problem", {}) else {}
+    if friction.get("law") == "constant":
+        value = float(friction.get("value", 0.0))
+        ax2.axhline(value, ls="--", color="k", lw=1.0, label=f"coefficient of friction {value:g}")
+        if finite.any() and np.nanmin(ratio) < 0:
+            ax2.axhline(-value, ls="--", color="k", lw=1.0)
+    ax2.axhline(0.0, color="0.6", lw=0.6)
+    ax2.set_xlabel(xlabel)
+    ax2.set_ylabel("tangential / normal [-]")
+    ax2.grid(True, alpha=0.3)
+    ax2.legend(fontsize=8, loc="best")
+    if xlabel == "step":
+        ax2.xaxis.set_major_locator(matplotlib.ticker.MaxNLocator(integer=True))
+    else:
+        ax2.ticklabel_format(axis="x", style="sci", scilimits=(-3, 4))
+    fig.suptitle(f"Forces of the obstacle on the contact surface along the loading path "
+                 f"({steps_label(report, steps)})\n{run_label(report)}", fontsize=10)
+    return fig
+
+
+def chosen_steps(n, limit=MAX_STEP_MAPS):
+    """Indices of at most `limit` of n steps, evenly spread, the first and the last included."""
+    return np.unique(np.round(np.linspace(0, n - 1, min(n, limit))).astype(int))
+
+
+def step_files(results, base, extension):
+    """{step number: path} of the per-step files steps/BASE-NNNN.EXT of a loading path."""
+    files = {}
+    for path in (results / "steps").glob(f"{base}-*{extension}"):
+        number = path.name[len(base) + 1:-len(extension)]
+        if number.isdigit():
+            files[int(number)] = path
+    return files
+
+
+def read_step_patches(path):
+    """The state codes (STATE_CODES) and lambda_n of each patch of a steps/patches-NNNN.csv."""
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    states = np.array([STATE_CODES.get(r["state"], STATE_CODES["separated"]) for r in rows])
+    return states, np.array([float(r["lambda_n"]) for r in rows])
+
+
+def plot_stick_slip_steps(report, surface, steps, patch_files):
+    """One small map of the contact surface per step (at most MAX_STEP_MAPS, chosen_steps), each
+    patch coloured by its state in that step (steps/patches-NNNN.csv), all zoomed to the union
+    of the steps' contact zones; None when no chosen step has its patches file."""
+    rows = chosen_steps(len(steps["step"]))
+    patch = surface["patch"]
+    ids = np.unique(patch[patch >= 0])  # the patches of this view
+    safe = np.maximum(patch, 0)
+    per_step, in_contact = [], np.zeros(len(patch), dtype=bool)
+    for i in rows:
+        path = patch_files.get(int(steps["step"][i]))
+        codes = None
+        if path is not None:
+            codes, lambda_n = read_step_patches(path)
+            if len(codes) <= patch.max():  # not the patches of contact.vtu
+                print(f"plot_results: {path}: {len(codes)} patches, contact.vtu has more; "
+                      "step skipped", file=sys.stderr)
+                codes = None
+            else:
+                in_contact |= contact_triangles(surface, codes[safe],
+                                                np.where(patch >= 0, lambda_n[safe], 0.0))
+        per_step.append((i, codes))
+    if all(codes is None for _, codes in per_step):
+        return None
+    limits = map_limits(surface, in_contact)
+    (x0, x1), (y0, y1) = limits["xlim"], limits["ylim"]
+    ncols = min(len(rows), 4 if (y1 - y0) >= 0.5 * (x1 - x0) else 3)
+    nrows = -(-len(rows) // ncols)
+    width, height = map_figsize(limits, nrows, ncols, 2.7, 0.5, 1.0, min_width=7.0)
+    fig, axs = plt.subplots(nrows, ncols, figsize=(width, height + STEPS_LEGEND_HEIGHT),
+                            layout="compressed", squeeze=False)
+    legend = STEPS_LEGEND_HEIGHT / (height + STEPS_LEGEND_HEIGHT)  # as a part of the figure
+    fig.get_layout_engine().set(rect=(0.0, legend, 1.0, 1.0 - legend))
+    order = sorted(STATE_CODES, key=STATE_CODES.get)
+    cmap = matplotlib.colors.ListedColormap([STATE_COLORS[name] for name in order])
+    converged = step_converged(steps)
+    for n, ax in enumerate(axs.flat):
+        if n >= len(per_step):
+            ax.set_axis_off()
+            continue
+        i, codes = per_step[n]
+        title = f"step {int(steps['step'][i])}" + ("" if converged[i] else " (not converged)")
+        if path_loads(steps):
+            title += "\n" + textwrap.fill(factor_label(steps, i), width=44)
+        if codes is None:
+            ax.text(0.5, 0.5, "no patches file\nfor this step", transform=ax.transAxes,
+                    ha="center", va="center", fontsize=8, color="0.3")
+        else:
+            states = np.where(patch >= 0, codes[safe], STATE_CODES["separated"])
+            ax.tripcolor(surface["tri"], facecolors=states.astype(float), cmap=cmap, vmin=-0.5,
+                         vmax=len(order) - 0.5, edgecolors="none")
+            draw_patch_edges(ax, surface, color="w", lw=0.4, alpha=0.8)
+            title += "\n" + ", ".join(f"{np.count_nonzero(codes[ids] == STATE_CODES[name])} "
+                                      f"{name}" for name in ("stick", "slip"))
+        setup_plane_axes(ax, surface, title, dict(limits, zoomed=limits["zoomed"] and n == 0),
+                         fontsize=8)
+        ax.tick_params(labelsize=7)
+        if n % ncols:
+            ax.set_ylabel("")
+        if n < len(per_step) - ncols:
+            ax.set_xlabel("")
+    fig.legend([Rectangle((0, 0), 1, 1, facecolor=STATE_COLORS[name], edgecolor="0.3")
+                for name in ("stick", "slip", "separated")], ["stick", "slip", "separated"],
+               loc="lower center", bbox_to_anchor=(0.5, 0.0), ncol=3, fontsize=9, frameon=False)
+    shown = "" if len(rows) == len(steps["step"]) else f", {len(rows)} of them shown"
+    fig.suptitle(f"Patch states along the loading path ({steps_label(report, steps)}{shown})"
+                 f"\n{run_label(report)}", fontsize=10)
+    return fig
+
+
 def boundary_faces(tets):
     """The triangles that belong to exactly one tetrahedron, with that tetrahedron's index."""
     local = np.array([[0, 1, 2], [0, 1, 3], [0, 2, 3], [1, 2, 3]])
@@ -827,6 +1061,28 @@ def parse_args(argv):
     return ap.parse_args(argv)
 
 
+def plot_steps(results, report, views, out_dir, fmt, written):
+    """The figures of a loading path (a folder with steps.csv): force_displacement and, per view
+    (surface, file-name suffix) of the contact surface, stick_slip_steps."""
+    steps = read_steps(results)
+    if steps is None:
+        return
+    if "step" not in steps or not len(steps["step"]):
+        print(f"plot_results: {results}: steps.csv has no step; the loading path is not plotted",
+              file=sys.stderr)
+        return
+    save_figure(plot_force_displacement(report, steps), out_dir, "force_displacement", fmt,
+                written)
+    patch_files = step_files(results, "patches", ".csv")
+    for view, suffix in views:
+        fig = plot_stick_slip_steps(report, view, steps, patch_files)
+        if fig is None:
+            print(f"plot_results: {results}: no steps/patches-NNNN.csv of the steps; "
+                  f"stick_slip_steps{suffix} is skipped", file=sys.stderr)
+        else:
+            save_figure(fig, out_dir, "stick_slip_steps" + suffix, fmt, written)
+
+
 def make_plots(results, out_dir, fmt):
     """Draw every figure the folder has data for; return the list of files written."""
     report = read_report(results)
@@ -841,6 +1097,7 @@ def make_plots(results, out_dir, fmt):
         if report.get("err_history"):
             save_figure(plot_convergence(report), out_dir, "convergence", fmt, written)
         save_figure(plot_friction_law(report, surface), out_dir, "friction_law", fmt, written)
+        views = []  # (surface, file-name suffix) of each map of the contact surface
         if surface is None:
             print(f"plot_results: {results}: no contact.vtu; the contact-surface figures are "
                   "skipped", file=sys.stderr)
@@ -856,6 +1113,7 @@ def make_plots(results, out_dir, fmt):
                             "friction_coefficient" + suffix, fmt, written)
                 save_figure(plot_friction_circles(report, view), out_dir,
                             "friction_circles" + suffix, fmt, written)
+        plot_steps(results, report, views, out_dir, fmt, written)
     if (results / "solution.vtu").is_file():
         save_figure(plot_deformed(report, results), out_dir, "deformed", fmt, written)
     else:
