@@ -72,6 +72,7 @@ INSET_GAP = 0.02  # between the inset and the panel's border, as a fraction of t
 # the window's height / width is kept within MAP_ASPECT_RANGE so that a thin strip stays legible.
 MAP_MAX_HEIGHT = 3.6
 MAP_ASPECT_RANGE = (0.2, 1.5)
+TITLE_LINE_HEIGHT = 0.22  # a line of a figure's title (10-11 pt)
 # The patch states of contact.vtu ("state") and patches.csv, and their colours on the maps.
 STATE_CODES = {"separated": 0, "stick": 1, "slip": 2}
 STATE_COLORS = {"stick": "C0", "slip": "C3", "separated": "0.82"}
@@ -343,15 +344,22 @@ def draw_overview_inset(ax, surface, limits):
     return inset
 
 
-def map_figsize(limits, nrows, ncols, map_width, extra_width, extra_height, min_width=0.0):
+def map_figsize(limits, nrows, ncols, map_width, extra_width, extra_height, min_width=0.0,
+                title_lines=0):
     """(width, height) in inches of a figure of nrows x ncols maps of the window `limits`: each
     map `map_width` wide (less if it would be over MAP_MAX_HEIGHT high) plus `extra_width` and
-    `extra_height` for its colour bar, labels and titles."""
+    `extra_height` for its colour bar, labels and titles, and room for `title_lines` lines of
+    the figure's title."""
     (x0, x1), (y0, y1) = limits["xlim"], limits["ylim"]
     aspect = np.clip((y1 - y0) / (x1 - x0), *MAP_ASPECT_RANGE) if x1 > x0 else 1.0
     width = min(map_width, MAP_MAX_HEIGHT / aspect)
     return (max(ncols * (width + extra_width), min_width),
-            nrows * (width * aspect + extra_height))
+            nrows * (width * aspect + extra_height) + TITLE_LINE_HEIGHT * title_lines)
+
+
+def title_lines(report, other_lines):
+    """The number of lines of a title made of `other_lines` lines and run_label(report)."""
+    return other_lines + run_label(report).count("\n") + 1
 
 
 def padded_limits(limits, fraction):
@@ -569,7 +577,8 @@ def plot_contact_maps(report, surface):
     the window (the colour bar extends beyond it); the titles give the whole surface's range."""
     tri = surface["tri"]
     limits = map_limits(surface)
-    fig, axs = plt.subplots(2, 2, figsize=map_figsize(limits, 2, 2, 4.8, 1.7, 1.0),
+    fig, axs = plt.subplots(2, 2, figsize=map_figsize(limits, 2, 2, 4.8, 1.7, 1.2,
+                                                      title_lines=title_lines(report, 1)),
                             layout="compressed")
     panels = [
         (axs[0, 0], surface["opening"], "nodal",
@@ -612,7 +621,8 @@ def plot_friction_coefficient(report, surface):
     if hi - lo < 1e-12:
         lo, hi = lo - 0.05, hi + 0.05
     limits = map_limits(surface)
-    fig, ax = plt.subplots(figsize=map_figsize(limits, 1, 1, 7.5, 1.5, 1.2, min_width=8.0),
+    fig, ax = plt.subplots(figsize=map_figsize(limits, 1, 1, 7.5, 1.5, 0.8, min_width=8.0,
+                                               title_lines=title_lines(report, 1)),
                            layout="compressed")
     m = ax.tripcolor(tri, surface["F"], shading="gouraud", cmap="coolwarm", vmin=lo, vmax=hi)
     draw_patch_edges(ax, surface, color="k", lw=0.5, alpha=0.25)
@@ -642,7 +652,8 @@ def plot_friction_circles(report, surface):
     if not limits["zoomed"]:  # room for the circles of the patches on the border
         limits = padded_limits(limits, CIRCLES_PAD)
     x0, x1 = limits["xlim"]
-    fig, ax = plt.subplots(figsize=map_figsize(limits, 1, 1, 10.0, 1.0, 2.2, min_width=9.0),
+    fig, ax = plt.subplots(figsize=map_figsize(limits, 1, 1, 10.0, 1.0, 1.7, min_width=9.0,
+                                               title_lines=title_lines(report, 2)),
                            layout="compressed")
     draw_patch_edges(ax, surface, color="0.6", lw=0.6, alpha=1.0)
     colors = np.where(separated, "0.5", np.where(slipping, "C3", "C0"))
@@ -874,7 +885,8 @@ def plot_stick_slip_steps(report, surface, steps, patch_files):
     (x0, x1), (y0, y1) = limits["xlim"], limits["ylim"]
     ncols = min(len(rows), 4 if (y1 - y0) >= 0.5 * (x1 - x0) else 3)
     nrows = -(-len(rows) // ncols)
-    width, height = map_figsize(limits, nrows, ncols, 2.7, 0.5, 1.0, min_width=7.0)
+    width, height = map_figsize(limits, nrows, ncols, 2.7, 0.5, 1.0, min_width=7.0,
+                                title_lines=title_lines(report, 1))
     fig, axs = plt.subplots(nrows, ncols, figsize=(width, height + STEPS_LEGEND_HEIGHT),
                             layout="compressed", squeeze=False)
     legend = STEPS_LEGEND_HEIGHT / (height + STEPS_LEGEND_HEIGHT)  # as a part of the figure
