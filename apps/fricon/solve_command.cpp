@@ -210,6 +210,25 @@ driver::Problem read_problem_on_every_rank(const std::string& file,
   return problem;
 }
 
+// A loading path: the folder is cleared of an earlier run, then each step's files are written
+// as the step ends (a stop keeps the steps done), with a line per step.
+void follow_path(const driver::Problem& problem, const std::filesystem::path& dir,
+                 Verbosity verbosity, driver::RunOptions& options) {
+  io::clear_results(dir);
+  options.on_step = [dir, verbosity, steps = problem.loading.steps](const driver::RunResult& r) {
+    io::write_step(dir, r);
+    if (verbosity == Verbosity::Quiet) return;
+    const driver::StepReport& s = r.report.steps.back();
+    fmt::print(stderr,
+               "step {:>4}/{}: normal force {:.4e} N, tangential {:.4e} N, stick/slip/separated "
+               "{}/{}/{}, max slip {:.3e} m (accumulated {:.3e}), {} outer its, {} products, "
+               "{:.2f} s{}\n",
+               s.step, steps, s.normal_force, s.tangential_force.norm(), s.n_stick, s.n_slip,
+               s.n_separated, s.max_slip, s.max_accumulated_slip, s.outer_iterations, s.n_mult,
+               s.time_s, s.status == driver::RunStatus::Converged ? "" : "  NOT CONVERGED");
+  };
+}
+
 int solve(const std::string& file, const SolveOptions& so, const std::string& command_line) {
   const Stopwatch clock;
 #ifdef FRICON_HAVE_PETSC
@@ -229,6 +248,7 @@ int solve(const std::string& file, const SolveOptions& so, const std::string& co
     if (phase == "outer loop" || phase == "follow") has_iterate.store(true);
     if (progress) progress(phase);
   };
+  if (problem.loading.steps > 1) follow_path(problem, dir, so.verbosity, options);
   install_signal_handlers();
   const driver::RunResult result = fricon::solve(problem, options);
   // The other ranks of a distributed run have served rank 0, which writes the results.

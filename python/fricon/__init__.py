@@ -368,7 +368,7 @@ def load(path):
     return p
 
 
-def solve(problem, set=None, progress=None, threads=None):
+def solve(problem, set=None, progress=None, threads=None, on_step=None):
     """Solves a Problem or the problem file at a path; returns a Result.
 
     set:      {"KEY": value} overrides spelled as --set keys ("contact.friction.param": 3e4),
@@ -377,10 +377,14 @@ def solve(problem, set=None, progress=None, threads=None):
               qp_products, qp_rel_gp, seconds); an exception it raises stops the run
     threads:  BLAS threads (default: as `fricon solve`, the cores the machine's load leaves);
               one count per process: solves running at once share the first one's
+    on_step:  with [loading] steps > 1, called after each step of the path with the step's
+              figures as a dict (the entry of report.json's "steps": step, factors,
+              normal_force, tangential_force, patch_states, ...); an exception it raises stops
+              the run. Result.steps holds the columns of steps.csv
 
     The GIL is released while the library runs, so solves from several threads run at once
     (docs/python.md, "Threads"); Ctrl-C stops the run at its next QP step and raises
-    KeyboardInterrupt. A run that did not converge returns a Result with
+    KeyboardInterrupt, whose .result is the Result reached (along a path: the steps done). A run that did not converge returns a Result with
     converged == False and the reason in .message (as `fricon solve` exits with code 2); bad
     input raises fricon.InputError, an ill-posed problem fricon.NumericalError.
     """
@@ -390,4 +394,4 @@ def solve(problem, set=None, progress=None, threads=None):
         problem = problem.copy()
         for key, value in set.items():
             problem._edit(key, value, origin="--set")
-    return _fricon._solve(problem._parsed, progress, threads)
+    return _fricon._solve(problem._parsed, progress, threads, on_step)

@@ -52,10 +52,12 @@ struct Exchange {
   std::mutex mutex;
   std::condition_variable changed;
   std::deque<driver::IterationReport> iterations;
+  std::deque<driver::StepReport> steps;
   bool done = false;
 };
 
-PyResult solve(const PyProblem& p, const py::object& progress, std::optional<int> threads) {
+PyResult solve(const PyProblem& p, const py::object& progress, std::optional<int> threads,
+               const py::object& on_step) {
   Exchange exchange;
   std::atomic<bool> stop{false};
   driver::RunOptions options;
@@ -63,6 +65,11 @@ PyResult solve(const PyProblem& p, const py::object& progress, std::optional<int
   options.on_outer_iteration = [&exchange](const driver::IterationReport& it) {
     const std::lock_guard lock(exchange.mutex);
     exchange.iterations.push_back(it);
+    exchange.changed.notify_one();
+  };
+  options.on_step = [&exchange](const driver::RunResult& r) {
+    const std::lock_guard lock(exchange.mutex);
+    exchange.steps.push_back(r.report.steps.back());
     exchange.changed.notify_one();
   };
   std::optional<driver::RunResult> result;
@@ -92,23 +99,30 @@ PyResult solve(const PyProblem& p, const py::object& progress, std::optional<int
   std::optional<py::error_already_set> python_error;
   for (bool done = false; !done;) {
     std::deque<driver::IterationReport> iterations;
+    std::deque<driver::StepReport> steps;
     {
       const py::gil_scoped_release release;
       std::unique_lock lock(exchange.mutex);
-      exchange.changed.wait_for(lock, kPollInterval,
-                                [&] { return exchange.done || !exchange.iterations.empty(); });
+      exchange.changed.wait_for(lock, kPollInterval, [&] {
+        return exchange.done || !exchange.iterations.empty() || !exchange.steps.empty();
+      });
       iterations.swap(exchange.iterations);
+      steps.swap(exchange.steps);
       done = exchange.done;
     }
-    for (const auto& it : iterations) {
-      if (progress.is_none() || python_error) break;
+    const auto call = [&](const py::object& callback, const py::object& argument) {
+      if (callback.is_none() || python_error) return;
       try {
-        progress(it);
+        callback(argument);
       } catch (py::error_already_set& e) {
         python_error.emplace(std::move(e));
         stop = true;
       }
-    }
+    };
+    for (const auto& it : iterations)
+      call(progress, py::cast(it));
+    for (const auto& s : steps)
+      call(on_step, to_python(io::step_json(problem, s).dump()));
     if (!python_error && PyErr_CheckSignals() != 0) {
       python_error.emplace();  // fetches the KeyboardInterrupt
       stop = true;
@@ -117,6 +131,13 @@ PyResult solve(const PyProblem& p, const py::object& progress, std::optional<int
   {
     const py::gil_scoped_release release;
     worker.join();
+  }
+  if (python_error && result) {
+    // What was done before the stop (along a loading path, the steps done) goes with the
+    // exception: `except KeyboardInterrupt as e: e.result`.
+    PyResult partial{p.problem, std::make_shared<const driver::RunResult>(std::move(*result)),
+                     io::RunContext{p.edits, "python: fricon.solve"}};
+    py::setattr(python_error->value(), "result", py::cast(std::move(partial)));
   }
   if (python_error) throw std::move(*python_error);
   if (failure) std::rethrow_exception(failure);
@@ -195,6 +216,14 @@ void bind_solve(py::module_& m) {
             return table_dict(io::patch_table(*r.run->contact));
           },
           "the columns of patches.csv as numpy arrays (None without contact)")
+      .def_property_readonly(
+          "steps",
+          [](const PyResult& r) -> py::object {
+            if (r.run->report.steps.empty()) return py::none();
+            return table_dict(io::steps_table(*r.problem, r.run->report));
+          },
+          "the columns of steps.csv as numpy arrays: one row per step of a loading path "
+          "([loading] steps > 1; None for a static run)")
       .def(
           "write",
           [](const PyResult& r, const std::string& dir) {
@@ -217,7 +246,7 @@ void bind_solve(py::module_& m) {
       });
 
   m.def("_solve", &solve, py::arg("problem"), py::arg("progress") = py::none(),
-        py::arg("threads") = py::none());
+        py::arg("threads") = py::none(), py::arg("on_step") = py::none());
 }
 
 }  // namespace fricon::python

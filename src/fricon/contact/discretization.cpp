@@ -23,33 +23,49 @@ Eigen::Matrix<Real, 3, Eigen::Dynamic> prescribed_on_surface(
   return p;
 }
 
-/// c of ContactDiscretization::offset: the P1 integrals over each patch (exact: |T|/3 times the
-/// sum of the vertex values on each triangle), in the patch frames; against a body the master's
-/// prescribed displacement enters through the mortar integrals (theory.md §2.8).
-VectorXd constraint_offset(const mesh::TetMesh& mesh, const ContactSurface& s,
-                           const Patches& patches, const Frames& frames, const VectorXd& gap,
-                           const SparseMatrix& mortar,
-                           const Eigen::Matrix<Real, 3, Eigen::Dynamic>& prescribed) {
+/// The gap part G of ContactDiscretization::offset: per patch int_R gap dS in its normal row,
+/// the P1 integral (exact: |T|/3 times the sum of the vertex values on each triangle).
+VectorXd gap_offset(const mesh::TetMesh& mesh, const ContactSurface& s, const Patches& patches,
+                    const VectorXd& gap) {
   VectorXd c = VectorXd::Zero(3 * patches.size());
+  for (Index p = 0; p < patches.size(); ++p)
+    for (Index k : patches.faces[static_cast<size_t>(p)]) {
+      const Real third = mesh::face_area(mesh, s.faces[static_cast<size_t>(k)]) / 3.0;
+      for (int v = 0; v < 3; ++v)
+        c(3 * p) += third * gap(s.face_nodes(v, k));
+    }
+  return c;
+}
+
+/// The prescribed part P of ContactDiscretization::offset: the patch integrals of the prescribed
+/// displacement in the patch frames (slave, P1 exactly), minus the master's through the mortar
+/// integrals against a body (theory.md §2.8); c = G - P vec(u_p).
+SparseMatrix prescribed_offset(const mesh::TetMesh& mesh, const ContactSurface& s,
+                               const Patches& patches, const Frames& frames,
+                               const SparseMatrix& mortar) {
+  std::vector<Eigen::Triplet<Real, SparseIndex>> entries;
   for (Index p = 0; p < patches.size(); ++p) {
     const Mat3 dirs = frames.rows(p);
     for (Index k : patches.faces[static_cast<size_t>(p)]) {
       const Real third = mesh::face_area(mesh, s.faces[static_cast<size_t>(k)]) / 3.0;
       for (int v = 0; v < 3; ++v) {
-        const Index node = s.face_nodes(v, k);
-        const Vec3 u = s.prescribed.size() > 0 ? Vec3(s.prescribed.col(node)) : Vec3::Zero();
-        const Vec3 du = dirs * u;
-        c(3 * p) += third * (gap(node) - du(0));
-        c(3 * p + 1) -= third * du(1);
-        c(3 * p + 2) -= third * du(2);
+        const Index node = s.nodes[static_cast<size_t>(s.face_nodes(v, k))];
+        for (int r = 0; r < 3; ++r)
+          for (int c = 0; c < 3; ++c)
+            entries.emplace_back(3 * p + r, 3 * node + c, third * dirs(r, c));
       }
     }
   }
-  if (mortar.size() == 0 || prescribed.size() == 0) return c;
   for (Index a = 0; a < mortar.outerSize(); ++a)
-    for (SparseMatrix::InnerIterator it(mortar, a); it; ++it)
-      c.segment<3>(3 * it.row()) += it.value() * (frames.rows(it.row()) * prescribed.col(a));
-  return c;
+    for (SparseMatrix::InnerIterator it(mortar, a); it; ++it) {
+      const Mat3 dirs = frames.rows(it.row());
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c)
+          entries.emplace_back(3 * it.row() + r, 3 * a + c, -it.value() * dirs(r, c));
+    }
+  SparseMatrix P(3 * patches.size(), 3 * mesh.n_nodes());
+  P.setFromTriplets(entries.begin(), entries.end());
+  return P;
 }
 
 // Condition (5.1) holds when sigma_min/sigma_max(B) reaches this (check_stability's default).
@@ -228,8 +244,9 @@ ContactDiscretization discretize_contact(const mesh::TetMesh& mesh, const fe::Do
   d.pairs.front().stability = p.stability;
   d.pairs.front().master_coverage = p.coverage;
   d.slip_bound = VectorXd::Constant(d.surface.n_nodes(), spec.slip_bound);
-  d.offset = constraint_offset(mesh, d.surface, d.patches, d.patch_frames, d.gap, p.mortar,
-                               spec.prescribed);
+  d.gap_offset = gap_offset(mesh, d.surface, d.patches, d.gap);
+  d.prescribed_offset = prescribed_offset(mesh, d.surface, d.patches, d.patch_frames, p.mortar);
+  d.offset = constraint_offset(d, spec.prescribed);
   d.dofs = dofs.free_dofs(coupled_nodes(d.surface, p.mortar));
   d.radius_integration = kRadiusIntegration;
   return d;
@@ -305,6 +322,27 @@ void append_surface(ContactSurface& a, const ContactSurface& b, Index pair, Inde
 
 }  // namespace
 
+VectorXd constraint_offset(const ContactDiscretization& disc,
+                           const Eigen::Matrix<Real, 3, Eigen::Dynamic>& prescribed) {
+  if (prescribed.size() == 0) return disc.gap_offset;
+  FRICON_CHECK(3 * prescribed.cols() == disc.prescribed_offset.cols(),
+               "constraint_offset: a prescribed field of " << prescribed.cols() << " nodes");
+  const Eigen::Map<const VectorXd> u(prescribed.data(), prescribed.size());
+  return disc.gap_offset - disc.prescribed_offset * u;
+}
+
+void set_prescribed(ContactDiscretization& disc,
+                    const Eigen::Matrix<Real, 3, Eigen::Dynamic>& prescribed) {
+  ContactSurface& s = disc.surface;
+  s.prescribed = prescribed_on_surface(s, prescribed);
+  if (s.master.size() > 0)
+    s.master_prescribed = prescribed.size() > 0
+                              ? Eigen::Matrix<Real, 3, Eigen::Dynamic>(
+                                    (s.master * prescribed.transpose()).transpose())
+                              : Eigen::Matrix<Real, 3, Eigen::Dynamic>();
+  disc.offset = constraint_offset(disc, prescribed);
+}
+
 ContactDiscretization merge_pairs(std::vector<ContactDiscretization> pairs) {
   FRICON_CHECK(!pairs.empty(), "merge_pairs: no pair");
   ContactDiscretization d = std::move(pairs.front());
@@ -329,6 +367,9 @@ ContactDiscretization merge_pairs(std::vector<ContactDiscretization> pairs) {
     d.slip_bound = stack(d.slip_bound, b.slip_bound);
     d.gap = stack(d.gap, b.gap);
     d.offset = stack(d.offset, b.offset);
+    d.gap_offset = stack(d.gap_offset, b.gap_offset);
+    d.prescribed_offset =
+        stack_rows(d.prescribed_offset, b.prescribed_offset, d.prescribed_offset.cols());
     std::vector<Index> dofs = d.dofs;
     dofs.insert(dofs.end(), b.dofs.begin(), b.dofs.end());
     std::sort(dofs.begin(), dofs.end());

@@ -69,6 +69,13 @@ struct ContactDiscretization {
   /// row int_R (gap - u_p.n) dS, tangential rows -int_R u_p.t dS, with u_p the prescribed
   /// displacement of fixed components; zero for the paper's problem. The dual's h = B K^-1 f - c.
   VectorXd offset;
+  /// The parts of `offset`: offset = gap_offset - prescribed_offset vec(u_p) for the prescribed
+  /// displacement u_p of every mesh node (3 x n_nodes, column-major), so that a loading path
+  /// (theory.md §2.9) moves it with the step's values (constraint_offset). gap_offset [m^3] per
+  /// multiplier row; prescribed_offset [m^2] is n_dual x 3 n_nodes. A part of a discretization
+  /// (restrict_to_patches) leaves both empty.
+  VectorXd gap_offset;
+  SparseMatrix prescribed_offset;
   /// The free dofs of the surface nodes, node by node: the only columns B touches.
   std::vector<Index> dofs;
   /// Per patch: the frame (n, t1, t2) of its multipliers (b_matrix.hpp, patch_frames).
@@ -98,6 +105,17 @@ struct ContactDiscretization {
 /// agglomerate one still unstable after the coarsenings), naming the key's position.
 ContactDiscretization discretize_contact(const mesh::TetMesh& mesh, const fe::DofMap& dofs,
                                          const ContactSpec& spec);
+
+/// ContactDiscretization::offset for the prescribed displacement `prescribed` of every mesh node
+/// (3 x n_nodes; empty: none) [m^3].
+VectorXd constraint_offset(const ContactDiscretization& disc,
+                           const Eigen::Matrix<Real, 3, Eigen::Dynamic>& prescribed);
+
+/// Moves the discretization to another prescribed displacement of the mesh nodes (3 x n_nodes;
+/// empty: none), a step of a loading path: the surface's prescribed values (slave and master) and
+/// the offset. B, the gap and everything else stay.
+void set_prescribed(ContactDiscretization& disc,
+                    const Eigen::Matrix<Real, 3, Eigen::Dynamic>& prescribed);
 
 /// Several pairs as one discretization: surfaces, patches and rows of B in the order of `pairs`
 /// (each discretize_contact of one pair), the pair of every node and patch recorded. One pair is

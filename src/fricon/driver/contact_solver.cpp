@@ -105,6 +105,21 @@ qp::DualProblem first_dual_problem(const Problem& problem,
   return d;
 }
 
+// A step of a loading path starts where the last one ended: slips measured from its tangential
+// displacement, the accumulated slip as the first phi (the slip increment is zero), and its
+// multipliers as the warm start and (Coulomb) the first pressures.
+void start_from_last_step(const PathStep& step, const contact::ContactDiscretization& disc,
+                          const contact::SlipBounds& bounds, TrescaMap& map, VectorXd& state) {
+  map.set_history(step.history);
+  if (step.history && !step.history->empty())
+    state.head(disc.surface.n_nodes()) = step.history->accumulated;
+  if (!step.lambda) return;
+  map.set_lambda(*step.lambda);
+  if (bounds.uses_pressure())
+    for (Index p = 0; p < disc.n_patches(); ++p)
+      state(disc.surface.n_nodes() + p) = (*step.lambda)(3 * p);
+}
+
 // The successive approximations, with the QP counts of every iteration in the report.
 // A refinement (refine_coulomb) calls it again: the counts and histories accumulate.
 outer::OuterReport successive_approximations(TrescaMap& map, VectorXd& phi,
@@ -221,7 +236,8 @@ WholeResult cover_left_out(const Problem& problem, const Model& m, const PatchSe
 
 // The paper's measures and the surface fields of the result.
 void measure(const Model& m, const contact::ContactDiscretization& disc,
-             const contact::FrictionLaw& law, const VectorXd& lambda, ContactOutcome& out) {
+             const contact::FrictionLaw& law, const VectorXd& lambda, const SlipHistory* history,
+             ContactOutcome& out) {
   ContactReport& rep = out.report;
   ContactFields& fields = out.fields;
   const contact::SurfaceDisplacement s = contact::surface_displacement(disc.surface, m.dofs, out.w);
@@ -234,8 +250,9 @@ void measure(const Model& m, const contact::ContactDiscretization& disc,
   rep.wn_pos_l2 = contact::surface_l2_norm(m.mesh, disc.surface, wn_pos);
   rep.wn_pos_inf = wn_pos.maxCoeff();
   rep.max_neg_wn = (-penetration).maxCoeff();
-  const VectorXd slip = s.slip();
-  rep.max_wt = slip.maxCoeff();
+  rep.max_wt = s.slip().maxCoeff();
+  fields.slip = history ? history->slips(s.wt1, s.wt2) : s.slip();
+  const VectorXd& slip = fields.slip;
   fields.F.resize(slip.size());  // one batch: a function law is called once
   law.evaluate(std::span<const Real>(slip.data(), static_cast<size_t>(slip.size())),
                std::span<Real>(fields.F.data(), static_cast<size_t>(fields.F.size())));
@@ -256,8 +273,7 @@ void classify_patches(const contact::SlipBounds& bounds, const VectorXd& radius,
                       ContactOutcome& out) {
   ContactFields& f = out.fields;
   ContactReport& rep = out.report;
-  f.coefficient = bounds.mean_coefficients(
-      out.fields.wt1.binaryExpr(out.fields.wt2, [](Real a, Real b) { return std::hypot(a, b); }));
+  f.coefficient = bounds.mean_coefficients(f.slip);
   const Real scale_n = std::max(rep.max_lambda_n, 0.0);
   f.state.resize(static_cast<size_t>(rep.n_patches));
   for (Index p = 0; p < rep.n_patches; ++p) {
@@ -356,7 +372,8 @@ std::unique_ptr<contact::SlipBounds> make_slip_bounds(const Problem& problem,
 ContactOutcome solve_contact(const Problem& problem, const Model& m,
                              const contact::ContactDiscretization& disc,
                              const dual::DualOperator& Q, PhaseTimes& times,
-                             const RunOptions& options, const PatchSelection* selection) {
+                             const RunOptions& options, const PatchSelection* selection,
+                             const PathStep* step) {
   ContactOutcome out;
   const auto law = contact::make_friction_law(problem.contact.front().friction);
   out.report = describe(problem, disc, Q, *law);
@@ -367,7 +384,10 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m,
   // Coulomb residual), then the map Psi on the state.
   const qp::BlockScaling scaling =
       dual_scaling(problem, m, disc, qp::SeparableConstraints::contact_layout(disc.n_patches()));
-  {
+  if (step && step->norm_Q > 0.0) {
+    rep.norm_Q = step->norm_Q;
+    rep.norm_Q_scaled = step->norm_Q_scaled;
+  } else {
     ScopedPhase phase(times, "dual");
     rep.norm_Q = estimate_norm_Q(Q, qp::BlockScaling::identity(Q.size()), options);
     rep.norm_Q_scaled = problem.solver.dual_scaling == contact::DualScaling::None
@@ -381,8 +401,10 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m,
   if (options.keep_first_dual) out.first_dual = first_dual_problem(problem, disc, Q, map);
 
   // @sect: successive approximations (theory.md §5), from the zero state (phi = 0, and for
-  // Coulomb lambda_n = 0: the first step is then the frictionless problem).
+  // Coulomb lambda_n = 0: the first step is then the frictionless problem); along a loading path
+  // from the state the last step left (theory.md §2.9).
   VectorXd state = VectorXd::Zero(state_size(map));
+  if (step) start_from_last_step(*step, disc, *bounds, map, state);
   outer::OuterReport loop =
       successive_approximations(map, state, problem.solver.outer, rep, options);
   loop = refine_coulomb(map, state, problem, Q, *bounds, loop, rep, options);
@@ -403,7 +425,7 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m,
     const contact::SlipBounds& result_bounds = selection ? *whole_bounds : *bounds;
     out.fields.lambda = result.lambda;
     out.fields.radius = result.radius;
-    measure(m, whole, *law, result.lambda, out);
+    measure(m, whole, *law, result.lambda, step ? step->history : nullptr, out);
     classify_patches(result_bounds, result.radius, out);
     report_pairs(whole, out);
     if (result_bounds.uses_pressure())

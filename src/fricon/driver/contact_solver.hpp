@@ -19,6 +19,7 @@
 #include "fricon/driver/model.hpp"
 #include "fricon/driver/problem.hpp"
 #include "fricon/driver/run_options.hpp"
+#include "fricon/driver/tresca_map.hpp"
 #include "fricon/dual/dual_operator.hpp"
 #include "fricon/outer/outer_loop.hpp"
 #include "fricon/qp/dual_problem.hpp"
@@ -138,7 +139,10 @@ struct ContactFields {
   VectorXd phi;                   ///< phi per surface node used for the last radii [m]
   VectorXd gap;                   ///< initial gap per surface node [m] (ContactDiscretization)
   VectorXd wn, wt1, wt2;          ///< components of the displacement w per surface node [m]
-  VectorXd F;                     ///< F(||w_t||) per surface node
+  /// The slip the coefficient is evaluated at, per surface node [m]: ||w_t||, along a loading
+  /// path the accumulated slip (theory.md §2.9).
+  VectorXd slip;
+  VectorXd F;                     ///< F(slip) per surface node
   VectorXd slip_bound;            ///< g per surface node [Pa]
   VectorXd coefficient;           ///< per patch: F_R = (1/|R|) int_R F(||w_t||) dS of the result
   std::vector<PatchState> state;  ///< per patch
@@ -163,17 +167,29 @@ struct PatchSelection {
   int round = 1;                      ///< the search's solve this is (ContactReport::search_rounds)
 };
 
+/// What a step of a loading path brings to the contact solve (theory.md §2.9).
+struct PathStep {
+  const SlipHistory* history = nullptr;  ///< the slips are measured from the last step
+  /// The last step's multipliers [Pa]: the first QP starts from them (with solver.warm_start),
+  /// and for Coulomb the first radii take their pressures. Null: zero.
+  const VectorXd* lambda = nullptr;
+  /// ||Q|| and ||D Q D|| of the path's operator, estimated at its first step; 0: estimate them.
+  Real norm_Q = 0.0, norm_Q_scaled = 0.0;
+};
+
 /// Runs the contact solve for `problem.contact` on the factored model with the contact
 /// discretization `disc` and the dual operator `Q` built on them; phases are timed into `times`
 /// ("dual", "qp", "recovery", "postprocess"). With a `selection`, `disc` is the part of
 /// selection->whole on its patches, and the outcome is that of the whole: the patches left out
 /// with zero multipliers, the certificate and the measures over every patch. Non-convergence
-/// (including a failed certificate) is returned, not thrown.
+/// (including a failed certificate) is returned, not thrown. A `step` of a loading path brings
+/// the history the friction acts on (selection is then null).
 ContactOutcome solve_contact(const Problem& problem, const Model& model,
                              const contact::ContactDiscretization& disc,
                              const dual::DualOperator& Q, PhaseTimes& times,
                              const RunOptions& options = {},
-                             const PatchSelection* selection = nullptr);
+                             const PatchSelection* selection = nullptr,
+                             const PathStep* step = nullptr);
 
 /// The slip bounds of the problem's friction model on the discretization.
 std::unique_ptr<contact::SlipBounds> make_slip_bounds(const Problem& problem,

@@ -59,4 +59,32 @@ std::string Problem::contact_key(std::size_t i) const {
   return contact.size() == 1 ? std::string("contact") : fmt::format("contact[{}]", i);
 }
 
+Problem at_step(const Problem& problem, int k) {
+  const auto factor = [k](const std::vector<Real>& path) {
+    return path.empty() ? 1.0 : path[static_cast<std::size_t>(k - 1)];
+  };
+  Problem p = problem;
+  for (TractionOptions& t : p.traction)
+    t.value *= factor(t.path);
+  for (DirichletOptions& d : p.dirichlet)
+    d.value *= factor(d.path);
+  p.volume_force *= factor(p.loading.volume_force_path);
+  return p;
+}
+
+std::vector<PathLoad> path_loads(const Problem& problem) {
+  std::vector<PathLoad> loads;
+  for (std::size_t i = 0; i < problem.traction.size(); ++i)
+    if (!problem.traction[i].path.empty())
+      loads.push_back({fmt::format("traction[{}]", i), &problem.traction[i].path,
+                       problem.traction[i].boundary});
+  for (std::size_t i = 0; i < problem.dirichlet.size(); ++i)
+    if (!problem.dirichlet[i].path.empty())
+      loads.push_back({fmt::format("dirichlet[{}]", i), &problem.dirichlet[i].path,
+                       problem.dirichlet[i].boundary});
+  if (!problem.loading.volume_force_path.empty())
+    loads.push_back({"volume_force", &problem.loading.volume_force_path, {}});
+  return loads;
+}
+
 }  // namespace fricon::driver

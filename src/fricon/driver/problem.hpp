@@ -21,6 +21,7 @@
 #include "fricon/contact/patches.hpp"
 #include "fricon/contact/slip_bounds.hpp"
 #include "fricon/core/enum_names.hpp"
+#include "fricon/core/range.hpp"
 #include "fricon/core/types.hpp"
 #include "fricon/dual/dual_operator_kind.hpp"
 #include "fricon/fe/material.hpp"
@@ -93,12 +94,18 @@ struct DirichletOptions {
   /// [dirichlet.value] the displacement [m] of the fixed components (the others must be 0),
   /// finite; default zero (a clamp). Nodes in several [[dirichlet]] sets must get one value.
   Vec3 value = Vec3::Zero();
+  /// [dirichlet.path] with [loading] steps > 1: the factor of `value` at each step (steps
+  /// finite values); empty: the value is constant over the steps.
+  std::vector<Real> path{};
 };
 
 /// [[traction]]: constant surface traction on a tagged boundary.
 struct TractionOptions {
   std::string boundary;       ///< [traction.boundary] boundary tag
   Vec3 value = Vec3::Zero();  ///< [traction.value] traction vector [Pa], finite
+  /// [traction.path] with [loading] steps > 1: the factor of `value` at each step (steps finite
+  /// values); empty: the traction is constant over the steps.
+  std::vector<Real> path{};
 };
 
 /// [contact.friction]: the coefficient of friction F(t), t = ||u_t|| [m].
@@ -170,6 +177,19 @@ struct SolverOptions {
   std::optional<Real> memory_per_rank;  ///< [solver.memory_per_rank] [MiB]; absent: no limit
 };
 
+/// The number of load steps of a path ([loading] steps).
+inline constexpr Range kLoadStepsRange = integer_in(1, 100000);
+
+/// [loading]: a quasi-static loading path (theory.md §2.9). Step k solves the contact problem
+/// for the loads of step k, each load's value times its path's k-th factor, with friction on the
+/// slip increment from step k - 1 and the coefficient of the accumulated slip.
+struct LoadingOptions {
+  int steps = 1;  ///< [loading.steps] >= 1; 1: the static problem
+  /// [loading.volume_force_path] the factor of volume_force at each step (steps finite values);
+  /// empty: the volume force is constant over the steps.
+  std::vector<Real> volume_force_path;
+};
+
 /// [output]
 struct OutputOptions {
   std::string dir = "results";  ///< [output.dir] results folder, non-empty
@@ -194,6 +214,7 @@ struct Problem {
   std::vector<TractionOptions> traction;
   /// [contact] (one pair) or [[contact]] (one entry per pair); empty: linear elasticity.
   std::vector<ContactOptions> contact;
+  LoadingOptions loading;
   SolverOptions solver;
   OutputOptions output;
 
@@ -204,6 +225,23 @@ struct Problem {
   /// an entry of [[contact]].
   std::string contact_key(std::size_t i) const;
 };
+
+/// The problem of step `k` (1-based, <= loading.steps) of its loading path: every load with a
+/// path has its value multiplied by the path's k-th factor; the rest is unchanged.
+Problem at_step(const Problem& problem, int k);
+
+/// A load that carries a path: its key ("traction[0]", "dirichlet[1]", "volume_force") and its
+/// factors.
+struct PathLoad {
+  std::string key;
+  const std::vector<Real>* factors = nullptr;
+  /// The boundary tag it acts on; empty for the volume force.
+  std::string boundary;
+};
+
+/// The loads of the problem that carry a path, in the order [[traction]], [[dirichlet]],
+/// volume_force.
+std::vector<PathLoad> path_loads(const Problem& problem);
 
 /// Checks every value of the problem against its range and the consistency of the values with
 /// one another that needs no mesh (e.g. contact on a face that Dirichlet conditions clamp

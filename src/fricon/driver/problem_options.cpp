@@ -117,6 +117,20 @@ void check_friction(const Problem& p, const std::string& path, const FrictionOpt
   }
 }
 
+/// A load's path (theory.md §2.9): given only with [loading] steps > 1, one factor per step.
+void check_path(const Problem& p, const std::string& key, const std::vector<Real>& factors) {
+  if (factors.empty()) return;
+  const auto steps = static_cast<std::size_t>(p.loading.steps);
+  if (steps == 1)
+    fail(p, key,
+         "a path needs [loading] steps > 1 (with steps = 1, the default, the problem is static: "
+         "drop the path or set loading.steps)");
+  if (factors.size() != steps)
+    fail(p, key,
+         fmt::format("expected one factor per step, loading.steps = {} values, got {}", steps,
+                     factors.size()));
+}
+
 void check_solver(const Problem& p, const std::string& path, const SolverOptions& s) {
   if (s.backend == parallel::Backend::Petsc && !parallel::petsc_available())
     fail(p, join_key(path, "backend"),
@@ -235,6 +249,8 @@ const OptionTable& problem_table() {
     b.table_or_tables("contact", &Problem::contact, contact_table,
                       "frictional contact: one pair `[contact]`, or one `[[contact]]` per pair "
                       "(see `[contact]`); absent: linear elasticity");
+    b.table("loading", &Problem::loading, loading_table,
+            "a quasi-static loading path: see `[loading]`");
     b.table("solver", &Problem::solver, solver_table, "see `[solver]`");
     b.table("output", &Problem::output, output_table, "see `[output]`");
     b.check([](const Problem& p, const std::string&, const Problem&) { check_contact_pairs(p); });
@@ -318,7 +334,11 @@ const OptionTable& dirichlet_table() {
              "the displacement of the fixed components (a non-zero value for a component not in "
              "`components` is an error). A node on two entries must get the same value from "
              "both");
+    b.number("path", &DirichletOptions::path, any_number(),
+             "with `[loading] steps > 1`: the factor of `value` at each step, one per step "
+             "(`[0, 0.5, 1, 1, 0]`); absent: the value holds at every step");
     b.check([](const Problem& p, const std::string& path, const DirichletOptions& d) {
+      check_path(p, join_key(path, "path"), d.path);
       for (std::size_t c = 0; c < 3; ++c)
         if (!d.components[c] && d.value[static_cast<Index>(c)] != 0.0)
           fail(p, fmt::format("{}.value[{}]", path, c),
@@ -337,6 +357,12 @@ const OptionTable& traction_table() {
     b.text("boundary", &TractionOptions::boundary, "a non-empty boundary tag", "").require();
     b.number("value", &TractionOptions::value, any_number("Pa"), "the traction vector in x, y, z")
         .require();
+    b.number("path", &TractionOptions::path, any_number(),
+             "with `[loading] steps > 1`: the factor of `value` at each step, one per step; "
+             "absent: the traction holds at every step");
+    b.check([](const Problem& p, const std::string& path, const TractionOptions& t) {
+      check_path(p, join_key(path, "path"), t.path);
+    });
     return b.build();
   }();
   return table;
@@ -569,6 +595,26 @@ const OptionTable& solver_table() {
   return table;
 }
 
+const OptionTable& loading_table() {
+  static const OptionTable table = [] {
+    OptionTableBuilder<LoadingOptions> b("loading", "a table [loading]");
+    b.number("steps", &LoadingOptions::steps, kLoadStepsRange,
+             "load steps of a quasi-static path (docs/theory.md §2.9); each step starts from the "
+             "state the last one left, friction acts on the slip increment and the coefficient "
+             "on the accumulated slip. 1: the static problem");
+    b.number("volume_force_path", &LoadingOptions::volume_force_path, any_number(),
+             "the factor of `volume_force` at each step, one per step; absent: constant");
+    b.check([](const Problem& p, const std::string& path, const LoadingOptions& l) {
+      check_path(p, join_key(path, "volume_force_path"), l.volume_force_path);
+      if (l.steps > 1 && p.solver.backend == parallel::Backend::Petsc)
+        fail(p, join_key(path, "steps"),
+             "a loading path runs on one process: use solver.backend = \"cholmod\"");
+    });
+    return b.build();
+  }();
+  return table;
+}
+
 const OptionTable& output_table() {
   static const OptionTable table = [] {
     OptionTableBuilder<OutputOptions> b("output", "a table [output]");
@@ -583,7 +629,7 @@ const OptionTable& output_table() {
 std::vector<const OptionTable*> all_option_tables() {
   return {&problem_table(),   &mesh_table(),     &material_table(), &material_entry_table(),
           &dirichlet_table(), &traction_table(), &contact_table(),  &obstacle_table(),
-          &friction_table(),  &solver_table(),   &output_table()};
+          &friction_table(),  &loading_table(),  &solver_table(),   &output_table()};
 }
 
 }  // namespace fricon::driver

@@ -17,6 +17,7 @@ const OptionTable& traction_table();        ///< one [[traction]] (TractionOptio
 const OptionTable& contact_table();         ///< [contact] (ContactOptions)
 const OptionTable& obstacle_table();        ///< [contact.obstacle] (ObstacleOptions)
 const OptionTable& friction_table();        ///< [contact.friction] (FrictionOptions)
+const OptionTable& loading_table();         ///< [loading] (LoadingOptions)
 const OptionTable& solver_table();          ///< [solver] (SolverOptions)
 const OptionTable& output_table();          ///< [output] (OutputOptions)
 

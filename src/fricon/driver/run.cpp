@@ -211,6 +211,7 @@ void finish_run(const Problem& problem, const VectorXd& u, const RunOptions& opt
 }
 
 RunResult run(const Problem& problem, const RunOptions& options) {
+  if (problem.loading.steps > 1) return run_path(problem, options);
   const Stopwatch total;
   validate(problem);
   if (problem.solver.backend != parallel::Backend::Cholmod)

@@ -22,6 +22,30 @@ namespace fricon::driver {
 /// The outcome of a run as the report and the exit code give it.
 enum class RunStatus { Converged, NotConverged };
 
+/// One step of a loading path (theory.md §2.9), as steps.csv and report.json "steps" give it.
+struct StepReport {
+  int step = 0;               ///< 1-based
+  std::vector<Real> factors;  ///< the factor of each load with a path (driver::path_loads)
+  RunStatus status = RunStatus::Converged;
+  std::string message;                   ///< why the step failed (empty when converged)
+  Real normal_force = 0.0;               ///< sum over the patches of lambda_n |R| [N]
+  Vec3 tangential_force = Vec3::Zero();  ///< friction force of the obstacles on the body [N]
+  Vec3 contact_force = Vec3::Zero();     ///< RunReport::contact_force [N]
+  Vec3 reaction_force = Vec3::Zero();    ///< RunReport::reaction_force [N]
+  Vec3 applied_force = Vec3::Zero();     ///< RunReport::applied_force [N]
+  /// Per load with a path: the mean displacement of its boundary's nodes [m] (zero for the
+  /// volume force).
+  std::vector<Vec3> load_displacement;
+  Real max_slip = 0.0;              ///< max ||w_t|| over the surface nodes [m]
+  Real max_accumulated_slip = 0.0;  ///< max of the accumulated slip s [m]
+  Index n_stick = 0, n_slip = 0, n_separated = 0;
+  int outer_iterations = 0;
+  long n_mult = 0;                  ///< products with Q in this step
+  Real equilibrium_residual = 0.0;  ///< RunReport::equilibrium_residual
+  Real kkt = 0.0;                   ///< the largest KKT residual of the step's last QP
+  double time_s = 0.0;              ///< wall time of the step [s]
+};
+
 /// What a run reports (the JSON report serialises this struct).
 struct RunReport {
   RunStatus status = RunStatus::Converged;
@@ -43,6 +67,9 @@ struct RunReport {
   Real linear_residual = 0.0;            ///< ||K u - (f - B^T lambda)|| / ||f||
   std::optional<ContactReport> contact;  ///< present when the problem has a [contact] section
   std::optional<parallel::ParallelReport> parallel;  ///< present for backend "petsc"
+  /// With [loading] steps > 1: every step done (the last may have failed); the other fields
+  /// hold the last step's values.
+  std::vector<StepReport> steps;
 };
 
 struct RunResult {
@@ -60,7 +87,15 @@ struct RunResult {
 /// another: fricon::solve chooses). Throws InputError/NumericalError for ill-posed input, and
 /// Interrupted for a stop requested before any iterate exists; a run whose iterations did not
 /// converge (or whose certificate failed) returns with report.status == NotConverged.
+/// With [loading] steps > 1 it runs the path (run_path).
 RunResult run(const Problem& problem, const RunOptions& options = {});
+
+/// The quasi-static loading path of the problem (theory.md §2.9): the model, the contact
+/// discretization, the factor of K and Q once; then per step the loads of the step, the contact
+/// solve from the state the last step left, and the result, reported to options.on_step. A step
+/// that fails (or is interrupted) ends the path: the result is that step's, not converged, with
+/// its message naming the step; report.steps holds every step done.
+RunResult run_path(const Problem& problem, const RunOptions& options = {});
 
 }  // namespace fricon::driver
 

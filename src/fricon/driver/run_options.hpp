@@ -11,6 +11,8 @@
 
 namespace fricon::driver {
 
+struct RunResult;
+
 /// What a run reports of one outer iteration (a Tresca problem with a frozen coefficient) and
 /// its QP; outer::OuterIteration is the loop's own record of it.
 struct IterationReport {
@@ -36,6 +38,9 @@ struct RunOptions {
   /// on the ranks other than 0 of a distributed run, "follow" when they start serving rank 0's
   /// outer loop.
   std::function<void(const std::string& phase)> on_phase_start;
+  /// Called after every step of a loading path with the step's result (its report's last
+  /// entry of `steps` describes it), converged or not.
+  std::function<void(const RunResult& step)> on_step;
   /// If set and true, the run stops at the next QP step (e.g. set by a SIGINT handler) and
   /// returns what it has, not converged; while Q is formed it throws fricon::Interrupted.
   const std::atomic<bool>* stop_requested = nullptr;

@@ -8,6 +8,14 @@
 
 namespace fricon::driver {
 
+VectorXd SlipHistory::slips(const VectorXd& wt1_now, const VectorXd& wt2_now) const {
+  if (empty()) return wt1_now.binaryExpr(wt2_now, [](Real a, Real b) { return std::hypot(a, b); });
+  VectorXd s(accumulated.size());
+  for (Index k = 0; k < s.size(); ++k)
+    s(k) = accumulated(k) + std::hypot(wt1_now(k) - wt1(k), wt2_now(k) - wt2(k));
+  return s;
+}
+
 TrescaMap::TrescaMap(const fe::DofMap& dofs, const contact::ContactDiscretization& discretization,
                      const dual::DualOperator& Q, const contact::SlipBounds& bounds,
                      const contact::FrictionLaw& law, const qp::BlockScaling& scaling,
@@ -62,7 +70,8 @@ outer::MapStep TrescaMap::apply(int k, const VectorXd& state, VectorXd& image) {
     Q_.contact_displacement(lambda_, w_);
   }
   // @sect: the new state: the slips, and for Coulomb the new pressures.
-  const VectorXd phi = contact::surface_displacement(disc_.surface, dofs_, w_).slip();
+  const contact::SurfaceDisplacement d = contact::surface_displacement(disc_.surface, dofs_, w_);
+  const VectorXd phi = history_ ? history_->slips(d.wt1, d.wt2) : d.slip();
   image.resize(state.size());
   image.head(phi.size()) = phi;
   if (bounds_.uses_pressure())

@@ -22,6 +22,18 @@
 
 namespace fricon::driver {
 
+/// What the last step of a loading path left on the contact surface (theory.md §2.9): the slip
+/// of a step is measured from it. Empty vectors (a static run): no history.
+struct SlipHistory {
+  VectorXd wt1, wt2;     ///< tangential displacement per surface node at the last step's end [m]
+  VectorXd accumulated;  ///< accumulated slip s per surface node [m]
+
+  bool empty() const { return accumulated.size() == 0; }
+  /// The slip the coefficient is evaluated at, per surface node [m], for this step's tangential
+  /// displacement (wt1, wt2): s + ||w_t - w_t^prev|| along a path, ||w_t|| without history.
+  VectorXd slips(const VectorXd& wt1_now, const VectorXd& wt2_now) const;
+};
+
 class TrescaMap final : public outer::FixedPointMap {
  public:
   /// Every reference must outlive the map. Each QP is solved in the variables scaled by
@@ -55,6 +67,8 @@ class TrescaMap final : public outer::FixedPointMap {
   void set_lambda(const VectorXd& lambda);
   /// The relative tolerance of the QPs from now on (MpgpOptions::rel_tolerance), > 0.
   void set_qp_tolerance(Real rel_tolerance) { qp_.rel_tolerance = rel_tolerance; }
+  /// Measures the slips from a loading path's last step (null: none); must outlive the map.
+  void set_history(const SlipHistory* history) { history_ = history; }
 
  private:
   const fe::DofMap& dofs_;
@@ -70,6 +84,7 @@ class TrescaMap final : public outer::FixedPointMap {
   qp::SeparableConstraints constraints_;
   VectorXd lambda_, radius_, w_;
   qp::MpgpReport last_qp_;
+  const SlipHistory* history_ = nullptr;
 };
 
 }  // namespace fricon::driver

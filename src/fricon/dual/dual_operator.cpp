@@ -35,7 +35,11 @@ void DualOperator::set_free_solution(VectorXd u0, const SparseMatrix& B, const V
   if (offset != nullptr) h_ -= *offset;
 }
 
-FactorDualOperator::FactorDualOperator(const DualInput& input) : in_(input) {
+void DualOperator::set_load(const VectorXd&, const VectorXd&) {
+  throw Error("this dual operator cannot change its load (a loading path runs on one process)");
+}
+
+FactorDualOperator::FactorDualOperator(const DualInput& input) : in_(input), f_(input.f) {
   if (in_.free_solution != nullptr) {
     set_free_solution(*in_.free_solution, in_.B, in_.offset);
     return;
@@ -46,7 +50,16 @@ FactorDualOperator::FactorDualOperator(const DualInput& input) : in_(input) {
 
 VectorXd FactorDualOperator::displacement(const VectorXd& lambda) const {
   ++n_kinv_;
-  return in_.factor.solve(VectorXd(in_.f - in_.B.transpose() * lambda));
+  return in_.factor.solve(VectorXd(f_ - in_.B.transpose() * lambda));
+}
+
+void FactorDualOperator::set_load(const VectorXd& f, const VectorXd& offset) {
+  FRICON_CHECK(f.size() == f_.size() && offset.size() == in_.B.rows(),
+               "set_load: a load of " << f.size() << " and an offset of " << offset.size());
+  f_ = f;
+  set_free_solution(in_.factor.solve(f_), in_.B, &offset);
+  ++n_kinv_;
+  load_changed();
 }
 
 MatrixXd DualOperator::to_dense() const {

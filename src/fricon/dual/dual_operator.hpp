@@ -72,6 +72,10 @@ class DualOperator {
   virtual void contact_displacement(const VectorXd& lambda, VectorXd& w) const = 0;
   /// w = K^-1 (f - B^T lambda) over all free dofs: one solve with the factor.
   virtual VectorXd displacement(const VectorXd& lambda) const = 0;
+  /// Another load on the same K and B (a step of a loading path, theory.md §2.9): f [N] over the
+  /// free dofs and the offset c [m^3]; u0 and h are recomputed (one solve), Q is kept. Throws
+  /// Error for an operator that cannot (the distributed one).
+  virtual void set_load(const VectorXd& f, const VectorXd& offset);
 
   /// Q as a dense matrix: dense() if formed, else n_dual products with unit vectors.
   MatrixXd to_dense() const;
@@ -93,11 +97,15 @@ class DualOperator {
 class FactorDualOperator : public DualOperator {
  public:
   VectorXd displacement(const VectorXd& lambda) const override;
+  void set_load(const VectorXd& f, const VectorXd& offset) override;
 
  protected:
   /// Computes u0 and h (one solve).
   explicit FactorDualOperator(const DualInput& input);
+  /// Called after set_load changed u0: an operator that keeps a part of u0 updates it.
+  virtual void load_changed() {}
   DualInput in_;
+  VectorXd f_;  ///< the load [N] (in_.f until set_load)
 };
 
 /// The operator of `kind` (Auto resolved by resolve()). Throws Error if the factor was not built

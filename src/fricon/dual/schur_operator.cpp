@@ -27,9 +27,7 @@ class SchurOperator final : public FactorDualOperator {
     Q_ = MatrixXd::Zero(in_.B.rows(), in_.B.rows());
     linalg::add_gram_lower(Y_, Q_);
     Q_ = Q_.selfadjointView<Eigen::Lower>();
-    u0_c_.resize(static_cast<Index>(order_.size()));
-    for (size_t k = 0; k < order_.size(); ++k)
-      u0_c_(static_cast<Index>(k)) = u0_(order_[k]);
+    load_changed();
   }
   DualOperatorKind kind() const override { return DualOperatorKind::Schur; }
   const MatrixXd* dense() const override { return &Q_; }
@@ -58,6 +56,12 @@ class SchurOperator final : public FactorDualOperator {
         BcT(position[static_cast<size_t>(col)], it.row()) = it.value();
       }
     return BcT;
+  }
+
+  void load_changed() override {
+    u0_c_.resize(static_cast<Index>(order_.size()));
+    for (size_t k = 0; k < order_.size(); ++k)
+      u0_c_(static_cast<Index>(k)) = u0_(order_[k]);
   }
 
   std::vector<Index> order_;  // the contact dofs in pivot order (L22's rows)

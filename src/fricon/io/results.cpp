@@ -168,6 +168,78 @@ void add_parallel_report(const parallel::ParallelReport& p, nlohmann::json& j) {
 
 }  // namespace
 
+nlohmann::json step_json(const driver::Problem& problem, const driver::StepReport& s) {
+  const std::vector<driver::PathLoad> loads = driver::path_loads(problem);
+  nlohmann::json factors = nlohmann::json::object(), displacement = nlohmann::json::object();
+  for (size_t i = 0; i < loads.size() && i < s.factors.size(); ++i) {
+    factors[loads[i].key] = s.factors[i];
+    if (!loads[i].boundary.empty()) displacement[loads[i].key] = vec3(s.load_displacement[i]);
+  }
+  return {
+      {"step", s.step},
+      {"status", enum_name(s.status)},
+      {"message", s.message},
+      {"factors", factors},
+      {"normal_force", s.normal_force},
+      {"tangential_force", vec3(s.tangential_force)},
+      {"contact_force", vec3(s.contact_force)},
+      {"reaction_force", vec3(s.reaction_force)},
+      {"applied_force", vec3(s.applied_force)},
+      {"load_displacement", displacement},
+      {"max_slip", s.max_slip},
+      {"max_accumulated_slip", s.max_accumulated_slip},
+      {"patch_states", {{"stick", s.n_stick}, {"slip", s.n_slip}, {"separated", s.n_separated}}},
+      {"outer_iterations", s.outer_iterations},
+      {"n_mult", s.n_mult},
+      {"kkt", s.kkt},
+      {"equilibrium_residual", s.equilibrium_residual},
+      {"time_s", s.time_s}};
+}
+
+Table steps_table(const driver::Problem& problem, const driver::RunReport& report) {
+  const std::vector<driver::PathLoad> loads = driver::path_loads(problem);
+  const auto n = static_cast<Index>(report.steps.size());
+  Table t;
+  const auto column = [&](std::string name, auto value) {
+    Table::Column c{std::move(name), VectorXd(n), {}};
+    for (Index i = 0; i < n; ++i)
+      c.values(i) = static_cast<Real>(value(report.steps[static_cast<size_t>(i)]));
+    t.columns.push_back(std::move(c));
+  };
+  column("step", [](const driver::StepReport& s) { return s.step; });
+  for (size_t i = 0; i < loads.size(); ++i)
+    column("factor." + loads[i].key, [i](const driver::StepReport& s) { return s.factors[i]; });
+  column("normal_force", [](const driver::StepReport& s) { return s.normal_force; });
+  const auto vector_columns = [&](const std::string& name, auto field) {
+    for (int c = 0; c < 3; ++c)
+      column(fmt::format("{}_{}", name, "xyz"[c]),
+             [field, c](const driver::StepReport& s) { return field(s)(c); });
+  };
+  vector_columns("tangential_force",
+                 [](const driver::StepReport& s) { return s.tangential_force; });
+  vector_columns("reaction", [](const driver::StepReport& s) { return s.reaction_force; });
+  for (size_t i = 0; i < loads.size(); ++i)
+    if (!loads[i].boundary.empty())
+      vector_columns("displacement." + loads[i].key,
+                     [i](const driver::StepReport& s) { return s.load_displacement[i]; });
+  column("max_slip", [](const driver::StepReport& s) { return s.max_slip; });
+  column("max_accumulated_slip",
+         [](const driver::StepReport& s) { return s.max_accumulated_slip; });
+  column("n_stick", [](const driver::StepReport& s) { return s.n_stick; });
+  column("n_slip", [](const driver::StepReport& s) { return s.n_slip; });
+  column("n_separated", [](const driver::StepReport& s) { return s.n_separated; });
+  column("outer_iterations", [](const driver::StepReport& s) { return s.outer_iterations; });
+  column("n_mult", [](const driver::StepReport& s) { return s.n_mult; });
+  column("equilibrium_residual",
+         [](const driver::StepReport& s) { return s.equilibrium_residual; });
+  column("time_s", [](const driver::StepReport& s) { return s.time_s; });
+  Table::Column status{"status", {}, {}};
+  for (const driver::StepReport& s : report.steps)
+    status.text.push_back(std::string(enum_name(s.status)));
+  t.columns.push_back(std::move(status));
+  return t;
+}
+
 nlohmann::json report_json(const driver::Problem& problem, const driver::RunResult& result,
                            const RunContext& context) {
   const driver::RunReport& r = result.report;
@@ -205,6 +277,11 @@ nlohmann::json report_json(const driver::Problem& problem, const driver::RunResu
   if (r.contact) add_contact_report(*r.contact, j);
   if (r.parallel) add_parallel_report(*r.parallel, j);
   if (result.contact) add_contact_geometry(problem, result.model.mesh, *result.contact, j);
+  if (!r.steps.empty()) {
+    j["steps"] = nlohmann::json::array();
+    for (const driver::StepReport& s : r.steps)
+      j["steps"].push_back(step_json(problem, s));
+  }
   j["problem"] = to_json(problem);
   return j;
 }
@@ -212,8 +289,8 @@ nlohmann::json report_json(const driver::Problem& problem, const driver::RunResu
 namespace {
 // Every file a run may write, by its base name and extension.
 const std::vector<std::pair<std::string, std::string>> kResultFiles{
-    {"solution", ".vtu"},      {"contact", ".vtu"}, {"solution", ".pvd"},
-    {"contact_nodes", ".csv"}, {"patches", ".csv"}, {"report", ".json"}};
+    {"solution", ".vtu"}, {"contact", ".vtu"}, {"solution", ".pvd"}, {"contact_nodes", ".csv"},
+    {"patches", ".csv"},  {"report", ".json"}, {"steps", ".csv"}};
 constexpr const char* kNotConverged = ".not-converged";
 }  // namespace
 
@@ -363,17 +440,77 @@ VtuGrid contact_grid(const mesh::TetMesh& mesh, const driver::ContactFields& c) 
 
 }  // namespace
 
-std::vector<std::filesystem::path> write_results(const std::filesystem::path& dir,
-                                                 const driver::Problem& problem,
-                                                 const driver::RunResult& result,
-                                                 const RunContext& context) {
-  const bool converged = result.report.status == driver::RunStatus::Converged;
-  // Results of an earlier run in the same folder, converged or not, would contradict this one.
+namespace {
+
+// The per-step files of a loading path: STEPS_DIR/solution-0001.vtu, ...
+constexpr const char* kStepsDir = "steps";
+std::string step_file(const std::string& base, int step, const std::string& extension) {
+  return fmt::format("{}/{}-{:04d}{}", kStepsDir, base, step, extension);
+}
+
+// Removes the result files of an earlier run (converged or not), and with `steps` its per-step
+// files.
+void remove_results(const std::filesystem::path& dir, bool steps) {
   for (const auto& [base, ext] : kResultFiles)
     for (bool c : {true, false}) {
       std::error_code ec;
       std::filesystem::remove(result_path(dir, base, ext, c), ec);
     }
+  if (!steps) return;
+  std::error_code ec;
+  std::filesystem::remove_all(dir / kStepsDir, ec);
+}
+
+// solution.pvd: the last state (body and contact surface), or along a loading path the time
+// series of the steps whose files exist (time = step number).
+std::vector<PvdEntry> pvd_entries(const std::filesystem::path& dir, const driver::RunReport& report,
+                                  const std::vector<std::string>& parts) {
+  std::vector<PvdEntry> entries;
+  for (const driver::StepReport& s : report.steps) {
+    const std::string body = step_file("solution", s.step, ".vtu");
+    if (!std::filesystem::exists(dir / body)) continue;
+    entries.push_back({static_cast<Real>(s.step), 0, body});
+    const std::string surface = step_file("contact", s.step, ".vtu");
+    if (std::filesystem::exists(dir / surface))
+      entries.push_back({static_cast<Real>(s.step), 1, surface});
+  }
+  if (entries.empty())  // a static run, or a path whose step files were not written
+    for (size_t i = 0; i < parts.size(); ++i)
+      entries.push_back({0.0, static_cast<int>(i), parts[i]});
+  return entries;
+}
+
+}  // namespace
+
+void clear_results(const std::filesystem::path& dir) {
+  remove_results(dir, true);
+}
+
+std::vector<std::filesystem::path> write_step(const std::filesystem::path& dir,
+                                              const driver::RunResult& result) {
+  std::vector<std::filesystem::path> written;
+  if (result.report.steps.empty() || result.report.status != driver::RunStatus::Converged)
+    return written;
+  const int step = result.report.steps.back().step;
+  written.push_back(dir / step_file("solution", step, ".vtu"));
+  write_vtu(written.back(), body_grid(result));
+  if (result.contact) {
+    written.push_back(dir / step_file("contact", step, ".vtu"));
+    write_vtu(written.back(), contact_grid(result.model.mesh, *result.contact));
+    written.push_back(dir / step_file("patches", step, ".csv"));
+    write_csv(written.back(), patch_table(*result.contact));
+  }
+  return written;
+}
+
+std::vector<std::filesystem::path> write_results(const std::filesystem::path& dir,
+                                                 const driver::Problem& problem,
+                                                 const driver::RunResult& result,
+                                                 const RunContext& context) {
+  const bool converged = result.report.status == driver::RunStatus::Converged;
+  // Results of an earlier run in the same folder, converged or not, would contradict this one
+  // (a loading path's own step files, written during the run, stay).
+  remove_results(dir, result.report.steps.empty());
   std::vector<std::filesystem::path> written;
   auto path = [&](const std::string& base, const std::string& ext) {
     written.push_back(result_path(dir, base, ext, converged));
@@ -389,7 +526,9 @@ std::vector<std::filesystem::path> write_results(const std::filesystem::path& di
     write_vtu(path("contact", ".vtu"), contact_grid(result.model.mesh, *result.contact));
     parts.push_back(written.back().filename().string());
   }
-  write_pvd(path("solution", ".pvd"), parts);
+  if (!result.report.steps.empty())
+    write_csv(path("steps", ".csv"), steps_table(problem, result.report));
+  write_pvd(path("solution", ".pvd"), pvd_entries(dir, result.report, parts));
   // Last: a folder with a report is complete.
   const nlohmann::json report = report_json(problem, result, context);
   write_atomically(path("report", ".json"),

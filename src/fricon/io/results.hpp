@@ -57,7 +57,30 @@ void write_csv(const std::filesystem::path& path, const Table& table);
 std::filesystem::path result_path(const std::filesystem::path& dir, const std::string& base,
                                   const std::string& extension, bool converged);
 
+/// steps.csv of a loading path: per step its number, the factor of each load with a path
+/// (factor.KEY), normal_force [N], tangential_force_x/y/z [N] (of the obstacles on the contact
+/// surface), reaction_x/y/z [N], the mean displacement of each path load's boundary
+/// (displacement.KEY_x/y/z [m]), max_slip and max_accumulated_slip [m], the patch counts
+/// n_stick, n_slip, n_separated, outer_iterations, n_mult, equilibrium_residual, time_s [s] and
+/// status.
+Table steps_table(const driver::Problem& problem, const driver::RunReport& report);
+
+/// One step of a loading path as report.json's "steps" holds it (and Python's step callback).
+nlohmann::json step_json(const driver::Problem& problem, const driver::StepReport& step);
+
+/// Removes the result files of an earlier run from `dir`, the per-step files of a loading path
+/// too (before a path writes its first step).
+void clear_results(const std::filesystem::path& dir);
+
+/// The files of the last step of a loading path (result.report.steps.back()), if it converged:
+/// steps/solution-NNNN.vtu, steps/contact-NNNN.vtu and steps/patches-NNNN.csv in `dir`, each
+/// atomically; returns the paths written.
+std::vector<std::filesystem::path> write_step(const std::filesystem::path& dir,
+                                              const driver::RunResult& result);
+
 /// Writes every result file of the run into `dir` (created if needed); returns the paths written.
+/// Along a loading path also steps.csv, and solution.pvd is the time series of the step files
+/// (write_step) found in `dir`.
 std::vector<std::filesystem::path> write_results(const std::filesystem::path& dir,
                                                  const driver::Problem& problem,
                                                  const driver::RunResult& result,

@@ -75,12 +75,13 @@ void write_vtu(const std::filesystem::path& path, const VtuGrid& grid) {
   });
 }
 
-void write_pvd(const std::filesystem::path& path, const std::vector<std::string>& files) {
+void write_pvd(const std::filesystem::path& path, const std::vector<PvdEntry>& entries) {
   write_atomically(path, [&](std::ostream& out) {
     out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\">\n  "
            "<Collection>\n";
-    for (size_t i = 0; i < files.size(); ++i)
-      fmt::print(out, "    <DataSet timestep=\"0\" part=\"{}\" file=\"{}\"/>\n", i, files[i]);
+    for (const PvdEntry& e : entries)
+      fmt::print(out, "    <DataSet timestep=\"{}\" part=\"{}\" file=\"{}\"/>\n", e.time, e.part,
+                 e.file);
     out << "  </Collection>\n</VTKFile>\n";
   });
 }

@@ -31,7 +31,15 @@ struct VtuGrid {
 /// Writes `grid` to `path` atomically. Throws fricon::Error on I/O failure or inconsistent sizes.
 void write_vtu(const std::filesystem::path& path, const VtuGrid& grid);
 
-/// Writes a ParaView collection (.pvd) listing `files` (relative to the .pvd's folder).
-void write_pvd(const std::filesystem::path& path, const std::vector<std::string>& files);
+/// One dataset of a ParaView collection: its time, its part (the body 0, the contact surface 1)
+/// and its file (relative to the .pvd's folder).
+struct PvdEntry {
+  Real time = 0.0;
+  int part = 0;
+  std::string file;
+};
+
+/// Writes a ParaView collection (.pvd) of `entries`, atomically.
+void write_pvd(const std::filesystem::path& path, const std::vector<PvdEntry>& entries);
 
 }  // namespace fricon::io
