@@ -1,0 +1,201 @@
+// Loading paths (theory.md §2.9) against what holds whatever the solver does inside:
+//   - the first step of a path is the static problem, and a path of frictionless steps
+//     proportional to the final loads ends at the one-step answer (frictionless contact is
+//     path-independent);
+//   - saturation: a block pressed and then pushed by its top face carries a friction force equal
+//     to the reaction of the push (global equilibrium) while it sticks, exactly mu times the
+//     normal force once every patch slides, and sticks again when the push reverses;
+//   - slip-weakening: with the paper's F of the accumulated slip, the force ratio of the sliding
+//     block falls from 0.3 to 0.2 where the law falls (1e-5 to 1e-5 + 2/param).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "fricon/contact/friction_law.hpp"
+#include "fricon/driver/paper.hpp"
+#include "fricon/driver/run.hpp"
+
+using namespace fricon;
+using namespace fricon::driver;
+
+namespace {
+
+constexpr Real kPress = 1.0e-4;  // downward displacement of the block's top [m]
+constexpr Real kMu = 0.3;
+
+// A 1 x 1 x 0.5 m block (Poisson's ratio 0: pressing leaves the bottom without tangential
+// motion, so that sliding is along the push only) on a rigid plane, its top pressed down by
+// kPress and pushed along x by `push` [m] times each factor of the path.
+Problem pushed_block(const std::vector<Real>& push_path, Real push) {
+  Problem p;
+  p.mesh.size = {1.0, 1.0, 0.5};
+  p.mesh.cells = {4, 4, 2};
+  p.material.poisson = 0.0;
+  DirichletOptions press;
+  press.boundary = "z1";
+  press.components = {false, true, true};
+  press.value = Vec3(0.0, 0.0, -kPress);
+  DirichletOptions shear;
+  shear.boundary = "z1";
+  shear.components = {true, false, false};
+  shear.value = Vec3(push, 0.0, 0.0);
+  shear.path = push_path;
+  p.dirichlet = {press, shear};
+  ContactOptions c;
+  c.boundary = "z0";
+  c.model = contact::FrictionModel::Coulomb;
+  c.friction.law = contact::FrictionLawKind::Constant;
+  c.friction.value = kMu;
+  p.contact = {c};
+  p.loading.steps = static_cast<int>(push_path.size());
+  p.solver.qp.rel_tolerance = 1e-10;
+  p.solver.outer.tol = 1e-9;
+  p.solver.certificate_tol = 1e-9;
+  return p;
+}
+
+Real relative_difference(const fe::NodalField& a, const fe::NodalField& b) {
+  return (a - b).norm() / b.norm();
+}
+
+// Every step's result, as RunOptions::on_step reports it.
+struct StepRecorder {
+  std::vector<fe::NodalField> displacement;
+  RunOptions options() {
+    RunOptions o;
+    o.on_step = [this](const RunResult& r) { displacement.push_back(r.displacement); };
+    return o;
+  }
+};
+
+}  // namespace
+
+TEST(LoadingPath, TheFirstStepIsTheStaticProblem) {
+  Problem statics = paper_problem(4, 6e4);
+  statics.solver.qp.rel_tolerance = 1e-11;
+  statics.solver.outer.tol = 1e-10;
+  const RunResult one = run(statics);
+  ASSERT_EQ(one.report.status, RunStatus::Converged) << one.report.message;
+  // Two steps with the static loads: the first is the static run; the second, with nothing
+  // changed, stays there (no slip increment).
+  Problem path = statics;
+  path.loading.steps = 2;
+  path.traction.front().path = {1.0, 1.0};
+  StepRecorder steps;
+  const RunResult r = run(path, steps.options());
+  ASSERT_EQ(r.report.status, RunStatus::Converged) << r.report.message;
+  ASSERT_EQ(steps.displacement.size(), 2u);
+  EXPECT_LE(relative_difference(steps.displacement[0], one.displacement), 1e-14);
+  EXPECT_LE(relative_difference(steps.displacement[1], one.displacement), 1e-8);
+  ASSERT_EQ(r.report.steps.size(), 2u);
+  const Real s1 = r.report.steps[0].max_accumulated_slip;
+  EXPECT_NEAR(r.report.steps[1].max_accumulated_slip, s1, 1e-8 * s1)
+      << "the second step adds no slip";
+}
+
+TEST(LoadingPath, ProportionalFrictionlessStepsEndAtTheOneStepAnswer) {
+  Problem statics = paper_problem(4, 6e4);
+  statics.contact.front().friction.law = contact::FrictionLawKind::Constant;
+  statics.contact.front().friction.value = 0.0;
+  statics.solver.qp.rel_tolerance = 1e-11;
+  const RunResult one = run(statics);
+  ASSERT_EQ(one.report.status, RunStatus::Converged) << one.report.message;
+  Problem path = statics;
+  path.loading.steps = 4;
+  for (TractionOptions& t : path.traction)
+    t.path = {0.25, 0.5, 0.75, 1.0};
+  StepRecorder steps;
+  const RunResult r = run(path, steps.options());
+  ASSERT_EQ(r.report.status, RunStatus::Converged) << r.report.message;
+  EXPECT_LE(relative_difference(r.displacement, one.displacement), 1e-8);
+  // Linear in the load as long as the contact zone does not change: a quarter of the load, a
+  // quarter of the displacement (the brick touches everywhere at every step here).
+  EXPECT_LE(relative_difference(4.0 * steps.displacement[0], one.displacement), 1e-8);
+}
+
+TEST(LoadingPath, ThePushedBlockSticksThenSlidesAtMuTimesTheNormalForceAndSticksOnReversal) {
+  // Push to 1e-5 (stick), to 4e-4 and 6e-4 (past sliding), then back to 5e-4 (reversal).
+  const std::vector<Real> path{0.0, 0.1, 4.0, 6.0, 5.0};
+  const RunResult r = run(pushed_block(path, 1e-4));
+  ASSERT_EQ(r.report.status, RunStatus::Converged) << r.report.message;
+  const std::vector<StepReport>& s = r.report.steps;
+  ASSERT_EQ(s.size(), path.size());
+  for (const StepReport& step : s) {
+    SCOPED_TRACE(step.step);
+    // Global equilibrium: the friction force is the reaction of the push (and the normal force
+    // that of the press).
+    EXPECT_LE(step.equilibrium_residual, 1e-8);
+    EXPECT_NEAR(step.tangential_force.x(), -step.reaction_force.x(),
+                1e-8 * step.normal_force);
+    EXPECT_LE(step.tangential_force.norm(), kMu * step.normal_force * (1.0 + 1e-8));
+  }
+  // Pressed only: no friction. A small push sticks everywhere.
+  EXPECT_LE(s[0].tangential_force.norm(), 1e-8 * s[0].normal_force);
+  // The friction force on the block opposes the push (along -x).
+  const auto resisted = [&s](size_t k) { return -s[k].tangential_force.x(); };
+  EXPECT_EQ(s[1].n_slip, 0);
+  EXPECT_GT(resisted(1), 0.0);
+  // Pushed past sliding: every patch slips, the force is mu N (to the Coulomb fixed point's
+  // tolerance).
+  for (size_t k : {2, 3}) {
+    EXPECT_EQ(s[k].n_stick, 0) << "step " << k + 1;
+    EXPECT_NEAR(resisted(k), kMu * s[k].normal_force, 1e-7 * s[k].normal_force);
+  }
+  // Reversal: it sticks again, and the force falls along the stick slope of the first push (the
+  // corner of the loop), not at once to -mu N.
+  EXPECT_EQ(s[4].n_slip, 0);
+  const Real stick_slope = resisted(1) / (0.1e-4);
+  const Real expected = resisted(3) - stick_slope * 1e-4;
+  EXPECT_NEAR(resisted(4), expected, 0.02 * std::abs(expected));
+}
+
+TEST(LoadingPath, SlipWeakeningFallsFromStaticToKineticWhereThePapersLawFalls) {
+  constexpr Real param = 6e4;  // F falls from 0.3 at 1e-5 m to 0.2 at 1e-5 + 2/param m
+  // The push [1e-6 m]: fast to the start of sliding, then 2e-6 m per step through the fall (the
+  // slip grows by about 2.5 times the push there: the softening slope is below the block's
+  // shear stiffness, so that the fall is stable under a prescribed push), then beyond.
+  std::vector<Real> path{0.0, 20.0, 40.0, 56.0};
+  for (int push = 58; push <= 100; push += 2)
+    path.push_back(static_cast<Real>(push));
+  path.insert(path.end(), {120.0, 140.0});
+  Problem p = pushed_block(path, 1e-6);
+  p.contact.front().friction.law = contact::FrictionLawKind::Paper;
+  p.contact.front().friction.param = param;
+  // Softening slows the successive approximations (contraction about 0.8 inside the fall).
+  p.solver.outer.acceleration = outer::Acceleration::Anderson;
+  p.solver.outer.max_iterations = 100;
+  // Per step, the least and the largest accumulated slip of the surface nodes.
+  std::vector<std::pair<Real, Real>> slip;
+  RunOptions o;
+  o.on_step = [&slip](const RunResult& r) {
+    slip.emplace_back(r.contact->slip.minCoeff(), r.contact->slip.maxCoeff());
+  };
+  const RunResult r = run(p, o);
+  ASSERT_EQ(r.report.status, RunStatus::Converged) << r.report.message;
+  const auto law = contact::make_friction_law(p.contact.front().friction);
+  int before = 0, during = 0, after = 0;
+  for (const StepReport& s : r.report.steps) {
+    if (s.n_stick > 0 || s.n_separated > 0) continue;  // not sliding everywhere
+    SCOPED_TRACE(s.step);
+    const Real ratio = -s.tangential_force.x() / s.normal_force;  // it opposes the push
+    const auto [least, most] = slip[static_cast<size_t>(s.step - 1)];
+    // Each patch's friction is its mean F times its pressure: the ratio lies between F at the
+    // most and at the least slip, 0.3 before the fall and 0.2 after it.
+    EXPECT_LE(ratio, (*law)(least) + 1e-8);
+    EXPECT_GE(ratio, (*law)(most) - 1e-8);
+    if (most < 1e-5) ++before;
+    if (least > 1e-5 + 2.0 / param) {
+      ++after;
+      EXPECT_NEAR(ratio, 0.2, 1e-8);
+    }
+    if (least > 1e-5 && most < 1e-5 + 2.0 / param) ++during;
+  }
+  EXPECT_GT(after, 0) << "the block never slid past the law's fall";
+  EXPECT_GT(during, 0) << "no sliding step inside the fall";
+  // The force drop of slip-weakening: from the largest ratio to 0.2.
+  Real largest = 0.0;
+  for (const StepReport& s : r.report.steps)
+    largest = std::max(largest, -s.tangential_force.x() / s.normal_force);
+  EXPECT_GT(largest, 0.25);
+}
