@@ -55,7 +55,10 @@ Command define_plot(CLI::App& app) {
       "plot",
       "Render PNG figures of a results folder like the paper's: convergence history, friction\n"
       "law, contact-surface maps of -w_n, lambda_n, ||w_t||, ||lambda_t||, F on the surface,\n"
-      "friction circles and arrows, and the deformed body (matplotlib, Debian's python3)");
+      "friction circles and arrows, and the deformed body; for a loading path ([loading]\n"
+      "steps > 1: steps.csv) also the force-displacement history (force_displacement.png) and\n"
+      "the stick/slip map of the patches per step (stick_slip_steps.png) (matplotlib, Debian's\n"
+      "python3)");
   cmd->add_option("dir", o->dir, "Results folder written by `fricon solve`")->required();
   cmd->add_option("--out,-o", o->out, "Folder for the figures (default: DIR/plots)");
   return {cmd, [o] { return render_plots(o->dir, o->out); }};
