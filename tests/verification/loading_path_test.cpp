@@ -86,7 +86,8 @@ TEST(LoadingPath, TheFirstStepIsTheStaticProblem) {
   const RunResult r = run(path, steps.options());
   ASSERT_EQ(r.report.status, RunStatus::Converged) << r.report.message;
   ASSERT_EQ(steps.displacement.size(), 2u);
-  EXPECT_LE(relative_difference(steps.displacement[0], one.displacement), 1e-14);
+  // The same problem, up to the round-off of u0 = K^-1 f summed from the loads' own solutions.
+  EXPECT_LE(relative_difference(steps.displacement[0], one.displacement), 1e-12);
   EXPECT_LE(relative_difference(steps.displacement[1], one.displacement), 1e-8);
   ASSERT_EQ(r.report.steps.size(), 2u);
   const Real s1 = r.report.steps[0].max_accumulated_slip;

@@ -111,7 +111,9 @@ qp::DualProblem first_dual_problem(const Problem& problem,
 void start_from_last_step(const PathStep& step, const contact::ContactDiscretization& disc,
                           const contact::SlipBounds& bounds, TrescaMap& map, VectorXd& state) {
   map.set_history(step.history);
-  if (step.history && !step.history->empty())
+  if (step.predicted_slip)
+    state.head(disc.surface.n_nodes()) = *step.predicted_slip;
+  else if (step.history && !step.history->empty())
     state.head(disc.surface.n_nodes()) = step.history->accumulated;
   if (!step.lambda) return;
   map.set_lambda(*step.lambda);

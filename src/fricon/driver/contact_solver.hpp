@@ -173,6 +173,9 @@ struct PathStep {
   /// The last step's multipliers [Pa]: the first QP starts from them (with solver.warm_start),
   /// and for Coulomb the first radii take their pressures. Null: zero.
   const VectorXd* lambda = nullptr;
+  /// The first slips of the outer loop [m] per surface node (a prediction: the last step's
+  /// accumulated slip plus its increment); null: the accumulated slip (a zero increment).
+  const VectorXd* predicted_slip = nullptr;
   /// ||Q|| and ||D Q D|| of the path's operator, estimated at its first step; 0: estimate them.
   Real norm_Q = 0.0, norm_Q_scaled = 0.0;
 };

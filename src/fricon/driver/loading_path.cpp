@@ -22,17 +22,47 @@ struct PathState {
   SlipHistory history;
   VectorXd lambda;      // multipliers of the last step [Pa]
   VectorXd tangential;  // per multiplier row: the last step's int_R u_t dS [m^3] (normal rows 0)
+  VectorXd predicted;   // the accumulated slip plus the last step's increment [m]
   Real norm_Q = 0.0, norm_Q_scaled = 0.0;
 };
 
-// The loads of step k: the prescribed displacements and f, into the model; the contact
-// discretization moved to them, its tangential rows offset by the last step's displacement.
-void apply_step_loads(const Problem& step_problem, const PathState& state, Model& m,
-                      contact::ContactDiscretization& disc) {
+// The load of the path as a sum (the loads are linear in their values): f = f_rest + sum_i
+// a_i f_i for the factors a_i of the loads with a path, and u0 = K^-1 f likewise, so that a
+// step costs no solve for u0 (one per load with a path, and one for the rest, once).
+struct LoadBasis {
+  std::vector<VectorXd> f, u0;  // [0]: the loads without a path; [1 + i]: load i alone
+};
+
+LoadBasis load_basis(const Problem& problem, Model& m) {
+  const std::size_t n = path_loads(problem).size();
+  LoadBasis basis;
+  for (std::size_t i = 0; i <= n; ++i) {
+    std::vector<Real> alone(n, 0.0);
+    if (i > 0) alone[i - 1] = 1.0;
+    const Problem part = scaled_loads(problem, alone, i == 0 ? 1.0 : 0.0);
+    m.prescribed = make_prescribed(part, m.mesh);
+    basis.f.push_back(load_vector(part, m, Extent::Whole));
+    basis.u0.push_back(m.factor.solve(basis.f.back()));
+  }
+  return basis;
+}
+
+// The loads of step k (factors `a`): the prescribed displacements, f and u0, into the model and
+// `u0`; the contact discretization moved to them, its tangential rows offset by the last step's
+// displacement.
+void apply_step_loads(const Problem& step_problem, const std::vector<Real>& a,
+                      const LoadBasis& basis, const PathState& state, Model& m, VectorXd& u0,
+                      contact::ContactDiscretization* disc) {
   m.prescribed = make_prescribed(step_problem, m.mesh);
-  m.f = load_vector(step_problem, m, Extent::Whole);
-  contact::set_prescribed(disc, m.prescribed);
-  disc.offset += state.tangential;
+  m.f = basis.f[0];
+  u0 = basis.u0[0];
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    m.f += a[i] * basis.f[i + 1];
+    u0 += a[i] * basis.u0[i + 1];
+  }
+  if (!disc) return;
+  contact::set_prescribed(*disc, m.prescribed);
+  disc->offset += state.tangential;
 }
 
 // int_R u dS per multiplier row, in the patch frames, of the whole displacement (free dofs w and
@@ -62,13 +92,20 @@ std::vector<Vec3> load_displacements(const std::vector<PathLoad>& loads, const R
   return out;
 }
 
+// The factor of each load with a path at step k.
+std::vector<Real> step_factors(const std::vector<PathLoad>& loads, int k) {
+  std::vector<Real> a;
+  for (const PathLoad& load : loads)
+    a.push_back((*load.factors)[static_cast<std::size_t>(k - 1)]);
+  return a;
+}
+
 StepReport describe_step(int k, const std::vector<PathLoad>& loads, const RunResult& r,
                          double seconds) {
   const RunReport& rep = r.report;
   StepReport s;
   s.step = k;
-  for (const PathLoad& load : loads)
-    s.factors.push_back((*load.factors)[static_cast<std::size_t>(k - 1)]);
+  s.factors = step_factors(loads, k);
   s.status = rep.status;
   s.message = rep.message;
   s.contact_force = rep.contact_force;
@@ -99,6 +136,8 @@ StepReport describe_step(int k, const std::vector<PathLoad>& loads, const RunRes
 void remember_step(const contact::ContactDiscretization& disc, const RunResult& r,
                    const VectorXd& w, PathState& state) {
   const ContactFields& f = *r.contact;
+  // The next step's first slips: the same increment again (s + (s - s_before)).
+  state.predicted = state.history.empty() ? f.slip : VectorXd(2.0 * f.slip - state.history.accumulated);
   state.history.wt1 = f.wt1;
   state.history.wt2 = f.wt2;
   state.history.accumulated = f.slip;
@@ -122,12 +161,13 @@ void check_steps(const Problem& problem, const mesh::TetMesh& mesh) {
 
 // The step's contact solve on the path's operator, then its fields and self-check.
 VectorXd solve_step(const Problem& step_problem, const contact::ContactDiscretization& disc,
-                    dual::DualOperator& Q, const PathState& state, const RunOptions& options,
-                    RunResult& r) {
+                    dual::DualOperator& Q, const VectorXd& u0, const PathState& state,
+                    const RunOptions& options, RunResult& r) {
   Model& m = r.model;
-  Q.set_load(m.f, disc.offset);
+  Q.set_load(m.f, disc.offset, &u0);
   const PathStep step{&state.history, state.lambda.size() > 0 ? &state.lambda : nullptr,
-                      state.norm_Q, state.norm_Q_scaled};
+                      state.predicted.size() > 0 ? &state.predicted : nullptr, state.norm_Q,
+                      state.norm_Q_scaled};
   phase_start(options, "outer loop");
   ContactOutcome c =
       solve_contact(step_problem, m, disc, Q, r.report.times, options, nullptr, &step);
@@ -141,12 +181,10 @@ VectorXd solve_step(const Problem& step_problem, const contact::ContactDiscretiz
   return std::move(c.w);
 }
 
-// Without contact each step is one solve with the factor.
-VectorXd solve_elastic_step(RunResult& r) {
-  ScopedPhase phase(r.report.times, "solve");
-  const VectorXd u = r.model.factor.solve(r.model.f);
-  r.report.linear_residual = elastic_residual(r.model, u);
-  return u;
+// Without contact a step's displacement is u0.
+VectorXd solve_elastic_step(const VectorXd& u0, RunResult& r) {
+  r.report.linear_residual = elastic_residual(r.model, u0);
+  return u0;
 }
 
 }  // namespace
@@ -190,23 +228,27 @@ RunResult run_path(const Problem& problem, const RunOptions& options) {
   }
 
   // @sect: the steps, each from the state the last one left; a failed step ends the path.
+  LoadBasis basis;
+  {
+    ScopedPhase phase(rep.times, "solve");
+    basis = load_basis(problem, r.model);
+  }
   PathState state;
+  VectorXd u0;
   if (disc) state.tangential = VectorXd::Zero(disc->n_dual());
   for (int k = 1; k <= problem.loading.steps; ++k) {
     const Stopwatch step_clock;
     const Problem step_problem = at_step(problem, k);
     {
       ScopedPhase phase(rep.times, "assembly");
-      if (disc)
-        apply_step_loads(step_problem, state, r.model, *disc);
-      else {
-        r.model.prescribed = make_prescribed(step_problem, r.model.mesh);
-        r.model.f = load_vector(step_problem, r.model, Extent::Whole);
-      }
+      apply_step_loads(step_problem, step_factors(loads, k), basis, state, r.model, u0,
+                       disc ? &*disc : nullptr);
     }
-    const VectorXd u =
-        disc ? solve_step(step_problem, *disc, *Q, state, options, r) : solve_elastic_step(r);
-    finish_run(step_problem, u, options, r);
+    const VectorXd u = disc ? solve_step(step_problem, *disc, *Q, u0, state, options, r)
+                            : solve_elastic_step(u0, r);
+    // The stresses of a step only for whom watches the steps, and for the result.
+    const bool last = k == problem.loading.steps;
+    finish_run(step_problem, u, options, r, options.on_step || last);
     const bool failed = rep.status != RunStatus::Converged;
     if (failed)
       rep.message = fmt::format("step {} of {} of the loading path failed: {}", k,
@@ -216,6 +258,7 @@ RunResult run_path(const Problem& problem, const RunOptions& options) {
     if (failed) break;
     if (disc) remember_step(*disc, r, u, state);
   }
+  if (r.stress.cols() != r.model.mesh.n_tets()) compute_stresses(r);  // a failed step's
   rep.time_s = total.seconds();
   return r;
 }

@@ -59,17 +59,25 @@ std::string Problem::contact_key(std::size_t i) const {
   return contact.size() == 1 ? std::string("contact") : fmt::format("contact[{}]", i);
 }
 
-Problem at_step(const Problem& problem, int k) {
-  const auto factor = [k](const std::vector<Real>& path) {
-    return path.empty() ? 1.0 : path[static_cast<std::size_t>(k - 1)];
-  };
+Problem scaled_loads(const Problem& problem, const std::vector<Real>& factors, Real rest) {
   Problem p = problem;
+  std::size_t i = 0;  // the next load with a path, in path_loads order
+  const auto factor = [&](const std::vector<Real>& path) {
+    return path.empty() ? rest : factors.at(i++);
+  };
   for (TractionOptions& t : p.traction)
     t.value *= factor(t.path);
   for (DirichletOptions& d : p.dirichlet)
     d.value *= factor(d.path);
   p.volume_force *= factor(p.loading.volume_force_path);
   return p;
+}
+
+Problem at_step(const Problem& problem, int k) {
+  std::vector<Real> factors;
+  for (const PathLoad& load : path_loads(problem))
+    factors.push_back((*load.factors)[static_cast<std::size_t>(k - 1)]);
+  return scaled_loads(problem, factors, 1.0);
 }
 
 std::vector<PathLoad> path_loads(const Problem& problem) {

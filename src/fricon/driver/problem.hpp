@@ -230,6 +230,11 @@ struct Problem {
 /// path has its value multiplied by the path's k-th factor; the rest is unchanged.
 Problem at_step(const Problem& problem, int k);
 
+/// The problem with the value of the i-th load with a path (path_loads order) multiplied by
+/// factors[i] and that of every other load by `rest`: the loads are linear in these factors
+/// (at_step is scaled_loads with the step's factors and rest = 1).
+Problem scaled_loads(const Problem& problem, const std::vector<Real>& factors, Real rest);
+
 /// A load that carries a path: its key ("traction[0]", "dirichlet[1]", "volume_force") and its
 /// factors.
 struct PathLoad {

@@ -167,16 +167,15 @@ VectorXd solve_elastic(RunResult& r) {
   return u;
 }
 
-// Stresses, and the global equilibrium of applied loads, contact forces and reactions.
-void postprocess(const Problem& problem, const VectorXd& u, RunResult& r) {
+// Stresses (unless not wanted), and the global equilibrium of applied loads, contact forces and
+// reactions.
+void postprocess(const Problem& problem, const VectorXd& u, RunResult& r, bool with_stresses) {
   RunReport& rep = r.report;
   const Model& m = r.model;
   ScopedPhase phase(rep.times, "postprocess");
   r.displacement = m.dofs.to_nodal(u) + m.prescribed;
   rep.max_displacement = r.displacement.colwise().norm().maxCoeff();
-  fe::StressField s = fe::compute_stresses(m.mesh, m.materials, r.displacement);
-  r.stress = std::move(s.stress);
-  r.von_mises = std::move(s.von_mises);
+  if (with_stresses) compute_stresses(r);
   rep.applied_force = applied_force_total(problem, m.mesh);
   rep.reaction_force = reaction_total(m, problem, r.displacement);
   // Relative to the largest of the three: a body pressed by a prescribed displacement has no
@@ -201,13 +200,19 @@ Real elastic_residual(const Model& model, const VectorXd& u) {
   return (stiffness_times(model, u) - model.f).norm() / std::max(model.f.norm(), 1e-300);
 }
 
+void compute_stresses(RunResult& r) {
+  fe::StressField s = fe::compute_stresses(r.model.mesh, r.model.materials, r.displacement);
+  r.stress = std::move(s.stress);
+  r.von_mises = std::move(s.von_mises);
+}
+
 void finish_run(const Problem& problem, const VectorXd& u, const RunOptions& options,
-                RunResult& r) {
+                RunResult& r, bool with_stresses) {
   if (options.stop_was_requested() && r.report.status == RunStatus::Converged) {
     r.report.status = RunStatus::NotConverged;
     r.report.message = "interrupted";
   }
-  postprocess(problem, u, r);
+  postprocess(problem, u, r, with_stresses);
 }
 
 RunResult run(const Problem& problem, const RunOptions& options) {

@@ -35,7 +35,7 @@ void DualOperator::set_free_solution(VectorXd u0, const SparseMatrix& B, const V
   if (offset != nullptr) h_ -= *offset;
 }
 
-void DualOperator::set_load(const VectorXd&, const VectorXd&) {
+void DualOperator::set_load(const VectorXd&, const VectorXd&, const VectorXd*) {
   throw Error("this dual operator cannot change its load (a loading path runs on one process)");
 }
 
@@ -53,12 +53,16 @@ VectorXd FactorDualOperator::displacement(const VectorXd& lambda) const {
   return in_.factor.solve(VectorXd(f_ - in_.B.transpose() * lambda));
 }
 
-void FactorDualOperator::set_load(const VectorXd& f, const VectorXd& offset) {
+void FactorDualOperator::set_load(const VectorXd& f, const VectorXd& offset, const VectorXd* u0) {
   FRICON_CHECK(f.size() == f_.size() && offset.size() == in_.B.rows(),
                "set_load: a load of " << f.size() << " and an offset of " << offset.size());
   f_ = f;
-  set_free_solution(in_.factor.solve(f_), in_.B, &offset);
-  ++n_kinv_;
+  if (u0 != nullptr) {
+    set_free_solution(*u0, in_.B, &offset);
+  } else {
+    set_free_solution(in_.factor.solve(f_), in_.B, &offset);
+    ++n_kinv_;
+  }
   load_changed();
 }
 
