@@ -69,11 +69,13 @@ int report(long n, int steps, int repeat, dual::DualOperatorKind op) {
   const Timed one = fastest(statics, repeat);
   const Timed path = fastest(press_then_shear(statics, steps), repeat);
   const driver::ContactReport& c = *one.result.report.contact;
-  fmt::print("paper brick n = {}: {} free dofs, {} patches; static run vs a {}-step path "
-             "(press, then shear) ending at the same loads; fastest of {}\n\n",
-             n, one.result.report.n_primal, c.n_patches, steps, repeat);
-  fmt::print("| step | time [s] | outer its | n_mult | stick/slip/separated | normal force [N] | "
-             "tangential force [N] |\n|---|---|---|---|---|---|---|\n");
+  fmt::print(
+      "paper brick n = {}: {} free dofs, {} patches; static run vs a {}-step path "
+      "(press, then shear) ending at the same loads; fastest of {}\n\n",
+      n, one.result.report.n_primal, c.n_patches, steps, repeat);
+  fmt::print(
+      "| step | time [s] | outer its | n_mult | stick/slip/separated | normal force [N] | "
+      "tangential force [N] |\n|---|---|---|---|---|---|---|\n");
   long path_products = 0;
   for (const driver::StepReport& s : path.result.report.steps) {
     path_products += s.n_mult;

@@ -127,8 +127,7 @@ TEST(LoadingPath, ThePushedBlockSticksThenSlidesAtMuTimesTheNormalForceAndSticks
     // Global equilibrium: the friction force is the reaction of the push (and the normal force
     // that of the press).
     EXPECT_LE(step.equilibrium_residual, 1e-8);
-    EXPECT_NEAR(step.tangential_force.x(), -step.reaction_force.x(),
-                1e-8 * step.normal_force);
+    EXPECT_NEAR(step.tangential_force.x(), -step.reaction_force.x(), 1e-8 * step.normal_force);
     EXPECT_LE(step.tangential_force.norm(), kMu * step.normal_force * (1.0 + 1e-8));
   }
   // Pressed only: no friction. A small push sticks everywhere.
@@ -184,7 +183,7 @@ TEST(LoadingPath, SlipWeakeningFallsFromStaticToKineticWhereThePapersLawFalls) {
     // Each patch's friction is its mean F times its pressure: the ratio lies between F at the
     // most and at the least slip, 0.3 before the fall and 0.2 after it.
     EXPECT_LE(ratio, (*law)(least) + 1e-8);
-    EXPECT_GE(ratio, (*law)(most) - 1e-8);
+    EXPECT_GE(ratio, (*law)(most)-1e-8);
     if (most < 1e-5) ++before;
     if (least > 1e-5 + 2.0 / param) {
       ++after;

@@ -137,7 +137,8 @@ void remember_step(const contact::ContactDiscretization& disc, const RunResult& 
                    const VectorXd& w, PathState& state) {
   const ContactFields& f = *r.contact;
   // The next step's first slips: the same increment again (s + (s - s_before)).
-  state.predicted = state.history.empty() ? f.slip : VectorXd(2.0 * f.slip - state.history.accumulated);
+  state.predicted =
+      state.history.empty() ? f.slip : VectorXd(2.0 * f.slip - state.history.accumulated);
   state.history.wt1 = f.wt1;
   state.history.wt2 = f.wt2;
   state.history.accumulated = f.slip;

@@ -206,8 +206,8 @@ void compute_stresses(RunResult& r) {
   r.von_mises = std::move(s.von_mises);
 }
 
-void finish_run(const Problem& problem, const VectorXd& u, const RunOptions& options,
-                RunResult& r, bool with_stresses) {
+void finish_run(const Problem& problem, const VectorXd& u, const RunOptions& options, RunResult& r,
+                bool with_stresses) {
   if (options.stop_was_requested() && r.report.status == RunStatus::Converged) {
     r.report.status = RunStatus::NotConverged;
     r.report.message = "interrupted";

@@ -75,8 +75,7 @@ class DualOperator {
   /// Another load on the same K and B (a step of a loading path, theory.md §2.9): f [N] over the
   /// free dofs and the offset c [m^3]; u0 = K^-1 f (one solve, or `u0` when given) and h are
   /// recomputed, Q is kept. Throws Error for an operator that cannot (the distributed one).
-  virtual void set_load(const VectorXd& f, const VectorXd& offset,
-                        const VectorXd* u0 = nullptr);
+  virtual void set_load(const VectorXd& f, const VectorXd& offset, const VectorXd* u0 = nullptr);
 
   /// Q as a dense matrix: dense() if formed, else n_dual products with unit vectors.
   MatrixXd to_dense() const;
@@ -98,8 +97,7 @@ class DualOperator {
 class FactorDualOperator : public DualOperator {
  public:
   VectorXd displacement(const VectorXd& lambda) const override;
-  void set_load(const VectorXd& f, const VectorXd& offset,
-                const VectorXd* u0 = nullptr) override;
+  void set_load(const VectorXd& f, const VectorXd& offset, const VectorXd* u0 = nullptr) override;
 
  protected:
   /// Computes u0 and h (one solve).
