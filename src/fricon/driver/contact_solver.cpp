@@ -252,8 +252,9 @@ void measure(const Model& m, const contact::ContactDiscretization& disc,
   rep.wn_pos_l2 = contact::surface_l2_norm(m.mesh, disc.surface, wn_pos);
   rep.wn_pos_inf = wn_pos.maxCoeff();
   rep.max_neg_wn = (-penetration).maxCoeff();
-  rep.max_wt = s.slip().maxCoeff();
-  fields.slip = history ? history->slips(s.wt1, s.wt2) : s.slip();
+  const VectorXd wt = s.slip();
+  rep.max_wt = wt.maxCoeff();
+  fields.slip = history ? history->slips(s) : wt;
   const VectorXd& slip = fields.slip;
   fields.F.resize(slip.size());  // one batch: a function law is called once
   law.evaluate(std::span<const Real>(slip.data(), static_cast<size_t>(slip.size())),

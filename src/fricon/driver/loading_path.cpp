@@ -170,16 +170,7 @@ VectorXd solve_step(const Problem& step_problem, const contact::ContactDiscretiz
                       state.predicted.size() > 0 ? &state.predicted : nullptr, state.norm_Q,
                       state.norm_Q_scaled};
   phase_start(options, "outer loop");
-  ContactOutcome c =
-      solve_contact(step_problem, m, disc, Q, r.report.times, options, nullptr, &step);
-  RunReport& rep = r.report;
-  rep.status = c.converged ? RunStatus::Converged : RunStatus::NotConverged;
-  rep.message = c.message;
-  rep.contact_force = c.contact_force;
-  rep.linear_residual = c.linear_residual;
-  rep.contact = std::move(c.report);
-  r.contact = std::move(c.fields);
-  return std::move(c.w);
+  return adopt(solve_contact(step_problem, m, disc, Q, r.report.times, options, nullptr, &step), r);
 }
 
 // Without contact a step's displacement is u0.
@@ -204,20 +195,8 @@ RunResult run_path(const Problem& problem, const RunOptions& options) {
 
   // @sect: the model, the contact discretization (every patch: the contact search does not
   // apply to a path), the factor of K and Q, once for the whole path.
-  r.model = assemble_model(problem, rep.times, options.on_phase_start);
+  std::optional<contact::ContactDiscretization> disc = build_factored_model(problem, options, r);
   check_steps(problem, r.model.mesh);
-  std::optional<contact::ContactDiscretization> disc;
-  if (!problem.contact.empty()) {
-    phase_start(options, "contact");
-    ScopedPhase phase(rep.times, "contact");
-    disc = discretize_contact(problem, r.model.mesh, r.model.dofs);
-  }
-  const dual::FactorizationRequest request =
-      disc ? dual::factorization_request(problem.solver.dual_operator, disc->dofs)
-           : dual::FactorizationRequest{};
-  factorize_model(r.model, request, rep.times, options.on_phase_start);
-  report_sizes(r.model, rep);
-  rep.factor = r.model.factor.info();
   if (options.stop_was_requested()) throw Interrupted("interrupted before the first step");
   std::unique_ptr<dual::DualOperator> Q;
   if (disc) {

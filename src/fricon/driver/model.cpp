@@ -363,7 +363,16 @@ Vec3 applied_force_total(const Problem& problem, const mesh::TetMesh& mesh) {
 Vec3 reaction_total(const Model& model, const Problem& problem, const fe::NodalField& u) {
   const fe::DofMap all(model.mesh.n_nodes());
   const fe::NodalField load = all.to_nodal(applied_load(problem, model.mesh, all));
-  const fe::NodalField internal = fe::internal_forces(model.mesh, model.materials, u);
+  // Only the tetrahedra with a fixed dof contribute to the rows the reaction sums.
+  std::vector<Index> tets;
+  for (Index t = 0; t < model.mesh.n_tets(); ++t) {
+    bool fixed = false;
+    for (int a = 0; a < 4 && !fixed; ++a)
+      for (int c = 0; c < 3 && !fixed; ++c)
+        fixed = model.dofs.is_fixed(model.mesh.tets(a, t), c);
+    if (fixed) tets.push_back(t);
+  }
+  const fe::NodalField internal = fe::internal_forces(model.mesh, model.materials, u, tets);
   Vec3 r = Vec3::Zero();
   for (Index a = 0; a < model.mesh.n_nodes(); ++a)
     for (int c = 0; c < 3; ++c)

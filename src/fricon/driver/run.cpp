@@ -20,9 +20,6 @@ std::function<void()> interrupt_poll(const RunOptions& options) {
   };
 }
 
-namespace {
-
-// The outcome's contact part into the run's result; returns the displacement over the free dofs.
 VectorXd adopt(ContactOutcome&& c, RunResult& r) {
   RunReport& rep = r.report;
   r.first_dual = std::move(c.first_dual);
@@ -34,8 +31,6 @@ VectorXd adopt(ContactOutcome&& c, RunResult& r) {
   r.contact = std::move(c.fields);
   return std::move(c.w);
 }
-
-}  // namespace
 
 VectorXd solve_with_operator(const Problem& problem, const contact::ContactDiscretization& disc,
                              const dual::DualOperator& Q, const RunOptions& options, RunResult& r) {
@@ -190,6 +185,26 @@ void postprocess(const Problem& problem, const VectorXd& u, RunResult& r, bool w
 
 }  // namespace
 
+std::optional<contact::ContactDiscretization> build_factored_model(const Problem& problem,
+                                                                   const RunOptions& options,
+                                                                   RunResult& r) {
+  RunReport& rep = r.report;
+  r.model = assemble_model(problem, rep.times, options.on_phase_start);
+  std::optional<contact::ContactDiscretization> disc;
+  if (!problem.contact.empty()) {
+    phase_start(options, "contact");
+    ScopedPhase phase(rep.times, "contact");
+    disc = discretize_contact(problem, r.model.mesh, r.model.dofs);
+  }
+  const dual::FactorizationRequest request =
+      disc ? dual::factorization_request(problem.solver.dual_operator, disc->dofs)
+           : dual::FactorizationRequest{};
+  factorize_model(r.model, request, rep.times, options.on_phase_start);
+  report_sizes(r.model, rep);
+  rep.factor = r.model.factor.info();
+  return disc;
+}
+
 void report_sizes(const Model& model, RunReport& report) {
   report.n_nodes = model.mesh.n_nodes();
   report.n_tets = model.mesh.n_tets();
@@ -227,22 +242,9 @@ RunResult run(const Problem& problem, const RunOptions& options) {
   RunResult r;
   RunReport& rep = r.report;
 
-  // @sect: the elastic model and, with contact, its discretization on the contact surface.
-  r.model = assemble_model(problem, rep.times, options.on_phase_start);
-  std::optional<contact::ContactDiscretization> disc;
-  if (!problem.contact.empty()) {
-    phase_start(options, "contact");
-    ScopedPhase phase(rep.times, "contact");
-    disc = discretize_contact(problem, r.model.mesh, r.model.dofs);
-  }
-
-  // @sect: the factorization of K, ordered as the dual operator asks.
-  const dual::FactorizationRequest request =
-      disc ? dual::factorization_request(problem.solver.dual_operator, disc->dofs)
-           : dual::FactorizationRequest{};
-  factorize_model(r.model, request, rep.times, options.on_phase_start);
-  report_sizes(r.model, rep);
-  rep.factor = r.model.factor.info();
+  // @sect: the elastic model, with contact its discretization, and the factor of K.
+  const std::optional<contact::ContactDiscretization> disc =
+      build_factored_model(problem, options, r);
   if (options.stop_was_requested()) throw Interrupted("interrupted before the solve");
 
   // @sect: the displacement: one solve, or the outer loop of dual QPs.

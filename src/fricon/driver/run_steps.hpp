@@ -2,6 +2,7 @@
 // driver: the steps of a run that both backends share (run.cpp on one process, the distributed
 // run of parallel/mpi/ on rank 0): the outer loop on a dual operator, and the postprocessing.
 
+#include <optional>
 #include <string>
 
 #include "fricon/driver/run.hpp"
@@ -12,6 +13,18 @@ void phase_start(const RunOptions& options, const std::string& name);
 
 /// The poll of a dual operator while it forms Q: throws Interrupted when a stop was requested.
 std::function<void()> interrupt_poll(const RunOptions& options);
+
+/// The outcome of a contact solve into the run's result (status, message, forces, the contact
+/// report and fields); returns the displacement over the free dofs.
+VectorXd adopt(ContactOutcome&& outcome, RunResult& r);
+
+/// The elastic model of the problem (phases "mesh", "assembly"), with [contact] its contact
+/// discretization (phase "contact"), and the factor of K ordered as the dual operator asks
+/// (phase "factorize"), with the sizes and the factor's figures in r.report. Returns the
+/// discretization (none without contact).
+std::optional<contact::ContactDiscretization> build_factored_model(const Problem& problem,
+                                                                   const RunOptions& options,
+                                                                   RunResult& r);
 
 /// The outer loop of dual QPs on operator Q (phase "outer loop"); fills the contact part of
 /// r.report and r.contact and returns the displacement over the free dofs.

@@ -8,11 +8,11 @@
 
 namespace fricon::driver {
 
-VectorXd SlipHistory::slips(const VectorXd& wt1_now, const VectorXd& wt2_now) const {
-  if (empty()) return wt1_now.binaryExpr(wt2_now, [](Real a, Real b) { return std::hypot(a, b); });
+VectorXd SlipHistory::slips(const contact::SurfaceDisplacement& d) const {
+  if (empty()) return d.slip();
   VectorXd s(accumulated.size());
   for (Index k = 0; k < s.size(); ++k)
-    s(k) = accumulated(k) + std::hypot(wt1_now(k) - wt1(k), wt2_now(k) - wt2(k));
+    s(k) = accumulated(k) + std::hypot(d.wt1(k) - wt1(k), d.wt2(k) - wt2(k));
   return s;
 }
 
@@ -71,7 +71,7 @@ outer::MapStep TrescaMap::apply(int k, const VectorXd& state, VectorXd& image) {
   }
   // @sect: the new state: the slips, and for Coulomb the new pressures.
   const contact::SurfaceDisplacement d = contact::surface_displacement(disc_.surface, dofs_, w_);
-  const VectorXd phi = history_ ? history_->slips(d.wt1, d.wt2) : d.slip();
+  const VectorXd phi = history_ ? history_->slips(d) : d.slip();
   image.resize(state.size());
   image.head(phi.size()) = phi;
   if (bounds_.uses_pressure())

@@ -29,9 +29,9 @@ struct SlipHistory {
   VectorXd accumulated;  ///< accumulated slip s per surface node [m]
 
   bool empty() const { return accumulated.size() == 0; }
-  /// The slip the coefficient is evaluated at, per surface node [m], for this step's tangential
-  /// displacement (wt1, wt2): s + ||w_t - w_t^prev|| along a path, ||w_t|| without history.
-  VectorXd slips(const VectorXd& wt1_now, const VectorXd& wt2_now) const;
+  /// The slip the coefficient is evaluated at, per surface node [m], for this step's
+  /// displacement d: s + ||w_t - w_t^prev|| along a path, ||w_t|| without history.
+  VectorXd slips(const contact::SurfaceDisplacement& d) const;
 };
 
 class TrescaMap final : public outer::FixedPointMap {

@@ -160,17 +160,34 @@ void add_volume_force_p1(const mesh::TetMesh& mesh, const DofMap& dofs, const No
   }
 }
 
+namespace {
+
+// Adds K_T u_T of tetrahedron t to the nodal forces r.
+void add_internal_force(const mesh::TetMesh& mesh, Materials materials, const NodalField& u,
+                        Index t, NodalField& r) {
+  Eigen::Matrix<Real, 12, 1> ue;
+  for (int a = 0; a < 4; ++a)
+    ue.segment<3>(3 * a) = u.col(mesh.tets(a, t));
+  const Eigen::Matrix<Real, 12, 1> re =
+      element_stiffness(tet_vertices(mesh, t), material_of(materials, mesh, t)) * ue;
+  for (int a = 0; a < 4; ++a)
+    r.col(mesh.tets(a, t)) += re.segment<3>(3 * a);
+}
+
+}  // namespace
+
 NodalField internal_forces(const mesh::TetMesh& mesh, Materials materials, const NodalField& u) {
   NodalField r = NodalField::Zero(3, mesh.n_nodes());
-  for (Index t = 0; t < mesh.n_tets(); ++t) {
-    Eigen::Matrix<Real, 12, 1> ue;
-    for (int a = 0; a < 4; ++a)
-      ue.segment<3>(3 * a) = u.col(mesh.tets(a, t));
-    const Eigen::Matrix<Real, 12, 1> re =
-        element_stiffness(tet_vertices(mesh, t), material_of(materials, mesh, t)) * ue;
-    for (int a = 0; a < 4; ++a)
-      r.col(mesh.tets(a, t)) += re.segment<3>(3 * a);
-  }
+  for (Index t = 0; t < mesh.n_tets(); ++t)
+    add_internal_force(mesh, materials, u, t, r);
+  return r;
+}
+
+NodalField internal_forces(const mesh::TetMesh& mesh, Materials materials, const NodalField& u,
+                           std::span<const Index> tets) {
+  NodalField r = NodalField::Zero(3, mesh.n_nodes());
+  for (Index t : tets)
+    add_internal_force(mesh, materials, u, t, r);
   return r;
 }
 

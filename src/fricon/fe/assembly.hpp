@@ -2,6 +2,8 @@
 // fe: assembly of the stiffness matrix K and the load vector f over the free dofs (theory.md §2.1).
 // All integrals are exact for the data they accept (constant or P1 tractions and volume forces).
 
+#include <span>
+
 #include <vector>
 
 #include "fricon/core/types.hpp"
@@ -44,6 +46,11 @@ void add_volume_force_p1(const mesh::TetMesh& mesh, const DofMap& dofs, const No
 /// Nodal forces [N] of the stiffness on all 3 n_nodes components (fixed ones included): the
 /// internal force K_full u for a displacement field given at the nodes. Used for reactions.
 NodalField internal_forces(const mesh::TetMesh& mesh, Materials materials, const NodalField& u);
+
+/// internal_forces summed over the tetrahedra `tets` only: exact at the nodes all of whose
+/// tetrahedra are listed (e.g. the nodes with a fixed dof, for their reactions).
+NodalField internal_forces(const mesh::TetMesh& mesh, Materials materials, const NodalField& u,
+                           std::span<const Index> tets);
 
 /// The node graph of the mesh in CSR arrays: node a's neighbours (the nodes sharing a
 /// tetrahedron with it, a itself included) are adj[start[a] .. start[a+1]), ascending.
