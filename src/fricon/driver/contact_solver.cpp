@@ -197,8 +197,9 @@ VectorXd certify(const contact::ContactDiscretization& disc, const dual::DualOpe
                  const TrescaMap& map, ContactReport& rep, VectorXd& g) {
   const VectorXd w = Q.displacement(map.lambda());
   const VectorXd& w_c = map.w();
+  const Real tolerance = kRecoveryTolerance * w.lpNorm<Eigen::Infinity>();
   for (Index dof : disc.dofs)
-    FRICON_CHECK(std::abs(w(dof) - w_c(dof)) <= kRecoveryTolerance * w.lpNorm<Eigen::Infinity>(),
+    FRICON_CHECK(std::abs(w(dof) - w_c(dof)) <= tolerance,
                  "the recovery of the contact displacement (dof "
                      << dof << ": " << w_c(dof) << ") disagrees with the full solve (" << w(dof)
                      << ")");

@@ -202,8 +202,9 @@ RunResult run_path(const Problem& problem, const RunOptions& options) {
   if (disc) {
     phase_start(options, "dual");
     ScopedPhase phase(rep.times, "dual");
-    const dual::DualInput input{r.model.factor,          disc->B,      r.model.f, disc->dofs,
-                                interrupt_poll(options), &disc->offset};
+    dual::DualInput input{r.model.factor,          disc->B,      r.model.f, disc->dofs,
+                          interrupt_poll(options), &disc->offset};
+    input.many_recoveries = true;
     Q = dual::make_dual_operator(problem.solver.dual_operator, input);
   }
 

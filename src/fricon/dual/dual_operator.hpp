@@ -45,6 +45,10 @@ struct DualInput {
   const VectorXd* offset = nullptr;
   /// u0 = K^-1 f if already solved (the contact search's), else null: the operator solves it.
   const VectorXd* free_solution = nullptr;
+  /// Many recoveries of the contact displacement are coming (a loading path, theory.md §2.9):
+  /// an operator that would recover it by a solve may form the contact rows of K^-1 B^T once
+  /// instead, so that each recovery is a product with them (the forward operator does).
+  bool many_recoveries = false;
 };
 
 /// The dual problem's operator, whatever factors K: CHOLMOD here (FactorDualOperator), MUMPS

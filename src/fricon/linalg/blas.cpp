@@ -23,6 +23,11 @@ void dtrsm_(const char* side, const char* uplo, const char* transa, const char* 
 void dgemm_(const char* transa, const char* transb, const int* m, const int* n, const int* k,
             const double* alpha, const double* a, const int* lda, const double* b, const int* ldb,
             const double* beta, double* c, const int* ldc);
+void dtrsv_(const char* uplo, const char* trans, const char* diag, const int* n, const double* a,
+            const int* lda, double* x, const int* incx);
+void dgemv_(const char* trans, const int* m, const int* n, const double* alpha, const double* a,
+            const int* lda, const double* x, const int* incx, const double* beta, double* y,
+            const int* incy);
 void dsymv_(const char* uplo, const int* n, const double* alpha, const double* a, const int* lda,
             const double* x, const int* incx, const double* beta, double* y, const int* incy);
 void openblas_set_num_threads(int num_threads);
@@ -139,6 +144,13 @@ void solve_lower(ConstBlockRef L, BlockRef X, bool transpose) {
   const int m = blas_int(X.rows()), n = blas_int(X.cols());
   const int lda = leading(L.outerStride(), L.rows()), ldb = leading(X.outerStride(), X.rows());
   const double one = 1.0;
+  // One column: the level-2 routine (the level-3 one packs its operands, and may wake threads,
+  // for what is a single pass over L).
+  if (n == 1) {
+    const int inc = 1;
+    dtrsv_("L", transpose ? "T" : "N", "N", &m, L.data(), &lda, X.data(), &inc);
+    return;
+  }
   dtrsm_("L", "L", transpose ? "T" : "N", "N", &m, &n, &one, L.data(), &lda, X.data(), &ldb);
 }
 
@@ -152,6 +164,12 @@ void subtract_product(ConstBlockRef A, ConstBlockRef B, BlockRef C, bool transpo
   const int lda = leading(A.outerStride(), A.rows()), ldb = leading(B.outerStride(), B.rows()),
             ldc = leading(C.outerStride(), C.rows());
   const double minus_one = -1.0, one = 1.0;
+  if (n == 1) {  // one column: the level-2 routine, as in solve_lower
+    const int rows = blas_int(A.rows()), cols = blas_int(A.cols()), inc = 1;
+    dgemv_(transpose_a ? "T" : "N", &rows, &cols, &minus_one, A.data(), &lda, B.data(), &inc, &one,
+           C.data(), &inc);
+    return;
+  }
   dgemm_(transpose_a ? "T" : "N", "N", &mi, &n, &ki, &minus_one, A.data(), &lda, B.data(), &ldb,
          &one, C.data(), &ldc);
 }

@@ -85,6 +85,9 @@ namespace {
 // Below this reciprocal condition estimate K is treated as singular. Well-posed elasticity
 // matrices of a million unknowns stay above 1e-10.
 constexpr double kSingularRcond = 1e-13;
+// Columns per block of the backward sweep of inverse_gram_and_rows: enough for the BLAS's level 3,
+// few enough that a block of the reached rows stays small (reach rows x 128 x 8 bytes).
+constexpr Index kBackwardBlockColumns = 128;
 
 // A symmetric sparsity pattern in compressed columns, both triangles stored.
 struct Pattern {
@@ -314,8 +317,20 @@ MatrixXd CholeskyFactor::trailing_factor() const {
   return L22;
 }
 
+// What the forward sweep of inverse_gram leaves when asked to keep it: per supernode, the
+// columns of B it carries (sorted) and its rows of Y = L^-1 P B on those columns.
+struct CholeskyFactor::KeptForward {
+  std::vector<std::vector<Index>> cols;
+  std::vector<MatrixXd> Y;
+};
+
 MatrixXd CholeskyFactor::inverse_gram(const SparseMatrix& B,
                                       const std::function<void()>& poll) const {
+  return forward_gram(B, poll, nullptr);
+}
+
+MatrixXd CholeskyFactor::forward_gram(const SparseMatrix& B, const std::function<void()>& poll,
+                                      KeptForward* kept) const {
   FRICON_CHECK(impl_->supernodes, "inverse_gram needs a supernodal factor");
   FRICON_CHECK(B.rows() == info_.n, "B has " << B.rows() << " rows, K has " << info_.n);
   const Supernodes& sn = *impl_->supernodes;
@@ -403,10 +418,71 @@ MatrixXd CholeskyFactor::inverse_gram(const SparseMatrix& B,
         i = i_end;
       }
     }
-    at(Y, s) = MatrixXd();  // done with this supernode's rows of Y
+    if (!kept) at(Y, s) = MatrixXd();  // done with this supernode's rows of Y
   }
   n_solves_ += k;
+  if (kept) *kept = {std::move(cols), std::move(Y)};
   return Q.selfadjointView<Eigen::Lower>();
+}
+
+CholeskyFactor::GramAndRows CholeskyFactor::inverse_gram_and_rows(
+    const SparseMatrix& B, const Reach& reach, const std::vector<Index>& rows,
+    const std::function<void()>& poll) const {
+  KeptForward forward;
+  GramAndRows out;
+  out.gram = forward_gram(B, poll, &forward);
+  const Supernodes& sn = *impl_->supernodes;
+  auto at = [](auto& v, Index i) -> auto& {
+    return v[static_cast<size_t>(i)];
+  };
+  // Compact rows: pivot p of the reach is row at(place, p) of a block (-1 off the reach); the
+  // pivots of a supernode are consecutive, the first at at(place, super[s]).
+  std::vector<Index> place(static_cast<size_t>(sn.n), -1);
+  for (size_t i = 0; i < reach.rows.size(); ++i)
+    at(place, reach.rows[i]) = static_cast<Index>(i);
+  for (Index s = 0; s < sn.count; ++s)
+    FRICON_CHECK(at(forward.cols, s).empty() || at(place, sn.super[s]) >= 0,
+                 "inverse_gram_and_rows: B has a non-zero off the reach (supernode " << s << ")");
+  std::vector<Index> out_rows;
+  for (Index dof : rows) {
+    const Index i = at(place, at(sn.pinv, dof));
+    FRICON_CHECK(i >= 0, "inverse_gram_and_rows: row dof " << dof << " is off the reach");
+    out_rows.push_back(i);
+  }
+
+  const Index n_reach = static_cast<Index>(reach.rows.size()), k = B.cols();
+  out.rows.resize(static_cast<Index>(rows.size()), k);
+  MatrixXd Z, below;
+  for (Index first = 0; first < k; first += kBackwardBlockColumns) {
+    const Index m = std::min(kBackwardBlockColumns, k - first);
+    // Z = Y on the block's columns, then L^T Z = Z over the reach, supernodes descending: each
+    // gathers its ancestors' rows.
+    Z.setZero(n_reach, m);
+    for (Index s : reach.supernodes) {
+      const std::vector<Index>& c = at(forward.cols, s);
+      const Index z0 = at(place, sn.super[s]);
+      for (auto a = std::lower_bound(c.begin(), c.end(), first); a != c.end() && *a < first + m;
+           ++a)
+        Z.col(*a - first).segment(z0, sn.ncol(s)) = at(forward.Y, s).col(a - c.begin());
+    }
+    for (auto it = reach.supernodes.rbegin(); it != reach.supernodes.rend(); ++it) {
+      if (poll) poll();
+      const Index s = *it, ncol = sn.ncol(s), nbelow = sn.nrow(s) - ncol,
+                  z0 = at(place, sn.super[s]);
+      const auto Ls = sn.block(s);
+      auto Zs = Z.middleRows(z0, ncol);
+      if (nbelow > 0) {
+        below.resize(nbelow, m);
+        for (Index i = 0; i < nbelow; ++i)
+          below.row(i) = Z.row(at(place, sn.rows[sn.pi[s] + ncol + i]));
+        subtract_product(Ls.bottomRows(nbelow), below, Zs, /*transpose_a=*/true);
+      }
+      solve_lower(Ls.topRows(ncol), Zs, /*transpose=*/true);
+    }
+    for (size_t r = 0; r < out_rows.size(); ++r)
+      out.rows.block(static_cast<Index>(r), first, 1, m) = Z.row(out_rows[r]);
+  }
+  return out;
 }
 
 CholeskyFactor::Reach CholeskyFactor::reach(const std::vector<Index>& dofs) const {
@@ -430,13 +506,22 @@ CholeskyFactor::Reach CholeskyFactor::reach(const std::vector<Index>& dofs) cons
 }
 
 void CholeskyFactor::solve_on_reach(const Reach& reach, VectorXd& x) const {
-  FRICON_CHECK(impl_->supernodes, "solve_on_reach needs a supernodal factor");
+  reach_solve(reach, x, /*everywhere=*/false);
+}
+
+void CholeskyFactor::solve_from_reach(const Reach& reach, VectorXd& x) const {
+  reach_solve(reach, x, /*everywhere=*/true);
+}
+
+void CholeskyFactor::reach_solve(const Reach& reach, VectorXd& x, bool everywhere) const {
+  FRICON_CHECK(impl_->supernodes, "a solve from the reach needs a supernodal factor");
   FRICON_CHECK(x.size() == info_.n, "x has " << x.size() << " entries, K has " << info_.n);
   const Supernodes& sn = *impl_->supernodes;
   VectorXd z = VectorXd::Zero(sn.n), below;
   for (Index k : reach.rows)
     z(k) = x(sn.perm[k]);
-  // L z = P x over the reach: its supernodes in ascending order, updates into their ancestors.
+  // L z = P x over the reach: its supernodes in ascending order, updates into their ancestors
+  // (off the reach z stays zero).
   for (Index s : reach.supernodes) {
     const Index k1 = sn.super[s], ncol = sn.ncol(s), nbelow = sn.nrow(s) - ncol;
     const auto Ls = sn.block(s);
@@ -448,9 +533,10 @@ void CholeskyFactor::solve_on_reach(const Reach& reach, VectorXd& x) const {
     for (Index i = 0; i < nbelow; ++i)
       z(sn.rows[sn.pi[s] + ncol + i]) += below(i);
   }
-  // L^T z = z, in descending order: each supernode needs only its ancestors, all on the reach.
-  for (auto it = reach.supernodes.rbegin(); it != reach.supernodes.rend(); ++it) {
-    const Index s = *it, k1 = sn.super[s], ncol = sn.ncol(s), nbelow = sn.nrow(s) - ncol;
+  // L^T z = z, in descending order: each supernode needs only its ancestors, all on the reach
+  // when the reach is closed upwards; everywhere: every supernode.
+  auto backward = [&](Index s) {
+    const Index k1 = sn.super[s], ncol = sn.ncol(s), nbelow = sn.nrow(s) - ncol;
     const auto Ls = sn.block(s);
     auto zs = z.segment(k1, ncol);
     if (nbelow > 0) {
@@ -460,10 +546,19 @@ void CholeskyFactor::solve_on_reach(const Reach& reach, VectorXd& x) const {
       subtract_product(Ls.bottomRows(nbelow), below, zs, /*transpose_a=*/true);
     }
     solve_lower(Ls.topRows(ncol), zs, /*transpose=*/true);
+  };
+  if (everywhere) {
+    for (Index s = sn.count - 1; s >= 0; --s)
+      backward(s);
+    for (Index k = 0; k < sn.n; ++k)
+      x(sn.perm[k]) = z(k);
+  } else {
+    for (auto it = reach.supernodes.rbegin(); it != reach.supernodes.rend(); ++it)
+      backward(*it);
+    x.setZero();
+    for (Index k : reach.rows)
+      x(sn.perm[k]) = z(k);
   }
-  x.setZero();
-  for (Index k : reach.rows)
-    x(sn.perm[k]) = z(k);
   ++n_solves_;
 }
 

@@ -78,6 +78,23 @@ class CholeskyFactor {
   /// on those dofs (and on every dof pivoted on the reach) and zero elsewhere. One forward and one
   /// backward substitution over the reached part of L only. Counts one solve.
   void solve_on_reach(const Reach& reach, VectorXd& x) const;
+  /// x <- K^-1 x for x that is zero outside the dofs `reach` was built from, exact everywhere:
+  /// the forward substitution over the reach only, the backward one over the whole factor.
+  /// Counts one solve.
+  void solve_from_reach(const Reach& reach, VectorXd& x) const;
+
+  /// inverse_gram(B) together with the rows `rows` of K^-1 B (rows.size() x k, dense): the
+  /// forward sweep's Y = L^-1 P B is kept rather than dropped, then carried back by L^-T over the
+  /// reach of B (`reach`, built from dofs that hold every non-zero of B; `rows` among them), in
+  /// blocks of columns for the BLAS's level 3. Keeps up to reach.rows.size() x k numbers of Y.
+  /// Counts k solves; `poll` as in inverse_gram.
+  struct GramAndRows {
+    MatrixXd gram;  ///< B^T K^-1 B
+    MatrixXd rows;  ///< (K^-1 B)(rows, :)
+  };
+  GramAndRows inverse_gram_and_rows(const SparseMatrix& B, const Reach& reach,
+                                    const std::vector<Index>& rows,
+                                    const std::function<void()>& poll = {}) const;
 
   Index size() const { return info_.n; }
   const CholeskyInfo& info() const { return info_; }
@@ -86,6 +103,10 @@ class CholeskyFactor {
 
  private:
   struct Impl;
+  struct KeptForward;
+  void reach_solve(const Reach& reach, VectorXd& x, bool everywhere) const;
+  MatrixXd forward_gram(const SparseMatrix& B, const std::function<void()>& poll,
+                        KeptForward* kept) const;
   std::unique_ptr<Impl> impl_;
   CholeskyInfo info_;
   mutable long n_solves_ = 0;

@@ -60,18 +60,27 @@ TEST_P(EveryOperator, QAndHAgreeWithADenseFactorization) {
 }
 
 TEST_P(EveryOperator, DisplacementOnTheContactDofsIsTheFullSolveThere) {
+  // Both ways of recovering it: a solve per recovery, and (many_recoveries) whatever the
+  // operator forms once for them (the forward operator: the contact rows of K^-1 B^T).
   const Brick b(GetParam());
-  const auto Q = make_dual_operator(GetParam(), b.input());
-  const VectorXd lambda = VectorXd::LinSpaced(Q->size(), 1e6, 3e6);
-  const VectorXd full = Q->displacement(lambda);
-  VectorXd w;
-  Q->contact_displacement(lambda, w);
-  ASSERT_EQ(w.size(), full.size());
-  for (Index dof : b.disc.dofs)
-    EXPECT_NEAR(w(dof), full(dof), 1e-12 * full.lpNorm<Eigen::Infinity>()) << "dof " << dof;
-  // And the full solve is w = K^-1 (f - B^T lambda) of the dense factorization.
   const Eigen::LLT<MatrixXd> llt{MatrixXd(b.model.K)};
-  EXPECT_LT(relative(full, llt.solve(VectorXd(b.model.f - b.disc.B.transpose() * lambda))), 1e-12);
+  for (const bool many : {false, true}) {
+    DualInput input = b.input();
+    input.many_recoveries = many;
+    const auto Q = make_dual_operator(GetParam(), input);
+    EXPECT_LT(relative(Q->to_dense(), b.Q_dense), 1e-12) << "many_recoveries " << many;
+    const VectorXd lambda = VectorXd::LinSpaced(Q->size(), 1e6, 3e6);
+    const VectorXd full = Q->displacement(lambda);
+    VectorXd w;
+    Q->contact_displacement(lambda, w);
+    ASSERT_EQ(w.size(), full.size());
+    for (Index dof : b.disc.dofs)
+      EXPECT_NEAR(w(dof), full(dof), 1e-12 * full.lpNorm<Eigen::Infinity>())
+          << "dof " << dof << ", many_recoveries " << many;
+    // And the full solve is w = K^-1 (f - B^T lambda) of the dense factorization.
+    EXPECT_LT(relative(full, llt.solve(VectorXd(b.model.f - b.disc.B.transpose() * lambda))),
+              1e-12);
+  }
 }
 
 TEST(DualOperator, ImplicitCountsOneSolvePerProduct) {

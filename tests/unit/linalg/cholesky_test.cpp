@@ -147,4 +147,36 @@ TEST(Cholesky, SolveOnTheReachIsExactOnItsDofs) {
     EXPECT_NEAR(x(d), exact(d), 1e-12 * exact.cwiseAbs().maxCoeff()) << "dof " << d;
   // Off the reach nothing is computed.
   EXPECT_LE(x.cwiseAbs().cwiseSign().sum(), static_cast<Real>(reach.rows.size()));
+  // From the reach, the backward substitution over the whole factor: exact everywhere.
+  VectorXd y = b;
+  chol.solve_from_reach(reach, y);
+  EXPECT_LE((y - exact).norm(), 1e-12 * exact.norm());
+  EXPECT_GT(y.cwiseAbs().cwiseSign().sum(), static_cast<Real>(reach.rows.size()));
+}
+
+TEST(Cholesky, RowsOfTheInverseOnTheReachAreThoseOfFullSolves) {
+  // Q and the rows of K^-1 B on the surface dofs, from one forward sweep carried back over the
+  // reach in blocks of columns, against dense solves with K; more columns than one block, so that
+  // the blocks' seams are crossed.
+  const auto [m, dofs, K] = clamped_steel(Vec3(3, 1, 1), {12, 4, 4});
+  const std::vector<Index> surface = dofs.free_dofs(m.nodes_with_tag("z0"));
+  const SparseMatrix B = bottom_columns(m, dofs, 150);
+  linalg::CholeskyFactor chol;
+  chol.factorize(K);
+  const auto reach = chol.reach(surface);
+  const auto both = chol.inverse_gram_and_rows(B, reach, surface);
+  const MatrixXd exact = chol.solve(MatrixXd(B));
+  const MatrixXd Qref = MatrixXd(B.transpose()) * exact;
+  EXPECT_NEAR((both.gram - Qref).norm() / Qref.norm(), 0.0, 1e-12);
+  ASSERT_EQ(both.rows.rows(), static_cast<Index>(surface.size()));
+  ASSERT_EQ(both.rows.cols(), B.cols());
+  for (size_t i = 0; i < surface.size(); ++i)
+    EXPECT_LE((both.rows.row(static_cast<Index>(i)) - exact.row(surface[i])).norm(),
+              1e-12 * exact.norm())
+        << "dof " << surface[i];
+  // A row off the reach is refused; a poll that throws interrupts.
+  const std::vector<Index> top = dofs.free_dofs(m.nodes_with_tag("z1"));
+  EXPECT_THROW(chol.inverse_gram_and_rows(B, reach, top), Error);
+  EXPECT_THROW(chol.inverse_gram_and_rows(B, reach, surface, [] { throw Interrupted("stop"); }),
+               Interrupted);
 }
