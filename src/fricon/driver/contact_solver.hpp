@@ -170,8 +170,9 @@ struct PatchSelection {
 /// What a step of a loading path brings to the contact solve (theory.md §2.9).
 struct PathStep {
   const SlipHistory* history = nullptr;  ///< the slips are measured from the last step
-  /// The last step's multipliers [Pa]: the first QP starts from them (with solver.warm_start),
-  /// and for Coulomb the first radii take their pressures. Null: zero.
+  /// The first multipliers [Pa] (a prediction from the last steps, pressures non-negative): the
+  /// first QP starts from them (with solver.warm_start), and for Coulomb the first radii take
+  /// their pressures. Null: zero.
   const VectorXd* lambda = nullptr;
   /// The first slips of the outer loop [m] per surface node (a prediction: the last step's
   /// accumulated slip plus its increment); null: the accumulated slip (a zero increment).

@@ -20,9 +20,10 @@ namespace {
 // What one step leaves for the next (theory.md §2.9).
 struct PathState {
   SlipHistory history;
-  VectorXd lambda;      // multipliers of the last step [Pa]
-  VectorXd tangential;  // per multiplier row: the last step's int_R u_t dS [m^3] (normal rows 0)
-  VectorXd predicted;   // the accumulated slip plus the last step's increment [m]
+  VectorXd lambda;       // the next step's first multipliers, extrapolated [Pa]
+  VectorXd last_lambda;  // multipliers of the last step [Pa]
+  VectorXd tangential;   // per multiplier row: the last step's int_R u_t dS [m^3] (normal rows 0)
+  VectorXd predicted;    // the accumulated slip plus the last step's increment [m]
   Real norm_Q = 0.0, norm_Q_scaled = 0.0;
 };
 
@@ -142,7 +143,14 @@ void remember_step(const contact::ContactDiscretization& disc, const RunResult& 
   state.history.wt1 = f.wt1;
   state.history.wt2 = f.wt2;
   state.history.accumulated = f.slip;
-  state.lambda = f.lambda;
+  // The next step's first multipliers: the same change again, the pressures kept non-negative
+  // (the QP projects its start onto its constraints; a Coulomb state takes the pressures as they
+  // are).
+  state.lambda =
+      state.last_lambda.size() > 0 ? VectorXd(2.0 * f.lambda - state.last_lambda) : f.lambda;
+  for (Index p = 0; p < disc.n_patches(); ++p)
+    state.lambda(3 * p) = std::max(state.lambda(3 * p), 0.0);
+  state.last_lambda = f.lambda;
   state.tangential = patch_tangential(disc, r.model, w);
   const ContactReport& c = *r.report.contact;
   state.norm_Q = c.norm_Q;

@@ -62,7 +62,8 @@ class ForwardOperator final : public FactorDualOperator {
   void contact_displacement(const VectorXd& lambda, VectorXd& w) const override {
     if (w.size() != u0_.size()) w = VectorXd::Zero(u0_.size());
     if (C_.size() > 0) {
-      const VectorXd x = C_ * lambda;
+      VectorXd x;
+      linalg::product(C_, lambda, x);
       for (size_t i = 0; i < in_.contact_dofs.size(); ++i)
         w(in_.contact_dofs[i]) = u0_(in_.contact_dofs[i]) - x(static_cast<Index>(i));
       return;

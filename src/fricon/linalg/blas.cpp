@@ -184,6 +184,20 @@ void symmetric_product(const MatrixXd& A, const VectorXd& x, VectorXd& y) {
   dsymv_("L", &n, &one, A.data(), &lda, x.data(), &inc, &zero, y.data(), &inc);
 }
 
+void product(const MatrixXd& A, const VectorXd& x, VectorXd& y) {
+  FRICON_CHECK(x.size() == A.cols(), "A " << A.rows() << "x" << A.cols() << ", x " << x.size());
+  y.resize(A.rows());
+  if (A.rows() == 0) return;
+  if (A.cols() == 0) {
+    y.setZero();
+    return;
+  }
+  const int m = blas_int(A.rows()), n = blas_int(A.cols()), lda = leading(A.rows(), A.rows());
+  const int inc = 1;
+  const double one = 1.0, zero = 0.0;
+  dgemv_("N", &m, &n, &one, A.data(), &lda, x.data(), &inc, &zero, y.data(), &inc);
+}
+
 void add_gram_lower(ConstBlockRef Y, BlockRef C) {
   FRICON_CHECK(C.rows() == C.cols() && C.rows() == Y.cols(),
                "Y " << Y.rows() << "x" << Y.cols() << ", C " << C.rows() << "x" << C.cols());

@@ -67,6 +67,9 @@ void subtract_product(ConstBlockRef A, ConstBlockRef B, BlockRef C, bool transpo
 /// of A, which is what a product with a large dense A costs).
 void symmetric_product(const MatrixXd& A, const VectorXd& x, VectorXd& y);
 
+/// y = A x for a general dense A (BLAS dgemv); y is resized to A.rows().
+void product(const MatrixXd& A, const VectorXd& x, VectorXd& y);
+
 /// Lower triangle of C <- lower triangle of C + Y^T Y, with Y m x k and C k x k. The strict upper
 /// part of C is not touched.
 void add_gram_lower(ConstBlockRef Y, BlockRef C);

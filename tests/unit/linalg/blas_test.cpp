@@ -71,3 +71,33 @@ TEST(Blas, ShapeMismatchIsAnError) {
   MatrixXd C(2, 2);
   EXPECT_THROW(linalg::subtract_product(MatrixXd(2, 3), MatrixXd(2, 2), C), Error);
 }
+
+TEST(Blas, OneColumnGoesThroughTheLevelTwoRoutinesAlike) {
+  // One right-hand side takes dtrsv/dgemv: the same results, on blocks of larger matrices.
+  MatrixXd Lbig = MatrixXd::Random(12, 12);
+  Lbig.block(3, 2, 7, 7) = well_conditioned_lower(7);
+  Lbig.block(3, 2, 7, 7).triangularView<Eigen::StrictlyUpper>().setConstant(1e300);
+  const MatrixXd L = MatrixXd(Lbig.block(3, 2, 7, 7).triangularView<Eigen::Lower>());
+  MatrixXd X = MatrixXd::Random(9, 4);
+  const MatrixXd before = X;
+  for (const bool transpose : {false, true}) {
+    X = before;
+    linalg::solve_lower(Lbig.block(3, 2, 7, 7), X.block(1, 2, 7, 1), transpose);
+    const MatrixXd op = transpose ? MatrixXd(L.transpose()) : L;
+    EXPECT_LT((op * X.block(1, 2, 7, 1) - before.block(1, 2, 7, 1)).norm(), 1e-12);
+    EXPECT_EQ(X.col(1), before.col(1));
+    EXPECT_EQ(X.row(0), before.row(0));
+  }
+  const MatrixXd A = MatrixXd::Random(6, 4);
+  const VectorXd b4 = VectorXd::Random(4), b6 = VectorXd::Random(6), c0 = VectorXd::Random(6);
+  MatrixXd C = c0;
+  linalg::subtract_product(A, b4, C);
+  EXPECT_LT((C.col(0) - (c0 - A * b4)).norm(), 1e-13);
+  MatrixXd Ct = b4;
+  linalg::subtract_product(A, b6, Ct, /*transpose_a=*/true);
+  EXPECT_LT((Ct.col(0) - (b4 - A.transpose() * b6)).norm(), 1e-13);
+  VectorXd y;
+  linalg::product(A, b4, y);
+  EXPECT_LT((y - A * b4).norm(), 1e-13);
+  EXPECT_THROW(linalg::product(A, b6, y), Error);
+}
