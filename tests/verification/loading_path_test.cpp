@@ -115,6 +115,45 @@ TEST(LoadingPath, ProportionalFrictionlessStepsEndAtTheOneStepAnswer) {
   EXPECT_LE(relative_difference(4.0 * steps.displacement[0], one.displacement), 1e-8);
 }
 
+TEST(LoadingPath, OverlappingDirichletEntriesThatAgreeCountTheirValueOnce) {
+  // The clamped end and the bottom share an edge, and both move it down by the same amount at
+  // every step: each step is the static (elastic, linear) problem of its loads, the shared edge
+  // moved once, not once per entry.
+  Problem statics;
+  statics.mesh.size = {3.0, 1.0, 1.0};
+  statics.mesh.cells = {6, 2, 2};
+  DirichletOptions end, bottom;
+  end.boundary = "x0";
+  end.components = {true, true, true};
+  end.value = Vec3(0.0, 0.0, -1e-4);
+  bottom.boundary = "z0";
+  bottom.components = {false, false, true};
+  bottom.value = Vec3(0.0, 0.0, -1e-4);
+  TractionOptions pull;
+  pull.boundary = "x1";
+  pull.value = Vec3(1e7, 0.0, 0.0);
+  statics.dirichlet = {end, bottom};
+  statics.traction = {pull};
+  const std::vector<Real> factors{0.5, 1.0};
+  Problem path = statics;
+  path.loading.steps = 2;
+  for (DirichletOptions& d : path.dirichlet)
+    d.path = factors;
+  path.traction.front().path = {1.0, 1.0};
+  StepRecorder steps;
+  const RunResult r = run(path, steps.options());
+  ASSERT_EQ(r.report.status, RunStatus::Converged) << r.report.message;
+  ASSERT_EQ(steps.displacement.size(), factors.size());
+  for (size_t k = 0; k < factors.size(); ++k) {
+    Problem alone = statics;
+    for (DirichletOptions& d : alone.dirichlet)
+      d.value *= factors[k];
+    const RunResult one = run(alone);
+    ASSERT_EQ(one.report.status, RunStatus::Converged) << one.report.message;
+    EXPECT_LE(relative_difference(steps.displacement[k], one.displacement), 1e-10) << "step " << k;
+  }
+}
+
 TEST(LoadingPath, ThePushedBlockSticksThenSlidesAtMuTimesTheNormalForceAndSticksOnReversal) {
   // Push to 1e-5 (stick), to 4e-4 and 6e-4 (past sliding), then back to 5e-4 (reversal).
   const std::vector<Real> path{0.0, 0.1, 4.0, 6.0, 5.0};

@@ -34,14 +34,30 @@ struct LoadBasis {
   std::vector<VectorXd> f, u0;  // [0]: the loads without a path; [1 + i]: load i alone
 };
 
+// The prescribed displacements of a part of the loads: each component takes the value of the
+// entry that sets it in the whole problem (`owner`, make_prescribed), so that where entries
+// overlap (and agree at every step, check_steps) the parts sum to the step's values instead of
+// counting the value once per entry.
+fe::NodalField owned_prescribed(const Problem& part, const std::vector<int>& owner, Index n_nodes) {
+  fe::NodalField u = fe::NodalField::Zero(3, n_nodes);
+  for (Index a = 0; a < n_nodes; ++a)
+    for (int c = 0; c < 3; ++c) {
+      const int e = owner[static_cast<std::size_t>(3 * a + c)];
+      if (e >= 0) u(c, a) = part.dirichlet[static_cast<std::size_t>(e)].value(c);
+    }
+  return u;
+}
+
 LoadBasis load_basis(const Problem& problem, Model& m) {
   const std::size_t n = path_loads(problem).size();
+  std::vector<int> owner;
+  (void)make_prescribed(problem, m.mesh, &owner);
   LoadBasis basis;
   for (std::size_t i = 0; i <= n; ++i) {
     std::vector<Real> alone(n, 0.0);
     if (i > 0) alone[i - 1] = 1.0;
     const Problem part = scaled_loads(problem, alone, i == 0 ? 1.0 : 0.0);
-    m.prescribed = make_prescribed(part, m.mesh);
+    m.prescribed = owned_prescribed(part, owner, m.mesh.n_nodes());
     basis.f.push_back(load_vector(part, m, Extent::Whole));
     basis.u0.push_back(m.factor.solve(basis.f.back()));
   }
@@ -203,8 +219,8 @@ RunResult run_path(const Problem& problem, const RunOptions& options) {
 
   // @sect: the model, the contact discretization (every patch: the contact search does not
   // apply to a path), the factor of K and Q, once for the whole path.
-  std::optional<contact::ContactDiscretization> disc = build_factored_model(problem, options, r);
-  check_steps(problem, r.model.mesh);
+  std::optional<contact::ContactDiscretization> disc = build_factored_model(
+      problem, options, r, [&problem](const Model& m) { check_steps(problem, m.mesh); });
   if (options.stop_was_requested()) throw Interrupted("interrupted before the first step");
   std::unique_ptr<dual::DualOperator> Q;
   if (disc) {

@@ -186,7 +186,8 @@ std::vector<fe::Material> make_materials(const Problem& problem, const mesh::Tet
   return materials;
 }
 
-fe::NodalField make_prescribed(const Problem& problem, const mesh::TetMesh& mesh) {
+fe::NodalField make_prescribed(const Problem& problem, const mesh::TetMesh& mesh,
+                               std::vector<int>* owners) {
   fe::NodalField u = fe::NodalField::Zero(3, mesh.n_nodes());
   // Which [[dirichlet]] entry set each component, to name both of two that disagree.
   std::vector<int> set_by(static_cast<size_t>(3 * mesh.n_nodes()), -1);
@@ -208,6 +209,7 @@ fe::NodalField make_prescribed(const Problem& problem, const mesh::TetMesh& mesh
         u(c, a) = d.value(c);
       }
   }
+  if (owners) *owners = std::move(set_by);
   return u;
 }
 

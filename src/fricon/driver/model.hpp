@@ -60,8 +60,11 @@ fe::DofMap make_dofs(const Problem& problem, const mesh::TetMesh& mesh, const me
 fe::DofMap make_dofs(const Problem& problem, const mesh::TetMesh& mesh);
 
 /// The prescribed displacements of the problem's [[dirichlet]] values (see Model::prescribed).
-/// Throws InputError when two entries give one component of a node different values.
-fe::NodalField make_prescribed(const Problem& problem, const mesh::TetMesh& mesh);
+/// Throws InputError when two entries give one component of a node different values. With
+/// `owners`, also which entry sets each component (3 a + c for node a, component c): the last of
+/// those that cover it, -1 for a free one.
+fe::NodalField make_prescribed(const Problem& problem, const mesh::TetMesh& mesh,
+                               std::vector<int>* owners = nullptr);
 
 /// The material of each region of the mesh: [material] everywhere, or [[material]] by region.
 /// Throws InputError (with the key's position) when a region of the mesh has no material or a

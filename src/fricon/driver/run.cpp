@@ -185,11 +185,12 @@ void postprocess(const Problem& problem, const VectorXd& u, RunResult& r, bool w
 
 }  // namespace
 
-std::optional<contact::ContactDiscretization> build_factored_model(const Problem& problem,
-                                                                   const RunOptions& options,
-                                                                   RunResult& r) {
+std::optional<contact::ContactDiscretization> build_factored_model(
+    const Problem& problem, const RunOptions& options, RunResult& r,
+    const std::function<void(const Model&)>& check) {
   RunReport& rep = r.report;
   r.model = assemble_model(problem, rep.times, options.on_phase_start);
+  if (check) check(r.model);
   std::optional<contact::ContactDiscretization> disc;
   if (!problem.contact.empty()) {
     phase_start(options, "contact");

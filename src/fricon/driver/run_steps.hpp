@@ -2,6 +2,7 @@
 // driver: the steps of a run that both backends share (run.cpp on one process, the distributed
 // run of parallel/mpi/ on rank 0): the outer loop on a dual operator, and the postprocessing.
 
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -21,10 +22,11 @@ VectorXd adopt(ContactOutcome&& outcome, RunResult& r);
 /// The elastic model of the problem (phases "mesh", "assembly"), with [contact] its contact
 /// discretization (phase "contact"), and the factor of K ordered as the dual operator asks
 /// (phase "factorize"), with the sizes and the factor's figures in r.report. Returns the
-/// discretization (none without contact).
-std::optional<contact::ContactDiscretization> build_factored_model(const Problem& problem,
-                                                                   const RunOptions& options,
-                                                                   RunResult& r);
+/// discretization (none without contact). `check`, if set, sees the model before the
+/// factorization (and may throw InputError: a problem found then costs no factorization).
+std::optional<contact::ContactDiscretization> build_factored_model(
+    const Problem& problem, const RunOptions& options, RunResult& r,
+    const std::function<void(const Model&)>& check = {});
 
 /// The outer loop of dual QPs on operator Q (phase "outer loop"); fills the contact part of
 /// r.report and r.contact and returns the displacement over the free dofs.

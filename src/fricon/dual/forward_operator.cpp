@@ -40,6 +40,7 @@ class ForwardOperator final : public FactorDualOperator {
           in_.factor.inverse_gram_and_rows(Bt, reach_, in_.contact_dofs, in_.poll);
       Q_ = std::move(both.gram);
       C_ = std::move(both.rows);
+      n_kinv_ += in_.B.rows();  // a backward substitution per multiplier
     } else {
       Q_ = in_.factor.inverse_gram(Bt, in_.poll);
     }
