@@ -169,6 +169,8 @@ def load_contact(results, report, pair=None):
         "w_n": w_n,
         "opening": gap - w_n,
         "norm_w_t": point_field(mesh, "norm_w_t"),
+        # F's argument (the accumulated slip along a loading path); ||w_t|| in an older folder
+        "slip": point_field(mesh, "slip" if "slip" in mesh.point_data else "norm_w_t"),
         "F": point_field(mesh, "F"),
         "lambda_n": cells("lambda_n"),
         "norm_lambda_t": cells("norm_lambda_t"),
@@ -539,8 +541,12 @@ def plot_friction_law(report, surface):
     """Fig. 3: F(t) of the run (and the paper's other parameters), with the slips reached."""
     friction = first_pair(report).get("friction", {})
     curves = friction_curves(friction)
-    phi = surface["norm_w_t"] if surface is not None else np.zeros(0)
+    # Along a loading path F takes the accumulated slip s, in a static run ||w_t||.
+    path = bool(report.get("steps"))
+    phi = surface["slip"] if surface is not None else np.zeros(0)
     phi_max = float(phi.max()) if phi.size else float(report.get("max_wt", 0.0))
+    symbol = "s" if path else r"\Vert w_t\Vert"
+    what = "accumulated slip" if path else "tangential displacement"
     t_end = max([1.5 * c[2] for c in curves] + [1.15 * phi_max, 1e-5])
     t = np.linspace(0.0, t_end, 2000)
     fig, ax = plt.subplots(figsize=(7.0, 4.6), layout="constrained")
@@ -550,9 +556,9 @@ def plot_friction_law(report, surface):
                 color="C0" if i == 0 else "0.45", label=label, zorder=3 if i == 0 else 2)
     if phi.size:
         ax.plot(phi, surface["F"], "o", ms=3, color="C1", alpha=0.6, zorder=4,
-                label=r"contact nodes: ($\Vert w_t\Vert$, F)")
+                label=f"contact nodes: (${symbol}$, F), {what}")
         ax.axvline(phi_max, ls=":", color="C1")
-        ax.annotate(f"max $\\Vert w_t\\Vert$ = {phi_max:.2e} m", xy=(phi_max, 0.22),
+        ax.annotate(f"max ${symbol}$ = {phi_max:.2e} m", xy=(phi_max, 0.22),
                     xycoords=("data", "axes fraction"), xytext=(-4, 0),
                     textcoords="offset points", rotation=90, ha="right", va="bottom",
                     fontsize=8, color="C1")
@@ -561,7 +567,7 @@ def plot_friction_law(report, surface):
     ax.set_ylim(max(0.0, lo - pad), hi + pad)
     ax.set_xlim(0.0, t_end)
     ax.ticklabel_format(axis="x", style="sci", scilimits=(-2, 3))
-    ax.set_xlabel(r"slip $t = \Vert u_t\Vert$ [m]")
+    ax.set_xlabel("accumulated slip $t = s$ [m]" if path else r"slip $t = \Vert u_t\Vert$ [m]")
     ax.set_ylabel("coefficient of friction F [-]")
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8, loc="upper right")

@@ -411,15 +411,19 @@ VtuGrid contact_grid(const mesh::TetMesh& mesh, const driver::ContactFields& c) 
   for (Index k = 0; k < s.n_nodes(); ++k)
     surface.points.col(k) = mesh.nodes.col(s.nodes[static_cast<size_t>(k)]);
   surface.cells = s.face_nodes;
-  MatrixXd w(3, s.n_nodes()), scalars(5, s.n_nodes());
+  MatrixXd w(3, s.n_nodes()), scalars(6, s.n_nodes());
+  const bool has_slip = c.slip.size() == s.n_nodes();
   for (Index k = 0; k < s.n_nodes(); ++k) {
     w.col(k) = c.wn(k) * s.node_frames.n.col(k) + c.wt1(k) * s.node_frames.t1.col(k) +
                c.wt2(k) * s.node_frames.t2.col(k);
-    scalars.col(k) << c.wn(k), std::hypot(c.wt1(k), c.wt2(k)), c.phi(k), c.F(k), c.gap(k);
+    const Real norm_wt = std::hypot(c.wt1(k), c.wt2(k));
+    scalars.col(k) << c.wn(k), norm_wt, c.phi(k), c.F(k), c.gap(k), has_slip ? c.slip(k) : norm_wt;
   }
-  surface.point_data = {{"displacement", w},     {"gap", scalars.row(4)},
-                        {"w_n", scalars.row(0)}, {"norm_w_t", scalars.row(1)},
-                        {"phi", scalars.row(2)}, {"F", scalars.row(3)}};
+  // "slip": F's argument, ||w_t|| of a static run, the accumulated slip along a loading path.
+  surface.point_data = {{"displacement", w},      {"gap", scalars.row(4)},
+                        {"w_n", scalars.row(0)},  {"norm_w_t", scalars.row(1)},
+                        {"slip", scalars.row(5)}, {"phi", scalars.row(2)},
+                        {"F", scalars.row(3)}};
   const Index nf = s.face_nodes.cols();
   MatrixXd lambda_t(3, nf), per_face(7, nf);
   for (Index p = 0; p < c.patches.size(); ++p)
