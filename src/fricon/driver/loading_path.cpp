@@ -17,6 +17,11 @@ namespace fricon::driver {
 
 namespace {
 
+// Outer iterations a step typically takes, for the dual operator's choice of how to recover the
+// slips (two at least: one that moves, one that confirms; 4.7 on the brick path of
+// docs/benchmarks.md).
+constexpr long kOuterIterationsPerStep = 4;
+
 // What one step leaves for the next (theory.md §2.9).
 struct PathState {
   SlipHistory history;
@@ -228,7 +233,7 @@ RunResult run_path(const Problem& problem, const RunOptions& options) {
     ScopedPhase phase(rep.times, "dual");
     dual::DualInput input{r.model.factor,          disc->B,      r.model.f, disc->dofs,
                           interrupt_poll(options), &disc->offset};
-    input.many_recoveries = true;
+    input.expected_recoveries = kOuterIterationsPerStep * problem.loading.steps;
     Q = dual::make_dual_operator(problem.solver.dual_operator, input);
   }
 

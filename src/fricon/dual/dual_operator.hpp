@@ -45,10 +45,11 @@ struct DualInput {
   const VectorXd* offset = nullptr;
   /// u0 = K^-1 f if already solved (the contact search's), else null: the operator solves it.
   const VectorXd* free_solution = nullptr;
-  /// Many recoveries of the contact displacement are coming (a loading path, theory.md §2.9):
-  /// an operator that would recover it by a solve may form the contact rows of K^-1 B^T once
-  /// instead, so that each recovery is a product with them (the forward operator does).
-  bool many_recoveries = false;
+  /// How many recoveries of the contact displacement the caller expects (a loading path: some per
+  /// step, theory.md §2.9). An operator that would recover it by a solve each time may form the
+  /// contact rows of K^-1 B^T once instead, when that costs less than the solves, so that each
+  /// recovery is a product with them (the forward operator does). 0: a static run's handful.
+  long expected_recoveries = 0;
 };
 
 /// The dual problem's operator, whatever factors K: CHOLMOD here (FactorDualOperator), MUMPS

@@ -2,7 +2,8 @@
 // (theory.md §3.3): with K = P^T L L^T P, Q = Y^T Y for Y = L^-1 P B^T, and each column of B^T
 // is carried only along its own path of the elimination tree (CholeskyFactor::inverse_gram).
 // Inside the outer loop the displacement is recovered on that reach only (solve_on_reach), or,
-// when many recoveries are coming (DualInput::many_recoveries), by a product with the contact rows
+// when many recoveries are coming (DualInput::expected_recoveries), by a product with the contact
+// rows
 // C = E K^-1 B^T of K^-1 B^T, carried back from the forward sweep's Y with Q (theory.md §3.3).
 #include "fricon/dual/dual_operator.hpp"
 
@@ -23,11 +24,18 @@ Index nonzero_rows(const SparseMatrix& B) {
   return static_cast<Index>(std::count(used.begin(), used.end(), 1));
 }
 
-// Whether to form the contact rows C: asked for, and the forward sweep's Y kept for them (at most
-// reach rows x n_dual numbers) no larger than the factor itself.
+// Forming C carries the n_dual columns of Y back over the reach in blocks (the BLAS's level 3);
+// per column that costs about this fraction of one recovery by a solve over the reach (the paper's
+// brick at n = 16: its 576 columns in about the time of 30 one-column solves).
+constexpr double kBlockedColumnCost = 1.0 / 16.0;
+
+// Whether to form the contact rows C: cheaper than the recoveries expected, and the forward
+// sweep's Y kept for them (at most reach rows x n_dual numbers) no larger than the factor itself.
 bool form_contact_rows(const DualInput& in, const linalg::CholeskyFactor::Reach& reach) {
-  const double kept = static_cast<double>(reach.rows.size()) * static_cast<double>(in.B.rows());
-  return in.many_recoveries && kept <= in.factor.info().nnz_L;
+  const double n_dual = static_cast<double>(in.B.rows());
+  const bool pays = static_cast<double>(in.expected_recoveries) > kBlockedColumnCost * n_dual;
+  const double kept = static_cast<double>(reach.rows.size()) * n_dual;
+  return pays && kept <= in.factor.info().nnz_L;
 }
 
 class ForwardOperator final : public FactorDualOperator {
