@@ -114,14 +114,6 @@ std::vector<Vec3> load_displacements(const std::vector<PathLoad>& loads, const R
   return out;
 }
 
-// The factor of each load with a path at step k.
-std::vector<Real> step_factors(const std::vector<PathLoad>& loads, int k) {
-  std::vector<Real> a;
-  for (const PathLoad& load : loads)
-    a.push_back((*load.factors)[static_cast<std::size_t>(k - 1)]);
-  return a;
-}
-
 StepReport describe_step(int k, const std::vector<PathLoad>& loads, const RunResult& r,
                          double seconds) {
   const RunReport& rep = r.report;
@@ -248,11 +240,11 @@ RunResult run_path(const Problem& problem, const RunOptions& options) {
   if (disc) state.tangential = VectorXd::Zero(disc->n_dual());
   for (int k = 1; k <= problem.loading.steps; ++k) {
     const Stopwatch step_clock;
-    const Problem step_problem = at_step(problem, k);
+    const std::vector<Real> factors = step_factors(loads, k);
+    const Problem step_problem = scaled_loads(problem, factors, 1.0);  // at_step(problem, k)
     {
       ScopedPhase phase(rep.times, "assembly");
-      apply_step_loads(step_problem, step_factors(loads, k), basis, state, r.model, u0,
-                       disc ? &*disc : nullptr);
+      apply_step_loads(step_problem, factors, basis, state, r.model, u0, disc ? &*disc : nullptr);
     }
     const VectorXd u = disc ? solve_step(step_problem, *disc, *Q, u0, state, options, r)
                             : solve_elastic_step(u0, r);

@@ -74,10 +74,14 @@ Problem scaled_loads(const Problem& problem, const std::vector<Real>& factors, R
 }
 
 Problem at_step(const Problem& problem, int k) {
-  std::vector<Real> factors;
-  for (const PathLoad& load : path_loads(problem))
-    factors.push_back((*load.factors)[static_cast<std::size_t>(k - 1)]);
-  return scaled_loads(problem, factors, 1.0);
+  return scaled_loads(problem, step_factors(path_loads(problem), k), 1.0);
+}
+
+std::vector<Real> step_factors(const std::vector<PathLoad>& loads, int k) {
+  std::vector<Real> a;
+  for (const PathLoad& load : loads)
+    a.push_back((*load.factors)[static_cast<std::size_t>(k - 1)]);
+  return a;
 }
 
 std::vector<PathLoad> path_loads(const Problem& problem) {

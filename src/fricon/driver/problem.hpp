@@ -248,6 +248,9 @@ struct PathLoad {
 /// volume_force.
 std::vector<PathLoad> path_loads(const Problem& problem);
 
+/// The factor of each of `loads` (path_loads) at step k (1-based).
+std::vector<Real> step_factors(const std::vector<PathLoad>& loads, int k);
+
 /// Checks every value of the problem against its range and the consistency of the values with
 /// one another that needs no mesh (e.g. contact on a face that Dirichlet conditions clamp
 /// entirely). Every entry point calls it: the TOML reader after --set, code before run().
