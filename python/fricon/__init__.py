@@ -222,11 +222,21 @@ class Problem:
         name = law.name if law is not None else "function"
         return _fricon._parse(self._text, self._source, edits, origin, mesh, function, name)
 
-    def _edit(self, key, value, mesh=None, law=None, origin=_ORIGIN):
-        """Reads the problem with one more edit KEY=VALUE; commits it only if it is valid."""
-        mesh = mesh if mesh is not None else self._mesh
-        law = law if law is not None else self._law
-        edits = self._edits + [f"{key}={_toml_value(value)}"]
+    def _edit(self, items, origin=_ORIGIN):
+        """Reads the problem with the edits KEY=VALUE of items, (key, value) pairs, all at once
+        (so that values that depend on one another, such as loading.steps and a path, may change
+        together); commits them only if the problem they give is valid."""
+        mesh, law, edits = self._mesh, self._law, list(self._edits)
+        for key, value in items:
+            if isinstance(value, Mesh):
+                if key != "mesh":
+                    raise InputError(f"{key}: a fricon.Mesh can only be assigned to p.mesh")
+                mesh, value = value, {"kind": "arrays"}
+            elif isinstance(value, FrictionLaw):
+                if not key.endswith("friction"):
+                    raise InputError(f"{key}: a fricon.FrictionLaw belongs in p.contact.friction")
+                law, value = value, value.spec
+            edits.append(f"{key}={_toml_value(value)}")
         parsed = self._parse(edits, mesh, law, origin)
         object.__setattr__(self, "_edits", edits)
         object.__setattr__(self, "_mesh", mesh)
@@ -235,17 +245,7 @@ class Problem:
         object.__setattr__(self, "_dict", None)
 
     def _assign(self, path, value):
-        key = ".".join(map(str, path))
-        if isinstance(value, Mesh):
-            if key != "mesh":
-                raise InputError(f"{key}: a fricon.Mesh can only be assigned to p.mesh")
-            self._edit("mesh", {"kind": "arrays"}, mesh=value)
-        elif isinstance(value, FrictionLaw):
-            if not key.endswith("friction"):
-                raise InputError(f"{key}: a fricon.FrictionLaw belongs in p.contact.friction")
-            self._edit(key, value.spec, law=value)
-        else:
-            self._edit(key, value)
+        self._edit([(".".join(map(str, path)), value)])
 
     # -- reading --------------------------------------------------------------------------------
     def to_dict(self):
@@ -312,6 +312,13 @@ class Problem:
         """p.set("contact.friction.param", 3e4): as the attribute, by the key path of --set."""
         self._assign([key], value)
 
+    def update(self, values):
+        """p.update({"loading.steps": 3, "dirichlet.1.path": [0, 1, 2]}): several keys (key
+        paths of --set) at once, read and validated together, as several --set are: values that
+        must agree (a path's length and loading.steps) change in one step. Nothing changes if
+        the result is invalid."""
+        self._edit([(str(k), v) for k, v in dict(values).items()])
+
     def copy(self):
         other = Problem.__new__(Problem)
         for k in ("_text", "_source", "_edits", "_mesh", "_law", "_parsed", "_dict"):
@@ -372,19 +379,23 @@ def solve(problem, set=None, progress=None, threads=None, on_step=None):
     """Solves a Problem or the problem file at a path; returns a Result.
 
     set:      {"KEY": value} overrides spelled as --set keys ("contact.friction.param": 3e4),
-              applied to a copy (the problem itself is not changed)
+              applied to a copy (the problem itself is not changed), all at once as several
+              --set are (so {"loading.steps": 3, "dirichlet.1.path": [0, 1, 2]} works)
     progress: called with each outer iteration (an OuterIteration: k, err, qp_iterations,
               qp_products, qp_rel_gp, seconds); an exception it raises stops the run
     threads:  BLAS threads (default: as `fricon solve`, the cores the machine's load leaves);
               one count per process: solves running at once share the first one's
     on_step:  with [loading] steps > 1, called after each step of the path with the step's
               figures as a dict (the entry of report.json's "steps": step, factors,
-              normal_force, tangential_force, patch_states, ...); an exception it raises stops
-              the run. Result.steps holds the columns of steps.csv
+              normal_force, tangential_force, patch_states, ...), before the next step starts;
+              an exception it raises ends the path after that step (the exception's .result
+              holds the steps it saw). Result.steps holds the columns of steps.csv
 
     The GIL is released while the library runs, so solves from several threads run at once
     (docs/python.md, "Threads"); Ctrl-C stops the run at its next QP step and raises
-    KeyboardInterrupt, whose .result is the Result reached (along a path: the steps done). A run that did not converge returns a Result with
+    KeyboardInterrupt, whose .result is the Result reached (along a path: the steps done, the
+    last one interrupted unless the stop came between two steps). A run that did not converge
+    returns a Result with
     converged == False and the reason in .message (as `fricon solve` exits with code 2); bad
     input raises fricon.InputError, an ill-posed problem fricon.NumericalError.
     """
@@ -392,6 +403,5 @@ def solve(problem, set=None, progress=None, threads=None, on_step=None):
         problem = load(problem)
     if set:
         problem = problem.copy()
-        for key, value in set.items():
-            problem._edit(key, value, origin="--set")
+        problem._edit([(str(k), v) for k, v in dict(set).items()], origin="--set")
     return _fricon._solve(problem._parsed, progress, threads, on_step)

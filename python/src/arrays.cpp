@@ -1,5 +1,6 @@
 // Meshes from and to numpy arrays (the Mesh class of the module).
 
+#include <cmath>
 #include <map>
 #include <string>
 #include <vector>
@@ -8,6 +9,8 @@
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
+#include "fricon/core/error.hpp"
+#include "fricon/core/format.hpp"
 #include "fricon/mesh/brick.hpp"
 #include "fricon/mesh/from_arrays.hpp"
 
@@ -30,21 +33,57 @@ std::vector<T> flat(const py::array_t<T, py::array::c_style | py::array::forceca
   return std::vector<T>(a.data(), a.data() + a.size());
 }
 
-std::vector<Index> flat_indices(const IndexArray& a, const std::string& what) {
-  if (a.ndim() != 1)
-    throw InputError(
-        fmt::format("fricon.Mesh: {}: expected a 1-D array of tetrahedron indices", what));
-  return std::vector<Index>(a.data(), a.data() + a.size());
+/// The largest magnitude a float holds every whole number up to (2^53): a float index beyond
+/// it may not be the number written.
+constexpr Real kLargestExactFloatIndex = 9007199254740992.0;
+
+/// "tets[3, 1]" or "regions['a'][3]": entry k (in C order) of an array named `what`.
+std::string entry_name(const py::array& a, const std::string& what, py::ssize_t k) {
+  if (a.ndim() == 2 && a.shape(1) > 0)
+    return fmt::format("{}[{}, {}]", what, k / a.shape(1), k % a.shape(1));
+  return fmt::format("{}[{}]", what, k);
 }
 
-PyMesh make_mesh(const RealArray& points, const IndexArray& tets,
-                 const std::map<std::string, IndexArray>& boundary,
-                 const std::optional<std::map<std::string, IndexArray>>& regions) {
+/// Indices as integers: an integer array as it is; a float array (np.loadtxt gives one) only
+/// when every value is a whole number, since a cast would truncate 0.5 to 0 silently. Throws
+/// InputError naming the array and the first value that is no index.
+IndexArray indices_of(const py::array& a, const std::string& what) {
+  const char kind = a.dtype().kind();
+  if (kind == 'f') {
+    const RealArray values = RealArray::ensure(a);
+    for (py::ssize_t k = 0; k < values.size(); ++k) {
+      const Real v = values.data()[k];
+      if (!std::isfinite(v) || v != std::floor(v) || std::abs(v) > kLargestExactFloatIndex)
+        throw InputError(fmt::format("fricon.Mesh: {}: expected an integer index, got {}",
+                                     entry_name(a, what, k), format_real(v)));
+    }
+  } else if (kind != 'i' && kind != 'u') {
+    throw InputError(
+        fmt::format("fricon.Mesh: {}: expected an array of integer indices, got "
+                    "dtype {}",
+                    what, py::str(a.dtype()).cast<std::string>()));
+  }
+  return IndexArray::ensure(a);
+}
+
+std::vector<Index> flat_indices(const py::array& a, const std::string& what) {
+  const IndexArray indices = indices_of(a, what);
+  if (indices.ndim() != 1)
+    throw InputError(
+        fmt::format("fricon.Mesh: {}: expected a 1-D array of tetrahedron indices", what));
+  return std::vector<Index>(indices.data(), indices.data() + indices.size());
+}
+
+PyMesh make_mesh(const RealArray& points, const py::array& tets,
+                 const std::map<std::string, py::array>& boundary,
+                 const std::optional<std::map<std::string, py::array>>& regions) {
   mesh::MeshArrays arrays;
   arrays.points = flat<Real>(points, 3, "points");
-  arrays.tets = flat<Index>(tets, 4, "tets");
-  for (const auto& [name, triangles] : boundary)
-    arrays.boundary[name] = flat<Index>(triangles, 3, fmt::format("boundary['{}']", name));
+  arrays.tets = flat<Index>(indices_of(tets, "tets"), 4, "tets");
+  for (const auto& [name, triangles] : boundary) {
+    const std::string what = fmt::format("boundary['{}']", name);
+    arrays.boundary[name] = flat<Index>(indices_of(triangles, what), 3, what);
+  }
   if (regions)
     for (const auto& [name, members] : *regions)
       arrays.regions[name] = flat_indices(members, fmt::format("regions['{}']", name));
@@ -87,15 +126,17 @@ void bind_mesh(py::module_& m) {
 
 Mesh(points, tets, boundary, regions=None)
   points    (n, 3) float: node coordinates [m]
-  tets      (m, 4) int: 0-based node indices of linear tetrahedra, positively oriented
+  tets      (m, 4) int: 0-based node indices of linear tetrahedra, positively oriented (a
+            float array only of whole numbers)
   boundary  {name: (k, 3) int}: tagged boundary triangles (faces of the tetrahedra, any
             orientation), the names [[dirichlet]], [[traction]] and [contact] refer to
   regions   {name: 1-D int}: the tetrahedra of each region ([[material]] region = name);
             None: one region "body"
 Raises fricon.InputError for inverted or degenerate tetrahedra, indices out of range, unused
-nodes, triangles that are no face of a tetrahedron, ...)")
+nodes, triangles that are no face of a tetrahedron, fractional indices, a tag without
+triangles, ...)")
       .def(py::init(&make_mesh), py::arg("points"), py::arg("tets"),
-           py::arg("boundary") = std::map<std::string, IndexArray>{},
+           py::arg("boundary") = std::map<std::string, py::array>{},
            py::arg("regions") = py::none())
       .def_static(
           "brick",

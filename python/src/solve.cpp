@@ -12,6 +12,7 @@
 #include <mutex>
 #include <optional>
 #include <thread>
+#include <utility>
 
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
@@ -47,13 +48,69 @@ py::dict table_dict(const io::Table& table) {
   return out;
 }
 
-/// What the worker thread hands to the interpreter's thread.
+/// What the worker thread hands to the interpreter's thread, and back.
 struct Exchange {
   std::mutex mutex;
-  std::condition_variable changed;
+  std::condition_variable changed;  ///< the worker -> the interpreter: reports, or done
+  std::condition_variable handled;  ///< the interpreter -> the worker: steps handled, or gone
   std::deque<driver::IterationReport> iterations;
   std::deque<driver::StepReport> steps;
+  std::size_t steps_handed = 0;   ///< steps the worker has handed over
+  std::size_t steps_handled = 0;  ///< steps the interpreter has handled (on_step returned)
+  bool interpreter_gone = false;  ///< the interpreter no longer handles steps: do not wait
   bool done = false;
+};
+
+/// The worker's side of on_step: hands the step over and, when the user watches the steps,
+/// waits until the interpreter has called on_step with it (or will not), so that the callback
+/// sees step k before step k + 1 starts and a stop it asks for ends the path at step k.
+void hand_over_step(Exchange& exchange, const driver::StepReport& step, bool wait) {
+  std::unique_lock lock(exchange.mutex);
+  exchange.steps.push_back(step);
+  const std::size_t mine = ++exchange.steps_handed;
+  exchange.changed.notify_one();
+  if (wait)
+    exchange.handled.wait(
+        lock, [&] { return exchange.steps_handled >= mine || exchange.interpreter_gone; });
+}
+
+/// The worker thread of a solve, joined however the interpreter's side ends (also by an
+/// exception): it is asked to stop and released from any wait first.
+class Worker {
+ public:
+  Worker(Exchange& exchange, std::atomic<bool>& stop) : exchange_(exchange), stop_(stop) {}
+  Worker(const Worker&) = delete;
+  Worker& operator=(const Worker&) = delete;
+  ~Worker() { join(); }
+
+  template <typename F>
+  void start(F&& body) {
+    const py::gil_scoped_release release;
+    thread_ = std::thread(std::forward<F>(body));
+  }
+
+  /// Waits (without the GIL) for the run to end; after an early exit of the interpreter's
+  /// loop, stops it first.
+  void join() {
+    if (!thread_.joinable()) return;
+    {
+      const std::lock_guard lock(exchange_.mutex);
+      if (!exchange_.done) stop_ = true;
+      exchange_.interpreter_gone = true;
+      exchange_.handled.notify_all();
+    }
+    if (PyGILState_Check() != 0) {
+      const py::gil_scoped_release release;
+      thread_.join();
+    } else {
+      thread_.join();
+    }
+  }
+
+ private:
+  Exchange& exchange_;
+  std::atomic<bool>& stop_;
+  std::thread thread_;
 };
 
 PyResult solve(const PyProblem& p, const py::object& progress, std::optional<int> threads,
@@ -67,36 +124,38 @@ PyResult solve(const PyProblem& p, const py::object& progress, std::optional<int
     exchange.iterations.push_back(it);
     exchange.changed.notify_one();
   };
-  options.on_step = [&exchange](const driver::RunResult& r) {
-    const std::lock_guard lock(exchange.mutex);
-    exchange.steps.push_back(r.report.steps.back());
-    exchange.changed.notify_one();
+  const bool watch_steps = !on_step.is_none();
+  options.on_step = [&exchange, watch_steps](const driver::RunResult& r) {
+    hand_over_step(exchange, r.report.steps.back(), watch_steps);
   };
   std::optional<driver::RunResult> result;
   std::exception_ptr failure;
   const driver::Problem& problem = *p.problem;
 
-  std::thread worker;
-  {
-    const py::gil_scoped_release release;
-    worker = std::thread([&] {
-      try {
-        // The BLAS threads are the process's: set by the first of concurrent solves, shared by
-        // the others (linalg::RunThreads; docs/python.md, "Threads").
-        const linalg::RunThreads blas_threads(threads.value_or(0));
-        result.emplace(fricon::solve(problem, options));
-      } catch (...) {
-        failure = std::current_exception();
-      }
-      const std::lock_guard lock(exchange.mutex);
-      exchange.done = true;
-      exchange.changed.notify_one();
-    });
-  }
+  Worker worker(exchange, stop);
+  worker.start([&] {
+    try {
+      // The BLAS threads are the process's: set by the first of concurrent solves, shared by
+      // the others (linalg::RunThreads; docs/python.md, "Threads").
+      const linalg::RunThreads blas_threads(threads.value_or(0));
+      result.emplace(fricon::solve(problem, options));
+    } catch (...) {
+      failure = std::current_exception();
+    }
+    const std::lock_guard lock(exchange.mutex);
+    exchange.done = true;
+    exchange.changed.notify_one();
+  });
 
-  // The interpreter's side: progress, Ctrl-C (KeyboardInterrupt) and the callback's own errors
-  // stop the run at its next QP step; the first such Python error is raised once it has ended.
+  // The interpreter's side: progress, on_step, Ctrl-C (KeyboardInterrupt) and the callbacks'
+  // own errors stop the run (at its next QP step, or after the step on_step was called with);
+  // the first such Python error is raised once it has ended. Any Python code may raise (also
+  // the conversion of a step to a dict, where a pending Ctrl-C is delivered): each is caught.
   std::optional<py::error_already_set> python_error;
+  const auto python_failed = [&](py::error_already_set& e) {
+    if (!python_error) python_error.emplace(std::move(e));
+    stop = true;
+  };
   for (bool done = false; !done;) {
     std::deque<driver::IterationReport> iterations;
     std::deque<driver::StepReport> steps;
@@ -110,28 +169,33 @@ PyResult solve(const PyProblem& p, const py::object& progress, std::optional<int
       steps.swap(exchange.steps);
       done = exchange.done;
     }
-    const auto call = [&](const py::object& callback, const py::object& argument) {
-      if (callback.is_none() || python_error) return;
+    for (const auto& it : iterations) {
+      if (progress.is_none() || python_error) break;
       try {
-        callback(argument);
+        progress(py::cast(it));
       } catch (py::error_already_set& e) {
-        python_error.emplace(std::move(e));
-        stop = true;
+        python_failed(e);
       }
-    };
-    for (const auto& it : iterations)
-      call(progress, py::cast(it));
-    for (const auto& s : steps)
-      call(on_step, to_python(io::step_json(problem, s).dump()));
+    }
+    for (const auto& s : steps) {
+      if (watch_steps && !python_error) {
+        try {
+          on_step(to_python(io::step_json(problem, s).dump()));
+        } catch (py::error_already_set& e) {
+          python_failed(e);
+        }
+      }
+      // Step handled: the worker may start the next one (or, after an error, stop).
+      const std::lock_guard lock(exchange.mutex);
+      ++exchange.steps_handled;
+      exchange.handled.notify_all();
+    }
     if (!python_error && PyErr_CheckSignals() != 0) {
       python_error.emplace();  // fetches the KeyboardInterrupt
       stop = true;
     }
   }
-  {
-    const py::gil_scoped_release release;
-    worker.join();
-  }
+  worker.join();
   if (python_error && result) {
     // What was done before the stop (along a loading path, the steps done) goes with the
     // exception: `except KeyboardInterrupt as e: e.result`.

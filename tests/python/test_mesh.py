@@ -129,11 +129,35 @@ def test_regions_from_arrays_take_their_materials():
     (lambda p, t, b: (p, t, {"z0": np.array([[0, 1, 6]])}), "is no face of any"),
     (lambda p, t, b: (np.where(np.arange(p.size).reshape(p.shape) == 0, np.nan, p), t, b),
      "non-finite"),
+    # Issue 33: fractional indices were truncated silently, and a tag without triangles was
+    # accepted here and "does not exist" where it was used.
+    (lambda p, t, b: (p, t + 0.5, b), r"tets\[0, 0\]: expected an integer index, got \d+\.5$"),
+    (lambda p, t, b: (p, t, {**b, "z0": b["z0"] + 0.25}),
+     r"boundary\['z0'\]\[0, 0\]: expected an integer index, got \d+\.25$"),
+    (lambda p, t, b: (p, t, {**b, "empty": np.zeros((0, 3), dtype=int)}),
+     r"boundary\['empty'\]: expected at least one triangle, got none"),
+    (lambda p, t, b: (p, t.astype(bool), b), "expected an array of integer indices"),
 ])
 def test_a_bad_mesh_is_an_input_error(change, fragment):
     points, tets, boundary = kuhn_cube(1, 1.0)
     with pytest.raises(fricon.InputError, match=fragment):
         fricon.Mesh(*change(points, tets, boundary))
+
+
+def test_whole_float_indices_are_indices():
+    points, tets, boundary = kuhn_cube(1, 1.0)
+    m = fricon.Mesh(points, tets.astype(float), {k: v.astype(float) for k, v in boundary.items()})
+    np.testing.assert_array_equal(m.tets, fricon.Mesh(points, tets, boundary).tets)
+
+
+def test_an_empty_region_is_an_input_error():
+    points, tets, boundary = kuhn_cube(1, 1.0)
+    with pytest.raises(fricon.InputError, match=r"regions\['none'\]: expected at least one"):
+        fricon.Mesh(points, tets, boundary,
+                    {"all": np.arange(len(tets)), "none": np.zeros(0, dtype=int)})
+    with pytest.raises(fricon.InputError,
+                       match=r"regions\['all'\]\[0\]: expected an integer index, got 0.5$"):
+        fricon.Mesh(points, tets, boundary, {"all": np.arange(len(tets)) + 0.5})
 
 
 def test_a_mesh_can_only_go_to_p_mesh():

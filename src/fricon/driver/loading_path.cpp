@@ -258,6 +258,14 @@ RunResult run_path(const Problem& problem, const RunOptions& options) {
     rep.steps.push_back(describe_step(k, loads, r, step_clock.seconds()));
     if (options.on_step) options.on_step(r);
     if (failed) break;
+    if (options.stop_was_requested() && k < problem.loading.steps) {
+      // A stop asked for between two steps (or by on_step itself) ends the path after the
+      // step just reported: the result holds the steps that on_step saw, and is not complete.
+      rep.status = RunStatus::NotConverged;
+      rep.message = fmt::format("interrupted after step {} of {} of the loading path", k,
+                                problem.loading.steps);
+      break;
+    }
     if (disc) remember_step(*disc, r, u, state);
   }
   if (r.stress.cols() != r.model.mesh.n_tets()) compute_stresses(r);  // a failed step's

@@ -47,7 +47,7 @@ Real metres_per(LengthUnit unit) {
 std::string Problem::where(std::string_view key) const {
   // "traction[1].value[2]" -> "traction[1].value" -> "traction[1]" -> "traction".
   while (!key.empty()) {
-    if (const auto it = positions.find(key); it != positions.end()) return it->second;
+    if (const std::string* origin = positions.find(key)) return *origin;
     const auto cut = key.find_last_of(".[");
     if (cut == std::string_view::npos) break;
     key = key.substr(0, cut);
@@ -56,7 +56,12 @@ std::string Problem::where(std::string_view key) const {
 }
 
 std::string Problem::contact_key(std::size_t i) const {
-  return contact.size() == 1 ? std::string("contact") : fmt::format("contact[{}]", i);
+  return contact.size() == 1 && !given_as_array("contact") ? std::string("contact")
+                                                           : fmt::format("contact[{}]", i);
+}
+
+bool Problem::given_as_array(std::string_view key) const {
+  return positions.contains(fmt::format("{}[0]", key));
 }
 
 Problem scaled_loads(const Problem& problem, const std::vector<Real>& factors, Real rest) {

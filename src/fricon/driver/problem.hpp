@@ -23,6 +23,7 @@
 #include "fricon/core/enum_names.hpp"
 #include "fricon/core/range.hpp"
 #include "fricon/core/types.hpp"
+#include "fricon/driver/positions.hpp"
 #include "fricon/dual/dual_operator_kind.hpp"
 #include "fricon/fe/material.hpp"
 #include "fricon/outer/outer_loop.hpp"
@@ -200,8 +201,9 @@ struct Problem {
   std::string source = "<memory>";
   /// Where each value was given: key path ("material.young", "dirichlet[0].boundary",
   /// "contact.friction.t[2]") -> "file:line:col" or "--set KEY=VALUE". Filled by the reader;
-  /// empty for a problem built in code. Read it through where().
-  std::map<std::string, std::string, std::less<>> positions;
+  /// empty for a problem built in code. Read it through where(). Copies of the problem share
+  /// it (a path's steps copy the problem once each; driver/positions.hpp).
+  Positions positions;
 
   std::string title;  ///< [title] free text, optional
   MeshOptions mesh;
@@ -222,8 +224,13 @@ struct Problem {
   /// closest enclosing key ("dirichlet[0]", "dirichlet"), else `source`.
   std::string where(std::string_view key) const;
   /// The key path of contact pair i: "contact" for the one pair of [contact], "contact[i]" for
-  /// an entry of [[contact]].
+  /// an entry of [[contact]] (also when the file gives one pair as [[contact]]: the record
+  /// holds its keys as "contact[0]...").
   std::string contact_key(std::size_t i) const;
+  /// Whether the record holds the entries of `key` (an array of tables that may also be one
+  /// table, [contact]) as an array: "KEY[0]" was given ([[contact]] in the file, or
+  /// --set contact.0.KEY=...).
+  bool given_as_array(std::string_view key) const;
 };
 
 /// The problem of step `k` (1-based, <= loading.steps) of its loading path: every load with a

@@ -94,7 +94,9 @@ RunResult run(const Problem& problem, const RunOptions& options = {});
 /// discretization, the factor of K and Q once; then per step the loads of the step, the contact
 /// solve from the state the last step left, and the result, reported to options.on_step. A step
 /// that fails (or is interrupted) ends the path: the result is that step's, not converged, with
-/// its message naming the step; report.steps holds every step done.
+/// its message naming the step; report.steps holds every step done. A stop requested once a
+/// step is solved (stop_requested, set e.g. while on_step runs) ends the path after that step,
+/// not converged ("interrupted after step k of N"): report.steps ends with it.
 RunResult run_path(const Problem& problem, const RunOptions& options = {});
 
 }  // namespace fricon::driver

@@ -39,7 +39,8 @@ struct RunOptions {
   /// outer loop.
   std::function<void(const std::string& phase)> on_phase_start;
   /// Called after every step of a loading path with the step's result (its report's last
-  /// entry of `steps` describes it), converged or not.
+  /// entry of `steps` describes it), converged or not, before the next step starts; a stop
+  /// requested by the time it returns ends the path there (run_path).
   std::function<void(const RunResult& step)> on_step;
   /// If set and true, the run stops at the next QP step (e.g. set by a SIGINT handler) and
   /// returns what it has, not converged; while Q is formed it throws fricon::Interrupted.

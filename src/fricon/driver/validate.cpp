@@ -99,7 +99,9 @@ void check_nested(const Problem& p, const std::string& key, const Option& o, con
       if (o.is_array(section)) {
         entries(o.array_table());
       } else if (const void* child = o.child(section)) {
-        check_section(p, o.table(), key, child);
+        // One entry: "contact", or "contact[0]" when the file gave it as [[contact]] (its keys
+        // are recorded so, and messages name them as the user wrote them).
+        check_section(p, o.table(), p.given_as_array(key) ? key + "[0]" : key, child);
       }
       break;
     default:

@@ -32,7 +32,7 @@ std::string Context::where(const toml::node* node, const toml::key* key) const {
 
 const Field& record(const Context& ctx, const Field& f) {
   if (ctx.positions != nullptr && !f.path.empty())
-    (*ctx.positions)[f.path] = ctx.where(f.node, f.key);
+    ctx.positions->set(f.path, ctx.where(f.node, f.key));
   return f;
 }
 

@@ -14,6 +14,7 @@
 #include <toml++/toml.h>
 
 #include "fricon/core/types.hpp"
+#include "fricon/driver/positions.hpp"
 #include "fricon/io/problem_file.hpp"
 
 namespace fricon::io::detail {
@@ -23,7 +24,7 @@ namespace fricon::io::detail {
 struct Context {
   std::string file;
   std::unordered_map<const toml::node*, std::string> origins;
-  std::map<std::string, std::string, std::less<>>* positions = nullptr;
+  driver::Positions* positions = nullptr;
   std::string override_origin = "--set";  ///< how an override's origin is named
   const CodeObjects* code = nullptr;      ///< objects given by code (may be null)
 

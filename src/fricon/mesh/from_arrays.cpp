@@ -38,6 +38,11 @@ void add_boundary(const MeshArrays& a, const std::string& source, TetMesh& mesh)
   std::vector<Index> corners;
   for (const auto& [name, triangles] : a.boundary) {
     require_rows(source, fmt::format("boundary['{}']", name), triangles.size(), kNodesPerTriangle);
+    // A tag without triangles would be accepted here and "does not exist" where it is used.
+    if (triangles.empty())
+      throw InputError(fmt::format(
+          "{}: boundary['{}']: expected at least one triangle, got none (leave the tag out)",
+          source, name));
     const int tag = static_cast<int>(mesh.tag_names.size());
     mesh.tag_names.push_back(name);
     corners.insert(corners.end(), triangles.begin(), triangles.end());
@@ -52,6 +57,10 @@ void add_regions(const MeshArrays& a, const std::string& source, TetMesh& mesh) 
   if (a.regions.empty()) return;
   mesh.tet_region.assign(static_cast<std::size_t>(mesh.n_tets()), -1);
   for (const auto& [name, tets] : a.regions) {
+    if (tets.empty())
+      throw InputError(fmt::format(
+          "{}: regions['{}']: expected at least one tetrahedron, got none (leave the region out)",
+          source, name));
     const int region = static_cast<int>(mesh.region_names.size());
     mesh.region_names.push_back(name);
     for (const Index t : tets) {

@@ -25,7 +25,8 @@ struct MeshArrays {
 /// The mesh the arrays describe; `source` names them in messages (e.g. "fricon.Mesh"). Throws
 /// InputError for: array sizes that are not multiples of 3 or 4, indices out of range, non-finite
 /// coordinates, inverted or degenerate tetrahedra, unused nodes, triangles that are no face of a
-/// tetrahedron, a face shared by three tetrahedra, tetrahedra in no or in two regions.
+/// tetrahedron, a face shared by three tetrahedra, tetrahedra in no or in two regions, a boundary
+/// tag without triangles, a region without tetrahedra.
 TetMesh mesh_from_arrays(const MeshArrays& arrays, const std::string& source);
 
 }  // namespace fricon::mesh

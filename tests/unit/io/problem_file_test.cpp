@@ -595,7 +595,7 @@ TEST(ProblemFilePositions, RecordsEveryKeyReadAndItsTables) {
       {"contact.friction.f[1]", "t.toml:13:11"},
       {"contact.friction.f[2]", "t.toml:13:16"},
   };
-  EXPECT_EQ(p.positions, expected);
+  EXPECT_EQ(p.positions.to_map(), expected);
 }
 
 TEST(ProblemFilePositions, ProblemModifiedInCodeNamesTheFilePosition) {
@@ -643,6 +643,54 @@ TEST(ProblemFilePositions, SetValuesAreNamedBySet) {
   p.dirichlet[1].components = {false, false, false};
   EXPECT_THAT(validate_error(p),
               HasSubstr("--set dirichlet.1.components=z: dirichlet[1].components: "));
+}
+
+// One pair written as [[contact]] (issue 33): its keys are recorded as contact[0].*, and
+// messages name them so, at the key's own line, or the override that gave the value.
+const std::string kOneContactEntry = R"(
+[mesh]
+[material]
+[[dirichlet]]
+boundary = "z1"
+[[contact]]
+boundary = "z0"
+slip_bound = -1.0
+)";
+
+TEST(ProblemFilePositions, OneContactEntryIsNamedAsTheFileWritesIt) {
+  EXPECT_EQ(error_of(kOneContactEntry),
+            "t.toml:8:1: contact[0].slip_bound: expected a number >= 0 [Pa], got -1.0");
+  EXPECT_EQ(error_of(kOneContactEntry, {"contact.0.slip_bound=-2"}),
+            "--set contact.0.slip_bound=-2: contact[0].slip_bound: expected a number >= 0 [Pa], "
+            "got -2.0");
+  const auto p = parse_problem(kOneContactEntry, "t.toml", {"contact.0.slip_bound=1e7"});
+  ASSERT_EQ(p.contact.size(), 1u);
+  EXPECT_EQ(p.contact_key(0), "contact[0]");
+  EXPECT_EQ(p.where("contact[0].boundary"), "t.toml:7:1");
+  // [contact] stays "contact".
+  EXPECT_EQ(read_problem(kPaper).contact_key(0), "contact");
+}
+
+// A path given by an override is the origin of each of its elements: the record holds the
+// override's text once, not once per element (issue 33: a path of N steps from --set or
+// Python cost O(N^2) memory, copied at each step).
+TEST(ProblemFilePositions, AnOverriddenPathIsRecordedOnce) {
+  constexpr int kSteps = 4000;
+  std::string path = "dirichlet.1.path=[";
+  for (int k = 0; k < kSteps; ++k)
+    path += fmt::format("{}{}", k ? ", " : "", 0.5 * k);
+  path += "]";
+  const auto p = read_problem(kExamples + "loading/brick-hysteresis.toml",
+                              {fmt::format("loading.steps={}", kSteps), path});
+  ASSERT_EQ(p.dirichlet[1].path.size(), static_cast<std::size_t>(kSteps));
+  EXPECT_EQ(p.positions.at("dirichlet[1].path[3999]"), "--set " + path);
+  // Linear in the steps: a key per element ("dirichlet[1].path[3999]", 23 characters) plus the
+  // override once; the old record held the override's ~40 kB text per element (160 MB).
+  constexpr std::size_t kKeyChars = 32;
+  EXPECT_LT(p.positions.text_size(), kKeyChars * kSteps + 2 * path.size() + 10000);
+  // Copies (one per step of the path) share the record.
+  const driver::Problem step = driver::at_step(p, 2);
+  EXPECT_EQ(step.positions.find("dirichlet[1].path[0]"), p.positions.find("dirichlet[1].path[0]"));
 }
 
 // ------------------------------------------------------------------------------------------
