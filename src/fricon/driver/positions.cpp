@@ -4,11 +4,6 @@
 
 namespace fricon::driver {
 
-Positions::Data::Data(const Data& other) : origin_of(other.origin_of), origins(other.origins) {
-  for (std::size_t i = 0; i < origins.size(); ++i)
-    index_of.emplace(origins[i], i);
-}
-
 Positions::Positions(std::initializer_list<std::pair<const std::string, std::string>> entries) {
   for (const auto& [key, origin] : entries)
     set(key, origin);
@@ -18,25 +13,42 @@ Positions::Data& Positions::own() {
   if (!data_) {
     data_ = std::make_shared<Data>();
   } else if (data_.use_count() > 1) {
-    data_ = std::make_shared<Data>(*data_);
+    data_ = std::make_shared<Data>(*data_);  // the origins' strings are shared, not copied
   }
   return *data_;
 }
 
+std::size_t Positions::index_of(Data& d, const std::shared_ptr<const std::string>& origin) {
+  if (const auto it = d.by_address.find(origin.get()); it != d.by_address.end()) return it->second;
+  std::size_t i = 0;
+  if (const auto it = d.by_text.find(*origin); it != d.by_text.end()) {
+    i = it->second;
+  } else {
+    i = d.origins.size();
+    d.origins.push_back(origin);
+    d.by_text.emplace(*origin, i);
+  }
+  d.by_address.emplace(origin.get(), i);
+  return i;
+}
+
 void Positions::set(const std::string& key, const std::string& origin) {
   Data& d = own();
-  auto it = d.index_of.find(origin);
-  if (it == d.index_of.end()) {
-    d.origins.push_back(origin);
-    it = d.index_of.emplace(d.origins.back(), d.origins.size() - 1).first;
-  }
-  d.origin_of.insert_or_assign(key, it->second);
+  const auto it = d.by_text.find(origin);
+  const std::size_t i =
+      it != d.by_text.end() ? it->second : index_of(d, std::make_shared<const std::string>(origin));
+  d.origin_of.insert_or_assign(key, i);
+}
+
+void Positions::set(const std::string& key, const std::shared_ptr<const std::string>& origin) {
+  Data& d = own();
+  d.origin_of.insert_or_assign(key, index_of(d, origin));
 }
 
 const std::string* Positions::find(std::string_view key) const {
   if (!data_) return nullptr;
   const auto it = data_->origin_of.find(key);
-  return it == data_->origin_of.end() ? nullptr : &data_->origins[it->second];
+  return it == data_->origin_of.end() ? nullptr : data_->origins[it->second].get();
 }
 
 const std::string& Positions::at(std::string_view key) const {
@@ -51,7 +63,7 @@ std::size_t Positions::text_size() const {
   for (const auto& [key, index] : data_->origin_of)
     n += key.size();
   for (const auto& origin : data_->origins)
-    n += origin.size();
+    n += origin->size();
   return n;
 }
 
@@ -59,7 +71,7 @@ std::map<std::string, std::string, std::less<>> Positions::to_map() const {
   std::map<std::string, std::string, std::less<>> out;
   if (!data_) return out;
   for (const auto& [key, index] : data_->origin_of)
-    out.emplace(key, data_->origins[index]);
+    out.emplace(key, *data_->origins[index]);
   return out;
 }
 

@@ -10,7 +10,6 @@
 // the distinct origins.
 
 #include <cstddef>
-#include <deque>
 #include <initializer_list>
 #include <map>
 #include <memory>
@@ -18,6 +17,7 @@
 #include <string_view>
 #include <unordered_map>
 #include <utility>
+#include <vector>
 
 namespace fricon::driver {
 
@@ -30,6 +30,10 @@ class Positions {
   /// Records `origin` as where `key` (a key path: "material.young", "dirichlet[0].path[3]")
   /// was given, replacing what was recorded for it.
   void set(const std::string& key, const std::string& origin);
+  /// As set(key, *origin), for an origin shared by many keys (an override's text, which is the
+  /// origin of every element of the value it gives): it is held, not copied, and found again
+  /// by its address, so that recording it for N keys costs no N times its length.
+  void set(const std::string& key, const std::shared_ptr<const std::string>& origin);
   /// The origin of exactly `key`, or null when none is recorded. The pointer is valid until
   /// this record is changed or destroyed.
   const std::string* find(std::string_view key) const;
@@ -52,16 +56,16 @@ class Positions {
  private:
   struct Data {
     std::map<std::string, std::size_t, std::less<>> origin_of;  ///< key -> index in origins
-    std::deque<std::string> origins;  ///< distinct origins (a deque: they do not move)
-    /// origin -> index in origins; the views are of `origins`.
-    std::unordered_map<std::string_view, std::size_t> index_of;
-
-    Data() = default;
-    Data(const Data& other);  ///< copies the keys and origins, and indexes the copies
-    Data& operator=(const Data&) = delete;
+    std::vector<std::shared_ptr<const std::string>> origins;    ///< distinct origins
+    /// origin text -> index in origins (views of the strings `origins` holds, which a copy of
+    /// the data shares).
+    std::unordered_map<std::string_view, std::size_t> by_text;
+    std::unordered_map<const std::string*, std::size_t> by_address;  ///< shared origins
   };
   /// The data, unshared (copied first if another record shares it).
   Data& own();
+  /// The index of `origin` in the data's origins, added if new.
+  static std::size_t index_of(Data& d, const std::shared_ptr<const std::string>& origin);
 
   std::shared_ptr<Data> data_;
 };

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <charconv>
 #include <functional>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -163,9 +164,10 @@ void apply_override(Context& ctx, toml::table& root, const std::string& text) {
   } else {
     fail_override(text, fmt::format("'{}' is {}, not a table", prefix(last), describe(*cur)));
   }
+  const auto origin = std::make_shared<const std::string>(ctx.override_origin + " " + text);
   for (const auto* n : created)
-    ctx.origins[n] = text;
-  for_each_node(*placed, [&](const toml::node& n) { ctx.origins[&n] = text; });
+    ctx.origins[n] = origin;
+  for_each_node(*placed, [&](const toml::node& n) { ctx.origins[&n] = origin; });
 
   // A selector (friction law, material model) changed from the command line makes the file's
   // parameters of the other choices meaningless: drop them, so that e.g.

@@ -18,7 +18,7 @@ using driver::join_key;
 std::string Context::where(const toml::node* node, const toml::key* key) const {
   if (node != nullptr) {
     const auto it = origins.find(node);
-    if (it != origins.end()) return override_origin + " " + it->second;
+    if (it != origins.end()) return *it->second;
   }
   const toml::source_region* src = nullptr;
   if (key != nullptr && key->source().begin.line > 0) {
@@ -31,8 +31,12 @@ std::string Context::where(const toml::node* node, const toml::key* key) const {
 }
 
 const Field& record(const Context& ctx, const Field& f) {
-  if (ctx.positions != nullptr && !f.path.empty())
+  if (ctx.positions == nullptr || f.path.empty()) return f;
+  if (const auto it = ctx.origins.find(f.node); it != ctx.origins.end()) {
+    ctx.positions->set(f.path, it->second);  // shared, not copied per element
+  } else {
     ctx.positions->set(f.path, ctx.where(f.node, f.key));
+  }
   return f;
 }
 

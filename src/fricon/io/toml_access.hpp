@@ -5,6 +5,7 @@
 // path, then "expected PHRASE, got VALUE".
 
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -19,11 +20,13 @@
 
 namespace fricon::io::detail {
 
-/// The file name, the nodes that --set put into the document (with the override's text), and
+/// The file name, the nodes that --set put into the document (with where they came from), and
 /// where the positions of the keys read are recorded (Problem::positions).
 struct Context {
   std::string file;
-  std::unordered_map<const toml::node*, std::string> origins;
+  /// Node -> "--set KEY=VALUE" (override_origin, then the override's text): one string per
+  /// override, shared by all the nodes it put there (a path of N values is N nodes).
+  std::unordered_map<const toml::node*, std::shared_ptr<const std::string>> origins;
   driver::Positions* positions = nullptr;
   std::string override_origin = "--set";  ///< how an override's origin is named
   const CodeObjects* code = nullptr;      ///< objects given by code (may be null)
