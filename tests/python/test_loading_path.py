@@ -109,7 +109,7 @@ def test_a_long_path_from_python_costs_what_it_costs_from_a_file():
                              "solver.certificate_tol": 1e-4}, threads=1)
     assert r.converged
     assert len(r.steps["step"]) == n
-    assert time.perf_counter() - start < 60.0
+    assert time.perf_counter() - start < 20.0  # 0.9 s here; 44 s before
 
 
 CTRL_C_SCRIPT = """
