@@ -245,6 +245,10 @@ class Problem:
         object.__setattr__(self, "_dict", None)
 
     def _assign(self, path, value):
+        if (len(path) > 1 and path[0] == "contact" and not isinstance(path[1], int)
+                and self._parsed.contact_key == "contact[0]"):
+            # The one pair of a file that writes [[contact]]: p.contact.KEY is contact.0.KEY.
+            path = ["contact", 0] + list(path[1:])
         self._edit([(".".join(map(str, path)), value)])
 
     # -- reading --------------------------------------------------------------------------------

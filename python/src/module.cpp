@@ -95,6 +95,14 @@ PYBIND11_MODULE(_fricon, m) {
            [](const PyProblem& p) { return to_python(fricon::io::to_json(*p.problem).dump()); })
       .def("to_toml", [](const PyProblem& p) { return fricon::io::to_toml(*p.problem); })
       .def_property_readonly("source", [](const PyProblem& p) { return p.problem->source; })
+      .def_property_readonly(
+          "contact_key",
+          [](const PyProblem& p) {
+            return p.problem->contact.size() == 1 ? p.problem->contact_key(0)
+                                                  : std::string("contact");
+          },
+          "the key path of a problem's one contact pair: \"contact\", or \"contact[0]\" when "
+          "the file wrote it as [[contact]]")
       .def_property_readonly("edits", [](const PyProblem& p) { return p.edits; });
 
   m.def("_parse", &parse, py::arg("text"), py::arg("source"), py::arg("edits"), py::arg("origin"),

@@ -41,3 +41,24 @@ def test_a_pair_added_from_python_is_checked():
     with pytest.raises(fricon.InputError, match="contact\\[1\\].boundary.*of its own"):
         p.contact = [p.contact[0], second]  # the same surface twice
     assert len(p.contact) == 1  # a refused assignment changes nothing
+
+
+def test_one_pair_written_as_contact_entries_is_edited_and_named_as_written():
+    # Issue 33: errors about a single [[contact]] entry named the table header and dropped the
+    # [0]; its keys, recorded as contact[0].*, are named so, and p.contact.KEY edits them.
+    p = fricon.load(ROOT / "examples" / "two-bodies" / "sheared-blocks.toml")
+    p.contact.search_distance = 0.002
+    assert p.contact.search_distance == 0.002
+    p.contact[0].friction.value = 0.25
+    assert p.contact.friction.value == 0.25
+    with pytest.raises(fricon.InputError) as bad:
+        p.contact.search_distance = -1.0
+    assert str(bad.value).startswith(
+        "fricon.Problem contact.0.search_distance=-1.0: contact[0].search_distance: expected")
+    with pytest.raises(fricon.InputError) as bad:
+        fricon.solve(p, set={"contact.0.search_distance": 0})
+    assert str(bad.value).startswith(
+        "--set contact.0.search_distance=0: contact[0].search_distance: expected")
+    with pytest.raises(fricon.InputError) as bad:
+        p.set("contact.x.y", 1)  # an override's own error names where it came from
+    assert str(bad.value).startswith("fricon.Problem contact.x.y=1: 'contact' is an array")

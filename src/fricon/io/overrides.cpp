@@ -21,8 +21,10 @@ using driver::join_key;
 
 namespace {
 
-[[noreturn]] void fail_override(const std::string& text, std::string_view what) {
-  throw InputError(fmt::format("--set {}: {}", text, what));
+/// `origin`: how messages name the override, "--set KEY=VALUE" (Context::override_origin and
+/// the override's text).
+[[noreturn]] void fail_override(const std::string& origin, std::string_view what) {
+  throw InputError(fmt::format("{}: {}", origin, what));
 }
 
 bool is_index(std::string_view s) {
@@ -35,13 +37,13 @@ bool is_bare_key_char(char c) {
 }
 
 /// "traction[1].value" or "traction.1.value" -> {"traction", "1", "value"}.
-std::vector<std::string> split_key(const std::string& text, std::string_view key) {
+std::vector<std::string> split_key(const std::string& origin, std::string_view key) {
   std::string dotted;
   for (std::size_t i = 0; i < key.size(); ++i) {
     if (key[i] == '[') {
       const auto close = key.find(']', i);
       if (close == std::string_view::npos || !is_index(key.substr(i + 1, close - i - 1)))
-        fail_override(text, fmt::format("invalid key '{}': write an index as [N] or .N", key));
+        fail_override(origin, fmt::format("invalid key '{}': write an index as [N] or .N", key));
       dotted += '.';
       dotted += key.substr(i + 1, close - i - 1);
       i = close;
@@ -55,9 +57,9 @@ std::vector<std::string> split_key(const std::string& text, std::string_view key
     const auto dot = rest.find('.');
     const std::string_view part = rest.substr(0, dot);
     if (part.empty() || !std::all_of(part.begin(), part.end(), is_bare_key_char))
-      fail_override(text, fmt::format("invalid key '{}': expected dotted names such as "
-                                      "material.young or traction.1.value",
-                                      key));
+      fail_override(origin, fmt::format("invalid key '{}': expected dotted names such as "
+                                        "material.young or traction.1.value",
+                                        key));
     parts.emplace_back(part);
     if (dot == std::string_view::npos) break;
     rest = rest.substr(dot + 1);
@@ -66,17 +68,17 @@ std::vector<std::string> split_key(const std::string& text, std::string_view key
 }
 
 /// A one-key table {v = VALUE}: VALUE in TOML syntax, or a bare word taken as a string.
-toml::table parse_override_value(const std::string& text, std::string_view value) {
-  if (value.empty()) fail_override(text, "missing value after '='");
+toml::table parse_override_value(const std::string& origin, std::string_view value) {
+  if (value.empty()) fail_override(origin, "missing value after '='");
   try {
     toml::table holder = toml::parse(fmt::format("v = {}", value), std::string_view("--set"));
     if (holder.size() != 1 || holder.get("v") == nullptr)
-      fail_override(text, "expected a single TOML value after '='");
+      fail_override(origin, "expected a single TOML value after '='");
     return holder;
   } catch (const toml::parse_error& e) {
     const bool bare = value.find_first_of("\"'[]{},=# \t\r\n") == std::string_view::npos;
     if (!bare)
-      fail_override(text, fmt::format("invalid TOML value '{}': {}", value, e.description()));
+      fail_override(origin, fmt::format("invalid TOML value '{}': {}", value, e.description()));
     toml::table holder;
     holder.insert("v", std::string(value));
     return holder;
@@ -96,10 +98,11 @@ void for_each_node(const toml::node& n, const std::function<void(const toml::nod
 }  // namespace
 
 void apply_override(Context& ctx, toml::table& root, const std::string& text) {
+  const auto origin = std::make_shared<const std::string>(ctx.override_origin + " " + text);
   const auto eq = text.find('=');
-  if (eq == std::string::npos) fail_override(text, "expected KEY=VALUE");
-  const auto path = split_key(text, trim(std::string_view(text).substr(0, eq)));
-  toml::table holder = parse_override_value(text, trim(std::string_view(text).substr(eq + 1)));
+  if (eq == std::string::npos) fail_override(*origin, "expected KEY=VALUE");
+  const auto path = split_key(*origin, trim(std::string_view(text).substr(0, eq)));
+  toml::table holder = parse_override_value(*origin, trim(std::string_view(text).substr(eq + 1)));
   toml::node& value = *holder.get("v");
 
   const auto prefix = [&](std::size_t n) {
@@ -110,14 +113,14 @@ void apply_override(Context& ctx, toml::table& root, const std::string& text) {
   };
   const auto index_of = [&](const toml::array& a, std::size_t i) {
     if (!is_index(path[i]))
-      fail_override(text, fmt::format("'{}' is an array: address its entries as {}.0, {}.1, ...",
-                                      prefix(i), prefix(i), prefix(i)));
+      fail_override(*origin, fmt::format("'{}' is an array: address its entries as {}.0, {}.1, ...",
+                                         prefix(i), prefix(i), prefix(i)));
     // Digits only (is_index); an index too large for size_t is out of range like any other.
     std::size_t idx = 0;
     const auto [end, ec] = std::from_chars(path[i].data(), path[i].data() + path[i].size(), idx);
     if (ec != std::errc{} || idx > a.size())
-      fail_override(text, fmt::format("index {} out of range: '{}' has {} entries", path[i],
-                                      prefix(i), a.size()));
+      fail_override(*origin, fmt::format("index {} out of range: '{}' has {} entries", path[i],
+                                         prefix(i), a.size()));
     return idx;  // == size appends a new entry
   };
   const auto unregister = [&](const toml::node& old) {
@@ -143,7 +146,7 @@ void apply_override(Context& ctx, toml::table& root, const std::string& text) {
       }
       cur = a->get(idx);
     } else {
-      fail_override(text, fmt::format("'{}' is {}, not a table", prefix(i), describe(*cur)));
+      fail_override(*origin, fmt::format("'{}' is {}, not a table", prefix(i), describe(*cur)));
     }
   }
 
@@ -162,9 +165,8 @@ void apply_override(Context& ctx, toml::table& root, const std::string& text) {
     }
     placed = a->get(idx);
   } else {
-    fail_override(text, fmt::format("'{}' is {}, not a table", prefix(last), describe(*cur)));
+    fail_override(*origin, fmt::format("'{}' is {}, not a table", prefix(last), describe(*cur)));
   }
-  const auto origin = std::make_shared<const std::string>(ctx.override_origin + " " + text);
   for (const auto* n : created)
     ctx.origins[n] = origin;
   for_each_node(*placed, [&](const toml::node& n) { ctx.origins[&n] = origin; });

@@ -17,7 +17,8 @@
 namespace fricon::io::detail {
 
 /// Applies one "KEY=VALUE" override to the document; the nodes it puts there are recorded in
-/// ctx.origins, so that messages name the override. Throws InputError "--set TEXT: ...".
+/// ctx.origins, so that messages name the override. Throws InputError "--set TEXT: ..." (with
+/// ctx.override_origin in place of --set, e.g. "fricon.Problem TEXT: ...").
 void apply_override(Context& ctx, toml::table& root, const std::string& text);
 
 /// The document -> p, recording the position of every key read in p.positions. Checks types,
