@@ -250,7 +250,7 @@ RunResult run_path(const Problem& problem, const RunOptions& options) {
                             : solve_elastic_step(u0, r);
     // The stresses of a step only for whom watches the steps, and for the result.
     const bool last = k == problem.loading.steps;
-    finish_run(step_problem, u, options, r, options.on_step || last);
+    finish_run(step_problem, u, r, options.on_step || last);
     const bool failed = rep.status != RunStatus::Converged;
     if (failed)
       rep.message = fmt::format("step {} of {} of the loading path failed: {}", k,
@@ -258,6 +258,13 @@ RunResult run_path(const Problem& problem, const RunOptions& options) {
     rep.steps.push_back(describe_step(k, loads, r, step_clock.seconds()));
     if (options.on_step) options.on_step(r);
     if (failed) break;
+    // A stop requested during a step that converged keeps that step and ends the path there.
+    if (!last && options.stop_was_requested()) {
+      rep.status = RunStatus::NotConverged;
+      rep.message = fmt::format("interrupted after step {} of {} of the loading path", k,
+                                problem.loading.steps);
+      break;
+    }
     if (disc) remember_step(*disc, r, u, state);
   }
   if (r.stress.cols() != r.model.mesh.n_tets()) compute_stresses(r);  // a failed step's
