@@ -51,7 +51,7 @@ TEST(StopRequest, BeforeConvergenceStopsTheRunNotConverged) {
 }
 
 TEST(StopRequest, DuringALoadingPathKeepsTheConvergedStepAndEndsThePath) {
-  Problem p = clamped_problem(false);
+  Problem p = test::clamped_problem(false);
   p.loading.steps = kElasticPathSteps;
   p.traction.front().path = {1.0, 2.0, 3.0};
   std::atomic<bool> stop{false};

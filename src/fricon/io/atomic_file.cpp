@@ -38,9 +38,9 @@ void write_atomically(const std::filesystem::path& path,
     if (!out)
       throw OutputError(
           fmt::format("cannot open {} for writing: {}", tmp.string(), reason("failed")));
+    errno = 0;  // a failed write(2) of the stream leaves its reason here
     write(out);
-    errno = 0;
-    out.close();  // the last buffer reaches the disk here: a full disk fails now
+    if (!out.fail()) out.close();  // the last buffer reaches the disk here: a full disk fails now
     if (out.fail())
       throw OutputError(
           fmt::format("writing {} failed: {}", tmp.string(), reason("the disk may be full")));
