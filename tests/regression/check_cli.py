@@ -10,6 +10,8 @@ Besides the exit codes 0-3, issue 33:
     solve);
   - item 15: `--out ""` is refused (exit 1, naming --out), for solve and plot;
   - item 16: a folder given as the problem file is refused naming it, by solve and check;
+  - item 7: a static run removes an earlier run's step files (steps/) and figures (plots/), and
+    leaves the other files of those folders;
   - item 25: `fricon mesh info --unit mm` of a brick meshed in millimetres gives its volume and
     face areas in m^3 and m^2 (3 x 1 x 1 m: 3 m^3, the face x0 1 m^2).
 
@@ -183,6 +185,20 @@ folder_problem = out / "a-folder.toml"
 folder_problem.mkdir(exist_ok=True)
 for command in ("solve", "check"):
     expect([command, str(folder_problem)], 1, str(folder_problem), "is a folder")
+
+stale = out / "stale"
+for name in ["steps/solution-0003.vtu", "steps/patches-0003.csv", "steps/notes.txt",
+             "plots/force_displacement.png", "plots/notes.txt", "report.json"]:
+    (stale / name).parent.mkdir(parents=True, exist_ok=True)
+    (stale / name).write_text("an earlier run's\n")
+expect(["solve", elastic, "--out", str(stale), "--quiet"], 0)
+kept = sorted(str(p.relative_to(stale)) for p in stale.rglob("*") if p.is_file())
+expected_kept = ["plots/notes.txt", "report.json", "solution.pvd", "solution.vtu", "steps/notes.txt"]
+if kept != expected_kept:
+    failures.add(f"a static run into a folder with an earlier run's files left {kept}, expected "
+                 f"{expected_kept}")
+if "an earlier run" in (stale / "report.json").read_text():
+    failures.add("the earlier run's report.json was not replaced")
 
 mm_mesh = out / "brick-mm.msh"
 expect(["mesh", "brick", "--size", "3000,1000,1000", "--cells", "6,2,2", "--out", str(mm_mesh)], 0)

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <regex>
 
 #include <fmt/format.h>
 
@@ -454,15 +455,30 @@ std::string step_file(const std::string& base, int step, const std::string& exte
 }
 
 // Removes `path` if it exists; OutputError if it exists and cannot be removed.
-void remove_earlier(const std::filesystem::path& path, bool folder = false) {
+void remove_earlier(const std::filesystem::path& path) {
   std::error_code ec;
-  if (folder)
-    std::filesystem::remove_all(path, ec);
-  else
-    std::filesystem::remove(path, ec);
+  std::filesystem::remove(path, ec);
   if (ec)
     throw OutputError(
         fmt::format("cannot remove {} of an earlier run: {}", path.string(), ec.message()));
+}
+
+// Removes the files in `folder` whose names `ours` accepts, and the folder if that empties it
+// (files of other names are the user's and stay).
+template <typename Ours>
+void remove_earlier_files(const std::filesystem::path& folder, Ours ours) {
+  std::error_code ec;
+  if (!std::filesystem::is_directory(folder, ec)) return;
+  for (const auto& entry : std::filesystem::directory_iterator(folder, ec))
+    if (entry.is_regular_file() && ours(entry.path().filename().string()))
+      remove_earlier(entry.path());
+  if (std::filesystem::is_empty(folder, ec)) remove_earlier(folder);
+}
+
+// Whether `name` is a per-step file of a loading path (step_file), or its temporary file.
+bool is_step_file(const std::string& name) {
+  static const std::regex pattern(R"((solution|contact|patches)-\d{4,}\.(vtu|csv)(\.tmp)?)");
+  return std::regex_match(name, pattern);
 }
 
 // Removes the result files of an earlier run (converged or not), and with `steps` its per-step
@@ -471,22 +487,15 @@ void remove_results(const std::filesystem::path& dir, bool steps) {
   for (const auto& [base, ext] : kResultFiles)
     for (bool c : {true, false})
       remove_earlier(result_path(dir, base, ext, c));
-  if (steps) remove_earlier(dir / kStepsDir, true);
+  if (steps) remove_earlier_files(dir / kStepsDir, is_step_file);
 }
 
 // The figures of `fricon plot` in DIR/plots (scripts/plot_results.py writes only these
-// formats), and the folder if nothing else is left in it.
+// formats).
 constexpr const char* kPlotsDir = "plots";
-void remove_figures(const std::filesystem::path& dir) {
-  const std::filesystem::path plots = dir / kPlotsDir;
-  std::error_code ec;
-  if (!std::filesystem::is_directory(plots, ec)) return;
-  for (const auto& entry : std::filesystem::directory_iterator(plots, ec)) {
-    const std::string ext = entry.path().extension().string();
-    if (entry.is_regular_file() && (ext == ".png" || ext == ".pdf" || ext == ".svg"))
-      remove_earlier(entry.path());
-  }
-  if (std::filesystem::is_empty(plots, ec)) remove_earlier(plots);
+bool is_figure(const std::string& name) {
+  const std::string ext = std::filesystem::path(name).extension().string();
+  return ext == ".png" || ext == ".pdf" || ext == ".svg";
 }
 
 // A probe file of kProbeBytes into `dir`, removed again: fails (OutputError) where the results
@@ -538,7 +547,7 @@ void prepare_results(const std::filesystem::path& dir) {
         fmt::format("cannot create the results folder {}: {}", dir.string(), ec.message()));
   probe_writable(dir);
   remove_results(dir, true);
-  remove_figures(dir);
+  remove_earlier_files(dir / kPlotsDir, is_figure);
 }
 
 bool step_files_wanted(const driver::OutputOptions& output, int step, int steps) {

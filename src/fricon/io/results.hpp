@@ -73,8 +73,9 @@ nlohmann::json step_json(const driver::Problem& problem, const driver::StepRepor
 
 /// Makes `dir` ready for a run's results, before the run: creates it if needed, checks that it
 /// is a folder that a file can be written into (a probe file of kProbeBytes, removed again), and
-/// removes the results of an earlier run (converged or not), its per-step files (steps/) and
-/// the figures of `fricon plot` in DIR/plots (its .png, .pdf and .svg files). Throws InputError
+/// removes the results of an earlier run (converged or not), its per-step files
+/// (steps/solution-NNNN.vtu, ...) and the figures of `fricon plot` (the .png, .pdf and .svg
+/// files of DIR/plots), each folder too when that empties it; other files stay. Throws InputError
 /// for an empty path, OutputError when `dir` is not a folder, cannot be created or written, or
 /// an earlier result cannot be removed (so nothing of an earlier run stays beside a failure).
 void prepare_results(const std::filesystem::path& dir);
@@ -113,9 +114,9 @@ std::vector<std::filesystem::path> write_step(const std::filesystem::path& dir,
 /// Writes every result file of the run into `dir` (created if needed); returns the paths written.
 /// Result files of an earlier run are removed first. Along a loading path also steps.csv (every
 /// step), and solution.pvd is the time series of `written_steps`, the steps whose files this
-/// run wrote into `dir` (write_step_files, increasing); without them steps/ is an earlier run's
-/// and is removed, and solution.pvd holds the last state. If a file cannot be written, the
-/// files written so far are removed and OutputError is thrown.
+/// run wrote into `dir` (write_step_files, increasing); without them the step files in steps/
+/// are an earlier run's and are removed, and solution.pvd holds the last state. If a file cannot be
+/// written, the files written so far are removed and OutputError is thrown.
 std::vector<std::filesystem::path> write_results(const std::filesystem::path& dir,
                                                  const driver::Problem& problem,
                                                  const driver::RunResult& result,
