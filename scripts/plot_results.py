@@ -27,7 +27,12 @@ with pressure or not separated) with a margin, and then show the whole surface a
 window in a small inset in a corner; a zone that covers most of the surface is not zoomed
 (map_limits).
 
-A run without contact has no contact results: then only the deformed body is drawn. Every file is
+A run without contact has no contact results: then only the deformed body is drawn. A run that
+did not converge (its files named report.not-converged.json, contact.not-converged.vtu, ...) is
+drawn from its last iterate, each figure named with ".not-converged" before its extension
+(convergence.not-converged.png, ...) and its title saying the status. The figures of an earlier
+run in the output folder (the names above, converged or not, in any format) are removed first,
+so that none of them is taken for this run's. Every file is
 written atomically (temporary name in the same folder, then os.replace) and the list of files
 written is printed on stdout, one per line; notes go to stderr. Exit status 0 on success, 1 when
 the folder is not a complete results folder or the arguments are wrong.
@@ -85,12 +90,33 @@ CIRCLES_PAD = 0.02  # friction_circles, unzoomed: the surface padded by this par
 # Reading the results folder
 # ----------------------------------------------------------------------------------------------
 
+# Before the extension of every file of a run that did not converge.
+NOT_CONVERGED = ".not-converged"
+
+# The figures this script writes (each also with "-pairI" and NOT_CONVERGED in its name).
+FIGURE_NAMES = ["convergence", "friction_law", "contact_maps", "friction_coefficient",
+                "friction_circles", "deformed", "force_displacement", "stick_slip_steps"]
+FIGURE_FORMATS = ["png", "pdf", "svg"]
+
+
+def result_file(results, name):
+    """The path of result file `name` ("contact.vtu") in the folder: its converged name, or the
+    name of a run that did not converge (contact.not-converged.vtu) when only that exists."""
+    path = results / name
+    if path.exists():
+        return path
+    stem, dot, extension = name.rpartition(".")
+    marked = results / f"{stem}{NOT_CONVERGED}{dot}{extension}"
+    return marked if marked.exists() else path
+
+
 def read_report(results):
-    """The parsed report.json; a folder without it is incomplete (report.json is written last)."""
-    path = results / "report.json"
+    """The parsed report.json (or report.not-converged.json of a run that did not converge); a
+    folder with neither is incomplete (the report is written last)."""
+    path = result_file(results, "report.json")
     if not path.is_file():
-        raise SystemExit(f"plot_results: {path}: no report.json (not a complete fricon results "
-                         "folder; report.json is written last)")
+        raise SystemExit(f"plot_results: {path}: no report.json nor report{NOT_CONVERGED}.json "
+                         "(not a complete fricon results folder; the report is written last)")
     try:
         return json.loads(path.read_text())
     except json.JSONDecodeError as e:
@@ -136,7 +162,7 @@ def load_contact(results, report, pair=None):
     two axes, the nodal fields and the per-triangle (patch) fields, and the patch table (centroid, radius,
     lambda_t in the plane) computed from the triangles.
     """
-    path = results / "contact.vtu"
+    path = result_file(results, "contact.vtu")
     if not path.is_file():
         return None
     mesh = meshio.read(path)
@@ -388,8 +414,10 @@ def window_range(surface, values, limits):
 # Small helpers
 # ----------------------------------------------------------------------------------------------
 
-def save_figure(fig, out_dir, name, fmt, written):
-    """Save `fig` as out_dir/name.fmt atomically (temporary file in the same folder, os.replace)."""
+def save_figure(fig, out_dir, name, fmt, written, mark=""):
+    """Save `fig` as out_dir/name<mark>.fmt atomically (temporary file in the same folder,
+    os.replace); `mark` is NOT_CONVERGED for the figures of a run that did not converge."""
+    name += mark
     final = out_dir / f"{name}.{fmt}"
     fd, tmp = tempfile.mkstemp(dir=out_dir, prefix=f".{name}.", suffix=f".{fmt}.tmp")
     os.close(fd)
@@ -708,7 +736,7 @@ def plot_friction_circles(report, surface):
 def read_steps(results):
     """steps.csv of a loading path as a dict of columns (numbers as float arrays, text such as
     "status" as arrays of str), its column names in order under "columns"; None without it."""
-    path = results / "steps.csv"
+    path = result_file(results, "steps.csv")
     if not path.is_file():
         return None
     with open(path, newline="") as f:
@@ -985,7 +1013,7 @@ def plot_deformed(report, results):
     Top: a 3D view of the boundary triangles; bottom: the side view (x-z) of the face y = min,
     with the undeformed outline dashed in both.
     """
-    mesh = meshio.read(results / "solution.vtu")
+    mesh = meshio.read(result_file(results, "solution.vtu"))
     pts = np.asarray(mesh.points)
     u = point_field(mesh, "displacement")
     tets = next(c.data for c in mesh.cells if c.type == "tetra")
@@ -1079,7 +1107,7 @@ def parse_args(argv):
     return ap.parse_args(argv)
 
 
-def plot_steps(results, report, views, out_dir, fmt, written):
+def plot_steps(results, report, views, out_dir, fmt, written, mark=""):
     """The figures of a loading path (a folder with steps.csv): force_displacement and, per view
     (surface, file-name suffix) of the contact surface, stick_slip_steps."""
     steps = read_steps(results)
@@ -1090,7 +1118,7 @@ def plot_steps(results, report, views, out_dir, fmt, written):
               file=sys.stderr)
         return
     save_figure(plot_force_displacement(report, steps), out_dir, "force_displacement", fmt,
-                written)
+                written, mark)
     patch_files = step_files(results, "patches", ".csv")
     for view, suffix in views:
         fig = plot_stick_slip_steps(report, view, steps, patch_files)
@@ -1098,14 +1126,33 @@ def plot_steps(results, report, views, out_dir, fmt, written):
             print(f"plot_results: {results}: no steps/patches-NNNN.csv of the steps; "
                   f"stick_slip_steps{suffix} is skipped", file=sys.stderr)
         else:
-            save_figure(fig, out_dir, "stick_slip_steps" + suffix, fmt, written)
+            save_figure(fig, out_dir, "stick_slip_steps" + suffix, fmt, written, mark)
+
+
+def remove_earlier_figures(out_dir):
+    """Removes the figures of an earlier run from out_dir (FIGURE_NAMES in FIGURE_FORMATS, with
+    any pair suffix, converged or not): a figure this run does not draw must not stay beside
+    its own (a loading path's force_displacement beside a static run's figures)."""
+    for name in FIGURE_NAMES:
+        for fmt in FIGURE_FORMATS:
+            for path in out_dir.glob(f"{name}*.{fmt}"):
+                rest = path.name[len(name):-len(fmt) - 1]
+                rest = rest[:-len(NOT_CONVERGED)] if rest.endswith(NOT_CONVERGED) else rest
+                if rest == "" or (rest.startswith("-pair") and rest[5:].isdigit()):
+                    path.unlink()
 
 
 def make_plots(results, out_dir, fmt):
     """Draw every figure the folder has data for; return the list of files written."""
     report = read_report(results)
     out_dir.mkdir(parents=True, exist_ok=True)
+    remove_earlier_figures(out_dir)
     written = []
+    mark = "" if report.get("status", "converged") == "converged" else NOT_CONVERGED
+    if mark:
+        print(f"plot_results: {results}: the run did not converge ({report.get('status')}); "
+              f"its last iterate is plotted, the figures named *{NOT_CONVERGED}.*",
+              file=sys.stderr)
     has_contact = "contact" in report.get("problem", {})
     surface = load_contact(results, report) if has_contact else None
     if not has_contact:
@@ -1113,8 +1160,9 @@ def make_plots(results, out_dir, fmt):
               "plotted", file=sys.stderr)
     else:
         if report.get("err_history"):
-            save_figure(plot_convergence(report), out_dir, "convergence", fmt, written)
-        save_figure(plot_friction_law(report, surface), out_dir, "friction_law", fmt, written)
+            save_figure(plot_convergence(report), out_dir, "convergence", fmt, written, mark)
+        save_figure(plot_friction_law(report, surface), out_dir, "friction_law", fmt, written,
+                    mark)
         views = []  # (surface, file-name suffix) of each map of the contact surface
         if surface is None:
             print(f"plot_results: {results}: no contact.vtu; the contact-surface figures are "
@@ -1126,14 +1174,14 @@ def make_plots(results, out_dir, fmt):
                 (load_contact(results, report, i), f"-pair{i}") for i in range(len(pairs))]
             for view, suffix in views:
                 save_figure(plot_contact_maps(report, view), out_dir, "contact_maps" + suffix,
-                            fmt, written)
+                            fmt, written, mark)
                 save_figure(plot_friction_coefficient(report, view), out_dir,
-                            "friction_coefficient" + suffix, fmt, written)
+                            "friction_coefficient" + suffix, fmt, written, mark)
                 save_figure(plot_friction_circles(report, view), out_dir,
-                            "friction_circles" + suffix, fmt, written)
-        plot_steps(results, report, views, out_dir, fmt, written)
-    if (results / "solution.vtu").is_file():
-        save_figure(plot_deformed(report, results), out_dir, "deformed", fmt, written)
+                            "friction_circles" + suffix, fmt, written, mark)
+        plot_steps(results, report, views, out_dir, fmt, written, mark)
+    if result_file(results, "solution.vtu").is_file():
+        save_figure(plot_deformed(report, results), out_dir, "deformed", fmt, written, mark)
     else:
         print(f"plot_results: {results}: no solution.vtu; the deformed body is skipped",
               file=sys.stderr)

@@ -13,8 +13,16 @@
 
 namespace fricon::app {
 
-/// The program's exit codes (docs/problem-file.md, "Exit codes").
-enum ExitCode { kConverged = 0, kBadInput = 1, kNotConverged = 2, kInternalError = 3 };
+/// The program's exit codes (docs/problem-file.md, "Exit codes"; README): kOutputError when the
+/// results could not be written (the folder is not a folder or not writable, the disk is full;
+/// fricon::OutputError).
+enum ExitCode {
+  kConverged = 0,
+  kBadInput = 1,
+  kNotConverged = 2,
+  kInternalError = 3,
+  kOutputError = 4
+};
 
 /// A subcommand: its parser, and what runs when it was chosen (returns the exit code; errors
 /// are exceptions, mapped to exit codes by main()).

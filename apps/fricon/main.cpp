@@ -2,7 +2,7 @@
 // subcommand (one file each: solve_command.cpp, check_command.cpp, plot_command.cpp,
 // paper_command.cpp, dual_command.cpp, mesh_command.cpp, keys_command.cpp), and map the outcome
 // to an exit code: 0 converged, 1 bad input (or an ill-posed problem), 2 not converged,
-// 3 internal error.
+// 3 internal error, 4 the results could not be written.
 
 #include <iostream>
 #include <string>
@@ -39,6 +39,9 @@ int run_guarded(const std::vector<Command>& commands, int threads) {
   } catch (const fricon::Interrupted& e) {
     std::cerr << "fricon: " << e.what() << " (no iterate to write yet)\n";
     return kNotConverged;
+  } catch (const fricon::OutputError& e) {
+    std::cerr << "fricon: error: cannot write the results: " << e.what() << "\n";
+    return kOutputError;
   } catch (const fricon::InputError& e) {
     std::cerr << "fricon: error: " << e.what() << "\n";
     return kBadInput;
@@ -58,7 +61,8 @@ int main(int argc, char** argv) {
   CLI::App app{
       "fricon: 3D contact of elastic bodies with Tresca friction and a solution-dependent "
       "coefficient of friction (P1 finite elements, dual MPGP, successive approximations).\n"
-      "Exit codes: 0 converged, 1 bad input, 2 not converged, 3 internal error."};
+      "Exit codes: 0 converged, 1 bad input, 2 not converged, 3 internal error, 4 the results\n"
+      "could not be written (folder not writable or not a folder, disk full)."};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("fricon ") + FRICON_VERSION +
                                         " (backends: cholmod" +

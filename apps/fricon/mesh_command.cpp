@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "command.hpp"
+#include "fricon/driver/problem.hpp"
 #include "fricon/mesh/brick.hpp"
 #include "fricon/mesh/gmsh_file.hpp"
 
@@ -21,6 +22,7 @@ struct MeshFileOptions {
   int msh_version = mesh::kMsh41;
   bool binary = false;
   double size_factor = 0.0;  // 0: not given
+  std::string unit = "m";    // mesh info: the unit of the file's coordinates ([mesh] unit)
 };
 
 // `fricon mesh brick`: the structured brick of the paper (theory.md §7.2) as a Gmsh file.
@@ -35,12 +37,19 @@ int mesh_brick(const MeshFileOptions& o) {
   return kConverged;
 }
 
-// `fricon mesh info FILE`: the sizes of a Gmsh mesh as fricon reads it.
+// `fricon mesh info FILE`: the sizes of a Gmsh mesh as fricon reads it with [mesh] unit =
+// o.unit: its coordinates in metres, so lengths in m, areas in m^2 and volumes in m^3.
 int mesh_info(const MeshFileOptions& o) {
-  const mesh::TetMesh mesh =
+  const driver::LengthUnit unit = parse_enum<driver::LengthUnit>(o.unit);
+  mesh::TetMesh mesh =
       o.size_factor > 0 ? mesh::read_gmsh(o.file, o.size_factor) : mesh::read_gmsh(o.file);
+  mesh.nodes *= driver::metres_per(unit);  // as the problem reader scales it
   fmt::print("{}: {} nodes, {} tetrahedra, {} boundary triangles\n", o.file, mesh.n_nodes(),
              mesh.n_tets(), mesh.n_faces());
+  const Vec3 extent = mesh.nodes.rowwise().maxCoeff() - mesh.nodes.rowwise().minCoeff();
+  fmt::print("  coordinates  read in {} (as [mesh] unit = \"{}\"{}), in metres below\n", o.unit,
+             o.unit, unit == driver::LengthUnit::Metre ? "; --unit mm for a millimetre mesh" : "");
+  fmt::print("  extent       {:.6e} x {:.6e} x {:.6e} m\n", extent(0), extent(1), extent(2));
   std::vector<Index> tets_in(static_cast<size_t>(mesh.n_regions()), 0);
   std::vector<double> volume_of(tets_in.size(), 0.0);
   for (Index t = 0; t < mesh.n_tets(); ++t) {
@@ -92,8 +101,13 @@ std::vector<Command> define_mesh(CLI::App& app) {
   CLI::App* info = mesh->add_subcommand(
       "info",
       "Read a Gmsh file (.msh, or .geo meshed on the fly) as fricon does and print its nodes,\n"
-      "tetrahedra, regions (tetrahedra, volume) and boundary tags (triangles, area, entities)");
+      "tetrahedra, extent, regions (tetrahedra, volume) and boundary tags (triangles, area,\n"
+      "entities), in metres (--unit: the unit of its coordinates)");
   info->add_option("file", o->file, "Mesh file (.msh or .geo)")->required();
+  info->add_option("--unit", o->unit,
+                   "The unit of the file's coordinates, as [mesh] unit: m (default), cm or mm;\n"
+                   "lengths, areas and volumes are printed in m, m^2 and m^3")
+      ->check(CLI::IsMember(enum_names<driver::LengthUnit>()));
   info->add_option("--size-factor", o->size_factor,
                    "Mesh.MeshSizeFactor for a .geo file (smaller: finer)")
       ->check(CLI::PositiveNumber);

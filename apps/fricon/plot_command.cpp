@@ -58,10 +58,20 @@ Command define_plot(CLI::App& app) {
       "friction circles and arrows, and the deformed body; for a loading path ([loading]\n"
       "steps > 1: steps.csv) also the force-displacement history (force_displacement.png) and\n"
       "the stick/slip map of the patches per step (stick_slip_steps.png) (matplotlib, Debian's\n"
-      "python3)");
-  cmd->add_option("dir", o->dir, "Results folder written by `fricon solve`")->required();
-  cmd->add_option("--out,-o", o->out, "Folder for the figures (default: DIR/plots)");
-  return {cmd, [o] { return render_plots(o->dir, o->out); }};
+      "python3). The figures of an earlier run in the folder are removed first.");
+  cmd->add_option("dir", o->dir,
+                  "Results folder written by `fricon solve`; of a run that did not converge\n"
+                  "(report.not-converged.json), its last iterate is drawn, the figures named\n"
+                  "*.not-converged.png")
+      ->required();
+  CLI::Option* out =
+      cmd->add_option("--out,-o", o->out, "Folder for the figures, not empty (default: DIR/plots)");
+  return {cmd, [o, out] {
+            if (o->dir.empty()) throw InputError("dir: an empty path; name the results folder");
+            if (out->count() > 0 && o->out.empty())
+              throw InputError("--out: an empty path; name the folder for the figures");
+            return render_plots(o->dir, o->out);
+          }};
 }
 
 }  // namespace fricon::app

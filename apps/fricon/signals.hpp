@@ -3,8 +3,10 @@
 //
 // Once the outer loop has started there is an iterate to save: a signal asks the run to stop at
 // its next QP step (stop_requested, which the library polls), and the run writes its last
-// iterate as not converged. Before that (assembly, factorization, forming Q: long library calls
-// with nothing to save) the program ends at once with exit code 2 and no results. A second
+// iterate as not converged; a signal that arrives once the outer loop has converged leaves the
+// converged, certified answer as it is (written as converged, exit code 0). Before the outer
+// loop (assembly, factorization, forming Q: long library calls with nothing to save) the
+// program ends at once with exit code 2 and no results. A second
 // signal ends it at once in any case. Under mpirun (docs/parallel.md) SIGUSR1 is the one to
 // send: mpirun forwards it to every rank, while on Ctrl-C it kills the ranks a second after
 // SIGTERM; the ranks other than 0 ignore the first signal once they follow rank 0's outer loop,

@@ -124,6 +124,7 @@ enum class Verbosity { Quiet, Normal, Verbose };
 
 struct SolveOptions {
   std::string out;
+  bool out_given = false;  ///< --out was given (then an empty path is refused)
   std::vector<std::string> sets;
   std::string dump_dual;
   Verbosity verbosity = Verbosity::Normal;
@@ -188,17 +189,36 @@ int mpi_ranks() {
 #endif
 }
 
-// The problem, read by every rank of an MPI job (an error on one rank ends them all, the same).
-driver::Problem read_problem_on_every_rank(const std::string& file,
-                                           const std::vector<std::string>& sets) {
+bool is_rank_zero() {
+#ifdef FRICON_HAVE_PETSC
+  if (parallel::initialized()) return parallel::world_rank() == 0;
+#endif
+  return true;
+}
+
+// The results folder: --out if given (not empty), else the file's output.dir.
+std::filesystem::path results_folder(const driver::Problem& problem, const SolveOptions& so) {
+  if (!so.out_given) return problem.output.dir;
+  if (so.out.empty())
+    throw InputError("--out: an empty path; name the results folder (e.g. --out results)");
+  return so.out;
+}
+
+// The problem, read by every rank of an MPI job (an error on one rank ends them all, the same),
+// and its results folder, made ready by rank 0 before anything is solved (io::prepare_results:
+// a folder that cannot be written ends the run now, not after the solve).
+driver::Problem read_problem_on_every_rank(const std::string& file, const SolveOptions& so,
+                                           std::filesystem::path& dir) {
   driver::Problem problem;
   const auto read = [&] {
-    problem = io::read_problem(file, sets);
+    problem = io::read_problem(file, so.sets);
     if (mpi_ranks() > 1 && problem.solver.backend != parallel::Backend::Petsc)
       throw InputError(fmt::format(
           "{}: solver.backend: \"{}\" runs on one process, but mpirun started {} ranks; run "
           "with --set solver.backend=petsc (docs/parallel.md)",
           problem.where("solver.backend"), enum_name(problem.solver.backend), mpi_ranks()));
+    dir = results_folder(problem, so);
+    if (is_rank_zero()) io::prepare_results(dir);
   };
 #ifdef FRICON_HAVE_PETSC
   if (parallel::initialized()) {
@@ -210,13 +230,16 @@ driver::Problem read_problem_on_every_rank(const std::string& file,
   return problem;
 }
 
-// A loading path: the folder is cleared of an earlier run, then each step's files are written
-// as the step ends (a stop keeps the steps done), with a line per step.
+// A loading path: the files of the steps that [output] chooses are written as each step ends
+// (a stop keeps the steps done; `written` lists them, for solution.pvd), with a line per step.
 void follow_path(const driver::Problem& problem, const std::filesystem::path& dir,
-                 Verbosity verbosity, driver::RunOptions& options) {
-  io::clear_results(dir);
-  options.on_step = [dir, verbosity, steps = problem.loading.steps](const driver::RunResult& r) {
-    io::write_step(dir, r);
+                 Verbosity verbosity, driver::RunOptions& options,
+                 const std::shared_ptr<std::vector<int>>& written) {
+  options.on_step = [dir, verbosity, written, output = problem.output,
+                     steps = problem.loading.steps](const driver::RunResult& r) {
+    const int step = r.report.steps.back().step;
+    if (io::step_files_wanted(output, step, steps) && !io::write_step(dir, r).empty())
+      written->push_back(step);
     if (verbosity == Verbosity::Quiet) return;
     const driver::StepReport& s = r.report.steps.back();
     fmt::print(stderr,
@@ -237,9 +260,8 @@ int solve(const std::string& file, const SolveOptions& so, const std::string& co
     silence_other_ranks();
   }
 #endif
-  const driver::Problem problem = read_problem_on_every_rank(file, so.sets);
-  const std::filesystem::path dir =
-      std::filesystem::path(so.out.empty() ? problem.output.dir : so.out);
+  std::filesystem::path dir;
+  const driver::Problem problem = read_problem_on_every_rank(file, so, dir);
   driver::RunOptions options = progress_options(so.verbosity, clock);
   options.keep_first_dual = !so.dump_dual.empty();
   options.stop_requested = &stop_requested;
@@ -248,7 +270,8 @@ int solve(const std::string& file, const SolveOptions& so, const std::string& co
     if (phase == "outer loop" || phase == "follow") has_iterate.store(true);
     if (progress) progress(phase);
   };
-  if (problem.loading.steps > 1) follow_path(problem, dir, so.verbosity, options);
+  const auto written_steps = std::make_shared<std::vector<int>>();
+  if (problem.loading.steps > 1) follow_path(problem, dir, so.verbosity, options, written_steps);
   install_signal_handlers();
   const driver::RunResult result = fricon::solve(problem, options);
   // The other ranks of a distributed run have served rank 0, which writes the results.
@@ -259,7 +282,7 @@ int solve(const std::string& file, const SolveOptions& so, const std::string& co
       throw InputError(fmt::format("{}: --dump-dual needs a [contact] section", file));
     io::write_dual(so.dump_dual, *result.first_dual);
   }
-  io::write_results(dir, problem, result, {so.sets, command_line});
+  io::write_results(dir, problem, result, {so.sets, command_line}, *written_steps);
   if (so.verbosity != Verbosity::Quiet) print_summary(result, dir);
   if (so.plot) render_plots(dir.string(), "");
   if (result.report.status != driver::RunStatus::Converged) {
@@ -279,9 +302,12 @@ Command define_solve(CLI::App& app, const Invocation& invocation) {
       "Solve the problem of a TOML file and write its results.\n"
       "Progress goes to stderr (phases, one line per outer iteration), the summary to stdout.\n"
       "Results: report.json, solution.vtu, contact.vtu, solution.pvd, contact_nodes.csv,\n"
-      "patches.csv in the results folder (see README).");
+      "patches.csv in the results folder (see README). The folder is checked (and cleared of an\n"
+      "earlier run's results and figures) before the solve: one that cannot be written ends\n"
+      "the run with exit code 4.");
   cmd->add_option("problem", o->file, "Problem file (TOML), see docs/problem-file.md")->required();
-  cmd->add_option("--out,-o", o->solve.out, "Results folder (default: the file's output.dir)");
+  CLI::Option* out = cmd->add_option("--out,-o", o->solve.out,
+                                     "Results folder, not empty (default: the file's output.dir)");
   cmd->add_option("--set", o->solve.sets,
                   "Override a key of the file: KEY=VALUE with a TOML value, e.g.\n"
                   "--set mesh.cells=[24,8,8] --set contact.friction.param=2e4; repeatable;\n"
@@ -293,7 +319,8 @@ Command define_solve(CLI::App& app, const Invocation& invocation) {
   cmd->add_flag("--quiet,-q", o->quiet, "Print nothing but errors");
   cmd->add_flag("--plot", o->solve.plot, "Also render the figures (as `fricon plot`)");
   cmd->add_flag("--verbose,-v", o->verbose, "Also print every step of the inner QP solver");
-  return {cmd, [o, &invocation] {
+  return {cmd, [o, out, &invocation] {
+            o->solve.out_given = out->count() > 0;
             o->solve.verbosity = o->quiet     ? Verbosity::Quiet
                                  : o->verbose ? Verbosity::Verbose
                                               : Verbosity::Normal;

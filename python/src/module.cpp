@@ -87,6 +87,8 @@ PYBIND11_MODULE(_fricon, m) {
       numerical_error(e.what());
     } catch (const fricon::Interrupted& e) {
       PyErr_SetString(PyExc_KeyboardInterrupt, e.what());
+    } catch (const fricon::OutputError& e) {
+      PyErr_SetString(PyExc_OSError, e.what());
     }
   });
 

@@ -34,6 +34,9 @@ struct PyResult {
   std::shared_ptr<const driver::Problem> problem;
   std::shared_ptr<const driver::RunResult> run;
   io::RunContext context;
+  /// Along a loading path: the files of the steps that [output] step_files_every / step_files
+  /// choose, kept in memory for write() (io::step_files_wanted).
+  std::shared_ptr<const std::vector<io::StepFiles>> step_files;
 };
 
 /// A table of the results as {column: numpy array} (text columns as arrays of str).
@@ -125,7 +128,13 @@ PyResult solve(const PyProblem& p, const py::object& progress, std::optional<int
     exchange.changed.notify_one();
   };
   const bool watch_steps = !on_step.is_none();
-  options.on_step = [&exchange, watch_steps](const driver::RunResult& r) {
+  auto step_files = std::make_shared<std::vector<io::StepFiles>>();
+  options.on_step = [&exchange, watch_steps, step_files,
+                     problem = p.problem](const driver::RunResult& r) {
+    const int step = r.report.steps.back().step;
+    if (io::step_files_wanted(problem->output, step, problem->loading.steps))
+      if (std::optional<io::StepFiles> files = io::step_files(r))
+        step_files->push_back(std::move(*files));
     hand_over_step(exchange, r.report.steps.back(), watch_steps);
   };
   std::optional<driver::RunResult> result;
@@ -200,13 +209,13 @@ PyResult solve(const PyProblem& p, const py::object& progress, std::optional<int
     // What was done before the stop (along a loading path, the steps done) goes with the
     // exception: `except KeyboardInterrupt as e: e.result`.
     PyResult partial{p.problem, std::make_shared<const driver::RunResult>(std::move(*result)),
-                     io::RunContext{p.edits, "python: fricon.solve"}};
+                     io::RunContext{p.edits, "python: fricon.solve"}, step_files};
     py::setattr(python_error->value(), "result", py::cast(std::move(partial)));
   }
   if (python_error) throw std::move(*python_error);
   if (failure) std::rethrow_exception(failure);
   return PyResult{p.problem, std::make_shared<const driver::RunResult>(std::move(*result)),
-                  io::RunContext{p.edits, "python: fricon.solve"}};
+                  io::RunContext{p.edits, "python: fricon.solve"}, step_files};
 }
 
 std::string report_text(const PyResult& r) {
@@ -291,14 +300,27 @@ void bind_solve(py::module_& m) {
       .def(
           "write",
           [](const PyResult& r, const std::string& dir) {
+            // As `fricon solve`: the folder checked and cleared of an earlier run's results,
+            // per-step files and figures; then the chosen steps' files and the results.
+            io::prepare_results(dir);
             std::vector<std::string> written;
-            for (const auto& path : io::write_results(dir, *r.problem, *r.run, r.context))
+            std::vector<int> steps;
+            for (const io::StepFiles& files : *r.step_files) {
+              for (const auto& path : io::write_step_files(dir, files))
+                written.push_back(path.string());
+              steps.push_back(files.step);
+            }
+            for (const auto& path : io::write_results(dir, *r.problem, *r.run, r.context, steps))
               written.push_back(path.string());
             return written;
           },
           py::arg("dir"),
           "Writes the files of `fricon solve` into dir (atomically; marked .not-converged when "
-          "the run did not converge); returns their paths.")
+          "the run did not converge), after removing an earlier run's results, step files and "
+          "figures there; along a loading path also the files of the steps that [output] "
+          "step_files_every / step_files choose (steps/). Returns their paths. Raises OSError "
+          "when dir is not a writable folder (or a file cannot be written), fricon.InputError "
+          "for an empty path.")
       .def("__repr__", [](const PyResult& r) {
         return fmt::format(
             "fricon.Result({}, {} nodes{})",

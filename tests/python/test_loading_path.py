@@ -1,5 +1,6 @@
 """Loading paths from Python: the same run as the command line, a callback per step, the steps'
-table, and a stop from the callback that keeps the steps done."""
+table, a stop from the callback that keeps the steps done, and Result.write with the step files
+that [output] chooses."""
 import os
 import subprocess
 import sys
@@ -150,3 +151,48 @@ def test_ctrl_c_during_a_path_raises_keyboard_interrupt_with_the_steps_done(on_s
         words = run.stdout.split()
         assert words[0] == "interrupted", run.stdout
         assert int(words[1]) > 0 and words[2] == "True"  # the steps done, in order
+
+
+def _step_numbers(folder, base="solution", ext=".vtu"):
+    return sorted(int(p.stem.split("-")[1]) for p in (folder / "steps").glob(f"{base}-*{ext}"))
+
+
+def _pvd_steps(folder):
+    import xml.etree.ElementTree as ET
+    return sorted({int(float(d.get("timestep")))
+                   for d in ET.parse(folder / "solution.pvd").getroot().iter("DataSet")})
+
+
+def test_write_honours_the_chosen_step_files_and_drops_an_earlier_runs(tmp_path):
+    # Issue 33, item 7 and the feature "path output that can be thinned": Result.write writes
+    # the files of the steps [output] step_files_every chooses (and the last), solution.pvd
+    # lists exactly those, steps.csv keeps every step, and steps/ of an earlier run is removed.
+    folder = tmp_path / "results"
+    (folder / "steps").mkdir(parents=True)
+    stale = folder / "steps" / "solution-0999.vtu"
+    stale.write_text("an earlier run's step\n")
+    (folder / "plots").mkdir()
+    (folder / "plots" / "force_displacement.png").write_bytes(b"old")
+    r = fricon.solve(HYSTERESIS, threads=1,
+                     set={"mesh.cells": [6, 2, 2], "output.step_files_every": 4})
+    assert r.converged
+    n = r.report["problem"]["loading"]["steps"]
+    r.write(str(folder))
+    expected = [k for k in range(1, n + 1) if k % 4 == 0 or k == n]
+    assert not stale.exists()
+    assert not (folder / "plots" / "force_displacement.png").exists()
+    assert _step_numbers(folder) == expected
+    assert _step_numbers(folder, "patches", ".csv") == expected
+    assert _pvd_steps(folder) == expected
+    with open(folder / "steps.csv") as f:
+        assert len(f.read().splitlines()) == n + 1  # the header and every step
+
+
+def test_write_into_a_file_raises_oserror(tmp_path):
+    # Issue 33, item 6: a results folder that is a file is an OSError naming it.
+    r = fricon.solve(ROOT / "examples" / "elastic-brick.toml", threads=1)
+    a_file = tmp_path / "a-file"
+    a_file.write_text("mine\n")
+    with pytest.raises(OSError, match="a-file"):
+        r.write(str(a_file))
+    assert a_file.read_text() == "mine\n"

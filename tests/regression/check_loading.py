@@ -25,6 +25,17 @@ slip-weakening (Coulomb with the paper's F of the accumulated slip, a block push
   - the ratio -tangential_force_x / normal_force (the plane's force opposes the push) reaches
     0.28 or more, never increases after its peak by more than 1e-7, and ends at 0.2 within 1e-6
     (relative), with every patch's coefficient F at 0.2 (the slip past the law's fall).
+Step files chosen by [output] (issue 33, the feature "path output that can be thinned"), on
+brick-hysteresis on a coarse mesh:
+  - step_files_every = 3: steps/ holds the files of the steps k with k % 3 == 0 and of the last
+    step, and no others; solution.pvd names exactly those steps (body and contact surface);
+    steps.csv still has one row per step;
+  - step_files = [1, 2]: the files of steps 1, 2 and the last;
+  - both keys at once, a step beyond the path and an unordered list are refused (exit 1, the
+    key named).
+Stale files (issue 33, item 7): the paper's brick solved with --plot into brick-hysteresis's
+folder (which holds a path's steps/, steps.csv and plots/force_displacement.png) leaves none of
+the path's files: no steps/, no steps.csv, no force_displacement.png or stick_slip_steps.png.
 Usage: check_loading.py FRICON EXAMPLES_DIR OUTDIR
 """
 import math
@@ -222,5 +233,74 @@ for p in last:
     if p["state"] != "slip" or abs(p["F"] - KINETIC) > 1e-12:
         failures.add(f"{name}: last step: patch at ({p['x']:g}, {p['y']:g}) is {p['state']} with "
                      f"F = {p['F']:.12f}, expected slip at F = {KINETIC}")
+
+# ---------------------------------------------------------------------------------------------
+# [output] step_files_every / step_files: which steps' files are written
+# ---------------------------------------------------------------------------------------------
+COARSE = "mesh.cells=[6,2,2]"
+
+
+def written_steps(folder):
+    """The step numbers of steps/solution-NNNN.vtu in the folder, sorted."""
+    return sorted(int(p.stem.split("-")[1]) for p in (folder / "steps").glob("solution-*.vtu"))
+
+
+def pvd_steps(folder):
+    """{part: sorted timesteps} of the datasets of solution.pvd."""
+    parts = {}
+    for d in ET.parse(folder / "solution.pvd").getroot().iter("DataSet"):
+        parts.setdefault(d.get("part"), []).append(int(float(d.get("timestep"))))
+        if not (folder / d.get("file")).is_file():
+            failures.add(f"{folder.name}: solution.pvd names {d.get('file')}, which is missing")
+    return {k: sorted(v) for k, v in parts.items()}
+
+
+problem = examples / "brick-hysteresis.toml"
+for label, setting, chosen in [
+        ("every-3", "output.step_files_every=3", lambda k, n: k % 3 == 0 or k == n),
+        ("list-1-2", "output.step_files=[1,2]", lambda k, n: k in (1, 2) or k == n)]:
+    folder = out / f"step-files-{label}"
+    common.solve(exe, problem, folder, COARSE, setting, timeout=120)
+    n = len(common.read_rows(folder / "steps.csv"))
+    expected = [k for k in range(1, n + 1) if chosen(k, n)]
+    if n < 6:
+        failures.add(f"{label}: steps.csv has {n} rows, expected every step of the path (> 5)")
+    if written_steps(folder) != expected:
+        failures.add(f"{label}: steps/ holds the files of steps {written_steps(folder)}, "
+                     f"expected {expected}")
+    for base in ("contact", "patches"):
+        ext = ".csv" if base == "patches" else ".vtu"
+        have = sorted(int(p.stem.split("-")[1]) for p in (folder / "steps").glob(f"{base}-*{ext}"))
+        if have != expected:
+            failures.add(f"{label}: steps/{base}-NNNN{ext} of steps {have}, expected {expected}")
+    if pvd_steps(folder) != {"0": expected, "1": expected}:
+        failures.add(f"{label}: solution.pvd lists {pvd_steps(folder)}, expected {expected} "
+                     "for the body (part 0) and the contact surface (part 1)")
+
+for setting, fragments in [
+        (["output.step_files=[1,2]", "output.step_files_every=2"], ["step_files_every"]),
+        (["output.step_files=[1,500]"], ["output.step_files[1]", "beyond"]),
+        (["output.step_files=[3,2]"], ["output.step_files[1]", "increasing"])]:
+    cmd = [exe, "solve", problem, "--quiet", "--out", out / "refused", "--set", COARSE]
+    for s_ in setting:
+        cmd += ["--set", s_]
+    r = common.run(cmd, timeout=60)
+    if r.returncode != 1 or not all(f in r.stderr for f in fragments):
+        failures.add(f"{setting}: exit {r.returncode}, expected 1 naming {fragments}:\n{r.stderr}")
+
+# ---------------------------------------------------------------------------------------------
+# A static run into a path's folder leaves none of the path's files (issue 33, item 7)
+# ---------------------------------------------------------------------------------------------
+folder = out / "brick-hysteresis"
+stale = [folder / "steps", folder / "steps.csv", folder / "plots" / "force_displacement.png",
+         folder / "plots" / "stick_slip_steps.png"]
+if not all(p.exists() for p in stale):
+    failures.add(f"the path's folder lacks one of {stale} before the static rerun")
+common.solve(exe, examples.parent / "paper-brick.toml", folder, timeout=120, extra=["--plot"])
+for p in stale:
+    if p.exists():
+        failures.add(f"a static run with --plot into a path's folder kept the path's {p}")
+if not (folder / "plots" / "convergence.png").is_file():
+    failures.add("the static rerun with --plot drew no plots/convergence.png")
 
 failures.finish("loading paths ok")

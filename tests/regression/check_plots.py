@@ -7,6 +7,12 @@ Checks:
     non-trivial size and more than one colour; no temporary file is left behind;
   - the elastic brick (no contact) gives only the deformed body, with --out, without error;
   - a folder without report.json is refused with exit status 1 and a message, not a traceback;
+  - a run that did not converge (issue 33, item 14: paper brick with solver.outer_max = 2,
+    exit 2): `fricon plot` and `fricon solve --plot` draw its last iterate, the six figures
+    named NAME.not-converged.png, and no figure of a converged run;
+  - the figures of an earlier run are removed (issue 33, item 7): the path's
+    force_displacement.png and stick_slip_steps.png, plotted again into the same folder from the
+    static brick's results, are gone; a file of another name stays;
   - a loading path: a copy of the brick's folder with a fabricated steps.csv and
     steps/patches-NNNN.csv (fabricate_steps; the patches of patches.csv, their states changed
     from step to step) gives force_displacement and stick_slip_steps besides the six figures;
@@ -171,6 +177,25 @@ def main():
     assert written == [elastic_plots / "deformed.png"], written
     check_folder(elastic_plots, ["deformed"])
     assert not (elastic / "plots").exists(), "--out was not honoured"
+
+    # Figures of an earlier run in the output folder: the path's go, another file stays.
+    mine = path / "plots" / "notes.txt"
+    mine.write_text("mine\n")
+    written = plot(brick, "--out", path / "plots")
+    check_png(path / "plots" / "convergence.png")
+    names = sorted(p.name for p in (path / "plots").iterdir())
+    assert names == sorted([f"{n}.png" for n in CONTACT_FIGURES] + ["notes.txt"]), names
+
+    # A run that did not converge: its last iterate, every figure marked.
+    nc = out / "not-converged"
+    shutil.rmtree(nc, ignore_errors=True)
+    r = common.run([exe, "solve", examples / "paper-brick.toml", "--quiet", "--out", nc, "--set",
+                    "solver.outer_max=2", "--plot"])
+    assert r.returncode == 2, (r.returncode, r.stderr)
+    check_folder(nc / "plots", [f"{n}.not-converged" for n in CONTACT_FIGURES])
+    r = common.run([exe, "plot", nc])
+    assert r.returncode == 0, (r.returncode, r.stderr)
+    check_folder(nc / "plots", [f"{n}.not-converged" for n in CONTACT_FIGURES])
 
     empty = out / "not-a-results-folder"
     empty.mkdir(exist_ok=True)

@@ -56,7 +56,7 @@ RunResult run_search_from(const Problem& problem, const std::vector<Index>& firs
   factorize_model(r.model, dual::factorization_request(problem.solver.dual_operator, disc.dofs),
                   r.report.times);
   const VectorXd u = solve_with_search(problem, disc, {}, r, &first);
-  finish_run(problem, u, {}, r);
+  finish_run(problem, u, r);
   return r;
 }
 

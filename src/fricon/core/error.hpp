@@ -5,6 +5,8 @@
 // - NumericalError: a computation failed for a mathematical reason on valid input (K not positive
 //   definite, an unstable multiplier space). The app exits with code 1: the input defines an
 //   ill-posed problem.
+// - OutputError: a result file or folder could not be written (not a folder, not writable, disk
+//   full). The app exits with code 4.
 // - Error: anything else fricon raises on purpose; other exceptions are internal errors (code 3).
 // Non-convergence is not an exception: it is a termination value in a solver's report.
 
@@ -25,6 +27,13 @@ class InputError : public Error {
 };
 
 class NumericalError : public Error {
+ public:
+  using Error::Error;
+};
+
+/// A result file or folder could not be written or an earlier run's results could not be
+/// removed (the message names the path and the system's reason).
+class OutputError : public Error {
  public:
   using Error::Error;
 };

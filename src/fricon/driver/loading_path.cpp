@@ -250,7 +250,7 @@ RunResult run_path(const Problem& problem, const RunOptions& options) {
                             : solve_elastic_step(u0, r);
     // The stresses of a step only for whom watches the steps, and for the result.
     const bool last = k == problem.loading.steps;
-    finish_run(step_problem, u, options, r, options.on_step || last);
+    finish_run(step_problem, u, r, options.on_step || last);
     const bool failed = rep.status != RunStatus::Converged;
     if (failed)
       rep.message = fmt::format("step {} of {} of the loading path failed: {}", k,
@@ -258,9 +258,9 @@ RunResult run_path(const Problem& problem, const RunOptions& options) {
     rep.steps.push_back(describe_step(k, loads, r, step_clock.seconds()));
     if (options.on_step) options.on_step(r);
     if (failed) break;
-    if (options.stop_was_requested() && k < problem.loading.steps) {
-      // A stop asked for between two steps (or by on_step itself) ends the path after the
-      // step just reported: the result holds the steps that on_step saw, and is not complete.
+    // A stop requested during a converged step (or by on_step itself) keeps that step and ends
+    // the path there: the result holds the steps that on_step saw, and is not complete.
+    if (!last && options.stop_was_requested()) {
       rep.status = RunStatus::NotConverged;
       rep.message = fmt::format("interrupted after step {} of {} of the loading path", k,
                                 problem.loading.steps);

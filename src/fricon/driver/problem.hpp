@@ -194,6 +194,12 @@ struct LoadingOptions {
 /// [output]
 struct OutputOptions {
   std::string dir = "results";  ///< [output.dir] results folder, non-empty
+  /// [output.step_files_every] along a loading path: the files of every k-th step (k, 2k, ...)
+  /// are written into steps/ (and those of the last step always); 1: every step.
+  int step_files_every = 1;
+  /// [output.step_files] along a loading path: the steps whose files are written (strictly
+  /// increasing, 1 ... loading.steps; the last step's always); empty: step_files_every decides.
+  std::vector<int> step_files;
 };
 
 struct Problem {

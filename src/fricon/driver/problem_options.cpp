@@ -131,6 +131,27 @@ void check_path(const Problem& p, const std::string& key, const std::vector<Real
                      factors.size()));
 }
 
+/// The steps whose files a loading path writes: only along a path, within it, increasing.
+void check_output(const Problem& p, const std::string& path, const OutputOptions& o) {
+  const bool chosen = !o.step_files.empty() || o.step_files_every != 1;
+  const std::string key = join_key(path, o.step_files.empty() ? "step_files_every" : "step_files");
+  if (chosen && p.loading.steps == 1)
+    fail(p, key,
+         "chooses the step files of a loading path, but [loading] steps = 1 (the default): a "
+         "static run writes no step files");
+  for (std::size_t i = 0; i < o.step_files.size(); ++i) {
+    const std::string entry = fmt::format("{}[{}]", key, i);
+    if (o.step_files[i] > p.loading.steps)
+      fail(p, entry,
+           fmt::format("step {} is beyond the path's {} steps (loading.steps)", o.step_files[i],
+                       p.loading.steps));
+    if (i > 0 && o.step_files[i] <= o.step_files[i - 1])
+      fail(p, entry,
+           fmt::format("expected steps in strictly increasing order, got {} after {}",
+                       o.step_files[i], o.step_files[i - 1]));
+  }
+}
+
 void check_solver(const Problem& p, const std::string& path, const SolverOptions& s) {
   if (s.backend == parallel::Backend::Petsc && !parallel::petsc_available())
     fail(p, join_key(path, "backend"),
@@ -621,6 +642,21 @@ const OptionTable& output_table() {
     b.text("dir", &OutputOptions::dir, "a non-empty folder name",
            "the results folder, relative to the working directory. `--out DIR` on the command "
            "line takes precedence");
+    b.number("step_files_every", &OutputOptions::step_files_every, kLoadStepsRange,
+             "along a loading path ([loading] steps > 1): write the files of every k-th step "
+             "(steps k, 2k, ...) into `steps/`, and those of the last step always; steps.csv "
+             "keeps every step, solution.pvd lists the steps written");
+    b.when([](const OutputOptions& o) { return o.step_files.empty(); },
+           [](const OutputOptions&) {
+             return std::string("not used with step_files, which lists the steps to write");
+           },
+           "without `step_files`");
+    b.number("step_files", &OutputOptions::step_files, kLoadStepsRange,
+             "along a loading path: write the files of these steps only (strictly increasing, "
+             "at most [loading] steps), and those of the last step always; absent: "
+             "`step_files_every` decides")
+        .show_default("absent");
+    b.check(check_output);
     return b.build();
   }();
   return table;

@@ -222,12 +222,7 @@ void compute_stresses(RunResult& r) {
   r.von_mises = std::move(s.von_mises);
 }
 
-void finish_run(const Problem& problem, const VectorXd& u, const RunOptions& options, RunResult& r,
-                bool with_stresses) {
-  if (options.stop_was_requested() && r.report.status == RunStatus::Converged) {
-    r.report.status = RunStatus::NotConverged;
-    r.report.message = "interrupted";
-  }
+void finish_run(const Problem& problem, const VectorXd& u, RunResult& r, bool with_stresses) {
   postprocess(problem, u, r, with_stresses);
 }
 
@@ -252,7 +247,7 @@ RunResult run(const Problem& problem, const RunOptions& options) {
   const VectorXd u = disc ? solve_contact_problem(problem, *disc, options, r) : solve_elastic(r);
 
   // @sect: fields and the self-check of the result.
-  finish_run(problem, u, options, r);
+  finish_run(problem, u, r);
   rep.time_s = total.seconds();
   return r;
 }

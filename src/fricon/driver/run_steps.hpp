@@ -56,13 +56,13 @@ void report_sizes(const Model& model, RunReport& report);
 /// ||K u - f|| / ||f|| of an elastic solve u (no contact).
 Real elastic_residual(const Model& model, const VectorXd& u);
 
-/// The end of a run from its displacement u over the free dofs: a stop requested during the run
-/// turns a converged report into "not converged (interrupted)"; then stresses, and the global
-/// equilibrium of applied loads, contact forces and reactions (phase "postprocess").
+/// The end of a run from its displacement u over the free dofs: stresses, and the global
+/// equilibrium of applied loads, contact forces and reactions (phase "postprocess"). The status
+/// stays the solve's: a stop requested after the solve converged (during its certificate, or
+/// here) leaves a converged, certified answer converged.
 /// Without `with_stresses` the stresses are left as they were (a step of a loading path that
 /// nobody watches: compute_stresses later).
-void finish_run(const Problem& problem, const VectorXd& u, const RunOptions& options, RunResult& r,
-                bool with_stresses = true);
+void finish_run(const Problem& problem, const VectorXd& u, RunResult& r, bool with_stresses = true);
 
 /// The stresses and von Mises stresses of r.displacement, into r.
 void compute_stresses(RunResult& r);

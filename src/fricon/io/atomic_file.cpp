@@ -1,5 +1,7 @@
 #include "fricon/io/atomic_file.hpp"
 
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <system_error>
 
@@ -9,6 +11,15 @@
 
 namespace fricon::io {
 
+namespace {
+
+// The system's reason for the last failed call, or `fallback` when it left none.
+std::string reason(const char* fallback) {
+  return errno != 0 ? std::strerror(errno) : fallback;
+}
+
+}  // namespace
+
 void write_atomically(const std::filesystem::path& path,
                       const std::function<void(std::ostream&)>& write) {
   namespace fs = std::filesystem;
@@ -16,26 +27,32 @@ void write_atomically(const std::filesystem::path& path,
   if (path.has_parent_path()) {
     fs::create_directories(path.parent_path(), ec);
     if (ec)
-      throw Error(
+      throw OutputError(
           fmt::format("cannot create folder {}: {}", path.parent_path().string(), ec.message()));
   }
   fs::path tmp = path;
   tmp += ".tmp";
   try {
+    errno = 0;
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw Error(fmt::format("cannot open {} for writing", tmp.string()));
+    if (!out)
+      throw OutputError(
+          fmt::format("cannot open {} for writing: {}", tmp.string(), reason("failed")));
+    errno = 0;  // a failed write(2) of the stream leaves its reason here
     write(out);
-    out.flush();
-    if (!out) throw Error(fmt::format("writing {} failed (disk full?)", tmp.string()));
+    if (!out.fail()) out.close();  // the last buffer reaches the disk here: a full disk fails now
+    if (out.fail())
+      throw OutputError(
+          fmt::format("writing {} failed: {}", tmp.string(), reason("the disk may be full")));
   } catch (...) {
     fs::remove(tmp, ec);
     throw;
   }
   fs::rename(tmp, path, ec);
   if (ec) {
+    const std::string why = ec.message();
     fs::remove(tmp, ec);
-    throw Error(
-        fmt::format("cannot rename {} to {}: {}", tmp.string(), path.string(), ec.message()));
+    throw OutputError(fmt::format("cannot rename {} to {}: {}", tmp.string(), path.string(), why));
   }
 }
 

@@ -10,8 +10,9 @@
 namespace fricon::io {
 
 /// Writes `path` through `write`, atomically: to "<path>.tmp" first, then renamed. Creates the
-/// parent folder if needed. Throws fricon::Error naming the file if anything fails (the
-/// temporary file is removed).
+/// parent folder if needed. Throws fricon::OutputError naming the file and the system's reason
+/// if anything fails (a folder that cannot be created, a file that cannot be opened, a full
+/// disk); the temporary file is removed.
 void write_atomically(const std::filesystem::path& path,
                       const std::function<void(std::ostream&)>& write);
 

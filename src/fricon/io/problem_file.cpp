@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -102,6 +103,12 @@ driver::Problem parse_problem(std::string_view text, const std::string& source_n
 }
 
 std::string read_problem_text(const std::string& path) {
+  // A folder opens as an empty stream on Linux: it would read as a file without keys.
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw InputError(fmt::format(
+        "{}: is a folder, not a problem file (give the TOML file, e.g. {}/problem.toml)", path,
+        path));
   std::ifstream in(path, std::ios::binary);
   if (!in)
     throw InputError(

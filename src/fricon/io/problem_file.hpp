@@ -61,7 +61,8 @@ driver::Problem parse_problem(std::string_view text, const std::string& source_n
 driver::Problem parse_problem(std::string_view text, const std::string& source_name,
                               const ReadOptions& options);
 
-/// The text of the problem file at `path`. Throws InputError naming it if it cannot be read.
+/// The text of the problem file at `path`. Throws InputError naming it if it cannot be read or
+/// is a folder.
 std::string read_problem_text(const std::string& path);
 
 /// The effective problem as JSON, with the key names of the file and every default filled in.

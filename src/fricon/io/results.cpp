@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <regex>
 
 #include <fmt/format.h>
 
+#include "fricon/core/error.hpp"
 #include "fricon/io/atomic_file.hpp"
 #include "fricon/io/problem_file.hpp"
 #include "fricon/io/vtu.hpp"
@@ -452,31 +454,78 @@ std::string step_file(const std::string& base, int step, const std::string& exte
   return fmt::format("{}/{}-{:04d}{}", kStepsDir, base, step, extension);
 }
 
+// Removes `path` if it exists; OutputError if it exists and cannot be removed.
+void remove_earlier(const std::filesystem::path& path) {
+  std::error_code ec;
+  std::filesystem::remove(path, ec);
+  if (ec)
+    throw OutputError(
+        fmt::format("cannot remove {} of an earlier run: {}", path.string(), ec.message()));
+}
+
+// Removes the files in `folder` whose names `ours` accepts, and the folder if that empties it
+// (files of other names are the user's and stay).
+template <typename Ours>
+void remove_earlier_files(const std::filesystem::path& folder, Ours ours) {
+  std::error_code ec;
+  if (!std::filesystem::is_directory(folder, ec)) return;
+  for (const auto& entry : std::filesystem::directory_iterator(folder, ec))
+    if (entry.is_regular_file() && ours(entry.path().filename().string()))
+      remove_earlier(entry.path());
+  if (std::filesystem::is_empty(folder, ec)) remove_earlier(folder);
+}
+
+// Whether `name` is a per-step file of a loading path (step_file), or its temporary file.
+bool is_step_file(const std::string& name) {
+  static const std::regex pattern(R"((solution|contact|patches)-\d{4,}\.(vtu|csv)(\.tmp)?)");
+  return std::regex_match(name, pattern);
+}
+
 // Removes the result files of an earlier run (converged or not), and with `steps` its per-step
 // files.
 void remove_results(const std::filesystem::path& dir, bool steps) {
   for (const auto& [base, ext] : kResultFiles)
-    for (bool c : {true, false}) {
-      std::error_code ec;
-      std::filesystem::remove(result_path(dir, base, ext, c), ec);
-    }
-  if (!steps) return;
+    for (bool c : {true, false})
+      remove_earlier(result_path(dir, base, ext, c));
+  if (steps) remove_earlier_files(dir / kStepsDir, is_step_file);
+}
+
+// The figures of `fricon plot` in DIR/plots (scripts/plot_results.py writes only these
+// formats).
+constexpr const char* kPlotsDir = "plots";
+bool is_figure(const std::string& name) {
+  const std::string ext = std::filesystem::path(name).extension().string();
+  return ext == ".png" || ext == ".pdf" || ext == ".svg";
+}
+
+// A probe file of kProbeBytes into `dir`, removed again: fails (OutputError) where the results
+// could not be written.
+void probe_writable(const std::filesystem::path& dir) {
+  const std::filesystem::path probe = dir / ".fricon-write-probe";
+  try {
+    write_atomically(probe, [](std::ostream& out) {
+      const std::string block(kProbeBytes, '\0');
+      out.write(block.data(), static_cast<std::streamsize>(block.size()));
+    });
+  } catch (const OutputError& e) {
+    throw OutputError(
+        fmt::format("the results folder {} cannot be written: {}", dir.string(), e.what()));
+  }
   std::error_code ec;
-  std::filesystem::remove_all(dir / kStepsDir, ec);
+  std::filesystem::remove(probe, ec);
 }
 
 // solution.pvd: the last state (body and contact surface), or along a loading path the time
-// series of the steps whose files exist (time = step number).
-std::vector<PvdEntry> pvd_entries(const std::filesystem::path& dir, const driver::RunReport& report,
+// series of the steps whose files were written (time = step number).
+std::vector<PvdEntry> pvd_entries(const std::filesystem::path& dir,
+                                  const std::vector<int>& written_steps,
                                   const std::vector<std::string>& parts) {
   std::vector<PvdEntry> entries;
-  for (const driver::StepReport& s : report.steps) {
-    const std::string body = step_file("solution", s.step, ".vtu");
-    if (!std::filesystem::exists(dir / body)) continue;
-    entries.push_back({static_cast<Real>(s.step), 0, body});
-    const std::string surface = step_file("contact", s.step, ".vtu");
+  for (const int step : written_steps) {
+    entries.push_back({static_cast<Real>(step), 0, step_file("solution", step, ".vtu")});
+    const std::string surface = step_file("contact", step, ".vtu");
     if (std::filesystem::exists(dir / surface))
-      entries.push_back({static_cast<Real>(s.step), 1, surface});
+      entries.push_back({static_cast<Real>(step), 1, surface});
   }
   if (entries.empty())  // a static run, or a path whose step files were not written
     for (size_t i = 0; i < parts.size(); ++i)
@@ -486,57 +535,104 @@ std::vector<PvdEntry> pvd_entries(const std::filesystem::path& dir, const driver
 
 }  // namespace
 
-void clear_results(const std::filesystem::path& dir) {
+void prepare_results(const std::filesystem::path& dir) {
+  if (dir.empty()) throw InputError("the results folder is an empty path");
+  std::error_code ec;
+  if (std::filesystem::exists(dir, ec) && !std::filesystem::is_directory(dir, ec))
+    throw OutputError(fmt::format(
+        "the results folder {} is not a folder (a file of that name exists)", dir.string()));
+  std::filesystem::create_directories(dir, ec);
+  if (ec)
+    throw OutputError(
+        fmt::format("cannot create the results folder {}: {}", dir.string(), ec.message()));
+  probe_writable(dir);
   remove_results(dir, true);
+  remove_earlier_files(dir / kPlotsDir, is_figure);
+}
+
+bool step_files_wanted(const driver::OutputOptions& output, int step, int steps) {
+  if (step == steps) return true;
+  if (!output.step_files.empty())
+    return std::find(output.step_files.begin(), output.step_files.end(), step) !=
+           output.step_files.end();
+  return step % output.step_files_every == 0;
+}
+
+std::optional<StepFiles> step_files(const driver::RunResult& result) {
+  if (result.report.steps.empty() || result.report.status != driver::RunStatus::Converged)
+    return std::nullopt;
+  StepFiles files;
+  files.step = result.report.steps.back().step;
+  files.body = body_grid(result);
+  if (result.contact) {
+    files.contact = contact_grid(result.model.mesh, *result.contact);
+    files.patches = patch_table(*result.contact);
+  }
+  return files;
+}
+
+std::vector<std::filesystem::path> write_step_files(const std::filesystem::path& dir,
+                                                    const StepFiles& files) {
+  std::vector<std::filesystem::path> written;
+  written.push_back(dir / step_file("solution", files.step, ".vtu"));
+  write_vtu(written.back(), files.body);
+  if (files.contact) {
+    written.push_back(dir / step_file("contact", files.step, ".vtu"));
+    write_vtu(written.back(), *files.contact);
+  }
+  if (files.patches) {
+    written.push_back(dir / step_file("patches", files.step, ".csv"));
+    write_csv(written.back(), *files.patches);
+  }
+  return written;
 }
 
 std::vector<std::filesystem::path> write_step(const std::filesystem::path& dir,
                                               const driver::RunResult& result) {
-  std::vector<std::filesystem::path> written;
-  if (result.report.steps.empty() || result.report.status != driver::RunStatus::Converged)
-    return written;
-  const int step = result.report.steps.back().step;
-  written.push_back(dir / step_file("solution", step, ".vtu"));
-  write_vtu(written.back(), body_grid(result));
-  if (result.contact) {
-    written.push_back(dir / step_file("contact", step, ".vtu"));
-    write_vtu(written.back(), contact_grid(result.model.mesh, *result.contact));
-    written.push_back(dir / step_file("patches", step, ".csv"));
-    write_csv(written.back(), patch_table(*result.contact));
-  }
-  return written;
+  const std::optional<StepFiles> files = step_files(result);
+  return files ? write_step_files(dir, *files) : std::vector<std::filesystem::path>{};
 }
 
 std::vector<std::filesystem::path> write_results(const std::filesystem::path& dir,
                                                  const driver::Problem& problem,
                                                  const driver::RunResult& result,
-                                                 const RunContext& context) {
+                                                 const RunContext& context,
+                                                 const std::vector<int>& written_steps) {
   const bool converged = result.report.status == driver::RunStatus::Converged;
-  // Results of an earlier run in the same folder, converged or not, would contradict this one
-  // (a loading path's own step files, written during the run, stay).
-  remove_results(dir, result.report.steps.empty());
+  // Results of an earlier run in the same folder, converged or not, would contradict this one;
+  // so would step files that this run did not write.
+  remove_results(dir, written_steps.empty());
   std::vector<std::filesystem::path> written;
   auto path = [&](const std::string& base, const std::string& ext) {
     written.push_back(result_path(dir, base, ext, converged));
     return written.back();
   };
-  std::vector<std::string> parts;
-  write_vtu(path("solution", ".vtu"), body_grid(result));
-  parts.push_back(written.back().filename().string());
-  if (result.contact) {
-    write_csv(path("contact_nodes", ".csv"),
-              contact_node_table(result.model.mesh, *result.contact));
-    write_csv(path("patches", ".csv"), patch_table(*result.contact));
-    write_vtu(path("contact", ".vtu"), contact_grid(result.model.mesh, *result.contact));
+  try {
+    std::vector<std::string> parts;
+    write_vtu(path("solution", ".vtu"), body_grid(result));
     parts.push_back(written.back().filename().string());
+    if (result.contact) {
+      write_csv(path("contact_nodes", ".csv"),
+                contact_node_table(result.model.mesh, *result.contact));
+      write_csv(path("patches", ".csv"), patch_table(*result.contact));
+      write_vtu(path("contact", ".vtu"), contact_grid(result.model.mesh, *result.contact));
+      parts.push_back(written.back().filename().string());
+    }
+    if (!result.report.steps.empty())
+      write_csv(path("steps", ".csv"), steps_table(problem, result.report));
+    write_pvd(path("solution", ".pvd"), pvd_entries(dir, written_steps, parts));
+    // Last: a folder with a report is complete.
+    const nlohmann::json report = report_json(problem, result, context);
+    write_atomically(path("report", ".json"),
+                     [&](std::ostream& out) { out << report.dump(2) << '\n'; });
+  } catch (const OutputError&) {
+    // Nothing of a run that could not be written stays to be mistaken for its results.
+    for (const auto& p : written) {
+      std::error_code ec;
+      std::filesystem::remove(p, ec);
+    }
+    throw;
   }
-  if (!result.report.steps.empty())
-    write_csv(path("steps", ".csv"), steps_table(problem, result.report));
-  write_pvd(path("solution", ".pvd"), pvd_entries(dir, result.report, parts));
-  // Last: a folder with a report is complete.
-  const nlohmann::json report = report_json(problem, result, context);
-  write_atomically(path("report", ".json"),
-                   [&](std::ostream& out) { out << report.dump(2) << '\n'; });
   return written;
 }
 

@@ -5,9 +5,11 @@
 // Each file is written atomically, report.json last, so a folder with a report.json is complete.
 // A run that did not converge writes the same files with ".not-converged" before the extension
 // (report.not-converged.json, ...), so nothing of it can be mistaken for a solution; result files
-// of an earlier run in the folder are removed first.
+// of an earlier run in the folder are removed first (prepare_results, before the run). A file or
+// folder that cannot be written is a fricon::OutputError (exit code 4 of the program).
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,6 +17,7 @@
 
 #include "fricon/driver/problem.hpp"
 #include "fricon/driver/run.hpp"
+#include "fricon/io/vtu.hpp"
 
 namespace fricon::io {
 
@@ -68,22 +71,56 @@ Table steps_table(const driver::Problem& problem, const driver::RunReport& repor
 /// One step of a loading path as report.json's "steps" holds it (and Python's step callback).
 nlohmann::json step_json(const driver::Problem& problem, const driver::StepReport& step);
 
-/// Removes the result files of an earlier run from `dir`, the per-step files of a loading path
-/// too (before a path writes its first step).
-void clear_results(const std::filesystem::path& dir);
+/// Makes `dir` ready for a run's results, before the run: creates it if needed, checks that it
+/// is a folder that a file can be written into (a probe file of kProbeBytes, removed again), and
+/// removes the results of an earlier run (converged or not), its per-step files
+/// (steps/solution-NNNN.vtu, ...) and the figures of `fricon plot` (the .png, .pdf and .svg
+/// files of DIR/plots), each folder too when that empties it; other files stay. Throws InputError
+/// for an empty path, OutputError when `dir` is not a folder, cannot be created or written, or
+/// an earlier result cannot be removed (so nothing of an earlier run stays beside a failure).
+void prepare_results(const std::filesystem::path& dir);
 
-/// The files of the last step of a loading path (result.report.steps.back()), if it converged:
-/// steps/solution-NNNN.vtu, steps/contact-NNNN.vtu and steps/patches-NNNN.csv in `dir`, each
-/// atomically; returns the paths written.
+/// The bytes prepare_results writes to find a folder that cannot take a file (read-only, full).
+inline constexpr std::size_t kProbeBytes = 64 * 1024;
+
+/// Whether the files of step `step` (1-based) of a loading path of `steps` steps are written:
+/// the steps of [output] step_files if given, else every step_files_every-th (k, 2k, ...);
+/// the last step always.
+bool step_files_wanted(const driver::OutputOptions& output, int step, int steps);
+
+/// The per-step files of one step of a loading path, as data (so that a caller may keep them
+/// and write them later: Python's Result.write): steps/solution-NNNN.vtu (body),
+/// steps/contact-NNNN.vtu and steps/patches-NNNN.csv (with contact).
+struct StepFiles {
+  int step = 0;  ///< 1-based
+  VtuGrid body;
+  std::optional<VtuGrid> contact;
+  std::optional<Table> patches;
+};
+
+/// The step files of the last step of `result` (result.report.steps.back()); nothing when the
+/// run has no steps or that step did not converge.
+std::optional<StepFiles> step_files(const driver::RunResult& result);
+
+/// Writes `files` into `dir` (each atomically); returns the paths written.
+std::vector<std::filesystem::path> write_step_files(const std::filesystem::path& dir,
+                                                    const StepFiles& files);
+
+/// write_step_files of step_files(result): the files of a loading path's last step, if it
+/// converged; returns the paths written (none otherwise).
 std::vector<std::filesystem::path> write_step(const std::filesystem::path& dir,
                                               const driver::RunResult& result);
 
 /// Writes every result file of the run into `dir` (created if needed); returns the paths written.
-/// Along a loading path also steps.csv, and solution.pvd is the time series of the step files
-/// (write_step) found in `dir`.
+/// Result files of an earlier run are removed first. Along a loading path also steps.csv (every
+/// step), and solution.pvd is the time series of `written_steps`, the steps whose files this
+/// run wrote into `dir` (write_step_files, increasing); without them the step files in steps/
+/// are an earlier run's and are removed, and solution.pvd holds the last state. If a file cannot be
+/// written, the files written so far are removed and OutputError is thrown.
 std::vector<std::filesystem::path> write_results(const std::filesystem::path& dir,
                                                  const driver::Problem& problem,
                                                  const driver::RunResult& result,
-                                                 const RunContext& context);
+                                                 const RunContext& context,
+                                                 const std::vector<int>& written_steps = {});
 
 }  // namespace fricon::io

@@ -73,18 +73,22 @@ std::vector<Real> block_changes(const std::vector<StateBlock>& blocks, const Vec
 }
 
 // The reason to stop right after iteration k, if any, in the order: the inner solve's own
-// failure or interruption, a stop request, convergence, a stall.
+// failure or interruption, convergence, a stop request, a stall. A stop requested once the
+// iteration's inner solve has ended does not undo its convergence: the iterate is the answer.
 std::optional<std::pair<OuterTermination, std::string>> stop_reason(const MapStep& step,
                                                                     const std::atomic<bool>* stop,
                                                                     int k, const OuterReport& rep,
                                                                     const OuterOptions& options,
                                                                     const FixedPointMap& map) {
-  if (step.status == StepStatus::Interrupted || (stop != nullptr && stop->load()))
+  const auto interrupted = [k] {
     return std::pair{OuterTermination::Interrupted,
                      fmt::format("interrupted during outer iteration {}", k)};
+  };
+  if (step.status == StepStatus::Interrupted) return interrupted();
   if (step.status == StepStatus::Failed) return std::pair{OuterTermination::QpFailed, step.message};
   const Real err = rep.err_history.back();
   if (err <= options.tol) return std::pair{OuterTermination::Converged, std::string()};
+  if (stop != nullptr && stop->load()) return interrupted();
   // Psi contracts when the friction law's Lipschitz constant is small (theory.md §1.5); then
   // err(k) falls at every step. If it has not gone below its best value for stall_window
   // iterations (growth, or a cycle between states), the iteration does not contract.

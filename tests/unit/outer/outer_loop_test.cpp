@@ -192,6 +192,21 @@ TEST(OuterLoop, AFailedOrInterruptedStepStopsTheLoopWithItsReason) {
   EXPECT_EQ(map.calls, 1);
 }
 
+TEST(OuterLoop, AStopRequestedOnceTheIterationConvergedKeepsItConverged) {
+  // Issue 33, item 4: the inner solve of the iteration ended normally and err(k) <= tol, so the
+  // state is a fixed point to the tolerance; a stop request that comes after it is too late to
+  // undo that.
+  FunctionMap fixed({{"phi", 1}}, [](int, const VectorXd&, VectorXd& image) {
+    image = VectorXd::Ones(1);  // x = 1 is the fixed point: err(1) = 0
+    return MapStep{};
+  });
+  VectorXd x = VectorXd::Ones(1);
+  std::atomic<bool> stop{true};
+  const OuterReport rep = iterate(fixed, x, OuterOptions{}, {}, &stop);
+  EXPECT_EQ(rep.termination, OuterTermination::Converged);
+  EXPECT_EQ(rep.iterations, 1);
+}
+
 TEST(OuterLoop, ErrIsTheLargestRelativeChangeOfTheBlocks) {
   // Block "phi" settles at once, block "lambda_n" halves its distance to 8 every step: the
   // loop stops on the slower block, and the monitor sees both changes.

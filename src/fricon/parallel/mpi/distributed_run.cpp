@@ -293,7 +293,7 @@ RunResult run_on_rank(const driver::Problem& problem, const RunOptions& options,
     par.analysis_s = factor->info().analysis_s;
     par.factorization_s = factor->info().factorization_s;
     const VectorXd u = solve_on_rank_0(problem, disc, kind, *factor, *solves, opts, r);
-    driver::finish_run(problem, u, opts, r);
+    driver::finish_run(problem, u, r);
   } catch (...) {
     const ErrorPacket error = capture_current_exception();
     channel.fail(error);

@@ -80,6 +80,8 @@ ErrorPacket capture_current_exception() {
     return {ErrorPacket::Input, e.what()};
   } catch (const NumericalError& e) {
     return {ErrorPacket::Numerical, e.what()};
+  } catch (const OutputError& e) {
+    return {ErrorPacket::Output, e.what()};
   } catch (const std::exception& e) {
     return {ErrorPacket::Other, e.what()};
   } catch (...) {
@@ -95,6 +97,8 @@ void raise(const ErrorPacket& e) {
       throw AgreedError<NumericalError>(e.message);
     case ErrorPacket::Interrupted:
       throw AgreedError<Interrupted>(e.message);
+    case ErrorPacket::Output:
+      throw AgreedError<OutputError>(e.message);
     default:
       throw AgreedError<Error>(e.message);
   }

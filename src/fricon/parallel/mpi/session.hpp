@@ -30,14 +30,14 @@ int world_size();
 
 /// An error as it crosses ranks: its kind (the fricon exception type) and message.
 struct ErrorPacket {
-  enum Kind : int { None = 0, Input, Numerical, Interrupted, Other };
+  enum Kind : int { None = 0, Input, Numerical, Interrupted, Other, Output };
   int kind = None;
   std::string message;
 };
 
 /// The packet of the exception being handled (call inside a catch block).
 ErrorPacket capture_current_exception();
-/// Throws the packet's exception (InputError, NumericalError, Interrupted or Error) as
+/// Throws the packet's exception (InputError, NumericalError, Interrupted, OutputError or Error) as
 /// AgreedError: call it where every rank raises the same packet (after an agreement).
 [[noreturn]] void raise(const ErrorPacket& e);
 /// The packet of rank `root` on every rank of `comm`. Collective.
