@@ -64,6 +64,10 @@ int mesh_info(const MeshFileOptions& o) {
     fmt::print("    {:<16} {:>10} triangles, area {:.6e} m^2, {} entities\n", tag, faces.size(),
                area, entities.size());
   }
+  // Curves and points: only a [[dirichlet]] boundary may name one.
+  for (const mesh::NodeSet& set : mesh.node_sets)
+    fmt::print("    {:<16} {:>10} nodes, a {} (for [[dirichlet]] only)\n", set.name,
+               set.nodes.size(), mesh::node_set_kind(set.dim));
   return kConverged;
 }
 
@@ -92,7 +96,8 @@ std::vector<Command> define_mesh(CLI::App& app) {
   CLI::App* info = mesh->add_subcommand(
       "info",
       "Read a Gmsh file (.msh, or .geo meshed on the fly) as fricon does and print its nodes,\n"
-      "tetrahedra, regions (tetrahedra, volume) and boundary tags (triangles, area, entities)");
+      "tetrahedra, regions (tetrahedra, volume), boundary tags (triangles, area, entities) and "
+      "curves and points (nodes)");
   info->add_option("file", o->file, "Mesh file (.msh or .geo)")->required();
   info->add_option("--size-factor", o->size_factor,
                    "Mesh.MeshSizeFactor for a .geo file (smaller: finer)")
