@@ -111,10 +111,12 @@ def test_the_edge_is_the_limit_of_a_thin_strip(tmp_path):
         scale = np.abs(np.asarray(edge.displacement)).max()
         errors.append(np.abs(np.asarray(strip.displacement) -
                              np.asarray(edge.displacement)).max() / scale)
-    # The strip's misfit is sigma/E w: it halves with w (to within the meshes' differences).
+    # The strip's misfit is sigma/E w against a largest displacement of sigma/E (at y = 1): the
+    # relative difference is about w, and halves with it.
+    for w, error in zip(widths, errors):
+        assert error < 1.05 * w, (widths, errors)
     for wider, narrower in zip(errors, errors[1:]):
-        assert narrower < 0.75 * wider, errors
-    assert errors[-1] < 0.1, errors
+        assert narrower < 0.6 * wider, errors
 
 
 def test_a_curve_is_no_surface_for_a_traction(tmp_path):

@@ -74,6 +74,7 @@ TEST(FactorizeModel, AModulusContrastIsNamedAsTheCause) {
   Problem p = test::clamped_problem(false);
   p.mesh.cells = {6, 2, 2};
   p.material.young = 2e11;
+  p.material.poisson = 0.3;
   PhaseTimes times;
   Model model = assemble_model(p, times);
   // The brick as two regions, "stiff" (x < 1.5 m, clamped at x0) and "soft", 1e12 times softer.
