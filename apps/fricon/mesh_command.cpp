@@ -66,8 +66,8 @@ int mesh_info(const MeshFileOptions& o) {
   }
   // Curves and points: only a [[dirichlet]] boundary may name one.
   for (const mesh::NodeSet& set : mesh.node_sets)
-    fmt::print("    {:<16} {:>10} nodes, a {} (for [[dirichlet]] only)\n", set.name,
-               set.nodes.size(), mesh::node_set_kind(set.dim));
+    fmt::print("    {:<16} {:>10} node{}, a {} (for [[dirichlet]] only)\n", set.name,
+               set.nodes.size(), set.nodes.size() == 1 ? "" : "s", mesh::node_set_kind(set.dim));
   return kConverged;
 }
 
