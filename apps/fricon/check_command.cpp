@@ -1,5 +1,7 @@
-// fricon check PROBLEM.toml: read and validate a problem, build its mesh and contact
-// discretization, print the sizes and the effective problem; nothing is solved.
+// fricon check PROBLEM.toml: read and validate a problem, build its model without K and run the
+// checks solve makes before it factorizes K (driver::check_model: the prescribed values at every
+// step, the contact discretization), print the sizes and the effective problem; nothing is
+// solved. What check accepts, solve refuses only for what the factorization or the solve finds.
 #include <algorithm>
 #include <memory>
 #include <optional>
