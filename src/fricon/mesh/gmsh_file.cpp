@@ -398,7 +398,7 @@ void read_tagged_faces(const std::string& source, const GmshNodes& nodes, TetMes
 // its entities (a curve's end points included). A name of a 2D physical group too is refused:
 // the boundary would mean two things.
 void read_node_sets(const std::string& source, const GmshNodes& nodes, TetMesh& mesh) {
-  for (int dim : {1, 0})
+  for (int dim : {kCurveDimension, kPointDimension})
     for (const auto& [group, name] : physical_groups(dim)) {
       if (mesh.find_tag(name) >= 0)
         throw InputError(fmt::format(

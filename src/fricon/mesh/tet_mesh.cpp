@@ -34,7 +34,7 @@ std::vector<Index> TetMesh::faces_with_tag(const std::string& name) const {
 }
 
 const char* node_set_kind(int dim) {
-  return dim == 0 ? "point" : "curve";
+  return dim == kPointDimension ? "point" : "curve";
 }
 
 const NodeSet* TetMesh::find_node_set(const std::string& name) const {
@@ -174,7 +174,7 @@ void check_mesh(const TetMesh& mesh, const std::string& source, Real relative_to
       throw InputError(fmt::format("{}: boundary face {} has zero area", source, f));
   }
   for (const NodeSet& set : mesh.node_sets) {
-    if (set.dim != 0 && set.dim != 1)
+    if (set.dim != kPointDimension && set.dim != kCurveDimension)
       throw InputError(fmt::format("{}: node set '{}' has dimension {}, expected 0 or 1", source,
                                    set.name, set.dim));
     for (std::size_t k = 0; k < set.nodes.size(); ++k)
@@ -332,10 +332,10 @@ TetMesh submesh(const TetMesh& mesh, const std::vector<Index>& tets, std::vector
   }
   part.tag_names = mesh.tag_names;
   for (const NodeSet& set : mesh.node_sets) {
-    NodeSet mine_of_set{set.name, set.dim, {}};
+    NodeSet in_part{set.name, set.dim, {}};
     for (Index v : set.nodes)
-      if (local[static_cast<size_t>(v)] >= 0) mine_of_set.nodes.push_back(local_of(v));
-    part.node_sets.push_back(std::move(mine_of_set));  // ascending: `local` keeps the order
+      if (local[static_cast<size_t>(v)] >= 0) in_part.nodes.push_back(local_of(v));
+    part.node_sets.push_back(std::move(in_part));  // ascending: `local` keeps the order
   }
   if (nodes != nullptr) *nodes = std::move(global);
   return part;

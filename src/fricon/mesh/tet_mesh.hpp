@@ -20,13 +20,17 @@ namespace fricon::mesh {
 /// curve: its line elements' nodes) or 0 (a point). Only a [[dirichlet]] boundary may be one
 /// (fixing an edge or a point to remove a rigid motion); a traction and a contact surface need
 /// triangles, a tag of TetMesh::tag_names.
+/// The dimensions of a node set: a Gmsh physical curve's, a physical point's.
+inline constexpr int kCurveDimension = 1;
+inline constexpr int kPointDimension = 0;
+
 struct NodeSet {
   std::string name;
-  int dim = 0;               ///< 1 for a curve, 0 for a point
-  std::vector<Index> nodes;  ///< sorted, unique node indices
+  int dim = kPointDimension;  ///< kCurveDimension or kPointDimension
+  std::vector<Index> nodes;   ///< sorted, unique node indices
 };
 
-/// "curve" or "point", the kind of a node set of dimension `dim` (1 or 0), for messages.
+/// "curve" or "point", the kind of a node set of dimension `dim`, for messages.
 const char* node_set_kind(int dim);
 
 struct TetMesh {
