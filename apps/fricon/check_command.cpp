@@ -1,5 +1,7 @@
-// fricon check PROBLEM.toml: read and validate a problem, build its mesh and contact
-// discretization, print the sizes and the effective problem; nothing is solved.
+// fricon check PROBLEM.toml: read and validate a problem, build its model without K and run the
+// checks solve makes before it factorizes K (driver::check_model: the prescribed values at every
+// step, the contact discretization), print the sizes and the effective problem; nothing is
+// solved. What check accepts, solve refuses only for what the factorization or the solve finds.
 #include <algorithm>
 #include <memory>
 #include <optional>
@@ -40,11 +42,12 @@ void print_pair(const contact::ContactDiscretization& d, std::size_t i) {
 
 int check(const std::string& file, const std::vector<std::string>& sets) {
   const driver::Problem problem = io::read_problem(file, sets);
-  const mesh::TetMesh mesh = driver::make_mesh(problem);
-  (void)driver::make_materials(problem, mesh);  // every region has its material
-  const fe::DofMap dofs = driver::make_dofs(problem, mesh);
-  std::optional<contact::ContactDiscretization> disc;
-  if (!problem.contact.empty()) disc = driver::discretize_contact(problem, mesh, dofs);
+  // What solve builds and checks before it factorizes K (driver/model.hpp), without K.
+  PhaseTimes times;
+  const driver::Model model = driver::assemble_loads(problem, times);
+  const std::optional<contact::ContactDiscretization> disc = driver::check_model(problem, model);
+  const mesh::TetMesh& mesh = model.mesh;
+  const fe::DofMap& dofs = model.dofs;
   fmt::print("{}: valid\n", file);
   fmt::print("  mesh       {} nodes, {} tetrahedra, {} regions, {} boundary triangles (tags: {})\n",
              mesh.n_nodes(), mesh.n_tets(), mesh.n_regions(), mesh.n_faces(), mesh.tag_list());

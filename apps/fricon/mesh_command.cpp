@@ -73,6 +73,10 @@ int mesh_info(const MeshFileOptions& o) {
     fmt::print("    {:<16} {:>10} triangles, area {:.6e} m^2, {} entities\n", tag, faces.size(),
                area, entities.size());
   }
+  // Curves and points: only a [[dirichlet]] boundary may name one.
+  for (const mesh::NodeSet& set : mesh.node_sets)
+    fmt::print("    {:<16} {:>10} node{}, a {} (for [[dirichlet]] only)\n", set.name,
+               set.nodes.size(), set.nodes.size() == 1 ? "" : "s", mesh::node_set_kind(set.dim));
   return kConverged;
 }
 
@@ -101,8 +105,9 @@ std::vector<Command> define_mesh(CLI::App& app) {
   CLI::App* info = mesh->add_subcommand(
       "info",
       "Read a Gmsh file (.msh, or .geo meshed on the fly) as fricon does and print its nodes,\n"
-      "tetrahedra, extent, regions (tetrahedra, volume) and boundary tags (triangles, area,\n"
-      "entities), in metres (--unit: the unit of its coordinates)");
+      "tetrahedra, extent, regions (tetrahedra, volume), boundary tags (triangles, area,
+"
+      "entities) and curves and points (nodes), in metres (--unit: the unit of its coordinates)");
   info->add_option("file", o->file, "Mesh file (.msh or .geo)")->required();
   info->add_option("--unit", o->unit,
                    "The unit of the file's coordinates, as [mesh] unit: m (default), cm or mm;\n"

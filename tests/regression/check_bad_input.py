@@ -10,6 +10,11 @@ A second line "# requires: petsc" (or "no-petsc") runs the file only in a build 
 the PETSc backend, as `FRICON --version` says. Every file must give exit code 1,
 exactly one line "fricon: error: ..." on stderr containing every fragment, no sanitizer report
 or traceback, no crash or hang (10 s each), and no file in the --out folder.
+
+`fricon check` must refuse what `solve` refuses before it factorizes K: every file is also run as
+`FRICON check FILE`, with the same expectations (exit code 1, one error line with every
+fragment), unless one of its first lines is "# solve-only: <why>" (an error that only the
+factorization or the solve can find, e.g. an ill-conditioned K).
 """
 import subprocess
 import sys
@@ -34,21 +39,37 @@ def requirement(path):
     return lines[0][len(prefix):].strip() if lines and lines[0].startswith(prefix) else None
 
 
+def solve_only(path):
+    """Whether the file's error is one that `fricon check` cannot see (a "# solve-only:" line)."""
+    lines = path.read_text(encoding="utf-8", errors="replace").splitlines()[:4]
+    return any(line.startswith("# solve-only:") for line in lines)
+
+
 def has_petsc(exe):
     return "petsc" in common.run_ok([exe, "--version"]).stdout
 
 
 def check(exe, path, out_root):
-    """Returns the list of problems with one corpus file (empty when it passes)."""
-    problems = []
+    """Returns the list of problems with one corpus file (empty when it passes): `solve`, then
+    `check` unless the file is solve-only."""
     frags = expectations(path)
     if not frags:
         return ["no '# expect: ...' first line"]
     out = out_root / path.stem
+    problems = refused(exe, ["solve", path, "--out", out], frags, out)
+    if not solve_only(path):
+        problems += [f"fricon check: {p}" for p in refused(exe, ["check", path], frags, None)]
+    return problems
+
+
+def refused(exe, args, frags, out):
+    """The problems with one run of the command `args` on a corpus file (empty when it refuses
+    the file as expected); `out`, if given, must stay empty."""
+    problems = []
     try:
-        r = common.run([exe, "solve", path, "--out", out], timeout=TIMEOUT_S)
+        r = common.run([exe] + args, timeout=TIMEOUT_S)
     except subprocess.TimeoutExpired:
-        return [f"did not finish within {TIMEOUT_S} s"]
+        return [f"{args[0]} did not finish within {TIMEOUT_S} s"]
     stderr, stdout = r.stderr, r.stdout
     if r.returncode != 1:
         problems.append(f"exit code {r.returncode}, expected 1")
@@ -61,7 +82,7 @@ def check(exe, path, out_root):
             problems.append(f"message lacks {f!r}")
     for alarm in common.alarms(stderr, stdout):
         problems.append(f"output contains {alarm!r}")
-    if out.exists() and any(out.iterdir()):
+    if out is not None and out.exists() and any(out.iterdir()):
         problems.append(f"wrote into {out}: {sorted(p.name for p in out.iterdir())}")
     if problems:
         problems.append(f"stderr was:\n{stderr.rstrip()}")

@@ -1,7 +1,8 @@
 """`fricon mesh brick` writes the paper's brick as a Gmsh file; `fricon mesh info` reads it back.
 
 The counts printed by `mesh info` must be those of the brick: (nx+1)(ny+1)(nz+1) nodes,
-5 nx ny nz tetrahedra, 2 triangles per boundary square, and per side one entity per 2 x 2 block.
+5 nx ny nz tetrahedra, 2 triangles per boundary square, and per side one entity per 2 x 2 block;
+and a .geo file's physical curves and points are listed with their nodes.
 
 Usage: check_gmsh_mesh.py FRICON UNUSED OUTDIR
 """
@@ -52,5 +53,13 @@ for version, binary in (("41", False), ("41", True), ("22", False)):
 r = common.run([exe, "mesh", "info", out / "missing.msh"])
 if r.returncode != 1 or "missing.msh: no such file" not in r.stderr:
     failures.add(f"mesh info of a missing file: exit {r.returncode}\n{r.stderr}")
+
+# Physical curves and points (for [[dirichlet]]) are listed with their node counts: the edge
+# y = z = 0 of the 1 m plate at mesh size 0.25 m has 5 nodes, the point one.
+plate = common.REPOSITORY / "tests" / "bad_input" / "143-plate-edge.geo"
+info = run(["mesh", "info", str(plate)])
+for name, count, kind in (("edge", 5, "curve"), ("corner", 1, "point")):
+    if not re.search(rf"{name}\s+{count} nodes?, a {kind} \(for \[\[dirichlet\]\] only\)", info):
+        failures.add(f"{plate}: {kind} {name} of {count} node(s) not listed in\n{info}")
 
 failures.finish("fricon mesh brick / mesh info: counts as expected")

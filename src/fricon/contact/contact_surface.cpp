@@ -58,9 +58,7 @@ ContactSurface surface_of_tag(const mesh::TetMesh& mesh, const std::string& tag,
   s.tag = tag;
   s.faces = mesh.faces_with_tag(tag);
   if (s.faces.empty())
-    throw InputError(
-        fmt::format("{}: contact.boundary: boundary '{}' does not exist on the mesh (tags: {})",
-                    where, tag, mesh.tag_list()));
+    throw InputError(fmt::format("{}: contact.boundary: {}", where, mesh.no_surface(tag)));
   s.nodes = mesh.nodes_with_tag(tag);
   std::map<Index, Index> position;
   for (size_t k = 0; k < s.nodes.size(); ++k)

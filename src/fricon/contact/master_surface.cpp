@@ -44,9 +44,7 @@ Real diameter(const mesh::TetMesh& mesh, const std::vector<Index>& nodes) {
 std::vector<Index> faces_of_tag(const mesh::TetMesh& mesh, const std::string& tag,
                                 const std::string& where, std::string_view key) {
   std::vector<Index> faces = mesh.faces_with_tag(tag);
-  if (faces.empty())
-    throw InputError(fmt::format("{}: {}: boundary '{}' does not exist on the mesh (tags: {})",
-                                 where, key, tag, mesh.tag_list()));
+  if (faces.empty()) throw InputError(fmt::format("{}: {}: {}", where, key, mesh.no_surface(tag)));
   return faces;
 }
 

@@ -170,17 +170,6 @@ void remember_step(const contact::ContactDiscretization& disc, const RunResult& 
   state.norm_Q_scaled = c.norm_Q_scaled;
 }
 
-// Every step's prescribed displacements, before the first solve: two [[dirichlet]] entries that
-// disagree on a node at some step are refused now, naming the step.
-void check_steps(const Problem& problem, const mesh::TetMesh& mesh) {
-  for (int k = 1; k <= problem.loading.steps; ++k)
-    try {
-      (void)make_prescribed(at_step(problem, k), mesh);
-    } catch (const InputError& e) {
-      throw InputError(fmt::format("{} (at step {} of the loading path)", e.what(), k));
-    }
-}
-
 // The step's contact solve on the path's operator, then its fields and self-check.
 VectorXd solve_step(const Problem& step_problem, const contact::ContactDiscretization& disc,
                     dual::DualOperator& Q, const VectorXd& u0, const PathState& state,
@@ -216,8 +205,7 @@ RunResult run_path(const Problem& problem, const RunOptions& options) {
 
   // @sect: the model, the contact discretization (every patch: the contact search does not
   // apply to a path), the factor of K and Q, once for the whole path.
-  std::optional<contact::ContactDiscretization> disc = build_factored_model(
-      problem, options, r, [&problem](const Model& m) { check_steps(problem, m.mesh); });
+  std::optional<contact::ContactDiscretization> disc = build_factored_model(problem, options, r);
   if (options.stop_was_requested()) throw Interrupted("interrupted before the first step");
   std::unique_ptr<dual::DualOperator> Q;
   if (disc) {

@@ -1,6 +1,7 @@
 #include "fricon/driver/model.hpp"
 
 #include <algorithm>
+#include <string_view>
 
 #include <fmt/format.h>
 
@@ -14,13 +15,23 @@ namespace fricon::driver {
 
 namespace {
 
+// The triangles of a boundary that must be a surface (a traction's).
 std::vector<Index> tagged_faces(const mesh::TetMesh& mesh, const Problem& problem,
                                 const std::string& key, const std::string& tag) {
   auto faces = mesh.faces_with_tag(tag);
   if (faces.empty())
+    throw InputError(fmt::format("{}: {}: {}", problem.where(key), key, mesh.no_surface(tag)));
+  return faces;
+}
+
+// The nodes of a [[dirichlet]] boundary: a surface, a curve or a point of the mesh.
+std::vector<Index> tagged_nodes(const mesh::TetMesh& mesh, const Problem& problem,
+                                const std::string& key, const std::string& tag) {
+  auto nodes = mesh.nodes_with_tag(tag);
+  if (nodes.empty())
     throw InputError(fmt::format("{}: {}: boundary '{}' does not exist on the mesh (tags: {})",
                                  problem.where(key), key, tag, mesh.tag_list()));
-  return faces;
+  return nodes;
 }
 
 fe::Material make_material(const Problem& problem, const MaterialOptions& m,
@@ -146,11 +157,10 @@ fe::DofMap make_dofs(const Problem& problem, const mesh::TetMesh& mesh,
   std::vector<bool> fixed(static_cast<size_t>(3 * mesh.n_nodes()), false);
   for (size_t i = 0; i < problem.dirichlet.size(); ++i) {
     const auto& d = problem.dirichlet[i];
-    for (Index f :
-         tagged_faces(mesh, problem, fmt::format("dirichlet[{}].boundary", i), d.boundary))
-      for (int v = 0; v < 3; ++v)
-        for (int c = 0; c < 3; ++c)
-          if (d.components[c]) fixed[static_cast<size_t>(3 * mesh.faces(v, f) + c)] = true;
+    for (Index a :
+         tagged_nodes(mesh, problem, fmt::format("dirichlet[{}].boundary", i), d.boundary))
+      for (int c = 0; c < 3; ++c)
+        if (d.components[c]) fixed[static_cast<size_t>(3 * a + c)] = true;
   }
   fe::DofMap dofs(fixed);
   if (dofs.n_free() == 0)
@@ -299,11 +309,62 @@ VectorXd stiffness_times(const Model& model, const VectorXd& w) {
       fe::internal_forces(model.mesh, model.materials, model.dofs.to_nodal(w)));
 }
 
+namespace {
+
+// A stiffness contrast between materials from which the failure of the factorization is put down
+// to it: K's condition number grows with the contrast, and double precision (relative accuracy
+// 1e-16) leaves the mesh's own conditioning (~1e4 to 1e8 for h = L/10 to L/100) little room.
+constexpr Real kContrastWorthNaming = 1e6;
+
+// The stiffness scale of a material [Pa]: the largest diagonal entry of its Hooke matrix.
+Real stiffness_scale(const fe::Material& m) {
+  return m.D.diagonal().maxCoeff();
+}
+
+// Why K cannot be factorized although make_dofs found every body held: the conditioning, with
+// the contrast of the materials when it is large (their positions named).
+std::string ill_conditioning(const Problem& problem, const Model& model,
+                             const std::string& factor_message) {
+  const auto [softest, stiffest] =
+      std::minmax_element(model.materials.begin(), model.materials.end(),
+                          [](const fe::Material& a, const fe::Material& b) {
+                            return stiffness_scale(a) < stiffness_scale(b);
+                          });
+  const Real contrast = stiffness_scale(*stiffest) / stiffness_scale(*softest);
+  const std::string why =
+      contrast >= kContrastWorthNaming
+          ? fmt::format(
+                "the stiffest material (region \"{}\") is {:.1e} times as stiff as the "
+                "softest (region \"{}\"), and K's condition number grows with that "
+                "contrast: bring the moduli within about {:.0e} of each other (a body "
+                "{:.0e} times stiffer than the other already deforms negligibly)",
+                region_name(model.mesh, static_cast<int>(stiffest - model.materials.begin())),
+                contrast,
+                region_name(model.mesh, static_cast<int>(softest - model.materials.begin())),
+                kContrastWorthNaming, kContrastWorthNaming)
+          : "look for degenerate or badly shaped tetrahedra, or stiffnesses of very different "
+            "orders in an anisotropic material";
+  return fmt::format(
+      "{}: material: the [[dirichlet]] conditions hold every body (no rigid motion is free), yet "
+      "{}; K is too ill-conditioned for double precision: {}",
+      problem.where("material"), factor_message, why);
+}
+
+}  // namespace
+
 void factorize_model(Model& model, const dual::FactorizationRequest& request, PhaseTimes& times,
-                     const PhaseCallback& on_phase_start) {
+                     const PhaseCallback& on_phase_start, const Problem* problem) {
   if (on_phase_start) on_phase_start("factorize");
   ScopedPhase phase(times, "factorize");
-  model.factor.factorize(model.K, request.last);
+  try {
+    model.factor.factorize(model.K, request.last);
+  } catch (const NumericalError& e) {
+    // Only K not positive definite (linalg/cholesky.hpp), not a failure for lack of memory.
+    const bool not_positive_definite =
+        std::string_view(e.what()).find("not positive definite") != std::string_view::npos;
+    if (!problem || model.materials.empty() || !not_positive_definite) throw;
+    throw NumericalError(ill_conditioning(*problem, model, e.what()));
+  }
 }
 
 namespace {
@@ -321,7 +382,7 @@ contact::ContactSpec pair_spec(const Problem& problem, std::size_t i, const mesh
   spec.slip_bound = c.slip_bound;
   if (c.patch_size) spec.patch_size = *c.patch_size;
   if (c.obstacle && c.obstacle->kind == ObstacleKind::Plane)
-    spec.obstacle = contact::Plane{c.obstacle->point, c.obstacle->normal.normalized()};
+    spec.obstacle = contact::Plane{c.obstacle->point, c.obstacle->normal.stableNormalized()};
   if (c.obstacle && c.obstacle->kind == ObstacleKind::Body) {
     contact::MasterSpec master;
     master.boundary = c.obstacle->boundary;
@@ -351,9 +412,29 @@ contact::ContactDiscretization discretize_contact(const Problem& problem, const 
   return contact::merge_pairs(std::move(pairs));
 }
 
+void check_steps(const Problem& problem, const mesh::TetMesh& mesh) {
+  if (problem.loading.steps == 1) {
+    (void)make_prescribed(problem, mesh);
+    return;
+  }
+  for (int k = 1; k <= problem.loading.steps; ++k)
+    try {
+      (void)make_prescribed(at_step(problem, k), mesh);
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("{} (at step {} of the loading path)", e.what(), k));
+    }
+}
+
+std::optional<contact::ContactDiscretization> check_model(const Problem& problem,
+                                                          const Model& model) {
+  check_steps(problem, model.mesh);
+  if (problem.contact.empty()) return std::nullopt;
+  return discretize_contact(problem, model.mesh, model.dofs);
+}
+
 Model build_model(const Problem& problem, PhaseTimes& times, const PhaseCallback& on_phase_start) {
   Model model = assemble_model(problem, times, on_phase_start);
-  factorize_model(model, {}, times, on_phase_start);
+  factorize_model(model, {}, times, on_phase_start, &problem);
   return model;
 }
 

@@ -5,6 +5,7 @@
 // changes it.
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -97,9 +98,12 @@ Model assemble_model(const Problem& problem, PhaseTimes& times,
                      const PhaseCallback& on_phase_start = {});
 
 /// Factorizes K as `request` asks (phase "factorize"; the dual operator's request, see
-/// dual/dual_operator.hpp). Throws NumericalError when K is not positive definite.
+/// dual/dual_operator.hpp). Throws NumericalError when K is not positive definite (to working
+/// precision). The model's dofs hold every body (make_dofs), so that is ill-conditioning: with
+/// `problem`, the message names its [material] position and the stiffness contrast of the
+/// materials when it is large.
 void factorize_model(Model& model, const dual::FactorizationRequest& request, PhaseTimes& times,
-                     const PhaseCallback& on_phase_start = {});
+                     const PhaseCallback& on_phase_start = {}, const Problem* problem = nullptr);
 
 /// assemble_model, then factorize_model with the default ordering.
 Model build_model(const Problem& problem, PhaseTimes& times,
@@ -110,6 +114,18 @@ Model build_model(const Problem& problem, PhaseTimes& times,
 /// the positions of contact.boundary and contact.patches.
 contact::ContactDiscretization discretize_contact(const Problem& problem, const mesh::TetMesh& mesh,
                                                   const fe::DofMap& dofs);
+
+/// Every step's prescribed displacements (make_prescribed of at_step(problem, k), k = 1 ..
+/// loading.steps; the problem itself without a path): throws InputError when two [[dirichlet]]
+/// entries disagree on a node at some step, naming the step of a path.
+void check_steps(const Problem& problem, const mesh::TetMesh& mesh);
+
+/// The checks that `solve` makes on an assembled model (assemble_model, or assemble_loads) before
+/// it factorizes K, and the contact discretization they end with (none without [contact]): the
+/// prescribed displacements of every step (check_steps), then discretize_contact. `solve` and
+/// `fricon check` both call it, so that check refuses what solve refuses. Throws InputError.
+std::optional<contact::ContactDiscretization> check_model(const Problem& problem,
+                                                          const Model& model);
 
 /// Sum of all applied forces [N] (tractions and volume force), including the parts acting on
 /// fixed dofs, in each direction.

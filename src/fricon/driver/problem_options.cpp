@@ -120,6 +120,10 @@ void check_friction(const Problem& p, const std::string& path, const FrictionOpt
 /// A load's path (theory.md §2.9): given only with [loading] steps > 1, one factor per step.
 void check_path(const Problem& p, const std::string& key, const std::vector<Real>& factors) {
   if (factors.empty()) return;
+  // The step count first: a path is measured against it ([loading] comes later in the file, so
+  // its own range check would come after this one).
+  require(fmt::format("{}: loading.steps", p.where("loading.steps")), p.loading.steps,
+          kLoadStepsRange);
   const auto steps = static_cast<std::size_t>(p.loading.steps);
   if (steps == 1)
     fail(p, key,
@@ -195,9 +199,19 @@ bool same_friction(const FrictionOptions& a, const FrictionOptions& b) {
          a.quadrature_rtol == b.quadrature_rtol && a.function_name == b.function_name;
 }
 
+/// Whether pair b is pair a the other way round: a's contact surface is b's master and a's master
+/// b's contact surface (one interface, both bodies' sides).
+bool reversed_pair(const ContactOptions& a, const ContactOptions& b) {
+  const auto against_body = [](const ContactOptions& c) {
+    return c.obstacle && c.obstacle->kind == ObstacleKind::Body;
+  };
+  return against_body(a) && against_body(b) && a.boundary == b.obstacle->boundary &&
+         b.boundary == a.obstacle->boundary;
+}
+
 /// Every pair: free dofs on its surface, a master of its own; all pairs share the friction
-/// model and law (the outer loop has one law for now; slip bounds g may differ), and no surface
-/// is the contact surface of two pairs.
+/// model and law (the outer loop has one law for now; slip bounds g may differ), no surface
+/// is the contact surface of two pairs, and no interface is given as two pairs (A on B, B on A).
 void check_contact_pairs(const Problem& p) {
   for (std::size_t i = 0; i < p.contact.size(); ++i) {
     const ContactOptions& c = p.contact[i];
@@ -215,12 +229,21 @@ void check_contact_pairs(const Problem& p) {
       fail(p, join_key(key, "friction"),
            "expected the friction law of contact[0]: all pairs share one law F (their slip bounds "
            "g may differ)");
-    for (std::size_t j = 0; j < i; ++j)
+    for (std::size_t j = 0; j < i; ++j) {
       if (p.contact[j].boundary == c.boundary)
         fail(p, join_key(key, "boundary"),
              fmt::format("expected a surface of its own, got \"{}\", the contact surface of "
                          "contact[{}] too",
                          c.boundary, j));
+      if (reversed_pair(p.contact[j], c))
+        fail(p, join_key(key, "obstacle.boundary"),
+             fmt::format("\"{}\" against \"{}\" is the interface of contact[{}] (\"{}\" "
+                         "against \"{}\") given the other way round: each interface is one "
+                         "pair (theory.md §2.8), else its contact force would be split between "
+                         "the two; keep one of them",
+                         c.boundary, c.obstacle->boundary, j, p.contact[j].boundary,
+                         p.contact[j].obstacle->boundary));
+    }
   }
 }
 
@@ -347,7 +370,9 @@ const OptionTable& material_entry_table() {
 const OptionTable& dirichlet_table() {
   static const OptionTable table = [] {
     OptionTableBuilder<DirichletOptions> b("dirichlet", "a table (write [[dirichlet]])");
-    b.text("boundary", &DirichletOptions::boundary, "a non-empty boundary tag", "").require();
+    b.text("boundary", &DirichletOptions::boundary, "a non-empty boundary tag",
+           "a surface, or a Gmsh physical curve or point (all its nodes)")
+        .require();
     b.text_as("components", &DirichletOptions::components, kComponentsPhrase,
               "in any order (`\"z\"`: a roller)", components_text, set_components,
               components_valid);
@@ -473,7 +498,9 @@ const OptionTable& obstacle_table() {
            "the tag of the master surface, facing the contact surface")
         .require("kind \"body\" needs the tag of the master surface");
     b.check([](const Problem& p, const std::string& path, const ObstacleOptions& o) {
-      if (o.kind == ObstacleKind::Plane && !(o.normal.norm() > 0.0))
+      // stableNorm: the norm of [0, 0, 1e308] (or of [0, 0, 1e-200]) without overflow or
+      // underflow of its square.
+      if (o.kind == ObstacleKind::Plane && !(o.normal.stableNorm() > 0.0))
         fail(p, join_key(path, "normal"),
              "expected a non-zero vector (the plane's normal, pointing towards the body), got "
              "[0, 0, 0]");

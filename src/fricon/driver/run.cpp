@@ -185,22 +185,23 @@ void postprocess(const Problem& problem, const VectorXd& u, RunResult& r, bool w
 
 }  // namespace
 
-std::optional<contact::ContactDiscretization> build_factored_model(
-    const Problem& problem, const RunOptions& options, RunResult& r,
-    const std::function<void(const Model&)>& check) {
+std::optional<contact::ContactDiscretization> build_factored_model(const Problem& problem,
+                                                                   const RunOptions& options,
+                                                                   RunResult& r) {
   RunReport& rep = r.report;
   r.model = assemble_model(problem, rep.times, options.on_phase_start);
-  if (check) check(r.model);
   std::optional<contact::ContactDiscretization> disc;
-  if (!problem.contact.empty()) {
+  if (problem.contact.empty()) {
+    (void)check_model(problem, r.model);
+  } else {
     phase_start(options, "contact");
     ScopedPhase phase(rep.times, "contact");
-    disc = discretize_contact(problem, r.model.mesh, r.model.dofs);
+    disc = check_model(problem, r.model);
   }
   const dual::FactorizationRequest request =
       disc ? dual::factorization_request(problem.solver.dual_operator, disc->dofs)
            : dual::FactorizationRequest{};
-  factorize_model(r.model, request, rep.times, options.on_phase_start);
+  factorize_model(r.model, request, rep.times, options.on_phase_start, &problem);
   report_sizes(r.model, rep);
   rep.factor = r.model.factor.info();
   return disc;

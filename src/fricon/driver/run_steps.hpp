@@ -22,11 +22,12 @@ VectorXd adopt(ContactOutcome&& outcome, RunResult& r);
 /// The elastic model of the problem (phases "mesh", "assembly"), with [contact] its contact
 /// discretization (phase "contact"), and the factor of K ordered as the dual operator asks
 /// (phase "factorize"), with the sizes and the factor's figures in r.report. Returns the
-/// discretization (none without contact). `check`, if set, sees the model before the
-/// factorization (and may throw InputError: a problem found then costs no factorization).
-std::optional<contact::ContactDiscretization> build_factored_model(
-    const Problem& problem, const RunOptions& options, RunResult& r,
-    const std::function<void(const Model&)>& check = {});
+/// discretization (none without contact). The checks before the factorization are those of
+/// check_model (driver/model.hpp), which `fricon check` runs too: a problem found then costs no
+/// factorization.
+std::optional<contact::ContactDiscretization> build_factored_model(const Problem& problem,
+                                                                   const RunOptions& options,
+                                                                   RunResult& r);
 
 /// The outer loop of dual QPs on operator Q (phase "outer loop"); fills the contact part of
 /// r.report and r.contact and returns the displacement over the free dofs.

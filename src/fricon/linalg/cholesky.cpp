@@ -266,8 +266,7 @@ void CholeskyFactor::factorize(const SparseMatrix& K, const std::vector<Index>& 
   if (c->status == CHOLMOD_NOT_POSDEF)
     throw NumericalError(fmt::format(
         "the stiffness matrix K (n = {}, nnz = {}) is not positive definite: the Cholesky "
-        "factorization broke down at column {} of the permuted matrix. Is the body clamped "
-        "(a [[dirichlet]] boundary that removes all rigid motions)?",
+        "factorization broke down at column {} of the permuted matrix",
         info_.n, info_.nnz_K, impl_->L->minor));
   if (c->status < CHOLMOD_OK)
     throw NumericalError(fmt::format(
@@ -279,8 +278,7 @@ void CholeskyFactor::factorize(const SparseMatrix& K, const std::vector<Index>& 
   if (!(info_.rcond > kSingularRcond))
     throw NumericalError(fmt::format(
         "the stiffness matrix K (n = {}, nnz = {}) is singular to working precision (reciprocal "
-        "condition estimate {:.2e}): it is not positive definite. Is the body clamped (a "
-        "[[dirichlet]] boundary that removes all rigid motions)?",
+        "condition estimate {:.2e}): it is not positive definite",
         info_.n, info_.nnz_K, info_.rcond));
   info_.nnz_L = c->lnz;
   info_.blas_threads = threads();

@@ -36,8 +36,9 @@ class CholeskyFactor {
   /// Symbolic analysis and numerical factorization of the symmetric matrix K (the lower triangle
   /// is read), ordered by nested dissection of its compressed graph (the dofs of a node merged
   /// into one vertex, when both triangles are stored). Throws NumericalError naming the phase, n,
-  /// nnz and, if K is not positive definite, the column where the factorization broke down (e.g.
-  /// when nothing is clamped).
+  /// nnz and, if K is not positive definite or singular to working precision (a rigid motion left
+  /// free, or ill-conditioning), a message that says "not positive definite" and where the
+  /// factorization broke down or its reciprocal condition estimate.
   void factorize(const SparseMatrix& K);
 
   /// As factorize(K), with the dofs `last` ordered after all others (the others by nested

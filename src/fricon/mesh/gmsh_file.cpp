@@ -394,6 +394,35 @@ void read_tagged_faces(const std::string& source, const GmshNodes& nodes, TetMes
                     mesh.tag_names[static_cast<size_t>(mesh.face_tag[static_cast<size_t>(f)])]));
 }
 
+// The physical groups of dimension 1 (curves) and 0 (points), each the node set of all nodes of
+// its entities (a curve's end points included). A name of a 2D physical group too is refused:
+// the boundary would mean two things.
+void read_node_sets(const std::string& source, const GmshNodes& nodes, TetMesh& mesh) {
+  for (int dim : {kCurveDimension, kPointDimension})
+    for (const auto& [group, name] : physical_groups(dim)) {
+      if (mesh.find_tag(name) >= 0)
+        throw InputError(fmt::format(
+            "{}: physical group '{}' of dimension {} has the name of a physical surface too; "
+            "give the {} a name of its own",
+            source, name, dim, node_set_kind(dim)));
+      NodeSet set{name, dim, {}};
+      for (int entity : entities_of_group(dim, group)) {
+        std::vector<std::size_t> tags;
+        std::vector<double> coords, parametric;
+        gmsh::model::mesh::getNodes(tags, coords, parametric, dim, entity,
+                                    /*includeBoundary=*/true, /*returnParametricCoord=*/false);
+        for (std::size_t tag : tags)
+          set.nodes.push_back(nodes.index_of.at(tag));
+      }
+      std::sort(set.nodes.begin(), set.nodes.end());
+      set.nodes.erase(std::unique(set.nodes.begin(), set.nodes.end()), set.nodes.end());
+      if (set.nodes.empty())
+        throw InputError(
+            fmt::format("{}: physical {} '{}' has no mesh node", source, node_set_kind(dim), name));
+      mesh.node_sets.push_back(std::move(set));
+    }
+}
+
 // @sect: writing, the steps.
 
 // The Gmsh surfaces to write: each groups the distinct triangles of one face entity that carry
@@ -541,6 +570,7 @@ TetMesh read_gmsh(const std::filesystem::path& file, std::optional<Real> size_fa
     require_all_nodes_used(source, nodes, mesh);
     require_conforming(source, tet_faces(mesh), tets);
     read_tagged_faces(source, nodes, mesh);
+    read_node_sets(source, nodes, mesh);
   });
   check_mesh(mesh, source);
   return mesh;

@@ -8,7 +8,10 @@
 //     a region (named by its physical name, or "3:<tag>" when it has none);
 //   - a physical group of dimension 2 is a boundary tag (its name, or "2:<tag>"); each of its
 //     3-node triangles is one boundary face with that tag, and the elementary surface it lies on
-//     is the face's entity (so `[contact] patches = "mesh"` makes each surface one patch).
+//     is the face's entity (so `[contact] patches = "mesh"` makes each surface one patch);
+//   - a physical group of dimension 1 or 0 (a curve, a point) is a node set (its name, or
+//     "1:<tag>", "0:<tag>"): the nodes of its entities, curves' end points included; a
+//     [[dirichlet]] boundary may name it (TetMesh::node_sets).
 // Coordinates are taken as they are in the file, in metres.
 //
 // Gmsh keeps global state: these functions initialise and finalise it themselves. They may be
@@ -34,14 +37,16 @@ namespace fricon::mesh {
 /// tetrahedra is oriented against the first), a triangle in several 2D physical groups listed
 /// once per group, face_entity the Gmsh surface tag of each face, and the regions (tet_region,
 /// region_names) of the 3D physical groups: tetrahedra in none of them form a region "body";
-/// without any 3D physical group tet_region and region_names are empty (one region, "body").
+/// without any 3D physical group tet_region and region_names are empty (one region, "body"),
+/// and the node sets of the 1D and 0D physical groups.
 ///
 /// Throws InputError naming the file, and where it applies the Gmsh element or node tag, if the
 /// file does not exist or Gmsh cannot read it (with Gmsh's own message), if it has no volume
 /// element, a volume element other than a 4-node tetrahedron (second order, hexahedra, prisms,
 /// pyramids), a tagged surface element other than a 3-node triangle, an inverted or degenerate
 /// tetrahedron, a node of no tetrahedron, a tagged triangle that is no face of a tetrahedron, or
-/// a face shared by three or more tetrahedra (a non-conforming mesh); for a size_factor given
+/// a face shared by three or more tetrahedra (a non-conforming mesh), a 1D or 0D physical group
+/// with no node or with the name of a 2D one; for a size_factor given
 /// with an MSH file or not positive; and if libgmsh cannot be loaded (naming the library, its
 /// Debian package and the loader's message). Finally runs check_mesh.
 TetMesh read_gmsh(const std::filesystem::path& file, std::optional<Real> size_factor = {});
@@ -56,7 +61,8 @@ inline constexpr int kMsh41 = 41;
 /// face_entity value is one discrete surface, with that value as its Gmsh tag where it is
 /// positive (faces with entity -1 get one new surface per tag); each boundary tag with faces is
 /// a physical group of dimension 2. Node i is Gmsh node i+1, so read_gmsh gives back the same
-/// nodes, tetrahedra, tags and face entities. Empty tags are not written (Gmsh cannot store them).
+/// nodes, tetrahedra, tags and face entities. Empty tags are not written (Gmsh cannot store them),
+/// nor are node sets (curves and points).
 ///
 /// The file is written atomically (a temporary file in the same folder, then renamed); the
 /// folder is created if needed. Throws InputError for a bad version or file name, fricon::Error

@@ -33,8 +33,22 @@ std::vector<Index> TetMesh::faces_with_tag(const std::string& name) const {
   return result;
 }
 
+const char* node_set_kind(int dim) {
+  return dim == kPointDimension ? "point" : "curve";
+}
+
+const NodeSet* TetMesh::find_node_set(const std::string& name) const {
+  const auto it = std::find_if(node_sets.begin(), node_sets.end(),
+                               [&](const NodeSet& s) { return s.name == name; });
+  return it == node_sets.end() ? nullptr : &*it;
+}
+
 std::vector<Index> TetMesh::nodes_with_tag(const std::string& name) const {
   std::vector<Index> result;
+  if (find_tag(name) < 0) {
+    const NodeSet* set = find_node_set(name);
+    return set ? set->nodes : result;
+  }
   for (Index f : faces_with_tag(name))
     for (int v = 0; v < 3; ++v)
       result.push_back(faces(v, f));
@@ -47,7 +61,19 @@ std::string TetMesh::tag_list() const {
   std::string s;
   for (const auto& name : tag_names)
     s += (s.empty() ? "" : ", ") + name;
+  for (const NodeSet& set : node_sets)
+    s += fmt::format("{}{} ({})", s.empty() ? "" : ", ", set.name, node_set_kind(set.dim));
   return s;
+}
+
+std::string TetMesh::no_surface(const std::string& name) const {
+  if (const NodeSet* set = find_node_set(name); set && find_tag(name) < 0)
+    return fmt::format(
+        "boundary '{}' is a {} (a Gmsh physical group of dimension {}), not a surface: only a "
+        "[[dirichlet]] boundary may be a curve or a point; this key needs triangles, a physical "
+        "group of dimension 2 (tags: {})",
+        name, node_set_kind(set->dim), set->dim, tag_list());
+  return fmt::format("boundary '{}' does not exist on the mesh (tags: {})", name, tag_list());
 }
 
 std::optional<Index> first_unused_node(const TetMesh& mesh) {
@@ -146,6 +172,16 @@ void check_mesh(const TetMesh& mesh, const std::string& source, Real relative_to
                                    mesh.face_tag[f], mesh.tag_names.size()));
     if (!(face_area(mesh, f) > 0.0))
       throw InputError(fmt::format("{}: boundary face {} has zero area", source, f));
+  }
+  for (const NodeSet& set : mesh.node_sets) {
+    if (set.dim != kPointDimension && set.dim != kCurveDimension)
+      throw InputError(fmt::format("{}: node set '{}' has dimension {}, expected 0 or 1", source,
+                                   set.name, set.dim));
+    for (std::size_t k = 0; k < set.nodes.size(); ++k)
+      if (set.nodes[k] < 0 || set.nodes[k] >= n || (k > 0 && set.nodes[k] <= set.nodes[k - 1]))
+        throw InputError(
+            fmt::format("{}: {} '{}' refers to node {}, not a sorted, unique index of the {} nodes",
+                        source, node_set_kind(set.dim), set.name, set.nodes[k], n));
   }
 }
 
@@ -295,6 +331,12 @@ TetMesh submesh(const TetMesh& mesh, const std::vector<Index>& tets, std::vector
       part.face_entity.push_back(mesh.face_entity[static_cast<size_t>(f)]);
   }
   part.tag_names = mesh.tag_names;
+  for (const NodeSet& set : mesh.node_sets) {
+    NodeSet in_part{set.name, set.dim, {}};
+    for (Index v : set.nodes)
+      if (local[static_cast<size_t>(v)] >= 0) in_part.nodes.push_back(local_of(v));
+    part.node_sets.push_back(std::move(in_part));  // ascending: `local` keeps the order
+  }
   if (nodes != nullptr) *nodes = std::move(global);
   return part;
 }

@@ -16,6 +16,23 @@
 
 namespace fricon::mesh {
 
+/// A named boundary without triangles: the nodes of a Gmsh physical group of dimension 1 (a
+/// curve: its line elements' nodes) or 0 (a point). Only a [[dirichlet]] boundary may be one
+/// (fixing an edge or a point to remove a rigid motion); a traction and a contact surface need
+/// triangles, a tag of TetMesh::tag_names.
+/// The dimensions of a node set: a Gmsh physical curve's, a physical point's.
+inline constexpr int kCurveDimension = 1;
+inline constexpr int kPointDimension = 0;
+
+struct NodeSet {
+  std::string name;
+  int dim = kPointDimension;  ///< kCurveDimension or kPointDimension
+  std::vector<Index> nodes;   ///< sorted, unique node indices
+};
+
+/// "curve" or "point", the kind of a node set of dimension `dim`, for messages.
+const char* node_set_kind(int dim);
+
 struct TetMesh {
   /// Node coordinates [m], one column per node.
   Eigen::Matrix<Real, 3, Eigen::Dynamic> nodes;
@@ -35,6 +52,9 @@ struct TetMesh {
   std::vector<int> tet_region;
   /// Names of the regions (Gmsh physical groups of dimension 3).
   std::vector<std::string> region_names;
+  /// The boundaries of lower dimension (curves, points), by name; a name that is also a tag of
+  /// tag_names means the tag's triangles (the reader keeps none such).
+  std::vector<NodeSet> node_sets;
 
   Index n_nodes() const { return nodes.cols(); }
   Index n_tets() const { return tets.cols(); }
@@ -44,10 +64,18 @@ struct TetMesh {
   int find_tag(const std::string& name) const;
   /// Boundary triangles carrying tag `name` (empty if the tag does not exist).
   std::vector<Index> faces_with_tag(const std::string& name) const;
-  /// Sorted, unique node indices of the triangles carrying tag `name`.
+  /// The node set called `name`, or nullptr.
+  const NodeSet* find_node_set(const std::string& name) const;
+  /// Sorted, unique node indices of the triangles carrying tag `name`, else of the node set
+  /// `name` (a curve or point); empty if there is neither.
   std::vector<Index> nodes_with_tag(const std::string& name) const;
-  /// Comma-separated list of the tag names, for error messages.
+  /// Comma-separated list of the tag names, then of the node sets with their kind ("edge
+  /// (curve)"), for error messages.
   std::string tag_list() const;
+  /// Why boundary `name` has no triangles, for the message of a key that needs a surface:
+  /// "boundary 'NAME' is a curve (a Gmsh physical group of dimension 1), not a surface: ..." for
+  /// a node set, else "boundary 'NAME' does not exist on the mesh (tags: ...)".
+  std::string no_surface(const std::string& name) const;
   /// Region index of tetrahedron t (0 when the mesh has one region).
   int region(Index t) const { return tet_region.empty() ? 0 : tet_region[static_cast<size_t>(t)]; }
   /// Number of regions (1 when tet_region is empty).
@@ -75,8 +103,8 @@ Vec3 face_normal(const TetMesh& mesh, Index f);
 /// Checks that the mesh is usable: non-empty, node indices in range, finite coordinates, every
 /// tetrahedron with volume > relative_tolerance * (its longest edge)^3, boundary faces with
 /// positive area and valid tags, face_entity empty or one per face, tet_region empty or one valid
-/// region per tetrahedron. Throws InputError naming the first offending entity and
-/// `source` (a file name or "brick generator").
+/// region per tetrahedron, node sets of dimension 0 or 1 with valid, sorted, unique nodes. Throws
+/// InputError naming the first offending entity and `source` (a file name or "brick generator").
 void check_mesh(const TetMesh& mesh, const std::string& source, Real relative_tolerance = 1e-12);
 
 /// Counts of how the triangular faces of the tetrahedra are shared.
@@ -104,8 +132,9 @@ std::vector<Index> tets_of_faces(const TetMesh& mesh, const std::vector<Index>& 
 
 /// The mesh of the tetrahedra `tets` (ascending indices into mesh.tets) alone: their nodes (in
 /// ascending order of their index in `mesh`, given back in `nodes` when not null), the boundary
-/// triangles that are faces of them (faces_of) with their tags and entities, their regions, and
-/// every tag and region name of `mesh` (so that a part knows the names of the whole).
+/// triangles that are faces of them (faces_of) with their tags and entities, their regions, the
+/// nodes of each node set among theirs (every node set, perhaps empty), and every tag and region
+/// name of `mesh` (so that a part knows the names of the whole).
 TetMesh submesh(const TetMesh& mesh, const std::vector<Index>& tets,
                 std::vector<Index>* nodes = nullptr);
 

@@ -308,6 +308,56 @@ Physical Volume(7) = {2};
   EXPECT_NEAR(volume[1], 1.0, 1e-12);
 }
 
+// Physical curves and points are node sets (issue 33): all the nodes of a curve, its end points
+// included, and the node of a point; nodes_with_tag gives them, faces_with_tag none, and a
+// message about a surface says what they are.
+TEST_F(GmshFile, PhysicalCurvesAndPointsAreNodeSets) {
+  const TetMesh m = read_gmsh(write_file("plate.geo", R"(SetFactory("OpenCASCADE");
+Box(1) = {0, 0, 0, 1, 1, 0.2};
+e = 1e-6;
+Physical Surface("z0") = Surface In BoundingBox{-e, -e, -e, 1 + e, 1 + e, e};
+Physical Curve("edge") = Curve In BoundingBox{-e, -e, -e, 1 + e, e, e};
+Physical Point("corner") = Point In BoundingBox{-e, -e, -e, e, e, e};
+Physical Point(42) = Point In BoundingBox{1 - e, 1 - e, 0.2 - e, 1 + e, 1 + e, 0.2 + e};
+MeshSize{PointsOf{Volume{1};}} = 0.25;
+)"));
+  ASSERT_EQ(m.node_sets.size(), 3u);
+  const NodeSet* edge = m.find_node_set("edge");
+  ASSERT_NE(edge, nullptr);
+  EXPECT_EQ(edge->dim, 1);
+  // Every node on the line y = z = 0, and every such node of the mesh, the ends included.
+  std::vector<Index> on_line;
+  for (Index a = 0; a < m.n_nodes(); ++a)
+    if (std::abs(m.nodes(1, a)) < 1e-12 && std::abs(m.nodes(2, a)) < 1e-12) on_line.push_back(a);
+  EXPECT_EQ(edge->nodes, on_line);
+  EXPECT_GE(on_line.size(), 5u);  // 1 m at mesh size 0.25 m
+  EXPECT_EQ(m.nodes_with_tag("edge"), on_line);
+  EXPECT_TRUE(m.faces_with_tag("edge").empty());
+  const NodeSet* corner = m.find_node_set("corner");
+  ASSERT_NE(corner, nullptr);
+  EXPECT_EQ(corner->dim, 0);
+  ASSERT_EQ(corner->nodes.size(), 1u);
+  EXPECT_LE(m.nodes.col(corner->nodes[0]).norm(), 1e-12);
+  ASSERT_NE(m.find_node_set("0:42"), nullptr);  // an unnamed point
+  EXPECT_EQ(m.tag_list(), "z0, edge (curve), corner (point), 0:42 (point)");
+  EXPECT_NE(m.no_surface("edge").find("boundary 'edge' is a curve"), std::string::npos);
+  EXPECT_NE(m.no_surface("corner").find("boundary 'corner' is a point"), std::string::npos);
+  EXPECT_NE(m.no_surface("nothing").find("does not exist"), std::string::npos);
+}
+
+TEST_F(GmshFile, RefusesACurveNamedAsASurface) {
+  expect_input_error(
+      [&] {
+        (void)read_gmsh(write_file("clash.geo", R"(SetFactory("OpenCASCADE");
+Box(1) = {0, 0, 0, 1, 1, 1};
+Physical Surface("side") = {1};
+Physical Curve("side") = {1};
+Mesh.MeshSizeMax = 0.5;
+)"));
+      },
+      {"clash.geo", "physical group 'side' of dimension 1", "the name of a physical surface"});
+}
+
 // @sect: refused meshes.
 
 TEST_F(GmshFile, RefusesSecondOrder) {

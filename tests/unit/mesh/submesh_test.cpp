@@ -77,3 +77,34 @@ TEST(Submesh, PartsKeepTheGeometryTagsAndRegionsOfTheWhole) {
 }
 
 }  // namespace
+
+namespace {
+
+// A part holds the nodes of each node set (a curve, a point) that are its own, renumbered, and
+// every node set by name, empty where it holds none of its nodes.
+TEST(Submesh, PartsKeepTheirNodesOfEachNodeSet) {
+  TetMesh m = make_brick(BrickSpec{Vec3(3.0, 1.0, 1.0), {6, 2, 2}});
+  NodeSet edge{"edge", 1, {}};
+  for (Index a = 0; a < m.n_nodes(); ++a)
+    if (m.nodes(1, a) == 0.0 && m.nodes(2, a) == 0.0) edge.nodes.push_back(a);
+  m.node_sets.push_back(edge);
+  check_mesh(m, "test");
+  std::vector<int> seen(static_cast<size_t>(m.n_nodes()), 0);
+  for (const auto& elements : interleaved(m, 3)) {
+    std::vector<Index> nodes;
+    const TetMesh part = submesh(m, elements, &nodes);
+    ASSERT_EQ(part.node_sets.size(), 1u);
+    EXPECT_EQ(part.node_sets[0].name, "edge");
+    EXPECT_NO_THROW(check_mesh(part, "part"));
+    for (Index local : part.node_sets[0].nodes) {
+      const Index global = nodes[static_cast<size_t>(local)];
+      EXPECT_EQ(m.nodes(1, global), 0.0);
+      EXPECT_EQ(m.nodes(2, global), 0.0);
+      seen[static_cast<size_t>(global)] = 1;
+    }
+  }
+  for (Index a : edge.nodes)
+    EXPECT_EQ(seen[static_cast<size_t>(a)], 1) << "node " << a << " of the edge in no part";
+}
+
+}  // namespace

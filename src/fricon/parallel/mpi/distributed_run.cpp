@@ -234,10 +234,13 @@ RunResult run_on_rank(const driver::Problem& problem, const RunOptions& options,
     // f whole on rank 0, for the residuals of the postprocessing; every rank assembles its
     // part of it below.
     r.model = driver::assemble_loads(problem, rep.times, opts.on_phase_start);
-    if (!problem.contact.empty()) {
+    // The checks of driver::run before the factorization (driver::check_model), the same here.
+    if (problem.contact.empty()) {
+      (void)driver::check_model(problem, r.model);
+    } else {
       driver::phase_start(opts, "contact");
       ScopedPhase phase(rep.times, "contact");
-      disc = driver::discretize_contact(problem, r.model.mesh, r.model.dofs);
+      disc = driver::check_model(problem, r.model);
     }
   });
   const ModelSizes sizes = broadcast_sizes(r.model, disc.has_value(), world());
