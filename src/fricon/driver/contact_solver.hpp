@@ -196,7 +196,8 @@ struct PathStep {
 /// selection->whole on its patches, and the outcome is that of the whole: the patches left out
 /// with zero multipliers, the certificate and the measures over every patch. Non-convergence
 /// (including a failed certificate) is returned, not thrown. A `step` of a loading path brings
-/// the history the friction acts on (selection is then null).
+/// the history the friction acts on (with a selection too: its multipliers are then those of
+/// the selected patches, its slips those of every surface node).
 ContactOutcome solve_contact(const Problem& problem, const Model& model,
                              const contact::ContactDiscretization& disc,
                              const dual::DualOperator& Q, PhaseTimes& times,
