@@ -246,8 +246,8 @@ RunResult run_outer(const Case& k, const Settings& s, Combination m) {
   const fricon::bench::PaperDual& o = *k.outer;
   const auto& so = o.problem.solver;
   fricon::PhaseTimes times;
-  const auto bounds = fricon::driver::make_slip_bounds(o.problem, o.model.mesh, o.disc, *o.law);
-  fricon::driver::TrescaMap map(o.model.dofs, o.disc, *o.Q, *bounds, *o.law, *k.D_run,
+  const auto bounds = fricon::driver::make_slip_bounds(o.problem, o.model.mesh, o.disc);
+  fricon::driver::TrescaMap map(o.model.dofs, o.disc, *o.Q, *bounds, *k.D_run,
                                 options(k.norm_run, s, m, so.qp.rel_tolerance), so.warm_start,
                                 times);
   RunResult res;

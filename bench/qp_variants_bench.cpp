@@ -168,9 +168,9 @@ RunResult run_outer(const Case& k, qp::MpgpVariant v) {
   const fricon::bench::PaperDual& o = *k.outer;
   const auto& so = o.problem.solver;
   fricon::PhaseTimes times;
-  const auto bounds = fricon::driver::make_slip_bounds(o.problem, o.model.mesh, o.disc, *o.law);
+  const auto bounds = fricon::driver::make_slip_bounds(o.problem, o.model.mesh, o.disc);
   const auto unscaled = qp::BlockScaling::identity(o.disc.n_dual());  // the map keeps a reference
-  fricon::driver::TrescaMap map(o.model.dofs, o.disc, *o.Q, *bounds, *o.law, unscaled,
+  fricon::driver::TrescaMap map(o.model.dofs, o.disc, *o.Q, *bounds, unscaled,
                                 options(k, v, so.qp.rel_tolerance), so.warm_start, times);
   RunResult res;
   VectorXd phi = VectorXd::Zero(o.disc.surface.n_nodes());

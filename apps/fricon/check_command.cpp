@@ -63,8 +63,14 @@ int check(const std::string& file, const std::vector<std::string>& sets) {
       for (std::size_t i = 0; i < disc->pairs.size(); ++i)
         print_pair(*disc, i);
     if (!disc->partition_note.empty()) fmt::print("  partition  {}\n", disc->partition_note);
-    fmt::print("  friction   {}\n",
-               contact::make_friction_law(problem.contact.front().friction)->describe());
+    for (std::size_t i = 0; i < problem.contact.size(); ++i) {
+      const driver::ContactOptions& c = problem.contact[i];
+      const std::string law = contact::make_friction_law(c.friction)->describe();
+      if (problem.contact.size() == 1)
+        fmt::print("  friction   {}\n", law);
+      else
+        fmt::print("  friction   {}: {} {}\n", problem.contact_key(i), enum_name(c.model), law);
+    }
   }
   fmt::print("effective problem:\n{}\n", io::to_json(problem).dump(2));
   return kConverged;

@@ -35,10 +35,10 @@ void print_pairs(const driver::ContactReport& c) {
     const std::string against =
         p.info.master.empty() ? std::string("the plane") : fmt::format("'{}'", p.info.master);
     fmt::print(
-        "  {:<13} '{}' on {}: {} patches ({} stick, {} slip, {} separated), normal force "
-        "{:.4e} N, tangential force {:.4e} N\n",
-        p.info.key, p.info.boundary, against, p.n_patches, p.n_stick, p.n_slip, p.n_separated,
-        p.normal_force, p.tangential_force.norm());
+        "  {:<13} '{}' on {}: {} friction {}, {} patches ({} stick, {} slip, {} separated), "
+        "normal force {:.4e} N, tangential force {:.4e} N\n",
+        p.info.key, p.info.boundary, against, enum_name(p.model), p.friction_law, p.n_patches,
+        p.n_stick, p.n_slip, p.n_separated, p.normal_force, p.tangential_force.norm());
     if (!p.small_sliding)
       fmt::print(
           "  WARNING       {}: the largest relative slip {:.3e} m exceeds {} of the master's "
@@ -63,9 +63,15 @@ void print_summary(const driver::RunResult& result, const std::filesystem::path&
   }
   if (r.contact) {
     const auto& c = *r.contact;
-    fmt::print("  contact       '{}': {} patches, n_dual = {}, {} contact nodes, {} friction {}\n",
-               c.boundary, c.n_patches, c.n_dual, c.n_contact_nodes, enum_name(c.model),
-               c.friction_law);
+    if (c.mixed_models)
+      fmt::print(
+          "  contact       '{}': {} patches, n_dual = {}, {} contact nodes, friction per "
+          "pair (below)\n",
+          c.boundary, c.n_patches, c.n_dual, c.n_contact_nodes);
+    else
+      fmt::print(
+          "  contact       '{}': {} patches, n_dual = {}, {} contact nodes, {} friction {}\n",
+          c.boundary, c.n_patches, c.n_dual, c.n_contact_nodes, enum_name(c.model), c.friction_law);
     if (c.search_rounds > 0)
       fmt::print(
           "  search        {} of {} patches in the QP, {} left out (none penetrates), {} {}\n",
@@ -86,9 +92,10 @@ void print_summary(const driver::RunResult& result, const std::filesystem::path&
         c.kkt.max() <= c.kkt_bound ? "passed" : "FAILED");
     if (c.model == contact::FrictionModel::Coulomb)
       fmt::print(
-          "  Coulomb       natural-map residual {:.1e} {} {:.1e} = certificate_tol{}, "
+          "  Coulomb       natural-map residual{} {:.1e} {} {:.1e} = certificate_tol{}, "
           "certificate {}\n",
-          c.coulomb_residual, c.coulomb_residual <= c.coulomb_bound ? "<=" : ">", c.coulomb_bound,
+          c.mixed_models ? " over the Coulomb pairs" : "", c.coulomb_residual,
+          c.coulomb_residual <= c.coulomb_bound ? "<=" : ">", c.coulomb_bound,
           c.certificate_refinements > 0
               ? fmt::format(" after {} round(s) at tighter tolerances", c.certificate_refinements)
               : std::string(),

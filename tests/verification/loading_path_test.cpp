@@ -6,9 +6,13 @@
 //     to the reaction of the push (global equilibrium) while it sticks, exactly mu times the
 //     normal force once every patch slides, and sticks again when the push reverses;
 //   - slip-weakening: with the paper's F of the accumulated slip, the force ratio of the sliding
-//     block falls from 0.3 to 0.2 where the law falls (1e-5 to 1e-5 + 2/param).
+//     block falls from 0.3 to 0.2 where the law falls (1e-5 to 1e-5 + 2/param);
+//   - the contact search along a path (theory.md §2.7, §2.9): leaving out patches that do not
+//     press changes no step's answer (the same path with every patch), while the candidates grow
+//     with the load.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -237,4 +241,61 @@ TEST(LoadingPath, SlipWeakeningFallsFromStaticToKineticWhereThePapersLawFalls) {
   for (const StepReport& s : r.report.steps)
     largest = std::max(largest, -s.tangential_force.x() / s.normal_force);
   EXPECT_GT(largest, 0.25);
+}
+
+// The paper's brick (n = 4) over a plane that falls away towards the loaded free end (2 mm over
+// the 3 m), Coulomb friction 0.3, its loads raised to their values in three steps and then
+// partly taken off: as the load grows, the free end presses patches that it did not press
+// before.
+Problem loaded_tilted_brick(contact::ContactSearch search) {
+  Problem p = paper_problem(4, 6e4);
+  ContactOptions& c = p.contact.front();
+  c.model = contact::FrictionModel::Coulomb;
+  c.friction.law = contact::FrictionLawKind::Constant;
+  c.friction.value = 0.3;
+  c.obstacle =
+      ObstacleOptions{ObstacleKind::Plane, Vec3(0.0, 0.0, -1.0e-5), Vec3(2.0e-3, 0.0, 1.0), ""};
+  for (TractionOptions& t : p.traction)
+    t.path = {0.3, 0.6, 1.0, 0.7};
+  p.loading.steps = 4;
+  p.solver.qp.rel_tolerance = 1e-10;
+  p.solver.outer.tol = 1e-8;
+  p.solver.contact_search = search;
+  return p;
+}
+
+// Every step's multipliers and the number of patches in its QP.
+struct ContactRecorder {
+  std::vector<VectorXd> lambda;
+  std::vector<Index> candidates;
+  RunOptions options() {
+    RunOptions o;
+    o.on_step = [this](const RunResult& r) {
+      lambda.push_back(r.contact->lambda);
+      candidates.push_back(r.report.contact->n_candidate_patches);
+    };
+    return o;
+  }
+};
+
+TEST(LoadingPath, TheContactSearchChangesNoStepAndItsCandidatesGrowWithTheLoad) {
+  ContactRecorder every, searched;
+  const RunResult all = run(loaded_tilted_brick(contact::ContactSearch::Off), every.options());
+  const RunResult r = run(loaded_tilted_brick(contact::ContactSearch::Gap), searched.options());
+  ASSERT_EQ(all.report.status, RunStatus::Converged) << all.report.message;
+  ASSERT_EQ(r.report.status, RunStatus::Converged) << r.report.message;
+  ASSERT_EQ(searched.lambda.size(), 4u);
+  ASSERT_EQ(every.lambda.size(), 4u);
+  const Index n_patches = r.report.contact->n_patches;
+  for (std::size_t k = 0; k < 4; ++k) {
+    const Real scale = every.lambda[k].maxCoeff();
+    EXPECT_LE((searched.lambda[k] - every.lambda[k]).lpNorm<Eigen::Infinity>(), 1e-7 * scale)
+        << "step " << k + 1;
+    EXPECT_EQ(every.candidates[k], n_patches);
+  }
+  // Patches are left out, more at the first step than at the full load; the set never shrinks.
+  EXPECT_LT(searched.candidates.back(), n_patches);
+  EXPECT_LT(searched.candidates.front(), searched.candidates[2]);
+  EXPECT_TRUE(std::is_sorted(searched.candidates.begin(), searched.candidates.end()));
+  EXPECT_LE(r.report.contact->kkt.max(), r.report.contact->kkt_bound);
 }

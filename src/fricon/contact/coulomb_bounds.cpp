@@ -7,13 +7,13 @@ namespace fricon::contact {
 
 namespace {
 
-class CoulombBounds final : public SlipBounds {
+class CoulombBounds final : public LawBounds {
  public:
-  CoulombBounds(const mesh::TetMesh& mesh, const ContactDiscretization& disc, const FrictionLaw& F,
-                std::optional<Real> start_slip_bound)
-      : SlipBounds(mesh, disc, F), start_(start_slip_bound) {}
-  FrictionModel model() const override { return FrictionModel::Coulomb; }
+  CoulombBounds(const mesh::TetMesh& mesh, const ContactSurface& surface, Patches patches,
+                const FrictionLaw& F, std::optional<Real> start_slip_bound)
+      : LawBounds(mesh, surface, std::move(patches), no_slip_bound_, F), start_(start_slip_bound) {}
   bool uses_pressure() const override { return true; }
+  bool coulomb_patch(Index) const override { return true; }
 
   VectorXd radii(int k, const VectorXd& phi, const VectorXd& lambda_n) const override {
     const VectorXd F_R = mean_coefficients(phi);
@@ -23,16 +23,24 @@ class CoulombBounds final : public SlipBounds {
   }
 
  private:
+  inline static const VectorXd no_slip_bound_{};  // Coulomb reads no g
   std::optional<Real> start_;
 };
 
 }  // namespace
 
 std::unique_ptr<SlipBounds> make_coulomb_bounds(const mesh::TetMesh& mesh,
+                                                const ContactSurface& surface, Patches patches,
+                                                const FrictionLaw& F,
+                                                std::optional<Real> start_slip_bound) {
+  return std::make_unique<CoulombBounds>(mesh, surface, std::move(patches), F, start_slip_bound);
+}
+
+std::unique_ptr<SlipBounds> make_coulomb_bounds(const mesh::TetMesh& mesh,
                                                 const ContactDiscretization& disc,
                                                 const FrictionLaw& F,
                                                 std::optional<Real> start_slip_bound) {
-  return std::make_unique<CoulombBounds>(mesh, disc, F, start_slip_bound);
+  return make_coulomb_bounds(mesh, disc.surface, disc.patches, F, start_slip_bound);
 }
 
 }  // namespace fricon::contact

@@ -11,30 +11,43 @@ std::span<const std::string_view> friction_model_parameters(FrictionModel model)
                                         : std::span<const std::string_view>(kCoulomb);
 }
 
-VectorXd SlipBounds::mean_coefficients(const VectorXd& phi) const {
-  return patch_radii(mesh_, disc_.surface, disc_.patches, F_, phi,
-                     VectorXd::Ones(disc_.surface.n_nodes()));
+VectorXd LawBounds::mean_coefficients(const VectorXd& phi) const {
+  return patch_radii(mesh_, surface_, patches_, F_, phi, VectorXd::Ones(surface_.n_nodes()));
+}
+
+VectorXd LawBounds::nodal_coefficients(const VectorXd& slip) const {
+  VectorXd F(slip.size());
+  F_.evaluate(std::span<const Real>(slip.data(), static_cast<size_t>(slip.size())),
+              std::span<Real>(F.data(), static_cast<size_t>(F.size())));
+  return F;
 }
 
 namespace {
 
-class TrescaBounds final : public SlipBounds {
+class TrescaBounds final : public LawBounds {
  public:
-  TrescaBounds(const mesh::TetMesh& mesh, const ContactDiscretization& disc, const FrictionLaw& F)
-      : SlipBounds(mesh, disc, F) {}
-  FrictionModel model() const override { return FrictionModel::Tresca; }
+  TrescaBounds(const mesh::TetMesh& mesh, const ContactSurface& surface, Patches patches,
+               const VectorXd& g, const FrictionLaw& F)
+      : LawBounds(mesh, surface, std::move(patches), g, F) {}
   bool uses_pressure() const override { return false; }
+  bool coulomb_patch(Index) const override { return false; }
   VectorXd radii(int, const VectorXd& phi, const VectorXd&) const override {
-    return patch_radii(mesh_, disc_.surface, disc_.patches, F_, phi, disc_.slip_bound);
+    return patch_radii(mesh_, surface_, patches_, F_, phi, g_);
   }
 };
 
 }  // namespace
 
 std::unique_ptr<SlipBounds> make_tresca_bounds(const mesh::TetMesh& mesh,
+                                               const ContactSurface& surface, Patches patches,
+                                               const VectorXd& g, const FrictionLaw& F) {
+  return std::make_unique<TrescaBounds>(mesh, surface, std::move(patches), g, F);
+}
+
+std::unique_ptr<SlipBounds> make_tresca_bounds(const mesh::TetMesh& mesh,
                                                const ContactDiscretization& disc,
                                                const FrictionLaw& F) {
-  return std::make_unique<TrescaBounds>(mesh, disc, F);
+  return make_tresca_bounds(mesh, disc.surface, disc.patches, disc.slip_bound, F);
 }
 
 }  // namespace fricon::contact

@@ -34,12 +34,46 @@ Index state_size(const TrescaMap& map) {
   return n;
 }
 
+// The friction of the pairs, for reports: each pair's model and law, and the whole's (theory.md
+// §5.7): one model and one law when the pairs share them, else each pair's.
+struct PairsFriction {
+  std::vector<contact::FrictionModel> model;
+  std::vector<std::string> law;
+  std::vector<std::string> radius_integration;
+};
+
+PairsFriction describe_pairs(const Problem& problem) {
+  PairsFriction f;
+  for (const ContactOptions& c : problem.contact) {
+    const auto law = contact::make_friction_law(c.friction);
+    f.model.push_back(c.model);
+    f.law.push_back(law->describe());
+    f.radius_integration.push_back(contact::radius_integration(*law));
+  }
+  return f;
+}
+
+// One text when every pair has it, else each pair's prefixed by its key.
+std::string shared_or_each(const Problem& problem, const std::vector<std::string>& texts) {
+  if (std::all_of(texts.begin(), texts.end(), [&](const auto& t) { return t == texts.front(); }))
+    return texts.front();
+  std::string out;
+  for (std::size_t i = 0; i < texts.size(); ++i)
+    out += fmt::format("{}{}: {}", i == 0 ? "" : "; ", problem.contact_key(i), texts[i]);
+  return out;
+}
+
 ContactReport describe(const Problem& problem, const contact::ContactDiscretization& disc,
-                       const dual::DualOperator& Q, const contact::FrictionLaw& law) {
+                       const dual::DualOperator& Q) {
   ContactReport rep;
-  rep.model = problem.contact.front().model;
+  const PairsFriction f = describe_pairs(problem);
+  const bool any_coulomb =
+      std::find(f.model.begin(), f.model.end(), contact::FrictionModel::Coulomb) != f.model.end();
+  rep.mixed_models = any_coulomb && std::find(f.model.begin(), f.model.end(),
+                                              contact::FrictionModel::Tresca) != f.model.end();
+  rep.model = any_coulomb ? contact::FrictionModel::Coulomb : contact::FrictionModel::Tresca;
   rep.boundary = disc.surface.tag;
-  rep.friction_law = law.describe();
+  rep.friction_law = shared_or_each(problem, f.law);
   rep.dual_operator = Q.kind();
   rep.n_patches = disc.n_patches();
   rep.n_dual = disc.n_dual();
@@ -48,7 +82,7 @@ ContactReport describe(const Problem& problem, const contact::ContactDiscretizat
   rep.stability_ratio = disc.stability.ratio;
   rep.stability_estimated = disc.stability.estimated;
   rep.n_inactive_multipliers = disc.stability.n_inactive;
-  rep.radius_integration = contact::radius_integration(law);
+  rep.radius_integration = shared_or_each(problem, f.radius_integration);
   rep.partition_note = disc.partition_note;
   rep.kkt_bound = kCertificateFactor * problem.solver.qp.rel_tolerance;
   rep.coulomb_bound = problem.solver.certificate_tol;
@@ -157,16 +191,37 @@ outer::OuterReport successive_approximations(TrescaMap& map, VectorXd& phi,
   return o;
 }
 
-// The natural-map residual of the Coulomb problem on the patches of the QP (those a contact
-// search left out carry no pressure and, unpenetrated, no residual), from the current
-// multipliers and slips: g = Q lambda - h, one product with Q.
+// The natural-map residual of the Coulomb problem (qp::coulomb_residual) over the patches of the
+// Coulomb pairs (theory.md §5.7): the multipliers lambda [Pa] and the gradient g [m^3] of every
+// patch, with the mean coefficient mu_R of each; 0 without Coulomb patches.
+Real coulomb_pairs_residual(const contact::SlipBounds& bounds, const VectorXd& lambda,
+                            const VectorXd& g, const VectorXd& mu, Real alpha) {
+  std::vector<Index> coulomb;
+  for (Index p = 0; p < mu.size(); ++p)
+    if (bounds.coulomb_patch(p)) coulomb.push_back(p);
+  if (static_cast<Index>(coulomb.size()) == mu.size())
+    return qp::coulomb_residual(lambda, g, mu, alpha);
+  const auto n = static_cast<Index>(coulomb.size());
+  VectorXd l(3 * n), gc(3 * n), m(n);
+  for (Index i = 0; i < n; ++i) {
+    const Index p = coulomb[static_cast<size_t>(i)];
+    l.segment<3>(3 * i) = lambda.segment<3>(3 * p);
+    gc.segment<3>(3 * i) = g.segment<3>(3 * p);
+    m(i) = mu(p);
+  }
+  return n == 0 ? 0.0 : qp::coulomb_residual(l, gc, m, alpha);
+}
+
+// That residual on the patches of the QP (those a contact search left out carry no pressure
+// and, unpenetrated, no residual), from the current multipliers and slips: g = Q lambda - h, one
+// product with Q.
 Real coulomb_residual_now(const TrescaMap& map, const VectorXd& state, const dual::DualOperator& Q,
                           const contact::SlipBounds& bounds, Real norm_Q) {
   VectorXd g;
   Q.apply(map.lambda(), g);
   g -= Q.h();
-  return qp::coulomb_residual(map.lambda(), g, bounds.mean_coefficients(map.slips(state)),
-                              1.0 / norm_Q);
+  return coulomb_pairs_residual(bounds, map.lambda(), g, bounds.mean_coefficients(map.slips(state)),
+                                1.0 / norm_Q);
 }
 
 // A Coulomb fixed point whose natural-map residual is above solver.certificate_tol takes further
@@ -239,7 +294,7 @@ WholeResult cover_left_out(const Problem& problem, const Model& m, const PatchSe
 
 // The paper's measures and the surface fields of the result.
 void measure(const Model& m, const contact::ContactDiscretization& disc,
-             const contact::FrictionLaw& law, const VectorXd& lambda, const SlipHistory* history,
+             const contact::SlipBounds& bounds, const VectorXd& lambda, const SlipHistory* history,
              ContactOutcome& out) {
   ContactReport& rep = out.report;
   ContactFields& fields = out.fields;
@@ -257,9 +312,7 @@ void measure(const Model& m, const contact::ContactDiscretization& disc,
   rep.max_wt = wt.maxCoeff();
   fields.slip = history ? history->slips(s) : wt;
   const VectorXd& slip = fields.slip;
-  fields.F.resize(slip.size());  // one batch: a function law is called once
-  law.evaluate(std::span<const Real>(slip.data(), static_cast<size_t>(slip.size())),
-               std::span<Real>(fields.F.data(), static_cast<size_t>(fields.F.size())));
+  fields.F = bounds.nodal_coefficients(slip);  // one batch per law: a function law is called once
   for (Index p = 0; p < rep.n_patches; ++p) {
     rep.max_lambda_n = std::max(rep.max_lambda_n, lambda(3 * p));
     rep.max_lambda_t = std::max(rep.max_lambda_t, lambda.segment<2>(3 * p + 1).norm());
@@ -294,12 +347,16 @@ void classify_patches(const contact::SlipBounds& bounds, const VectorXd& radius,
   }
 }
 
-// Per pair: its patches' states and forces, and whether the slips kept to small sliding.
-void report_pairs(const contact::ContactDiscretization& disc, ContactOutcome& out) {
+// Per pair: its friction, its patches' states and forces, and whether the slips kept to small
+// sliding.
+void report_pairs(const Problem& problem, const contact::ContactDiscretization& disc,
+                  ContactOutcome& out) {
   const ContactFields& f = out.fields;
   std::vector<PairReport>& pairs = out.report.pairs;
-  for (const contact::PairInfo& info : disc.pairs)
-    pairs.push_back({.info = info});
+  const PairsFriction friction = describe_pairs(problem);
+  for (std::size_t i = 0; i < disc.pairs.size(); ++i)
+    pairs.push_back(
+        {.info = disc.pairs[i], .model = friction.model.at(i), .friction_law = friction.law.at(i)});
   for (Index p = 0; p < disc.n_patches(); ++p) {
     PairReport& r = pairs[static_cast<size_t>(disc.patch_pair[static_cast<size_t>(p)])];
     const Vec3 lambda = f.lambda.segment<3>(3 * p);
@@ -361,16 +418,13 @@ void conclude(const outer::OuterReport& loop, ContactOutcome& out) {
 
 std::unique_ptr<contact::SlipBounds> make_slip_bounds(const Problem& problem,
                                                       const mesh::TetMesh& mesh,
-                                                      const contact::ContactDiscretization& disc,
-                                                      const contact::FrictionLaw& law) {
-  switch (problem.contact.front().model) {
-    case contact::FrictionModel::Tresca:
-      return contact::make_tresca_bounds(mesh, disc, law);
-    case contact::FrictionModel::Coulomb:
-      return contact::make_coulomb_bounds(mesh, disc, law,
-                                          problem.contact.front().start_slip_bound);
-  }
-  throw Error("make_slip_bounds: invalid friction model");
+                                                      const contact::ContactDiscretization& disc) {
+  std::vector<contact::PairFriction> frictions;
+  for (const ContactOptions& c : problem.contact)
+    frictions.push_back({.model = c.model,
+                         .law = contact::make_friction_law(c.friction),
+                         .start_slip_bound = c.start_slip_bound});
+  return contact::make_pair_bounds(mesh, disc, std::move(frictions));
 }
 
 ContactOutcome solve_contact(const Problem& problem, const Model& m,
@@ -379,8 +433,7 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m,
                              const RunOptions& options, const PatchSelection* selection,
                              const PathStep* step) {
   ContactOutcome out;
-  const auto law = contact::make_friction_law(problem.contact.front().friction);
-  out.report = describe(problem, disc, Q, *law);
+  out.report = describe(problem, disc, Q);
   ContactReport& rep = out.report;
   rep.n_candidate_patches = disc.n_patches();
 
@@ -398,8 +451,8 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m,
                             ? rep.norm_Q
                             : estimate_norm_Q(Q, scaling, options);
   }
-  const auto bounds = make_slip_bounds(problem, m.mesh, disc, *law);
-  TrescaMap map(m.dofs, disc, Q, *bounds, *law, scaling,
+  const auto bounds = make_slip_bounds(problem, m.mesh, disc);
+  TrescaMap map(m.dofs, disc, Q, *bounds, scaling,
                 qp_options(problem.solver, rep.norm_Q_scaled, options), problem.solver.warm_start,
                 times);
   if (options.keep_first_dual) out.first_dual = first_dual_problem(problem, disc, Q, map);
@@ -425,16 +478,16 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m,
   if (selection) result = cover_left_out(problem, m, *selection, Q, map, out.w, rep);
   {
     ScopedPhase phase(times, "postprocess");
-    const auto whole_bounds = selection ? make_slip_bounds(problem, m.mesh, whole, *law) : nullptr;
+    const auto whole_bounds = selection ? make_slip_bounds(problem, m.mesh, whole) : nullptr;
     const contact::SlipBounds& result_bounds = selection ? *whole_bounds : *bounds;
     out.fields.lambda = result.lambda;
     out.fields.radius = result.radius;
-    measure(m, whole, *law, result.lambda, step ? step->history : nullptr, out);
+    measure(m, whole, result_bounds, result.lambda, step ? step->history : nullptr, out);
     classify_patches(result_bounds, result.radius, out);
-    report_pairs(whole, out);
+    report_pairs(problem, whole, out);
     if (result_bounds.uses_pressure())
-      rep.coulomb_residual =
-          qp::coulomb_residual(result.lambda, result.g, out.fields.coefficient, 1.0 / rep.norm_Q);
+      rep.coulomb_residual = coulomb_pairs_residual(result_bounds, result.lambda, result.g,
+                                                    out.fields.coefficient, 1.0 / rep.norm_Q);
   }
   conclude(loop, out);
   rep.n_kinv = Q.n_kinv();

@@ -49,6 +49,9 @@ struct PairReport {
   contact::PairInfo info;  ///< surfaces, frame, stability, reach of the master
   Index n_patches = 0;
   Index n_stick = 0, n_slip = 0, n_separated = 0;
+  /// The pair's own friction model and law (theory.md §5.7), as ContactReport describes them.
+  contact::FrictionModel model = contact::FrictionModel::Tresca;
+  std::string friction_law;
   Real normal_force = 0.0;  ///< sum lambda_n |R| [N]
   /// The force of the obstacle (plane or master) on the contact surface [N], and its part
   /// tangential to the patches.
@@ -66,8 +69,13 @@ struct PairReport {
 inline constexpr Real kSmallSlidingShare = 0.5;
 
 struct ContactReport {
+  /// The friction model of every pair; with pairs of different models (mixed_models) Coulomb,
+  /// whose certificate then covers the Coulomb pairs (each pair's own in `pairs`).
   contact::FrictionModel model = contact::FrictionModel::Tresca;
+  bool mixed_models = false;  ///< the pairs do not all have one model
   std::string boundary;
+  /// The law of every pair (FrictionLaw::describe); with laws that differ, each pair's, joined
+  /// by "; " and prefixed by the pair's key.
   std::string friction_law;
   dual::DualOperatorKind dual_operator = dual::DualOperatorKind::Auto;  ///< the one used
   Index n_patches = 0;
@@ -112,7 +120,8 @@ struct ContactReport {
   qp::KktResiduals kkt;
   Real kkt_bound = 0.0;  ///< kCertificateFactor * qp_rtol: the certificate's bound on kkt.max()
   /// Coulomb only: the natural-map residual of the Coulomb problem at the result
-  /// (qp::coulomb_residual, with mu_R from the returned slips), and its bound.
+  /// (qp::coulomb_residual, with mu_R from the returned slips) over the patches of the Coulomb
+  /// pairs, and its bound.
   Real coulomb_residual = 0.0;
   Real coulomb_bound = 0.0;
   /// Rounds of further steps at tighter tolerances that the Coulomb certificate needed.
@@ -187,7 +196,8 @@ struct PathStep {
 /// selection->whole on its patches, and the outcome is that of the whole: the patches left out
 /// with zero multipliers, the certificate and the measures over every patch. Non-convergence
 /// (including a failed certificate) is returned, not thrown. A `step` of a loading path brings
-/// the history the friction acts on (selection is then null).
+/// the history the friction acts on (with a selection too: its multipliers are then those of
+/// the selected patches, its slips those of every surface node).
 ContactOutcome solve_contact(const Problem& problem, const Model& model,
                              const contact::ContactDiscretization& disc,
                              const dual::DualOperator& Q, PhaseTimes& times,
@@ -195,11 +205,11 @@ ContactOutcome solve_contact(const Problem& problem, const Model& model,
                              const PatchSelection* selection = nullptr,
                              const PathStep* step = nullptr);
 
-/// The slip bounds of the problem's friction model on the discretization.
+/// The slip bounds on the discretization: the patches of each pair (disc.pairs, in the order of
+/// problem.contact) by the pair's own model and law, which the bounds own (theory.md §5.7).
 std::unique_ptr<contact::SlipBounds> make_slip_bounds(const Problem& problem,
                                                       const mesh::TetMesh& mesh,
-                                                      const contact::ContactDiscretization& disc,
-                                                      const contact::FrictionLaw& law);
+                                                      const contact::ContactDiscretization& disc);
 
 }  // namespace fricon::driver
 

@@ -5,7 +5,9 @@
 // coefficient is evaluated at (the accumulated slip) and the warm start.
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <memory>
+#include <numeric>
 
 #include <fmt/format.h>
 
@@ -183,6 +185,111 @@ VectorXd solve_step(const Problem& step_problem, const contact::ContactDiscretiz
   return adopt(solve_contact(step_problem, m, disc, Q, r.report.times, options, nullptr, &step), r);
 }
 
+// The contact search along a path (theory.md §2.9): the candidates, carried from step to step
+// and only grown, the part of the discretization on them and its dual operator, rebuilt when
+// they grow; ||Q|| and ||D Q D|| of that operator once estimated (0: not yet).
+struct PathSearch {
+  std::vector<Index> candidates;
+  std::unique_ptr<contact::ContactDiscretization> part;
+  std::unique_ptr<dual::DualOperator> Q;
+  Real norm_Q = 0.0, norm_Q_scaled = 0.0;
+};
+
+// Adds `more` (increasing) to the candidates; a set that grows drops its operator.
+void grow_candidates(const std::vector<Index>& more, PathSearch& search) {
+  std::vector<Index> added;
+  std::set_difference(more.begin(), more.end(), search.candidates.begin(), search.candidates.end(),
+                      std::back_inserter(added));
+  if (added.empty()) return;
+  search.candidates = contact::merge_patches(search.candidates, added);
+  search.Q.reset();
+  search.part.reset();
+  search.norm_Q = search.norm_Q_scaled = 0.0;
+}
+
+// The part on the candidates at this step's loads: built with its operator when the set grew,
+// else only its surface (the step's prescribed displacements) and offset (the step's loads and
+// the last step's tangential displacement) taken again from the whole; Q keeps its B.
+void prepare_part(const Problem& problem, const contact::ContactDiscretization& disc,
+                  const Model& m, const RunOptions& options, int steps_left, PathSearch& search) {
+  contact::ContactDiscretization fresh = contact::restrict_to_patches(disc, search.candidates);
+  if (search.Q) {
+    search.part->surface = std::move(fresh.surface);
+    search.part->offset = std::move(fresh.offset);
+    return;
+  }
+  search.part = std::make_unique<contact::ContactDiscretization>(std::move(fresh));
+  const contact::ContactDiscretization& part = *search.part;
+  dual::DualInput input{m.factor, part.B, m.f, part.dofs, interrupt_poll(options), &part.offset};
+  input.expected_recoveries = kOuterIterationsPerStep * steps_left;
+  search.Q = dual::make_dual_operator(problem.solver.dual_operator, input);
+}
+
+// The multipliers of every patch (3 per patch) on the candidates only.
+VectorXd restrict_multipliers(const VectorXd& lambda, const std::vector<Index>& candidates) {
+  VectorXd out(3 * static_cast<Index>(candidates.size()));
+  for (std::size_t i = 0; i < candidates.size(); ++i)
+    out.segment<3>(3 * static_cast<Index>(i)) = lambda.segment<3>(3 * candidates[i]);
+  return out;
+}
+
+// The step's contact solve with the contact search (theory.md §2.7, §2.9): the candidates of
+// the last steps and those the step's free displacement u0 penetrates, then, as a static run,
+// one more solve of the step with every left-out patch that penetrates added, until none does
+// (after kMaxSearchRounds growths, every patch). The counts are those of every round.
+VectorXd solve_step_with_search(const Problem& step_problem,
+                                const contact::ContactDiscretization& disc, const VectorXd& u0,
+                                const PathState& state, int steps_left, PathSearch& search,
+                                const RunOptions& options, RunResult& r) {
+  Model& m = r.model;
+  const VectorXd free_penetration = contact::mean_penetration(disc, u0);
+  grow_candidates(
+      contact::initial_candidates(free_penetration, step_problem.solver.contact_search_margin),
+      search);
+  const Real tolerance =
+      step_problem.solver.qp.rel_tolerance * free_penetration.cwiseAbs().maxCoeff();
+  long earlier_products = 0, earlier_qp_iterations = 0, earlier_kinv = 0;
+  for (int round = 1;; ++round) {
+    {
+      phase_start(options, "dual");
+      ScopedPhase phase(r.report.times, "dual");
+      prepare_part(step_problem, disc, m, options, steps_left, search);
+    }
+    search.Q->set_load(m.f, search.part->offset, &u0);
+    const VectorXd lambda = state.lambda.size() > 0
+                                ? restrict_multipliers(state.lambda, search.candidates)
+                                : VectorXd();
+    const PathStep step{&state.history, lambda.size() > 0 ? &lambda : nullptr,
+                        state.predicted.size() > 0 ? &state.predicted : nullptr, search.norm_Q,
+                        search.norm_Q_scaled};
+    const PatchSelection selection{disc, search.candidates, round};
+    phase_start(options, "outer loop");
+    ContactOutcome c = solve_contact(step_problem, m, *search.part, *search.Q, r.report.times,
+                                     options, &selection, &step);
+    search.norm_Q = c.report.norm_Q;
+    search.norm_Q_scaled = c.report.norm_Q_scaled;
+    std::vector<Index> added = contact::penetrating_patches(contact::mean_penetration(disc, c.w),
+                                                            search.candidates, tolerance);
+    const bool grow =
+        !added.empty() && !options.stop_was_requested() &&
+        (c.converged || c.report.termination == outer::OuterTermination::CertificateFailed);
+    if (!grow) {
+      c.report.n_mult += earlier_products;
+      c.report.qp_iterations += earlier_qp_iterations;
+      c.report.n_kinv += earlier_kinv;
+      return adopt(std::move(c), r);
+    }
+    earlier_products += c.report.n_mult;
+    earlier_qp_iterations += c.report.qp_iterations;
+    earlier_kinv += c.report.n_kinv;
+    if (round >= kMaxSearchRounds) {
+      added.resize(static_cast<std::size_t>(disc.n_patches()));
+      std::iota(added.begin(), added.end(), Index{0});
+    }
+    grow_candidates(added, search);
+  }
+}
+
 // Without contact a step's displacement is u0.
 VectorXd solve_elastic_step(const VectorXd& u0, RunResult& r) {
   r.report.linear_residual = elastic_residual(r.model, u0);
@@ -203,12 +310,14 @@ RunResult run_path(const Problem& problem, const RunOptions& options) {
   RunReport& rep = r.report;
   const std::vector<PathLoad> loads = path_loads(problem);
 
-  // @sect: the model, the contact discretization (every patch: the contact search does not
-  // apply to a path), the factor of K and Q, once for the whole path.
+  // @sect: the model, the contact discretization, the factor of K and Q, once for the whole
+  // path; with the contact search Q is that of the candidates, formed again when they grow.
   std::optional<contact::ContactDiscretization> disc = build_factored_model(problem, options, r);
   if (options.stop_was_requested()) throw Interrupted("interrupted before the first step");
   std::unique_ptr<dual::DualOperator> Q;
-  if (disc) {
+  const bool search = disc && search_applies(problem, *disc);
+  PathSearch path_search;
+  if (disc && !search) {
     phase_start(options, "dual");
     ScopedPhase phase(rep.times, "dual");
     dual::DualInput input{r.model.factor,          disc->B,      r.model.f, disc->dofs,
@@ -234,8 +343,11 @@ RunResult run_path(const Problem& problem, const RunOptions& options) {
       ScopedPhase phase(rep.times, "assembly");
       apply_step_loads(step_problem, factors, basis, state, r.model, u0, disc ? &*disc : nullptr);
     }
-    const VectorXd u = disc ? solve_step(step_problem, *disc, *Q, u0, state, options, r)
-                            : solve_elastic_step(u0, r);
+    const int steps_left = problem.loading.steps - k + 1;
+    const VectorXd u = !disc    ? solve_elastic_step(u0, r)
+                       : search ? solve_step_with_search(step_problem, *disc, u0, state, steps_left,
+                                                         path_search, options, r)
+                                : solve_step(step_problem, *disc, *Q, u0, state, options, r);
     // The stresses of a step only for whom watches the steps, and for the result.
     const bool last = k == problem.loading.steps;
     finish_run(step_problem, u, r, options.on_step || last);

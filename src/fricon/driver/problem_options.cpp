@@ -193,12 +193,6 @@ void check_master(const Problem& p, const std::string& key, const ContactOptions
                      c.boundary));
 }
 
-bool same_friction(const FrictionOptions& a, const FrictionOptions& b) {
-  return a.law == b.law && a.param == b.param && a.value == b.value && a.t == b.t && a.f == b.f &&
-         a.expression == b.expression && a.kinks == b.kinks &&
-         a.quadrature_rtol == b.quadrature_rtol && a.function_name == b.function_name;
-}
-
 /// Whether pair b is pair a the other way round: a's contact surface is b's master and a's master
 /// b's contact surface (one interface, both bodies' sides).
 bool reversed_pair(const ContactOptions& a, const ContactOptions& b) {
@@ -209,26 +203,15 @@ bool reversed_pair(const ContactOptions& a, const ContactOptions& b) {
          b.boundary == a.obstacle->boundary;
 }
 
-/// Every pair: free dofs on its surface, a master of its own; all pairs share the friction
-/// model and law (the outer loop has one law for now; slip bounds g may differ), no surface
-/// is the contact surface of two pairs, and no interface is given as two pairs (A on B, B on A).
+/// Every pair: free dofs on its surface, a master of its own, no surface is the contact surface
+/// of two pairs, and no interface is given as two pairs (A on B, B on A). Each pair has its own
+/// friction model, law and slip bound (theory.md §5.7).
 void check_contact_pairs(const Problem& p) {
   for (std::size_t i = 0; i < p.contact.size(); ++i) {
     const ContactOptions& c = p.contact[i];
     const std::string key = p.contact_key(i);
     check_contact_not_clamped(p, key, c);
     check_master(p, key, c);
-    if (i == 0) continue;
-    const ContactOptions& first = p.contact[0];
-    if (c.model != first.model)
-      fail(p, join_key(key, "model"),
-           fmt::format("expected the model of contact[0] (\"{}\"), got \"{}\": all pairs share "
-                       "one friction model",
-                       enum_name(first.model), enum_name(c.model)));
-    if (!same_friction(c.friction, first.friction))
-      fail(p, join_key(key, "friction"),
-           "expected the friction law of contact[0]: all pairs share one law F (their slip bounds "
-           "g may differ)");
     for (std::size_t j = 0; j < i; ++j) {
       if (p.contact[j].boundary == c.boundary)
         fail(p, join_key(key, "boundary"),

@@ -40,24 +40,30 @@ VectorXd solve_with_operator(const Problem& problem, const contact::ContactDiscr
 
 namespace {
 
-// Every radius is 0 whatever the state: F = 0, or Tresca with g = 0.
-bool frictionless(const Problem& problem, const contact::ContactDiscretization& disc) {
-  const ContactOptions& c = problem.contact.front();
+// Every radius of the pair is 0 whatever the state: F = 0, or Tresca with g = 0.
+bool frictionless(const ContactOptions& c) {
   const bool no_coefficient =
       c.friction.law == contact::FrictionLawKind::Constant && c.friction.value == 0.0;
-  const bool no_tresca_bound = c.model == contact::FrictionModel::Tresca &&
-                               (disc.slip_bound.size() == 0 || disc.slip_bound.maxCoeff() <= 0.0);
+  const bool no_tresca_bound = c.model == contact::FrictionModel::Tresca && c.slip_bound <= 0.0;
   return no_coefficient || no_tresca_bound;
+}
+
+// Every radius of every pair is 0 whatever the state.
+bool frictionless(const Problem& problem) {
+  return std::all_of(problem.contact.begin(), problem.contact.end(),
+                     [](const ContactOptions& c) { return frictionless(c); });
 }
 
 }  // namespace
 
-bool search_applies(const Problem& problem, const contact::ContactDiscretization& disc) {
+bool search_applies(const Problem& problem, const contact::ContactDiscretization&) {
   if (problem.solver.contact_search == contact::ContactSearch::Off) return false;
-  // A positive Tresca bound g F acts without pressure: every patch resists sliding.
+  // A positive Tresca bound g F acts without pressure: every patch of such a pair resists
+  // sliding, so none may be left out (theory.md §2.7).
   const bool tresca_with_friction =
-      problem.contact.front().model == contact::FrictionModel::Tresca &&
-      !frictionless(problem, disc);
+      std::any_of(problem.contact.begin(), problem.contact.end(), [](const ContactOptions& c) {
+        return c.model == contact::FrictionModel::Tresca && !frictionless(c);
+      });
   return !tresca_with_friction;
 }
 
@@ -85,7 +91,7 @@ VectorXd solve_with_search(const Problem& problem, const contact::ContactDiscret
   // Without friction every radius is 0 and the tangential multipliers stay 0: their rows of B
   // need not enter Q (a third of the rows to form); a dumped QP keeps them (a Q without zero
   // rows, for other solvers).
-  const bool normal_rows = frictionless(problem, disc) && !options.keep_first_dual;
+  const bool normal_rows = frictionless(problem) && !options.keep_first_dual;
   const contact::PatchRows rows =
       normal_rows ? contact::PatchRows::Normal : contact::PatchRows::All;
   for (int round = 1;; ++round) {

@@ -18,13 +18,12 @@ VectorXd SlipHistory::slips(const contact::SurfaceDisplacement& d) const {
 
 TrescaMap::TrescaMap(const fe::DofMap& dofs, const contact::ContactDiscretization& discretization,
                      const dual::DualOperator& Q, const contact::SlipBounds& bounds,
-                     const contact::FrictionLaw& law, const qp::BlockScaling& scaling,
-                     const qp::MpgpOptions& qp, bool warm_start, PhaseTimes& times)
+                     const qp::BlockScaling& scaling, const qp::MpgpOptions& qp, bool warm_start,
+                     PhaseTimes& times)
     : dofs_(dofs),
       disc_(discretization),
       Q_(Q),
       bounds_(bounds),
-      law_(law),
       scaling_(scaling),
       qp_(qp),
       warm_start_(warm_start),
@@ -93,16 +92,23 @@ outer::MapStep TrescaMap::apply(int k, const VectorXd& state, VectorXd& image) {
 }
 
 std::string TrescaMap::stall_hint() const {
-  // An expression or function law has no known Lipschitz constant (lipschitz() is NaN).
-  if (!std::isfinite(law_.lipschitz()))
+  // The law that limits the contraction: one of unknown Lipschitz constant (an expression or
+  // function law, lipschitz() NaN) first, else the one of the largest constant.
+  const contact::FrictionLaw* worst = nullptr;
+  for (const contact::FrictionLaw* law : bounds_.laws())
+    if (!worst || !std::isfinite(law->lipschitz()) ||
+        (std::isfinite(worst->lipschitz()) && law->lipschitz() > worst->lipschitz()))
+      worst = law;
+  if (!worst) return "qp_rtol may be too loose for outer_tol";
+  if (!std::isfinite(worst->lipschitz()))
     return fmt::format(
         "the friction law {} may vary too fast with the slip for the successive approximations "
         "to contract (its Lipschitz constant is not known), or qp_rtol too loose for outer_tol",
-        law_.describe());
+        worst->describe());
   return fmt::format(
       "the friction law's Lipschitz constant {:.3g} 1/m may be too large for this problem, or "
       "qp_rtol too loose for outer_tol",
-      law_.lipschitz());
+      worst->lipschitz());
 }
 
 }  // namespace fricon::driver

@@ -42,8 +42,8 @@ class TrescaMap final : public outer::FixedPointMap {
   /// zero. Phases "qp" and "recovery" are timed into `times`.
   TrescaMap(const fe::DofMap& dofs, const contact::ContactDiscretization& discretization,
             const dual::DualOperator& Q, const contact::SlipBounds& bounds,
-            const contact::FrictionLaw& law, const qp::BlockScaling& scaling,
-            const qp::MpgpOptions& qp, bool warm_start, PhaseTimes& times);
+            const qp::BlockScaling& scaling, const qp::MpgpOptions& qp, bool warm_start,
+            PhaseTimes& times);
 
   /// {"phi": surface nodes}, and for Coulomb {"lambda_n": patches} after it.
   std::vector<outer::StateBlock> layout() const override;
@@ -75,7 +75,6 @@ class TrescaMap final : public outer::FixedPointMap {
   const contact::ContactDiscretization& disc_;
   const dual::DualOperator& Q_;
   const contact::SlipBounds& bounds_;
-  const contact::FrictionLaw& law_;
   const qp::BlockScaling& scaling_;
   qp::MpgpOptions qp_;
   bool warm_start_;

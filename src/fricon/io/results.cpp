@@ -45,7 +45,7 @@ void add_contact_report(const driver::ContactReport& c, nlohmann::json& j) {
               {"bound", c.kkt_bound}};
   j["termination"] = enum_name(c.termination);
   j["n_objective_increases"] = c.n_objective_increases;
-  j["model"] = enum_name(c.model);
+  j["model"] = c.mixed_models ? std::string("mixed") : std::string(enum_name(c.model));
   if (c.model == contact::FrictionModel::Coulomb)
     j["coulomb"] = {{"residual", c.coulomb_residual},
                     {"bound", c.coulomb_bound},
@@ -86,6 +86,8 @@ void add_contact_report(const driver::ContactReport& c, nlohmann::json& j) {
         {"key", p.key},
         {"boundary", p.boundary},
         {"obstacle", p.master.empty() ? "plane" : "body"},
+        {"model", enum_name(r.model)},
+        {"friction_law", r.friction_law},
         {"n_patches", r.n_patches},
         {"patch_states", {{"stick", r.n_stick}, {"slip", r.n_slip}, {"separated", r.n_separated}}},
         {"normal_force", r.normal_force},
