@@ -105,8 +105,7 @@ std::vector<Command> define_mesh(CLI::App& app) {
   CLI::App* info = mesh->add_subcommand(
       "info",
       "Read a Gmsh file (.msh, or .geo meshed on the fly) as fricon does and print its nodes,\n"
-      "tetrahedra, extent, regions (tetrahedra, volume), boundary tags (triangles, area,
-"
+      "tetrahedra, extent, regions (tetrahedra, volume), boundary tags (triangles, area,\n"
       "entities) and curves and points (nodes), in metres (--unit: the unit of its coordinates)");
   info->add_option("file", o->file, "Mesh file (.msh or .geo)")->required();
   info->add_option("--unit", o->unit,
