@@ -24,7 +24,7 @@ constexpr Real kPowerTolerance = 1e-10;
 // The recovery on the contact dofs must agree with the full solve to this relative accuracy.
 constexpr Real kRecoveryTolerance = 1e-8;
 // A patch slips when ||lambda_t|| is this close to its radius (relative); it is separated when
-// lambda_n is at most kContactPressureShare (tresca_map.hpp) of the pressure scale.
+// lambda_n is at most separation_threshold (tresca_map.hpp).
 constexpr Real kSlipTolerance = 1e-6;
 
 Index state_size(const TrescaMap& map) {
@@ -107,11 +107,13 @@ qp::DualProblem first_dual_problem(const Problem& problem,
 
 // A step of a loading path starts where the last one ended: slips measured from its tangential
 // displacement, the accumulated slip as the first phi (the slip increment is zero), and its
-// multipliers as the warm start and (Coulomb) the first pressures.
+// multipliers as the warm start and (Coulomb) the first pressures; the pressures are measured
+// against the path's scale, to the accuracy outer_tol times it (theory.md §2.9).
 void start_from_last_step(const PathStep& step, const contact::ContactDiscretization& disc,
-                          const contact::SlipBounds& bounds, TrescaMap& map, VectorXd& state) {
+                          const contact::SlipBounds& bounds, Real outer_tol, TrescaMap& map,
+                          VectorXd& state) {
   map.set_history(step.history);
-  map.set_pressure_scale(step.lambda_scale);
+  map.set_pressure_scale(step.lambda_scale, outer_tol * step.lambda_scale);
   if (step.predicted_slip)
     state.head(disc.surface.n_nodes()) = *step.predicted_slip;
   else if (step.history && !step.history->empty())
@@ -307,12 +309,11 @@ void classify_patches(const contact::SlipBounds& bounds, const VectorXd& radius,
   ContactFields& f = out.fields;
   ContactReport& rep = out.report;
   f.coefficient = bounds.mean_coefficients(f.slip);
-  const Real scale_n = std::max(rep.max_lambda_n, rep.lambda_scale);
+  const Real negligible = separation_threshold(rep.max_lambda_n, rep.pressure_floor);
   f.state.resize(static_cast<size_t>(rep.n_patches));
   for (Index p = 0; p < rep.n_patches; ++p) {
     const Real ln = f.lambda(3 * p), lt = f.lambda.segment<2>(3 * p + 1).norm();
     PatchState state = PatchState::Stick;
-    const Real negligible = kContactPressureShare * scale_n;
     if (ln <= negligible && (lt <= negligible || lt <= kSlipTolerance * radius(p)))
       state = PatchState::Separated;
     else if (radius(p) > 0.0 && lt >= (1.0 - kSlipTolerance) * radius(p))
@@ -453,8 +454,9 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m,
   // from the state the last step left (theory.md §2.9).
   VectorXd state = VectorXd::Zero(state_size(map));
   if (step) {
-    start_from_last_step(*step, disc, *bounds, map, state);
+    start_from_last_step(*step, disc, *bounds, problem.solver.outer.tol, map, state);
     rep.lambda_scale = step->lambda_scale;
+    rep.pressure_floor = step->lambda_scale * problem.solver.outer.tol;
   }
   outer::OuterReport loop =
       successive_approximations(map, state, problem.solver.outer, rep, options);
@@ -476,9 +478,10 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m,
     const contact::SlipBounds& result_bounds = selection ? *whole_bounds : *bounds;
     out.fields.lambda = result.lambda;
     out.fields.radius = result.radius;
-    measure(m, whole, *law, result.lambda, step ? step->history : nullptr,
-            nodes_in_contact(whole, result.lambda, result_bounds.uses_pressure(), rep.lambda_scale),
-            out);
+    measure(
+        m, whole, *law, result.lambda, step ? step->history : nullptr,
+        nodes_in_contact(whole, result.lambda, result_bounds.uses_pressure(), rep.pressure_floor),
+        out);
     classify_patches(result_bounds, result.radius, out);
     report_pairs(m, whole, out);
     if (result_bounds.uses_pressure())

@@ -145,9 +145,12 @@ struct ContactReport {
   Real coulomb_residual = 0.0;
   Real coulomb_bound = 0.0;
   /// The floor [Pa] of the multipliers' scale (PathStep::lambda_scale; 0 in a static run): what
-  /// coulomb_residual is relative to besides ||lambda||, and what a patch's pressure must exceed
-  /// a share of, besides the largest lambda_n, not to be separated.
+  /// coulomb_residual is relative to besides ||lambda||.
   Real lambda_scale = 0.0;
+  /// The pressure [Pa] below which a patch counts as separated besides round-off of the largest
+  /// lambda_n (separation_threshold): outer_tol times lambda_scale, the accuracy of a path
+  /// step's pressures (theory.md §2.9); 0 in a static run.
+  Real pressure_floor = 0.0;
   /// Rounds of further steps at tighter tolerances that the Coulomb certificate needed.
   int certificate_refinements = 0;
   /// Per outer iteration, the relative change of each block of the state (phi; lambda_n).

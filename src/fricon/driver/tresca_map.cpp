@@ -20,16 +20,21 @@ VectorXd SlipHistory::slips(const contact::SurfaceDisplacement& d,
   return s;
 }
 
+Real separation_threshold(Real largest_lambda_n, Real pressure_floor) {
+  return std::max(kContactPressureShare * largest_lambda_n, pressure_floor);
+}
+
 std::vector<bool> nodes_in_contact(const contact::ContactDiscretization& disc,
                                    const VectorXd& lambda, bool uses_pressure,
-                                   Real pressure_scale) {
+                                   Real pressure_floor) {
   if (!uses_pressure) return {};
-  Real largest = pressure_scale;
+  Real largest = 0.0;
   for (Index p = 0; p < disc.n_patches(); ++p)
     largest = std::max(largest, lambda(3 * p));
+  const Real threshold = separation_threshold(largest, pressure_floor);
   std::vector<bool> in_contact(static_cast<size_t>(disc.surface.n_nodes()), false);
   for (Index p = 0; p < disc.n_patches(); ++p) {
-    if (!(lambda(3 * p) > kContactPressureShare * largest)) continue;
+    if (!(lambda(3 * p) > threshold)) continue;
     for (Index face : disc.patches.faces[static_cast<size_t>(p)])
       for (int v = 0; v < 3; ++v)
         in_contact[static_cast<size_t>(disc.surface.face_nodes(v, face))] = true;
@@ -94,7 +99,7 @@ outer::MapStep TrescaMap::apply(int k, const VectorXd& state, VectorXd& image) {
   const contact::SurfaceDisplacement d = contact::surface_displacement(disc_.surface, dofs_, w_);
   const VectorXd phi =
       history_ ? history_->slips(
-                     d, nodes_in_contact(disc_, lambda_, bounds_.uses_pressure(), pressure_scale_))
+                     d, nodes_in_contact(disc_, lambda_, bounds_.uses_pressure(), pressure_floor_))
                : d.slip();
   image.resize(state.size());
   image.head(phi.size()) = phi;
