@@ -690,9 +690,11 @@ TEST(TwoBodiesContact, AMasterFinerThanItsSlavePenetratesItAndIsFlagged) {
   EXPECT_NEAR(good.master_penetration, right.depth, 1e-9 * kPunchPress);
   EXPECT_TRUE(good.master_kept_out);
   std::printf(
-      "punch on slab: master penetration %.3e m (slab as slave) against %.3e m (punch as "
-      "slave); normal force %.6e N against %.6e N\n",
-      bad.master_penetration, good.master_penetration, bad.normal_force, good.normal_force);
+      "punch on slab: master penetration %.3e m = %.3f of the normal displacement (slab as "
+      "slave) against %.3e m = %.3f (punch as slave); normal force %.6e N against %.6e N\n",
+      bad.master_penetration, bad.master_penetration / bad.normal_displacement,
+      good.master_penetration, good.master_penetration / good.normal_displacement, bad.normal_force,
+      good.normal_force);
 }
 
 // ------------------------------------------------------------------------------------------

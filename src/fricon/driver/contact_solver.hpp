@@ -76,7 +76,7 @@ struct PairReport {
 /// The share of a pair's normal displacement up to which the master may penetrate the slave
 /// (PairReport::master_penetration): beyond, the master is too fine for the slave's patches to
 /// hold it out, and the surfaces should be swapped (theory.md §2.8).
-inline constexpr Real kMasterPenetrationShare = 0.05;
+inline constexpr Real kMasterPenetrationShare = 0.1;
 
 /// The share of the master's element size up to which the relative tangential displacement
 /// keeps the reference pairing valid (small sliding, theory.md §2.8).
