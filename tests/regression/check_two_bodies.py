@@ -27,8 +27,8 @@
     force of the pair is at most mu times its normal force, small sliding holds, and the
     reactions of the clamped lower block balance the force on the upper block's top.
   - sheared-blocks along a loading path of 3 steps, the top pressed and slid 2 mm at step 2
-    (four times the master's element, far beyond small sliding) and back to exactly zero at
-    step 3: the path converges (released to zero, lambda = 0 is the exact answer, and the
+    (two thirds of the master's mean edge of 3 mm, beyond the half that small sliding allows)
+    and back to exactly zero at step 3: the path converges (released to zero, lambda = 0 is the exact answer, and the
     Coulomb certificate is relative to the path's pressures), the last step carries no force,
     and small sliding is flagged at step 2 although step 3 ends unslid: in report.json
     (`small_sliding`, `max_slip_step`, `warnings`), in the summary (WARNING) and on stderr.
