@@ -1,4 +1,6 @@
 // fricon solve PROBLEM.toml: read, run, write the results, print the summary.
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -27,8 +29,11 @@ namespace fricon::app {
 
 namespace {
 
-// One line per pair when there are several or one against a body: its patches and forces, and a
-// warning when its slips left small sliding (theory.md §2.8).
+// Two force figures that agree to this relative accuracy are the same up to round-off.
+constexpr double kSameForce = 1e-9;
+
+// One line per pair when there are several or one against a body: its patches and forces (its
+// warnings are the report's, print_warnings).
 void print_pairs(const driver::ContactReport& c) {
   if (c.pairs.size() == 1 && c.pairs.front().info.master.empty()) return;
   for (const driver::PairReport& p : c.pairs) {
@@ -39,13 +44,13 @@ void print_pairs(const driver::ContactReport& c) {
         "normal force {:.4e} N, tangential force {:.4e} N\n",
         p.info.key, p.info.boundary, against, enum_name(p.model), p.friction_law, p.n_patches,
         p.n_stick, p.n_slip, p.n_separated, p.normal_force, p.tangential_force.norm());
-    if (!p.small_sliding)
-      fmt::print(
-          "  WARNING       {}: the largest relative slip {:.3e} m exceeds {} of the master's "
-          "element size {:.3e} m: the pairing, computed once in the reference configuration "
-          "(small sliding), may no longer hold\n",
-          p.info.key, p.max_slip, driver::kSmallSlidingShare, p.info.master_element_size);
   }
+}
+
+// The report's warnings (driver::result_warnings): in the summary, or on stderr (the log).
+void print_warnings(const driver::RunReport& r, std::FILE* to, const char* prefix) {
+  for (const std::string& w : r.warnings)
+    fmt::print(to, "{}{}\n", prefix, w);
 }
 
 void print_summary(const driver::RunResult& result, const std::filesystem::path& dir) {
@@ -111,13 +116,25 @@ void print_summary(const driver::RunResult& result, const std::filesystem::path&
         c.wn_pos_l2, c.wn_pos_inf, c.max_neg_wn, c.max_wt);
     fmt::print(
         "  multipliers   max lambda_n {:.4e} Pa, max ||lambda_t|| {:.4e} Pa, normal force {:.4e} "
-        "N\n",
+        "N (sum lambda_n |R|)\n",
         c.max_lambda_n, c.max_lambda_t, c.total_normal_force);
+    // The two figures of theory.md §6.1 differ where contact nodes have a prescribed normal
+    // component: the pressure there acts on their supports.
+    if (std::abs(c.total_normal_force - c.transmitted_normal_force) >
+        kSameForce * std::abs(c.total_normal_force))
+      fmt::print(
+          "  normal force  {:.4e} N on free components (balancing the loads and reactions), "
+          "{:.4e} N on prescribed components (taken by their supports)\n",
+          c.transmitted_normal_force, c.total_normal_force - c.transmitted_normal_force);
   }
   fmt::print("  max |u|       {:.6e} m\n", r.max_displacement);
-  fmt::print("  equilibrium   |applied + contact + reactions| / largest of the three = {:.2e}\n",
-             r.equilibrium_residual);
-  fmt::print("  residual      ||K u - f|| / ||f|| = {:.2e}\n", r.linear_residual);
+  fmt::print(
+      "  equilibrium   |applied + contact + reactions| / sum of the nodal forces' magnitudes "
+      "({:.4e} N) = {:.2e}\n",
+      r.force_scale, r.equilibrium_residual);
+  fmt::print("  residual      ||K u - f + B^T lambda|| / max(||f||, ||B^T lambda||) = {:.2e}\n",
+             r.linear_residual);
+  print_warnings(r, stdout, "  WARNING       ");
   fmt::print("  results       {}\n", dir.string());
   // Time per phase, like a miniature PETSc -log_view.
   fmt::print("  time          {:.3f} s in all\n", r.time_s);
@@ -290,7 +307,10 @@ int solve(const std::string& file, const SolveOptions& so, const std::string& co
     io::write_dual(so.dump_dual, *result.first_dual);
   }
   io::write_results(dir, problem, result, {so.sets, command_line}, *written_steps);
-  if (so.verbosity != Verbosity::Quiet) print_summary(result, dir);
+  if (so.verbosity != Verbosity::Quiet) {
+    print_warnings(result.report, stderr, "fricon: warning: ");
+    print_summary(result, dir);
+  }
   if (so.plot) render_plots(dir.string(), "");
   if (result.report.status != driver::RunStatus::Converged) {
     std::cerr << "fricon: NOT CONVERGED: " << result.report.message << "\n"

@@ -26,6 +26,14 @@
   - sheared-blocks: Coulomb friction between two blocks; the certificate passes, the tangential
     force of the pair is at most mu times its normal force, small sliding holds, and the
     reactions of the clamped lower block balance the force on the upper block's top.
+  - sheared-blocks along a loading path of 3 steps, the top pressed and slid 2 mm at step 2
+    (two thirds of the master's mean edge of 3 mm, beyond the half that small sliding allows)
+    and back to exactly zero at step 3: the path converges (released to zero, lambda = 0 is the exact answer, and the
+    Coulomb certificate is relative to the path's pressures), the last step carries no force,
+    and small sliding is flagged at step 2 although step 3 ends unslid: in report.json
+    (`small_sliding`, `max_slip_step`, `warnings`), in the summary (WARNING) and on stderr.
+    The examples that keep to small sliding, with the finer surface as the slave, warn of
+    nothing.
   - stacked-blocks: two pairs (block on block, block on plane); report.json lists both, and
     patches.csv, contact_nodes.csv and solution.vtu carry the pair and body indices, and
     `fricon plot` draws the maps of each pair.
@@ -86,6 +94,8 @@ def solve_against(name, master, coverage_tolerance):
     assert pair["obstacle"] == "body" and pair["master"] == master, pair
     assert abs(pair["master_coverage"] - 1.0) < coverage_tolerance, pair["master_coverage"]
     assert pair["small_sliding"], pair
+    assert pair["master_kept_out"], pair
+    assert report["warnings"] == [], report["warnings"]
     return report, common.read_patches(folder), pair
 
 
@@ -153,6 +163,38 @@ def check_sheared():
     assert report["equilibrium_residual"] <= 1e-8, report["equilibrium_residual"]
 
 
+SLIDE = 2.0e-3  # [m], the sliding path's slide at its step 2
+
+
+def pair_patches(report):
+    return sum(p["n_patches"] for p in report["pairs"])
+
+
+def check_sliding_path():
+    folder = out / "sheared-blocks-path"
+    r = common.run_ok([exe, "solve", examples / "sheared-blocks.toml", "--out", folder,
+                       "--set", "loading.steps=3", "--set", "dirichlet.1.path=[0, 1, 0]",
+                       "--set", f"dirichlet.1.value=[{SLIDE}, 0, -2e-5]"], timeout=300)
+    report = common.read_report(folder)
+    assert report["status"] == "converged", report["message"]
+    steps = report["steps"]
+    assert len(steps) == 3
+    pressed = steps[1]["normal_force"]
+    # Released to zero: lambda = 0, to the accuracy of the example's tolerances (outer_tol 1e-4).
+    assert pressed > 0 and abs(steps[2]["normal_force"]) <= 1e-6 * pressed, steps
+    assert steps[2]["patch_states"]["separated"] == pair_patches(report), steps[2]
+    [pair] = report["pairs"]
+    limit = 0.5 * pair["master_element_size"]
+    print(f"sliding path: max slip {pair['max_slip']:.3e} m at step {pair['max_slip_step']} "
+          f"(limit {limit:.3e} m); warnings {report['warnings']}")
+    assert pair["max_slip_step"] == 2 and pair["max_slip"] > limit, pair
+    assert not pair["small_sliding"], pair
+    [warning] = report["warnings"]
+    assert "at step 2" in warning and "small sliding" in warning, warning
+    assert f"WARNING       {warning}" in r.stdout, r.stdout
+    assert f"fricon: warning: {warning}" in r.stderr, r.stderr
+
+
 def check_stacked():
     folder, report = solve("stacked-blocks")
     pairs = report["pairs"]
@@ -175,5 +217,6 @@ def check_stacked():
 check_hertz()
 check_sphere_on_block()
 check_sheared()
+check_sliding_path()
 check_stacked()
 print("two bodies: passed")

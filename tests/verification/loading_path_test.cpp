@@ -299,3 +299,48 @@ TEST(LoadingPath, TheContactSearchChangesNoStepAndItsCandidatesGrowWithTheLoad) 
   EXPECT_TRUE(std::is_sorted(searched.candidates.begin(), searched.candidates.end()));
   EXPECT_LE(r.report.contact->kkt.max(), r.report.contact->kkt_bound);
 }
+
+TEST(LoadingPath, ACoulombPressBroughtBackToZeroEndsWithoutPressure) {
+  // The pattern of docs/problem-file.md, [0, 0.5, 1, 1, 0], on the press: released to exactly
+  // zero, no load and no gap press the block onto the plane, so the exact answer of the last
+  // step is lambda = 0 whatever the history (Poisson's ratio 0.277: the press spreads the
+  // bottom and friction locks a tangential state in, which the release undoes).
+  Problem p = pushed_block({0.0, 0.0, 0.0, 0.0, 0.0}, 0.0);
+  p.material.poisson = 0.277;
+  p.dirichlet.front().path = {0.0, 0.5, 1.0, 1.0, 0.0};
+  const RunResult r = run(p);
+  ASSERT_EQ(r.report.status, RunStatus::Converged) << r.report.message;
+  const std::vector<StepReport>& s = r.report.steps;
+  ASSERT_EQ(s.size(), 5u);
+  const Real pressed = s[3].normal_force;
+  ASSERT_GT(pressed, 0.0);
+  EXPECT_LE(std::abs(s[4].normal_force), 1e-8 * pressed);
+  EXPECT_LE(s[4].tangential_force.norm(), 1e-8 * pressed);
+  ASSERT_TRUE(r.contact);
+  EXPECT_LE(r.contact->lambda.cwiseAbs().maxCoeff(), 1e-8 * r.report.steps[3].normal_force);
+  EXPECT_EQ(s[4].n_separated, r.report.contact->n_patches);
+}
+
+TEST(LoadingPath, SlipAccumulatesOnlyWhileInContact) {
+  // A slip-weakening block (the paper's F: 0.3 up to 1e-5 m of slip, 0.2 beyond 4.3e-5 m) is
+  // lifted 0.1 mm off the plane, moved 100 um along x in the air and set down again: it never
+  // slid on the plane, so its accumulated slip is zero and its coefficient the static F(0) = 0.3
+  // (Poisson's ratio 0: the set-down moves the bottom along the plane by nothing).
+  Problem p = pushed_block({0.0, 100.0, 100.0, 100.0}, 1e-6);
+  p.dirichlet.front().path = {-1.0, -1.0, 1.0, 1.0};  // lifted, lifted, pressed, pressed
+  p.contact.front().friction.law = contact::FrictionLawKind::Paper;
+  p.contact.front().friction.param = 6e4;
+  std::vector<Real> most_slip;
+  RunOptions o;
+  o.on_step = [&most_slip](const RunResult& r) { most_slip.push_back(r.contact->slip.maxCoeff()); };
+  const RunResult r = run(p, o);
+  ASSERT_EQ(r.report.status, RunStatus::Converged) << r.report.message;
+  ASSERT_EQ(most_slip.size(), 4u);
+  for (size_t k = 0; k < most_slip.size(); ++k)
+    EXPECT_LE(most_slip[k], 1e-9) << "step " << k + 1 << ": slip accumulated in the air";
+  ASSERT_TRUE(r.contact);
+  EXPECT_NEAR(r.contact->F.minCoeff(), 0.3, 1e-12);
+  EXPECT_NEAR(r.contact->coefficient.minCoeff(), 0.3, 1e-12);
+  // Pressed at steps 3 and 4: in contact, sticking.
+  EXPECT_GT(r.report.steps[3].normal_force, 0.0);
+}

@@ -581,6 +581,123 @@ TEST(TwoBodiesContact, CoulombBlocksStickThenSlip) {
 }
 
 // ------------------------------------------------------------------------------------------
+// 5b. Loading paths between the blocks (theory.md §2.9).
+//  - Coulomb, the top pressed and sheared along [0, 0.5, 1, 1, 0]: released to exactly zero,
+//    nothing presses the blocks together, so the last step's exact answer is lambda = 0.
+//  - Frictionless, the upper block pressed, slid along x by far more than the master's element
+//    at step 2 and slid back at step 3: without friction the upper block follows its top, so the
+//    relative tangential displacement at step 2 is the slide itself, and the pairing (computed
+//    once) no longer held then, whatever step 3 does: small sliding is checked at every step and
+//    the worst step reported.
+
+TEST(TwoBodiesContact, CoulombPathReleasedToZeroEndsWithoutPressure) {
+  Problem p = coulomb_blocks(kStickShear, kMu);
+  p.loading.steps = 5;
+  p.dirichlet[1].path = {0.0, 0.5, 1.0, 1.0, 0.0};
+  p.solver.certificate_tol = 1e-9;
+  validate(p);
+  const RunResult r = run(p);
+  ASSERT_EQ(r.report.status, RunStatus::Converged) << r.report.message;
+  ASSERT_EQ(r.report.steps.size(), 5u);
+  const Real pressed = r.report.steps[3].normal_force;
+  ASSERT_GT(pressed, 0.0);
+  EXPECT_LE(std::abs(r.report.steps[4].normal_force), 1e-8 * pressed);
+  ASSERT_TRUE(r.contact);
+  EXPECT_LE(r.contact->lambda.cwiseAbs().maxCoeff(), 1e-8 * r.contact->lambda.size() * pressed);
+}
+
+constexpr Real kSlide = 0.4;  // [m], over twice the master's element size (about 0.3 m)
+
+TEST(TwoBodiesContact, SmallSlidingIsCheckedAtEveryStepOfAPath) {
+  Problem p =
+      stacked_problem(stacked_blocks(kLowerCells, kUpperCells), 0.0, Vec3(0.0, 0.0, -kDelta));
+  p.dirichlet[1].components = {false, true, true};
+  DirichletOptions slide{"up_z1", {true, false, false}, Vec3(kSlide, 0.0, 0.0)};
+  slide.path = {0.0, 1.0, 0.0};
+  p.dirichlet.push_back(slide);
+  p.loading.steps = 3;
+  validate(p);
+  const RunResult r = run(p);
+  ASSERT_EQ(r.report.status, RunStatus::Converged) << r.report.message;
+  ASSERT_TRUE(r.report.contact);
+  const PairReport& pair = r.report.contact->pairs.front();
+  const Real limit = kSmallSlidingShare * pair.info.master_element_size;
+  ASSERT_LT(limit, kSlide);
+  EXPECT_FALSE(pair.small_sliding) << "slid " << kSlide << " m at step 2, limit " << limit;
+  EXPECT_NEAR(pair.max_slip, kSlide, 1e-6 * kSlide);
+  EXPECT_EQ(pair.max_slip_step, 2);
+}
+
+// ------------------------------------------------------------------------------------------
+// 5c. Which surface is the slave (theory.md §2.8): a punch [0.5, 1.5]^2 x [1, 2] m pressed into a
+// slab [0, 2]^2 x [0, 1] m, the punch's bottom meshed four times finer than the slab's top.
+// The constraints keep the slave out of the master only; with the coarse slab as the slave, the
+// punch's nodes sink into it between the slab's nodes. The interface is flat (z = 1) and the
+// displacements small, so the penetration of a master node is, independently of fricon's rays,
+// the slave's displacement interpolated on its triangle below the node minus the node's own,
+// along the normal. With the fine punch as the slave it stays small.
+
+constexpr Real kPunchPress = 1.0e-4;  // [m]
+
+struct PunchResult {
+  RunResult run;
+  Real depth = 0.0;  // the largest master penetration measured here [m]
+};
+
+/// The punch on the slab, the slave being the slab's top ("lo_z1") or the punch's bottom.
+PunchResult punch_on_slab(bool slave_is_slab) {
+  const mesh::TetMesh slab = mesh::make_brick({Vec3(2.0, 2.0, 1.0), {4, 4, 2}});
+  mesh::TetMesh punch = mesh::make_brick({Vec3(1.0, 1.0, 1.0), {8, 8, 4}});
+  punch.nodes.colwise() += Vec3(0.5, 0.5, 1.0);
+  const mesh::TetMesh both = mesh::disjoint_union({slab, punch}, {"lo_", "up_"});
+  Problem p = stacked_problem(both, 0.3, Vec3(0.0, 0.0, -kPunchPress));
+  const std::string slave = slave_is_slab ? "lo_z1" : "up_z0";
+  const std::string master = slave_is_slab ? "up_z0" : "lo_z1";
+  p.contact.front().boundary = slave;
+  p.contact.front().obstacle->boundary = master;
+  PunchResult out{run_converged(p), 0.0};
+  // The master's nodes over the slave's triangles (2D barycentric coordinates in z = 1).
+  const mesh::TetMesh& m = out.run.model.mesh;
+  const fe::NodalField& u = out.run.displacement;
+  const Real sign = slave_is_slab ? 1.0 : -1.0;  // the slave below (slab) or above (punch)
+  for (Index a : m.nodes_with_tag(master))
+    for (Index f : m.faces_with_tag(slave)) {
+      const Vec3 x0 = m.nodes.col(m.faces(0, f)), x1 = m.nodes.col(m.faces(1, f)),
+                 x2 = m.nodes.col(m.faces(2, f)), x = m.nodes.col(a);
+      Eigen::Matrix2d J;
+      J << x1(0) - x0(0), x2(0) - x0(0), x1(1) - x0(1), x2(1) - x0(1);
+      const Eigen::Vector2d b = J.inverse() * Eigen::Vector2d(x(0) - x0(0), x(1) - x0(1));
+      const Real l0 = 1.0 - b(0) - b(1);
+      if (std::min({l0, b(0), b(1)}) < -1e-12) continue;
+      const Real slave_z =
+          l0 * u(2, m.faces(0, f)) + b(0) * u(2, m.faces(1, f)) + b(1) * u(2, m.faces(2, f));
+      // Slab below: the punch's node penetrates when it goes below the slab's surface.
+      out.depth = std::max(out.depth, sign * (slave_z - u(2, a)));
+    }
+  return out;
+}
+
+TEST(TwoBodiesContact, AMasterFinerThanItsSlavePenetratesItAndIsFlagged) {
+  const PunchResult swapped = punch_on_slab(/*slave_is_slab=*/true);
+  const PairReport& bad = swapped.run.report.contact->pairs.front();
+  ASSERT_GT(swapped.depth, 0.0);
+  EXPECT_NEAR(bad.master_penetration, swapped.depth, 1e-9 * kPunchPress);
+  EXPECT_GT(bad.normal_displacement, 0.0);  // the surfaces move less than the punch's top
+  EXPECT_LT(bad.normal_displacement, kPunchPress);
+  EXPECT_FALSE(bad.master_kept_out);
+  const PunchResult right = punch_on_slab(/*slave_is_slab=*/false);
+  const PairReport& good = right.run.report.contact->pairs.front();
+  EXPECT_NEAR(good.master_penetration, right.depth, 1e-9 * kPunchPress);
+  EXPECT_TRUE(good.master_kept_out);
+  std::printf(
+      "punch on slab: master penetration %.3e m = %.3f of the normal displacement (slab as "
+      "slave) against %.3e m = %.3f (punch as slave); normal force %.6e N against %.6e N\n",
+      bad.master_penetration, bad.master_penetration / bad.normal_displacement,
+      good.master_penetration, good.master_penetration / good.normal_displacement, bad.normal_force,
+      good.normal_force);
+}
+
+// ------------------------------------------------------------------------------------------
 // 6. Pairs that cannot be built.
 
 std::string run_error(const Problem& p) {

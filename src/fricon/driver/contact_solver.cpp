@@ -8,6 +8,7 @@
 
 #include "fricon/contact/candidates.hpp"
 #include "fricon/contact/dual_scaling.hpp"
+#include "fricon/contact/master_penetration.hpp"
 #include "fricon/contact/radii.hpp"
 #include "fricon/core/error.hpp"
 #include "fricon/driver/tresca_map.hpp"
@@ -22,10 +23,9 @@ constexpr int kPowerIterations = 200;
 constexpr Real kPowerTolerance = 1e-10;
 // The recovery on the contact dofs must agree with the full solve to this relative accuracy.
 constexpr Real kRecoveryTolerance = 1e-8;
-// A patch slips when ||lambda_t|| is this close to its radius (relative), and is separated when
-// lambda_n is below this fraction of the largest lambda_n (or zero).
+// A patch slips when ||lambda_t|| is this close to its radius (relative); it is separated when
+// lambda_n is at most separation_threshold (tresca_map.hpp).
 constexpr Real kSlipTolerance = 1e-6;
-constexpr Real kSeparationTolerance = 1e-12;
 
 Index state_size(const TrescaMap& map) {
   Index n = 0;
@@ -141,10 +141,13 @@ qp::DualProblem first_dual_problem(const Problem& problem,
 
 // A step of a loading path starts where the last one ended: slips measured from its tangential
 // displacement, the accumulated slip as the first phi (the slip increment is zero), and its
-// multipliers as the warm start and (Coulomb) the first pressures.
+// multipliers as the warm start and (Coulomb) the first pressures; the pressures are measured
+// against the path's scale, to the accuracy outer_tol times it (theory.md §2.9).
 void start_from_last_step(const PathStep& step, const contact::ContactDiscretization& disc,
-                          const contact::SlipBounds& bounds, TrescaMap& map, VectorXd& state) {
+                          const contact::SlipBounds& bounds, Real outer_tol, TrescaMap& map,
+                          VectorXd& state) {
   map.set_history(step.history);
+  map.set_pressure_scale(step.lambda_scale, outer_tol * step.lambda_scale);
   if (step.predicted_slip)
     state.head(disc.surface.n_nodes()) = *step.predicted_slip;
   else if (step.history && !step.history->empty())
@@ -195,12 +198,12 @@ outer::OuterReport successive_approximations(TrescaMap& map, VectorXd& phi,
 // Coulomb pairs (theory.md §5.7): the multipliers lambda [Pa] and the gradient g [m^3] of every
 // patch, with the mean coefficient mu_R of each; 0 without Coulomb patches.
 Real coulomb_pairs_residual(const contact::SlipBounds& bounds, const VectorXd& lambda,
-                            const VectorXd& g, const VectorXd& mu, Real alpha) {
+                            const VectorXd& g, const VectorXd& mu, Real alpha, Real lambda_scale) {
   std::vector<Index> coulomb;
   for (Index p = 0; p < mu.size(); ++p)
     if (bounds.coulomb_patch(p)) coulomb.push_back(p);
   if (static_cast<Index>(coulomb.size()) == mu.size())
-    return qp::coulomb_residual(lambda, g, mu, alpha);
+    return qp::coulomb_residual(lambda, g, mu, alpha, lambda_scale);
   const auto n = static_cast<Index>(coulomb.size());
   VectorXd l(3 * n), gc(3 * n), m(n);
   for (Index i = 0; i < n; ++i) {
@@ -209,19 +212,19 @@ Real coulomb_pairs_residual(const contact::SlipBounds& bounds, const VectorXd& l
     gc.segment<3>(3 * i) = g.segment<3>(3 * p);
     m(i) = mu(p);
   }
-  return n == 0 ? 0.0 : qp::coulomb_residual(l, gc, m, alpha);
+  return n == 0 ? 0.0 : qp::coulomb_residual(l, gc, m, alpha, lambda_scale);
 }
 
 // That residual on the patches of the QP (those a contact search left out carry no pressure
 // and, unpenetrated, no residual), from the current multipliers and slips: g = Q lambda - h, one
 // product with Q.
 Real coulomb_residual_now(const TrescaMap& map, const VectorXd& state, const dual::DualOperator& Q,
-                          const contact::SlipBounds& bounds, Real norm_Q) {
+                          const contact::SlipBounds& bounds, const ContactReport& rep) {
   VectorXd g;
   Q.apply(map.lambda(), g);
   g -= Q.h();
   return coulomb_pairs_residual(bounds, map.lambda(), g, bounds.mean_coefficients(map.slips(state)),
-                                1.0 / norm_Q);
+                                1.0 / rep.norm_Q, rep.lambda_scale);
 }
 
 // A Coulomb fixed point whose natural-map residual is above solver.certificate_tol takes further
@@ -235,7 +238,7 @@ outer::OuterReport refine_coulomb(TrescaMap& map, VectorXd& state, const Problem
   Real qp_rtol = problem.solver.qp.rel_tolerance;
   outer::OuterOptions outer_options = problem.solver.outer;
   while (loop.converged() && rep.certificate_refinements < kMaxCertificateRefinements &&
-         coulomb_residual_now(map, state, Q, bounds, rep.norm_Q) > problem.solver.certificate_tol) {
+         coulomb_residual_now(map, state, Q, bounds, rep) > problem.solver.certificate_tol) {
     qp_rtol *= kCertificateRefinementFactor;
     outer_options.tol *= kCertificateRefinementFactor;
     map.set_qp_tolerance(qp_rtol);
@@ -292,10 +295,33 @@ WholeResult cover_left_out(const Problem& problem, const Model& m, const PatchSe
   return r;
 }
 
+// The part of sum lambda_n |R| that acts on free components of the contact surface (theory.md
+// §6.1): per patch, lambda_n times int_R sum_a psi_a (n_R . n_R restricted to the free
+// components of node a) dS, the hat functions integrated exactly (|T|/3 per vertex of T).
+Real transmitted_normal_force(const mesh::TetMesh& mesh, const contact::ContactDiscretization& disc,
+                              const VectorXd& lambda) {
+  const contact::ContactSurface& s = disc.surface;
+  Real force = 0.0;
+  for (Index p = 0; p < disc.n_patches(); ++p) {
+    const Vec3 n = disc.patch_frames.n.col(p);
+    Real free_area = 0.0;  // [m^2]
+    for (Index face : disc.patches.faces[static_cast<size_t>(p)]) {
+      const Real third = mesh::face_area(mesh, s.faces[static_cast<size_t>(face)]) / 3.0;
+      for (int v = 0; v < 3; ++v) {
+        const auto& fixed = s.fixed[static_cast<size_t>(s.face_nodes(v, face))];
+        for (int c = 0; c < 3; ++c)
+          if (!fixed[static_cast<size_t>(c)]) free_area += third * n(c) * n(c);
+      }
+    }
+    force += lambda(3 * p) * free_area;
+  }
+  return force;
+}
+
 // The paper's measures and the surface fields of the result.
 void measure(const Model& m, const contact::ContactDiscretization& disc,
              const contact::SlipBounds& bounds, const VectorXd& lambda, const SlipHistory* history,
-             ContactOutcome& out) {
+             const std::vector<bool>& in_contact, ContactOutcome& out) {
   ContactReport& rep = out.report;
   ContactFields& fields = out.fields;
   const contact::SurfaceDisplacement s = contact::surface_displacement(disc.surface, m.dofs, out.w);
@@ -310,7 +336,7 @@ void measure(const Model& m, const contact::ContactDiscretization& disc,
   rep.max_neg_wn = (-penetration).maxCoeff();
   const VectorXd wt = s.slip();
   rep.max_wt = wt.maxCoeff();
-  fields.slip = history ? history->slips(s) : wt;
+  fields.slip = history ? history->slips(s, in_contact) : wt;
   const VectorXd& slip = fields.slip;
   fields.F = bounds.nodal_coefficients(slip);  // one batch per law: a function law is called once
   for (Index p = 0; p < rep.n_patches; ++p) {
@@ -318,10 +344,15 @@ void measure(const Model& m, const contact::ContactDiscretization& disc,
     rep.max_lambda_t = std::max(rep.max_lambda_t, lambda.segment<2>(3 * p + 1).norm());
     rep.total_normal_force += lambda(3 * p) * disc.patches.area(p);
   }
+  rep.transmitted_normal_force = transmitted_normal_force(m.mesh, disc, lambda);
   const VectorXd contact_load = -(disc.B.transpose() * lambda);
-  out.contact_force = m.dofs.to_nodal(contact_load).rowwise().sum();
-  out.linear_residual =
-      (stiffness_times(m, out.w) - m.f - contact_load).norm() / std::max(m.f.norm(), 1e-300);
+  const fe::NodalField contact_nodal = m.dofs.to_nodal(contact_load);
+  out.contact_force = contact_nodal.rowwise().sum();
+  out.contact_force_magnitude = force_magnitude_sum(contact_nodal);
+  // Relative to the larger of the two forces: a step unloaded to nothing has f = 0.
+  const Real force_scale = std::max(m.f.norm(), contact_load.norm());
+  out.linear_residual = (stiffness_times(m, out.w) - m.f - contact_load).norm() /
+                        (force_scale > 0.0 ? force_scale : 1.0);
 }
 
 // Per patch: the mean coefficient F_R of the result and whether it sticks, slips or is separated
@@ -331,12 +362,12 @@ void classify_patches(const contact::SlipBounds& bounds, const VectorXd& radius,
   ContactFields& f = out.fields;
   ContactReport& rep = out.report;
   f.coefficient = bounds.mean_coefficients(f.slip);
-  const Real scale_n = std::max(rep.max_lambda_n, 0.0);
+  const Real negligible = separation_threshold(rep.max_lambda_n, rep.pressure_floor);
   f.state.resize(static_cast<size_t>(rep.n_patches));
   for (Index p = 0; p < rep.n_patches; ++p) {
     const Real ln = f.lambda(3 * p), lt = f.lambda.segment<2>(3 * p + 1).norm();
     PatchState state = PatchState::Stick;
-    if (ln <= kSeparationTolerance * scale_n && lt <= kSlipTolerance * radius(p))
+    if (ln <= negligible && (lt <= negligible || lt <= kSlipTolerance * radius(p)))
       state = PatchState::Separated;
     else if (radius(p) > 0.0 && lt >= (1.0 - kSlipTolerance) * radius(p))
       state = PatchState::Slip;
@@ -347,10 +378,10 @@ void classify_patches(const contact::SlipBounds& bounds, const VectorXd& radius,
   }
 }
 
-// Per pair: its friction, its patches' states and forces, and whether the slips kept to small
-// sliding.
-void report_pairs(const Problem& problem, const contact::ContactDiscretization& disc,
-                  ContactOutcome& out) {
+// Per pair: its friction, its patches' states and forces, whether the slips kept to small
+// sliding, and against a body how far the master penetrates the slave.
+void report_pairs(const Problem& problem, const Model& m,
+                  const contact::ContactDiscretization& disc, ContactOutcome& out) {
   const ContactFields& f = out.fields;
   std::vector<PairReport>& pairs = out.report.pairs;
   const PairsFriction friction = describe_pairs(problem);
@@ -383,8 +414,17 @@ void report_pairs(const Problem& problem, const contact::ContactDiscretization& 
       }
   }
   for (PairReport& r : pairs)
-    r.small_sliding =
-        r.info.master.empty() || r.max_slip <= kSmallSlidingShare * r.info.master_element_size;
+    r.small_sliding = within_small_sliding(r.info, r.max_slip);
+  const fe::NodalField u = m.dofs.to_nodal(out.w) + m.prescribed;
+  for (size_t i = 0; i < pairs.size(); ++i) {
+    PairReport& r = pairs[i];
+    if (r.info.master.empty()) continue;
+    const contact::MasterPenetration p = contact::master_penetration(
+        m.mesh, disc.surface, static_cast<Index>(i), r.info.master, r.info.search_distance, u);
+    r.master_penetration = p.depth;
+    r.normal_displacement = p.normal_displacement;
+    r.master_kept_out = p.depth <= kMasterPenetrationShare * p.normal_displacement;
+  }
 }
 
 // The outcome's status: the loop's termination, unless a converged run fails its certificate
@@ -415,6 +455,10 @@ void conclude(const outer::OuterReport& loop, ContactOutcome& out) {
 }
 
 }  // namespace
+
+bool within_small_sliding(const contact::PairInfo& pair, Real max_slip) {
+  return pair.master.empty() || max_slip <= kSmallSlidingShare * pair.master_element_size;
+}
 
 std::unique_ptr<contact::SlipBounds> make_slip_bounds(const Problem& problem,
                                                       const mesh::TetMesh& mesh,
@@ -461,7 +505,11 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m,
   // Coulomb lambda_n = 0: the first step is then the frictionless problem); along a loading path
   // from the state the last step left (theory.md §2.9).
   VectorXd state = VectorXd::Zero(state_size(map));
-  if (step) start_from_last_step(*step, disc, *bounds, map, state);
+  if (step) {
+    start_from_last_step(*step, disc, *bounds, problem.solver.outer.tol, map, state);
+    rep.lambda_scale = step->lambda_scale;
+    rep.pressure_floor = step->lambda_scale * problem.solver.outer.tol;
+  }
   outer::OuterReport loop =
       successive_approximations(map, state, problem.solver.outer, rep, options);
   loop = refine_coulomb(map, state, problem, Q, *bounds, loop, rep, options);
@@ -482,12 +530,16 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m,
     const contact::SlipBounds& result_bounds = selection ? *whole_bounds : *bounds;
     out.fields.lambda = result.lambda;
     out.fields.radius = result.radius;
-    measure(m, whole, result_bounds, result.lambda, step ? step->history : nullptr, out);
+    measure(
+        m, whole, result_bounds, result.lambda, step ? step->history : nullptr,
+        nodes_in_contact(whole, result.lambda, result_bounds.uses_pressure(), rep.pressure_floor),
+        out);
     classify_patches(result_bounds, result.radius, out);
-    report_pairs(problem, whole, out);
+    report_pairs(problem, m, whole, out);
     if (result_bounds.uses_pressure())
-      rep.coulomb_residual = coulomb_pairs_residual(result_bounds, result.lambda, result.g,
-                                                    out.fields.coefficient, 1.0 / rep.norm_Q);
+      rep.coulomb_residual =
+          coulomb_pairs_residual(result_bounds, result.lambda, result.g, out.fields.coefficient,
+                                 1.0 / rep.norm_Q, rep.lambda_scale);
   }
   conclude(loop, out);
   rep.n_kinv = Q.n_kinv();

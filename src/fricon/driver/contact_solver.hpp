@@ -57,16 +57,37 @@ struct PairReport {
   /// tangential to the patches.
   Vec3 force = Vec3::Zero();
   Vec3 tangential_force = Vec3::Zero();
-  /// Max relative tangential displacement [m] at the nodes of the patches in contact.
+  /// Max relative tangential displacement [m] at the nodes of the patches in contact; along a
+  /// loading path the largest over the steps done (theory.md §2.8).
   Real max_slip = 0.0;
+  /// The step of a loading path (1-based) at which max_slip was reached; 0 in a static run.
+  int max_slip_step = 0;
   /// Small sliding holds: max_slip is at most kSmallSlidingShare of the master's element size
-  /// (the pairing, computed once, stays valid).
+  /// (the pairing, computed once, stays valid); along a path, at every step.
   bool small_sliding = true;
+  /// Against a body: the largest penetration [m] of a master node into the slave surface after
+  /// the solve (contact::master_penetration; the constraints keep only the slave out of the
+  /// master), and the scale it is compared with: the largest displacement of the two surfaces
+  /// along their normals [m] (theory.md §2.8).
+  Real master_penetration = 0.0;
+  Real normal_displacement = 0.0;
+  /// master_penetration is at most kMasterPenetrationShare of normal_displacement: the master's
+  /// mesh is not too fine for the slave's (the slave should be the finer surface).
+  bool master_kept_out = true;
 };
+
+/// The share of a pair's normal displacement up to which the master may penetrate the slave
+/// (PairReport::master_penetration): beyond, the master is too fine for the slave's patches to
+/// hold it out, and the surfaces should be swapped (theory.md §2.8).
+inline constexpr Real kMasterPenetrationShare = 0.1;
 
 /// The share of the master's element size up to which the relative tangential displacement
 /// keeps the reference pairing valid (small sliding, theory.md §2.8).
 inline constexpr Real kSmallSlidingShare = 0.5;
+
+/// Whether a relative tangential displacement `max_slip` [m] keeps the pair's reference pairing
+/// valid: at most kSmallSlidingShare of the master's element size (always against a plane).
+bool within_small_sliding(const contact::PairInfo& pair, Real max_slip);
 
 struct ContactReport {
   /// The friction model of every pair; with pairs of different models (mixed_models) Coulomb,
@@ -110,12 +131,20 @@ struct ContactReport {
   // The paper's measures of the last iterate (theory.md §6.4), with w_n = w.n on the surface:
   /// ||max(0, w_n - gap)|| in L2(surface), P1 interpolant [m^2] (the penetration; w_n at zero gap)
   Real wn_pos_l2 = 0.0;
-  Real wn_pos_inf = 0.0;          ///< max over surface nodes of max(0, w_n - gap) [m]
-  Real max_neg_wn = 0.0;          ///< max of gap - w_n (the largest opening) [m]
-  Real max_wt = 0.0;              ///< max ||w_t|| [m]
-  Real max_lambda_n = 0.0;        ///< [Pa]
-  Real max_lambda_t = 0.0;        ///< max ||lambda_t|| [Pa]
-  Real total_normal_force = 0.0;  ///< sum lambda_n |R_p| [N]
+  Real wn_pos_inf = 0.0;    ///< max over surface nodes of max(0, w_n - gap) [m]
+  Real max_neg_wn = 0.0;    ///< max of gap - w_n (the largest opening) [m]
+  Real max_wt = 0.0;        ///< max ||w_t|| [m]
+  Real max_lambda_n = 0.0;  ///< [Pa]
+  Real max_lambda_t = 0.0;  ///< max ||lambda_t|| [Pa]
+  /// The normal force [N]: sum lambda_n |R_p|, the resultant of the contact pressure over the
+  /// patches (theory.md §6.1).
+  Real total_normal_force = 0.0;
+  /// The part of total_normal_force [N] that acts on free displacement components of the
+  /// contact surface: the contact force that the body's loads and reactions balance. The rest
+  /// acts on components with a prescribed displacement and goes straight into their supports
+  /// (it is among the reactions); equal to total_normal_force where no contact node has a
+  /// prescribed component along its patch's normal (theory.md §6.1).
+  Real transmitted_normal_force = 0.0;
   /// Of the last QP, with g = Q lambda - h through a fresh solve with K (the certificate).
   qp::KktResiduals kkt;
   Real kkt_bound = 0.0;  ///< kCertificateFactor * qp_rtol: the certificate's bound on kkt.max()
@@ -124,6 +153,13 @@ struct ContactReport {
   /// pairs, and its bound.
   Real coulomb_residual = 0.0;
   Real coulomb_bound = 0.0;
+  /// The floor [Pa] of the multipliers' scale (PathStep::lambda_scale; 0 in a static run): what
+  /// coulomb_residual is relative to besides ||lambda||.
+  Real lambda_scale = 0.0;
+  /// The pressure [Pa] below which a patch counts as separated besides round-off of the largest
+  /// lambda_n (separation_threshold): outer_tol times lambda_scale, the accuracy of a path
+  /// step's pressures (theory.md §2.9); 0 in a static run.
+  Real pressure_floor = 0.0;
   /// Rounds of further steps at tighter tolerances that the Coulomb certificate needed.
   int certificate_refinements = 0;
   /// Per outer iteration, the relative change of each block of the state (phi; lambda_n).
@@ -164,7 +200,10 @@ struct ContactOutcome {
   ContactFields fields;
   VectorXd w;  ///< displacement over the free dofs of the last inner solve [m]
   Vec3 contact_force = Vec3::Zero();  ///< -sum of B^T lambda over free dofs, per direction [N]
-  Real linear_residual = 0.0;         ///< ||K w - f + B^T lambda|| / ||f||
+  /// The sum over the nodes of the magnitudes of the nodal forces -B^T lambda [N].
+  Real contact_force_magnitude = 0.0;
+  /// ||K w - f + B^T lambda|| / max(||f||, ||B^T lambda||) (absolute when both are 0)
+  Real linear_residual = 0.0;
   std::optional<qp::DualProblem> first_dual;  ///< if RunOptions::keep_first_dual
 };
 
@@ -188,6 +227,11 @@ struct PathStep {
   const VectorXd* predicted_slip = nullptr;
   /// ||Q|| and ||D Q D|| of the path's operator, estimated at its first step; 0: estimate them.
   Real norm_Q = 0.0, norm_Q_scaled = 0.0;
+  /// The largest ||lambda|| [Pa] of the earlier steps: the floor of the multipliers' norm that
+  /// the pressures' change (err(k)) and the Coulomb certificate are relative to, so that a step
+  /// unloaded to lambda = 0 is not measured against its own vanishing multipliers (theory.md
+  /// §2.9); 0: none.
+  Real lambda_scale = 0.0;
 };
 
 /// Runs the contact solve for `problem.contact` on the factored model with the contact

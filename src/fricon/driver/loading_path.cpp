@@ -32,6 +32,10 @@ struct PathState {
   VectorXd tangential;   // per multiplier row: the last step's int_R u_t dS [m^3] (normal rows 0)
   VectorXd predicted;    // the accumulated slip plus the last step's increment [m]
   Real norm_Q = 0.0, norm_Q_scaled = 0.0;
+  Real lambda_scale = 0.0;  // the largest ||lambda|| of the steps so far [Pa] (PathStep)
+  // Per pair: the largest relative slip of the steps so far [m], and its step.
+  std::vector<Real> worst_slip;
+  std::vector<int> worst_slip_step;
 };
 
 // The load of the path as a sum (the loads are linear in their values): f = f_rest + sum_i
@@ -166,10 +170,28 @@ void remember_step(const contact::ContactDiscretization& disc, const RunResult& 
   for (Index p = 0; p < disc.n_patches(); ++p)
     state.lambda(3 * p) = std::max(state.lambda(3 * p), 0.0);
   state.last_lambda = f.lambda;
+  state.lambda_scale = std::max(state.lambda_scale, f.lambda.norm());
   state.tangential = patch_tangential(disc, r.model, w);
   const ContactReport& c = *r.report.contact;
   state.norm_Q = c.norm_Q;
   state.norm_Q_scaled = c.norm_Q_scaled;
+}
+
+// Small sliding along the path (theory.md §2.8): the reference pairing must hold at every step,
+// so each pair reports the largest relative slip of the steps done (k the last), and its step.
+void keep_worst_sliding(int k, PathState& state, ContactReport& c) {
+  state.worst_slip.resize(c.pairs.size(), 0.0);
+  state.worst_slip_step.resize(c.pairs.size(), 0);
+  for (std::size_t i = 0; i < c.pairs.size(); ++i) {
+    PairReport& pair = c.pairs[i];
+    if (state.worst_slip_step[i] == 0 || pair.max_slip > state.worst_slip[i]) {
+      state.worst_slip[i] = pair.max_slip;
+      state.worst_slip_step[i] = k;
+    }
+    pair.max_slip = state.worst_slip[i];
+    pair.max_slip_step = state.worst_slip_step[i];
+    pair.small_sliding = within_small_sliding(pair.info, pair.max_slip);
+  }
 }
 
 // The step's contact solve on the path's operator, then its fields and self-check.
@@ -178,9 +200,12 @@ VectorXd solve_step(const Problem& step_problem, const contact::ContactDiscretiz
                     const RunOptions& options, RunResult& r) {
   Model& m = r.model;
   Q.set_load(m.f, disc.offset, &u0);
-  const PathStep step{&state.history, state.lambda.size() > 0 ? &state.lambda : nullptr,
-                      state.predicted.size() > 0 ? &state.predicted : nullptr, state.norm_Q,
-                      state.norm_Q_scaled};
+  const PathStep step{&state.history,
+                      state.lambda.size() > 0 ? &state.lambda : nullptr,
+                      state.predicted.size() > 0 ? &state.predicted : nullptr,
+                      state.norm_Q,
+                      state.norm_Q_scaled,
+                      state.lambda_scale};
   phase_start(options, "outer loop");
   return adopt(solve_contact(step_problem, m, disc, Q, r.report.times, options, nullptr, &step), r);
 }
@@ -261,7 +286,7 @@ VectorXd solve_step_with_search(const Problem& step_problem,
                                 : VectorXd();
     const PathStep step{&state.history, lambda.size() > 0 ? &lambda : nullptr,
                         state.predicted.size() > 0 ? &state.predicted : nullptr, search.norm_Q,
-                        search.norm_Q_scaled};
+                        search.norm_Q_scaled, state.lambda_scale};
     const PatchSelection selection{disc, search.candidates, round};
     phase_start(options, "outer loop");
     ContactOutcome c = solve_contact(step_problem, m, *search.part, *search.Q, r.report.times,
@@ -348,6 +373,7 @@ RunResult run_path(const Problem& problem, const RunOptions& options) {
                        : search ? solve_step_with_search(step_problem, *disc, u0, state, steps_left,
                                                          path_search, options, r)
                                 : solve_step(step_problem, *disc, *Q, u0, state, options, r);
+    if (rep.contact) keep_worst_sliding(k, state, *rep.contact);
     // The stresses of a step only for whom watches the steps, and for the result.
     const bool last = k == problem.loading.steps;
     finish_run(step_problem, u, r, options.on_step || last);

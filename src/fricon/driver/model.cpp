@@ -438,14 +438,26 @@ Model build_model(const Problem& problem, PhaseTimes& times, const PhaseCallback
   return model;
 }
 
-Vec3 applied_force_total(const Problem& problem, const mesh::TetMesh& mesh) {
+fe::NodalField applied_forces(const Problem& problem, const mesh::TetMesh& mesh) {
   const fe::DofMap all(mesh.n_nodes());
-  return all.to_nodal(applied_load(problem, mesh, all)).rowwise().sum();
+  return all.to_nodal(applied_load(problem, mesh, all));
+}
+
+Vec3 applied_force_total(const Problem& problem, const mesh::TetMesh& mesh) {
+  return applied_forces(problem, mesh).rowwise().sum();
+}
+
+Real force_magnitude_sum(const fe::NodalField& forces) {
+  return forces.colwise().norm().sum();
 }
 
 Vec3 reaction_total(const Model& model, const Problem& problem, const fe::NodalField& u) {
-  const fe::DofMap all(model.mesh.n_nodes());
-  const fe::NodalField load = all.to_nodal(applied_load(problem, model.mesh, all));
+  return reaction_forces(model, problem, u).rowwise().sum();
+}
+
+fe::NodalField reaction_forces(const Model& model, const Problem& problem,
+                               const fe::NodalField& u) {
+  const fe::NodalField load = applied_forces(problem, model.mesh);
   // Only the tetrahedra with a fixed dof contribute to the rows the reaction sums.
   std::vector<Index> tets;
   for (Index t = 0; t < model.mesh.n_tets(); ++t) {
@@ -456,10 +468,10 @@ Vec3 reaction_total(const Model& model, const Problem& problem, const fe::NodalF
     if (fixed) tets.push_back(t);
   }
   const fe::NodalField internal = fe::internal_forces(model.mesh, model.materials, u, tets);
-  Vec3 r = Vec3::Zero();
+  fe::NodalField r = fe::NodalField::Zero(3, model.mesh.n_nodes());
   for (Index a = 0; a < model.mesh.n_nodes(); ++a)
     for (int c = 0; c < 3; ++c)
-      if (model.dofs.is_fixed(a, c)) r(c) += internal(c, a) - load(c, a);
+      if (model.dofs.is_fixed(a, c)) r(c, a) = internal(c, a) - load(c, a);
   return r;
 }
 

@@ -131,8 +131,20 @@ std::optional<contact::ContactDiscretization> check_model(const Problem& problem
 /// fixed dofs, in each direction.
 Vec3 applied_force_total(const Problem& problem, const mesh::TetMesh& mesh);
 
-/// Reaction forces [N] at the fixed dofs for a displacement field u (3 x n_nodes): the internal
-/// force minus the applied load there, summed over the mesh.
+/// The applied forces [N] (tractions and volume force) per node, 3 x n_nodes, including the
+/// parts acting on fixed dofs; their sum over the nodes is applied_force_total.
+fe::NodalField applied_forces(const Problem& problem, const mesh::TetMesh& mesh);
+
+/// Reaction forces [N] per node for a displacement field u (3 x n_nodes): at the fixed dofs the
+/// internal force minus the applied load there, zero at the free ones.
+fe::NodalField reaction_forces(const Model& model, const Problem& problem, const fe::NodalField& u);
+
+/// Reaction forces [N] at the fixed dofs for a displacement field u (3 x n_nodes): those of
+/// reaction_forces, summed over the mesh.
 Vec3 reaction_total(const Model& model, const Problem& problem, const fe::NodalField& u);
+
+/// The sum over the nodes of the magnitudes |f_a| [N] of a nodal force field (3 x n_nodes): a
+/// force scale that, unlike the resultant, cannot cancel.
+Real force_magnitude_sum(const fe::NodalField& forces);
 
 }  // namespace fricon::driver

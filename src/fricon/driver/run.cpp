@@ -26,6 +26,7 @@ VectorXd adopt(ContactOutcome&& c, RunResult& r) {
   rep.status = c.converged ? RunStatus::Converged : RunStatus::NotConverged;
   rep.message = c.message;
   rep.contact_force = c.contact_force;
+  rep.contact_force_magnitude = c.contact_force_magnitude;
   rep.linear_residual = c.linear_residual;
   rep.contact = std::move(c.report);
   r.contact = std::move(c.fields);
@@ -177,16 +178,17 @@ void postprocess(const Problem& problem, const VectorXd& u, RunResult& r, bool w
   r.displacement = m.dofs.to_nodal(u) + m.prescribed;
   rep.max_displacement = r.displacement.colwise().norm().maxCoeff();
   if (with_stresses) compute_stresses(r);
-  rep.applied_force = applied_force_total(problem, m.mesh);
-  rep.reaction_force = reaction_total(m, problem, r.displacement);
-  // Relative to the largest of the three: a body pressed by a prescribed displacement has no
-  // applied load. Between two bodies the contact forces cancel in the sum: the magnitude of the
-  // contact force on the contact surfaces enters the scale.
-  const Real contact_magnitude = rep.contact ? rep.contact->total_normal_force : 0.0;
-  const Real scale = std::max({rep.applied_force.norm(), rep.contact_force.norm(),
-                               rep.reaction_force.norm(), contact_magnitude, 1e-300});
-  rep.equilibrium_residual =
-      (rep.applied_force + rep.contact_force + rep.reaction_force).norm() / scale;
+  const fe::NodalField applied = applied_forces(problem, m.mesh);
+  const fe::NodalField reactions = reaction_forces(m, problem, r.displacement);
+  rep.applied_force = applied.rowwise().sum();
+  rep.reaction_force = reactions.rowwise().sum();
+  // Relative to the nodal forces' magnitudes, which cannot cancel as the resultants do (two
+  // reactions of a bar pulled at both ends; the contact forces of two bodies on each other).
+  if (!rep.contact) rep.contact_force_magnitude = 0.0;
+  rep.force_scale =
+      force_magnitude_sum(applied) + rep.contact_force_magnitude + force_magnitude_sum(reactions);
+  const Real residual = (rep.applied_force + rep.contact_force + rep.reaction_force).norm();
+  rep.equilibrium_residual = rep.force_scale > 0.0 ? residual / rep.force_scale : residual;
 }
 
 }  // namespace
@@ -231,6 +233,38 @@ void compute_stresses(RunResult& r) {
 
 void finish_run(const Problem& problem, const VectorXd& u, RunResult& r, bool with_stresses) {
   postprocess(problem, u, r, with_stresses);
+  r.report.warnings = result_warnings(r.report);
+}
+
+std::vector<std::string> result_warnings(const RunReport& report) {
+  std::vector<std::string> w;
+  if (!report.contact) return w;
+  const ContactReport& c = *report.contact;
+  if (!c.partition_note.empty())
+    w.push_back(fmt::format(
+        "the contact partition failed condition (5.1) and was coarsened: {}; the patches are "
+        "coarser than asked for (theory.md §2.3)",
+        c.partition_note));
+  for (const PairReport& p : c.pairs) {
+    if (!p.small_sliding)
+      w.push_back(fmt::format(
+          "{}: the largest relative slip {:.3e} m{} exceeds {} of the master's element size "
+          "{:.3e} m: the pairing, computed once in the reference configuration (small sliding), "
+          "may no longer hold",
+          p.info.key, p.max_slip,
+          p.max_slip_step > 0 ? fmt::format(" (at step {})", p.max_slip_step) : std::string(),
+          kSmallSlidingShare, p.info.master_element_size));
+    if (!p.master_kept_out)
+      w.push_back(fmt::format(
+          "{}: the master '{}' penetrates the contact surface '{}' by {:.3e} m, {:.2g} of the "
+          "surfaces' normal displacement {:.3e} m (more than {}): the master's mesh is too fine "
+          "for the slave's patches; make the finer surface the slave (contact.boundary) and the "
+          "coarser one the master (theory.md §2.8)",
+          p.info.key, p.info.master, p.info.boundary, p.master_penetration,
+          p.master_penetration / p.normal_displacement, p.normal_displacement,
+          kMasterPenetrationShare));
+  }
+  return w;
 }
 
 RunResult run(const Problem& problem, const RunOptions& options) {

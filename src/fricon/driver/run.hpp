@@ -60,17 +60,30 @@ struct RunReport {
   Vec3 reaction_force = Vec3::Zero();  ///< sum of reactions at fixed dofs [N]
   Vec3 contact_force =
       Vec3::Zero();  ///< sum of contact forces on the body [N] (zero without contact)
-  /// |applied + contact + reaction| / the largest of the three (not zero for a run driven by a
-  /// prescribed displacement, which has no applied load): global equilibrium, round-off if all is
-  /// well.
+  /// The sum over the nodes of the magnitudes of the contact's nodal forces [N] (zero without
+  /// contact).
+  Real contact_force_magnitude = 0.0;
+  /// The sum over the nodes of the magnitudes of the applied, contact and reaction forces [N]:
+  /// the scale of equilibrium_residual. Unlike their resultants it cannot cancel (a bar pulled
+  /// by a prescribed displacement has two large reactions whose sum is round-off).
+  Real force_scale = 0.0;
+  /// |applied + contact + reaction| / force_scale: global equilibrium, round-off if all is well.
   Real equilibrium_residual = 0.0;
-  Real linear_residual = 0.0;            ///< ||K u - (f - B^T lambda)|| / ||f||
+  /// ||K u - (f - B^T lambda)|| / max(||f||, ||B^T lambda||) (absolute when both are 0)
+  Real linear_residual = 0.0;
   std::optional<ContactReport> contact;  ///< present when the problem has a [contact] section
   std::optional<parallel::ParallelReport> parallel;  ///< present for backend "petsc"
   /// With [loading] steps > 1: every step done (the last may have failed); the other fields
   /// hold the last step's values.
   std::vector<StepReport> steps;
+  /// What the result's status does not say, one sentence each (result_warnings): a partition
+  /// coarsened to pass condition (5.1), a pair whose slips left small sliding, a master that
+  /// penetrates its slave. The command line prints them in the summary and on stderr.
+  std::vector<std::string> warnings;
 };
+
+/// The warnings of a report (RunReport::warnings) from its contact part; none without contact.
+std::vector<std::string> result_warnings(const RunReport& report);
 
 struct RunResult {
   RunReport report;

@@ -1,5 +1,6 @@
 #include "fricon/driver/tresca_map.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -8,12 +9,37 @@
 
 namespace fricon::driver {
 
-VectorXd SlipHistory::slips(const contact::SurfaceDisplacement& d) const {
-  if (empty()) return d.slip();
-  VectorXd s(accumulated.size());
-  for (Index k = 0; k < s.size(); ++k)
-    s(k) = accumulated(k) + std::hypot(d.wt1(k) - wt1(k), d.wt2(k) - wt2(k));
+VectorXd SlipHistory::slips(const contact::SurfaceDisplacement& d,
+                            const std::vector<bool>& in_contact) const {
+  VectorXd s = d.slip();  // the first step's increment, from the zero state
+  for (Index k = 0; k < s.size(); ++k) {
+    if (!empty()) s(k) = std::hypot(d.wt1(k) - wt1(k), d.wt2(k) - wt2(k));
+    if (!in_contact.empty() && !in_contact[static_cast<size_t>(k)]) s(k) = 0.0;
+    if (!empty()) s(k) += accumulated(k);
+  }
   return s;
+}
+
+Real separation_threshold(Real largest_lambda_n, Real pressure_floor) {
+  return std::max(kContactPressureShare * largest_lambda_n, pressure_floor);
+}
+
+std::vector<bool> nodes_in_contact(const contact::ContactDiscretization& disc,
+                                   const VectorXd& lambda, bool uses_pressure,
+                                   Real pressure_floor) {
+  if (!uses_pressure) return {};
+  Real largest = 0.0;
+  for (Index p = 0; p < disc.n_patches(); ++p)
+    largest = std::max(largest, lambda(3 * p));
+  const Real threshold = separation_threshold(largest, pressure_floor);
+  std::vector<bool> in_contact(static_cast<size_t>(disc.surface.n_nodes()), false);
+  for (Index p = 0; p < disc.n_patches(); ++p) {
+    if (!(lambda(3 * p) > threshold)) continue;
+    for (Index face : disc.patches.faces[static_cast<size_t>(p)])
+      for (int v = 0; v < 3; ++v)
+        in_contact[static_cast<size_t>(disc.surface.face_nodes(v, face))] = true;
+  }
+  return in_contact;
 }
 
 TrescaMap::TrescaMap(const fe::DofMap& dofs, const contact::ContactDiscretization& discretization,
@@ -40,7 +66,7 @@ void TrescaMap::set_lambda(const VectorXd& lambda) {
 
 std::vector<outer::StateBlock> TrescaMap::layout() const {
   std::vector<outer::StateBlock> blocks{{"phi", disc_.surface.n_nodes()}};
-  if (bounds_.uses_pressure()) blocks.push_back({"lambda_n", disc_.n_patches()});
+  if (bounds_.uses_pressure()) blocks.push_back({"lambda_n", disc_.n_patches(), pressure_scale_});
   return blocks;
 }
 
@@ -70,7 +96,10 @@ outer::MapStep TrescaMap::apply(int k, const VectorXd& state, VectorXd& image) {
   }
   // @sect: the new state: the slips, and for Coulomb the new pressures.
   const contact::SurfaceDisplacement d = contact::surface_displacement(disc_.surface, dofs_, w_);
-  const VectorXd phi = history_ ? history_->slips(d) : d.slip();
+  const VectorXd phi =
+      history_ ? history_->slips(
+                     d, nodes_in_contact(disc_, lambda_, bounds_.uses_pressure(), pressure_floor_))
+               : d.slip();
   image.resize(state.size());
   image.head(phi.size()) = phi;
   if (bounds_.uses_pressure())
@@ -100,6 +129,16 @@ std::string TrescaMap::stall_hint() const {
         (std::isfinite(worst->lipschitz()) && law->lipschitz() > worst->lipschitz()))
       worst = law;
   if (!worst) return "qp_rtol may be too loose for outer_tol";
+  // A constant coefficient does not vary with the slip: only the Coulomb coupling of the radii
+  // to the pressures is left to blame (theory.md §5.6).
+  if (worst->lipschitz() == 0.0)
+    return bounds_.uses_pressure()
+               ? fmt::format(
+                     "with the constant coefficient {} the Coulomb problem may have several "
+                     "solutions or its successive approximations may not contract (a large "
+                     "coefficient), or qp_rtol is too loose for outer_tol",
+                     worst->describe())
+               : "qp_rtol may be too loose for outer_tol";
   if (!std::isfinite(worst->lipschitz()))
     return fmt::format(
         "the friction law {} may vary too fast with the slip for the successive approximations "

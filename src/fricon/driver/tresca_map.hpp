@@ -30,9 +30,30 @@ struct SlipHistory {
 
   bool empty() const { return accumulated.size() == 0; }
   /// The slip the coefficient is evaluated at, per surface node [m], for this step's
-  /// displacement d: s + ||w_t - w_t^prev|| along a path, ||w_t|| without history.
-  VectorXd slips(const contact::SurfaceDisplacement& d) const;
+  /// displacement d: s + ||w_t - w_t^prev|| along a path (from s = 0, w_t^prev = 0 at its first
+  /// step), the increment counted only at the nodes `in_contact` marks (empty: every node;
+  /// nodes_in_contact).
+  VectorXd slips(const contact::SurfaceDisplacement& d, const std::vector<bool>& in_contact) const;
 };
+
+/// A patch carries a contact pressure when its lambda_n exceeds this share of the largest
+/// lambda_n (round-off of a pressure that is zero), and the pressure floor of
+/// separation_threshold.
+inline constexpr Real kContactPressureShare = 1e-12;
+
+/// The contact pressure [Pa] at or below which a patch is separated: the larger of
+/// kContactPressureShare times the largest lambda_n [Pa] and `pressure_floor` [Pa] (along a
+/// loading path, the accuracy of the step's pressures: outer_tol times the path's pressure
+/// scale, theory.md §2.9; 0 in a static run).
+Real separation_threshold(Real largest_lambda_n, Real pressure_floor);
+
+/// Per surface node: whether friction acts on it, so that its slip accumulates along a loading
+/// path (theory.md §2.9). Empty (every node) when the slip bound does not depend on the pressure
+/// (`uses_pressure` false: Tresca, whose given g stands for a known normal stress); for Coulomb
+/// the nodes of the patches whose lambda_n (multipliers `lambda` [Pa], (n, t1, t2) per patch)
+/// exceeds separation_threshold(largest lambda_n, `pressure_floor` [Pa]).
+std::vector<bool> nodes_in_contact(const contact::ContactDiscretization& disc,
+                                   const VectorXd& lambda, bool uses_pressure, Real pressure_floor);
 
 class TrescaMap final : public outer::FixedPointMap {
  public:
@@ -69,6 +90,15 @@ class TrescaMap final : public outer::FixedPointMap {
   void set_qp_tolerance(Real rel_tolerance) { qp_.rel_tolerance = rel_tolerance; }
   /// Measures the slips from a loading path's last step (null: none); must outlive the map.
   void set_history(const SlipHistory* history) { history_ = history; }
+  /// The floor `scale` [Pa] of the pressures' norm their change is relative to
+  /// (StateBlock::scale of "lambda_n"; theory.md §2.9): along a loading path the largest
+  /// ||lambda|| of the earlier steps, so that a step unloaded to lambda = 0 converges; and the
+  /// pressure `floor` [Pa] below which a patch is separated (separation_threshold). 0 (a static
+  /// run): none.
+  void set_pressure_scale(Real scale, Real floor) {
+    pressure_scale_ = scale;
+    pressure_floor_ = floor;
+  }
 
  private:
   const fe::DofMap& dofs_;
@@ -84,6 +114,7 @@ class TrescaMap final : public outer::FixedPointMap {
   VectorXd lambda_, radius_, w_;
   qp::MpgpReport last_qp_;
   const SlipHistory* history_ = nullptr;
+  Real pressure_scale_ = 0.0, pressure_floor_ = 0.0;
 };
 
 }  // namespace fricon::driver

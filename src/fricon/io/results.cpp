@@ -37,7 +37,8 @@ void add_contact_report(const driver::ContactReport& c, nlohmann::json& j) {
             {"max_wt", c.max_wt},
             {"max_lambda_n", c.max_lambda_n},
             {"max_lambda_t", c.max_lambda_t},
-            {"total_normal_force", c.total_normal_force}});
+            {"total_normal_force", c.total_normal_force},
+            {"transmitted_normal_force", c.transmitted_normal_force}});
   j["kkt"] = {{"feasibility", c.kkt.feasibility},
               {"stationarity", c.kkt.stationarity},
               {"complementarity", c.kkt.complementarity},
@@ -49,6 +50,7 @@ void add_contact_report(const driver::ContactReport& c, nlohmann::json& j) {
   if (c.model == contact::FrictionModel::Coulomb)
     j["coulomb"] = {{"residual", c.coulomb_residual},
                     {"bound", c.coulomb_bound},
+                    {"scale", c.lambda_scale},
                     {"refinements", c.certificate_refinements}};
   j["patch_states"] = {{"stick", c.n_stick}, {"slip", c.n_slip}, {"separated", c.n_separated}};
   j["state_blocks"] = c.state_blocks;
@@ -102,6 +104,10 @@ void add_contact_report(const driver::ContactReport& c, nlohmann::json& j) {
       pair["master_coverage"] = p.master_coverage;
       pair["master_element_size"] = p.master_element_size;
       pair["small_sliding"] = r.small_sliding;
+      pair["max_slip_step"] = r.max_slip_step;
+      pair["master_penetration"] = r.master_penetration;
+      pair["normal_displacement"] = r.normal_displacement;
+      pair["master_kept_out"] = r.master_kept_out;
     }
     pairs.push_back(std::move(pair));
   }
@@ -274,6 +280,8 @@ nlohmann::json report_json(const driver::Problem& problem, const driver::RunResu
   j["applied_force"] = vec3(r.applied_force);
   j["reaction_force"] = vec3(r.reaction_force);
   j["contact_force"] = vec3(r.contact_force);
+  j["warnings"] = r.warnings;
+  j["force_scale"] = r.force_scale;
   j["equilibrium_residual"] = r.equilibrium_residual;
   j["linear_residual"] = r.linear_residual;
   j["max_von_mises"] = result.von_mises.size() ? result.von_mises.maxCoeff() : 0.0;

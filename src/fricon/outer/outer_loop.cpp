@@ -22,9 +22,9 @@ void OuterOptions::validate() const {
   require("OuterOptions::stall_window", stall_window, integer_at_least(1));
 }
 
-Real relative_change(const VectorXd& now, const VectorXd& before) {
-  const Real norm_now = now.norm();
-  if (norm_now > 0.0) return (now - before).norm() / norm_now;
+Real relative_change(const VectorXd& now, const VectorXd& before, Real scale) {
+  const Real reference = std::max(now.norm(), scale);
+  if (reference > 0.0) return (now - before).norm() / reference;
   return before.norm() > 0.0 ? 1.0 : 0.0;
 }
 
@@ -66,7 +66,8 @@ std::vector<Real> block_changes(const std::vector<StateBlock>& blocks, const Vec
   std::vector<Real> err;
   Index offset = 0;
   for (const auto& b : blocks) {
-    err.push_back(relative_change(image.segment(offset, b.size), x.segment(offset, b.size)));
+    err.push_back(
+        relative_change(image.segment(offset, b.size), x.segment(offset, b.size), b.scale));
     offset += b.size;
   }
   return err;

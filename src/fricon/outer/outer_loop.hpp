@@ -5,7 +5,8 @@
 // same loop, stopping rule, stall detection and Anderson mixing.
 //
 //   x^0 given; for k = 1, 2, ...: g = Psi(x^(k-1)); err(k) = max over blocks of
-//   ||g_b - x_b^(k-1)|| / ||g_b||; x^k = g (or Anderson's mix); stop when err(k) <= tol.
+//   ||g_b - x_b^(k-1)|| / max(||g_b||, scale_b); x^k = g (or Anderson's mix); stop when
+//   err(k) <= tol.
 
 #include <array>
 #include <atomic>
@@ -54,6 +55,11 @@ struct OuterOptions {
 struct StateBlock {
   std::string name;
   Index size = 0;
+  /// A floor [the block's unit] of the norm its change is relative to: err(k) of the block is
+  /// ||image - x|| / max(||image||, scale). 0: relative to the image alone. A block whose
+  /// answer may be zero (the pressures of a step unloaded to nothing) needs a scale that does
+  /// not vanish with it (theory.md §5.2).
+  Real scale = 0.0;
 };
 
 /// How one application of the map went.
@@ -113,9 +119,10 @@ OuterReport iterate(FixedPointMap& map, VectorXd& x, const OuterOptions& options
                     const std::function<void(const OuterIteration&)>& monitor = {},
                     const std::atomic<bool>* stop = nullptr);
 
-/// ||now - before|| / ||now||; 0 when both are zero, 1 when `now` is zero and `before` is not
-/// (a relative change of everything, not convergence).
-Real relative_change(const VectorXd& now, const VectorXd& before);
+/// ||now - before|| / max(||now||, scale) (scale >= 0, StateBlock::scale); with a zero
+/// denominator 0 when both are zero, 1 when `before` is not (a relative change of everything,
+/// not convergence).
+Real relative_change(const VectorXd& now, const VectorXd& before, Real scale = 0.0);
 
 /// The contraction ratio of OuterReport for a history of err(k).
 Real contraction_ratio(const std::vector<Real>& err);

@@ -1,5 +1,6 @@
 #include "fricon/qp/friction_cone.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "fricon/core/error.hpp"
@@ -15,7 +16,8 @@ Vec3 project_friction_cone(const Vec3& x, Real mu) {
   return Vec3(s, mu * s * x(1) / t, mu * s * x(2) / t);
 }
 
-Real coulomb_residual(const VectorXd& l, const VectorXd& g, const VectorXd& mu, Real alpha) {
+Real coulomb_residual(const VectorXd& l, const VectorXd& g, const VectorXd& mu, Real alpha,
+                      Real scale) {
   FRICON_CHECK(l.size() == 3 * mu.size() && g.size() == l.size(),
                "coulomb_residual: " << l.size() << " multipliers, " << g.size() << " gradients, "
                                     << mu.size() << " coefficients");
@@ -26,8 +28,8 @@ Real coulomb_residual(const VectorXd& l, const VectorXd& g, const VectorXd& mu, 
     u(0) += mu(p) * std::hypot(u(1), u(2));  // De Saxce's modified velocity
     sum += (lp - project_friction_cone(lp - alpha * u, mu(p))).squaredNorm();
   }
-  const Real norm_l = l.norm();
-  return std::sqrt(sum) / (norm_l > 0.0 ? norm_l : 1.0);
+  const Real reference = std::max(l.norm(), scale);
+  return std::sqrt(sum) / (reference > 0.0 ? reference : 1.0);
 }
 
 Real tresca_residual(const VectorXd& l, const VectorXd& g, const VectorXd& threshold, Real alpha) {

@@ -15,11 +15,14 @@ namespace fricon::qp {
 /// The Euclidean projection of (x_n, x_t) onto the cone {||x_t|| <= mu x_n}, mu >= 0.
 Vec3 project_friction_cone(const Vec3& x, Real mu);
 
-/// The natural-map residual ||l - P_K(l - alpha (g + mu ||g_t|| e_n))|| / ||l|| (2-norms over
-/// all patches; absolute when l = 0), for multipliers l [Pa], the gradient g = Q l - h [m^3],
-/// one coefficient mu per patch and a scale alpha [Pa/m^3] (1/||Q||). Zero exactly at a solution
-/// of the Coulomb problem, for any alpha > 0.
-Real coulomb_residual(const VectorXd& l, const VectorXd& g, const VectorXd& mu, Real alpha);
+/// The natural-map residual ||l - P_K(l - alpha (g + mu ||g_t|| e_n))|| / max(||l||, scale)
+/// (2-norms over all patches; absolute when both are 0), for multipliers l [Pa], the gradient
+/// g = Q l - h [m^3], one coefficient mu per patch, a scale alpha [Pa/m^3] (1/||Q||) and a floor
+/// `scale` >= 0 [Pa] of the multipliers' norm (theory.md §5.6: along a loading path the largest
+/// ||l|| of the earlier steps, so that a step unloaded to l = 0 is not measured against its own
+/// vanishing multipliers). Zero exactly at a solution of the Coulomb problem, for any alpha > 0.
+Real coulomb_residual(const VectorXd& l, const VectorXd& g, const VectorXd& mu, Real alpha,
+                      Real scale = 0.0);
 
 /// The natural-map residual of the Tresca problem, ||l - P_C(l - alpha g)|| / ||l|| with C the
 /// product of {l_n >= 0} and the discs ||l_t|| <= threshold (absolute when l = 0).

@@ -131,6 +131,28 @@ TEST(OuterLoop, RelativeChangeOfZeroVectors) {
   EXPECT_DOUBLE_EQ(relative_change(2 * one, one), 0.5);
 }
 
+TEST(OuterLoop, ABlockWithAScaleConvergesToZero) {
+  // A block halved at every step, as the pressures of a step unloaded to nothing decay to the
+  // answer 0: relative to itself its change stays 1 (never converged); relative to a scale that
+  // does not vanish (StateBlock::scale) it falls below any tolerance.
+  EXPECT_DOUBLE_EQ(relative_change(VectorXd::Constant(1, 1e-12), VectorXd::Constant(1, 2e-12)),
+                   1.0);
+  EXPECT_DOUBLE_EQ(relative_change(VectorXd::Constant(1, 1e-12), VectorXd::Constant(1, 2e-12), 1.0),
+                   1e-12);
+  EXPECT_DOUBLE_EQ(relative_change(VectorXd::Constant(1, 4.0), VectorXd::Constant(1, 2.0), 1.0),
+                   0.5);  // a scale below the norm changes nothing
+  FunctionMap map({{"lambda_n", 2, 1.0}}, [](int, const VectorXd& x, VectorXd& image) {
+    image = 0.5 * x;
+    return MapStep{};
+  });
+  VectorXd x = VectorXd::Ones(2);
+  OuterOptions o;
+  o.tol = 1e-6;
+  const OuterReport rep = iterate(map, x, o);
+  EXPECT_EQ(rep.termination, OuterTermination::Converged) << rep.message;
+  EXPECT_LE(x.norm(), 1e-5);
+}
+
 TEST(OuterLoop, ATwoCycleStallsWithinTheWindowAndSaysWhy) {
   FunctionMap map({{"phi", 2}}, [](int k, const VectorXd&, VectorXd& image) {
     image = (k % 2 == 0 ? 1.0 : 3.0) * VectorXd::Ones(2);
