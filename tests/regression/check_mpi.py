@@ -16,8 +16,8 @@ augmented matrix) and a different dual operator:
   partitions              two partitions of the tetrahedra on 2 ranks (graph, blocks) agree
   failing_rank            rank 1 reads a bad value, rank 0 a good one: both end with exit code 1
                           and the message of rank 1, printed once; no hang
-  failing_write           rank 0 cannot write its results after the solve: every rank ends
-                          with its exit code (3, as a serial run's)
+  failing_write           rank 0 cannot write its results (checked before the solve): every
+                          rank ends with its exit code (4, as a serial run's)
   failing_model           bad input that only rank 0 can find (it alone builds the whole model:
                           a contact boundary the mesh does not have): every rank ends with its
                           error (seen with FRICON_RANK_OUTPUT=all) and exit code 1, printed once
@@ -368,8 +368,8 @@ def main():
         blocker.write_text("a file where the results folder should be\n")
         expect_error(mpirun(mpi, 2) + [fricon, "solve", str(brick), *PETSC, "-q", "-o",
                                         str(blocker / "results")],
-                     [str(blocker)], "rank 0 cannot write: both ranks end with its exit code",
-                     code=3, prefix="fricon: internal error:")
+                     [str(blocker), "cannot write the results"],
+                     "rank 0 cannot write: both ranks end with its exit code", code=4)
     elif case == "failing_factorization":
         # The brick's MUMPS estimate is about 2 MiB per rank: 1 MiB is too little.
         cmd = mpirun(mpi, 2) + [fricon, "solve", str(brick), *PETSC, "--set",

@@ -33,7 +33,7 @@ Patches chessboard_patches(const mesh::TetMesh& mesh, const ContactSurface& surf
   if (m1 < 2 || m2 < 2 || m1 % 2 != 0 || m2 % 2 != 0 ||
       surface.faces.size() != static_cast<size_t>(2 * m1 * m2))
     throw InputError(fmt::format(
-        "{}: contact.patches = \"chessboard\" needs a rectangular contact surface of grid squares "
+        "{} = \"chessboard\" needs a rectangular contact surface of grid squares "
         "with an even number (>= 2) in each direction; '{}' has {} x {} grid intervals and {} "
         "triangles (on a brick: mesh.cells must be even along both edges of the contact face)",
         where, surface.tag, m1, m2, surface.faces.size()));

@@ -57,8 +57,7 @@ ContactSurface surface_of_tag(const mesh::TetMesh& mesh, const std::string& tag,
   ContactSurface s;
   s.tag = tag;
   s.faces = mesh.faces_with_tag(tag);
-  if (s.faces.empty())
-    throw InputError(fmt::format("{}: contact.boundary: {}", where, mesh.no_surface(tag)));
+  if (s.faces.empty()) throw InputError(fmt::format("{}: {}", where, mesh.no_surface(tag)));
   s.nodes = mesh.nodes_with_tag(tag);
   std::map<Index, Index> position;
   for (size_t k = 0; k < s.nodes.size(); ++k)
@@ -80,7 +79,7 @@ void check_manifold(const mesh::TetMesh& mesh, const ContactSurface& s, const st
       const Index a = mesh.faces(v, f), b = mesh.faces((v + 1) % 3, f);
       if (++count[{std::min(a, b), std::max(a, b)}] > 2)
         throw InputError(fmt::format(
-            "{}: contact.boundary: the surface '{}' is not a manifold: the edge between nodes {} "
+            "{}: the surface '{}' is not a manifold: the edge between nodes {} "
             "({:.6g}, {:.6g}, {:.6g}) and {} ({:.6g}, {:.6g}, {:.6g}) is in three or more of its "
             "triangles (is a triangle listed twice, or do two bodies touch along an edge?)",
             where, s.tag, a, mesh.nodes(0, a), mesh.nodes(1, a), mesh.nodes(2, a), b,
@@ -99,7 +98,7 @@ Vec3 flat_surface_normal(const mesh::TetMesh& mesh, const ContactSurface& s,
     const Vec3 nf = mesh::face_normal(mesh, f);
     if ((nf - n).norm() > kFlatTolerance)
       throw InputError(fmt::format(
-          "{}: contact.boundary: the surface '{}' is not flat (face {} has normal ({:.3g}, "
+          "{}: the surface '{}' is not flat (face {} has normal ({:.3g}, "
           "{:.3g}, {:.3g}), the mean normal is ({:.3g}, {:.3g}, {:.3g})); a curved contact surface "
           "needs the plane it may touch: [contact] obstacle = {{ kind = \"plane\", point = [x, y, "
           "z], normal = [nx, ny, nz] }}",
@@ -125,7 +124,7 @@ void mark_fixed_components(const fe::DofMap& dofs, ContactSurface& s, const std:
   }
   if (s.n_contact_nodes() == 0)
     throw InputError(
-        fmt::format("{}: contact.boundary: every node of '{}' is clamped in the normal direction "
+        fmt::format("{}: every node of '{}' is clamped in the normal direction "
                     "by Dirichlet conditions, so none can touch the foundation",
                     where, s.tag));
 }
@@ -138,7 +137,7 @@ void require_facing_obstacle(const mesh::TetMesh& mesh, const ContactSurface& s,
   for (Index f : s.faces)
     if (mesh::face_normal(mesh, f).dot(s.n) > kFacingTolerance) return;
   throw InputError(fmt::format(
-      "{}: contact.boundary: no triangle of the surface '{}' faces the obstacle (every outward "
+      "{}: no triangle of the surface '{}' faces the obstacle (every outward "
       "normal n_f has n_f . ({:.3g}, {:.3g}, {:.3g}) <= 0, the direction towards the plane): the "
       "body could never touch it; check the tag, and the direction of contact.obstacle.normal, "
       "which points out of the obstacle towards the body",
@@ -226,7 +225,7 @@ VectorXd initial_gap(const mesh::TetMesh& mesh, const ContactSurface& surface,
     gap(k) = (mesh.nodes.col(a) - obstacle.point).dot(normal);
     if (gap(k) < -kGapRoundoff * extent)
       throw InputError(fmt::format(
-          "{}: contact.obstacle: node {} of '{}' at ({:.6g}, {:.6g}, {:.6g}) is inside the "
+          "{}: node {} of '{}' at ({:.6g}, {:.6g}, {:.6g}) is inside the "
           "obstacle (gap {:.6g} m < 0): the body must start on or above the plane (check point "
           "and the direction of normal, which points out of the obstacle towards the body)",
           where, a, surface.tag, mesh.nodes(0, a), mesh.nodes(1, a), mesh.nodes(2, a), gap(k)));

@@ -138,7 +138,7 @@ Partition coarsened_agglomerate(const mesh::TetMesh& mesh, const fe::DofMap& dof
   }
   if (!p.stable())
     throw NumericalError(fmt::format(
-        "{}: contact.patches = \"agglomerate\": the partition was refused: it is unstable "
+        "{} = \"agglomerate\": the partition was refused: it is unstable "
         "(condition (5.1) fails) after {} coarsenings (tried {}; last patch_size {:.3g} m: {} "
         "patches, sigma_min/sigma_max(B) = {:.3e} < {:.1e}). Every patch needs contact nodes that "
         "are not clamped.",
@@ -159,7 +159,7 @@ Partition checked_entity_partition(const mesh::TetMesh& mesh, const fe::DofMap& 
   Partition p = measure_partition(mesh, dofs, surface, spec, reach, spec.patch_size);
   if (!p.stable())
     throw NumericalError(fmt::format(
-        "{}: contact.patches = \"mesh\": the partition drawn in the mesh (one patch per "
+        "{} = \"mesh\": the partition drawn in the mesh (one patch per "
         "elementary entity of '{}') is unstable (condition (5.1) fails): {} patches carry {} "
         "multipliers on {} surface nodes, sigma_min/sigma_max(B) = {:.3e} < {:.1e}. Use "
         "\"agglomerate\" or draw a coarser partition in Gmsh (fewer, larger surfaces, each with "

@@ -36,6 +36,8 @@ struct ContactSpec {
   /// The prescribed displacement [m] of every mesh node (3 x n_nodes, zero where nothing is
   /// prescribed), or empty when nothing is.
   Eigen::Matrix<Real, 3, Eigen::Dynamic> prescribed;
+  /// Where each key was given and its name as the file writes it, the start of messages
+  /// ("file:19:1: contact[0].boundary"; in code-built problems just the key).
   std::string where_boundary = "contact.boundary";
   std::string where_patches = "contact.patches";
   std::string where_patch_size = "contact.patch_size";

@@ -26,7 +26,7 @@ Patches entity_patches(const mesh::TetMesh& mesh, const ContactSurface& surface,
     const int entity = entity_of(mesh, surface.faces[k]);
     if (entity < 0)
       throw InputError(fmt::format(
-          "{}: contact.patches = \"mesh\": the mesh has no elementary entities for the contact "
+          "{} = \"mesh\": the mesh has no elementary entities for the contact "
           "tag '{}' (triangle {} of it has none), so it defines no partition; use \"agglomerate\" "
           "or draw the partition in Gmsh (one surface per patch)",
           where, surface.tag, surface.faces[k]));

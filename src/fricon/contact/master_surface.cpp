@@ -42,9 +42,9 @@ Real diameter(const mesh::TetMesh& mesh, const std::vector<Index>& nodes) {
 }
 
 std::vector<Index> faces_of_tag(const mesh::TetMesh& mesh, const std::string& tag,
-                                const std::string& where, std::string_view key) {
+                                const std::string& where) {
   std::vector<Index> faces = mesh.faces_with_tag(tag);
-  if (faces.empty()) throw InputError(fmt::format("{}: {}: {}", where, key, mesh.no_surface(tag)));
+  if (faces.empty()) throw InputError(fmt::format("{}: {}", where, mesh.no_surface(tag)));
   return faces;
 }
 
@@ -63,7 +63,7 @@ void require_two_bodies(const mesh::TetMesh& mesh, const std::vector<Index>& sla
       const Index b = master.node_body[static_cast<size_t>(mesh.faces(v, f))];
       if (slave_body[static_cast<size_t>(b)])
         throw InputError(fmt::format(
-            "{}: contact.obstacle.boundary: the master surface '{}' and the contact surface '{}' "
+            "{}: the master surface '{}' and the contact surface '{}' "
             "({}) are on the same body ({}): self-contact is not supported; the master must be a "
             "surface of another body (another volume of the mesh that shares no node with it)",
             master.where_boundary, master.boundary, slave, where, b));
@@ -125,12 +125,12 @@ std::vector<Index> faces_in_reach(const ContactSurface& whole, const std::vector
       std::count_if(hits.begin(), hits.end(), [](const NodeHit& h) { return !h.facing; });
   if (away > 0)
     throw InputError(fmt::format(
-        "{}: contact.boundary: the surfaces '{}' and '{}' do not face each other: the master "
+        "{}: the surfaces '{}' and '{}' do not face each other: the master "
         "triangles that {} of the {} nodes of '{}' meet along their outward normal face the same "
         "way (their outward normals must be opposite); check the two tags",
         where, slave, master.boundary, away, whole.n_nodes(), slave));
   throw InputError(fmt::format(
-      "{}: contact.boundary: no triangle of '{}' has the master surface '{}' within the search "
+      "{}: no triangle of '{}' has the master surface '{}' within the search "
       "distance {:.4g} m along its normal (contact.search_distance): the pair has no overlap; "
       "check the tags, the geometry's unit ([mesh] unit) and the search distance",
       where, slave, master.boundary, distance));
@@ -146,7 +146,7 @@ VectorXd gaps_of(const mesh::TetMesh& mesh, const ContactSurface& s,
     const NodeHit& h = hits[static_cast<size_t>(whole_position[static_cast<size_t>(a)])];
     if (h.gap < -kOverlapRoundoff * slave_diameter)
       throw InputError(fmt::format(
-          "{}: contact.boundary: node {} of '{}' at ({:.6g}, {:.6g}, {:.6g}) starts inside the "
+          "{}: node {} of '{}' at ({:.6g}, {:.6g}, {:.6g}) starts inside the "
           "master surface (gap {:.4g} m < 0): the bodies must not overlap at the start",
           where, a, slave, mesh.nodes(0, a), mesh.nodes(1, a), mesh.nodes(2, a), h.gap));
     gap(k) = h.gap > 0.0 ? h.gap : 0.0;  // no "-0" from a gap rounded below zero
@@ -169,9 +169,9 @@ SlaveSurface make_slave_surface(const mesh::TetMesh& mesh, const fe::DofMap& dof
                                 const MasterSpec& master,
                                 const Eigen::Matrix<Real, 3, Eigen::Dynamic>& prescribed) {
   // @sect: both surfaces, on two bodies.
-  const std::vector<Index> slave_faces = faces_of_tag(mesh, slave, where, "contact.boundary");
+  const std::vector<Index> slave_faces = faces_of_tag(mesh, slave, where);
   const std::vector<Index> master_faces =
-      faces_of_tag(mesh, master.boundary, master.where_boundary, "contact.obstacle.boundary");
+      faces_of_tag(mesh, master.boundary, master.where_boundary);
   require_two_bodies(mesh, slave_faces, master_faces, slave, master, where);
   const ContactSurface whole = surface_of_faces(mesh, dofs, slave, slave_faces, where);
   SlaveSurface out;

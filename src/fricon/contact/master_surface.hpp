@@ -34,6 +34,7 @@ struct MasterSpec {
   /// Body of each mesh node (mesh::Bodies::node_body), to refuse a slave and a master on one
   /// body (self-contact); empty: not checked.
   std::vector<Index> node_body;
+  /// Where the master's tag was given and its key ("file:20:1: contact[0].obstacle.boundary").
   std::string where_boundary = "contact.obstacle.boundary";
 };
 

@@ -19,8 +19,7 @@ Patches make_patches(PatchKind kind, const mesh::TetMesh& mesh, const ContactSur
     case PatchKind::Agglomerate:
       return agglomerate_patches(mesh, surface, patch_size, where);
   }
-  throw InputError(
-      fmt::format("{}: contact.patches: invalid partition kind {}", where, static_cast<int>(kind)));
+  throw InputError(fmt::format("{}: invalid partition kind {}", where, static_cast<int>(kind)));
 }
 
 Vec3 face_centroid(const mesh::TetMesh& mesh, Index f) {

@@ -374,7 +374,12 @@ contact::ContactSpec pair_spec(const Problem& problem, std::size_t i, const mesh
                                const Eigen::Matrix<Real, 3, Eigen::Dynamic>& prescribed) {
   const ContactOptions& c = problem.contact[i];
   const std::string key = problem.contact_key(i);
-  const auto where = [&](std::string_view k) { return problem.where(join_key(key, k)); };
+  // "file:line:col: contact[i].k": the contact module's messages start with the key's position
+  // and its name as the file writes it.
+  const auto where = [&](std::string_view k) {
+    const std::string full = join_key(key, k);
+    return problem.where(full) + ": " + full;
+  };
   contact::ContactSpec spec;
   spec.key = key;
   spec.boundary = c.boundary;

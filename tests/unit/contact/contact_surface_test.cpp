@@ -112,7 +112,7 @@ TEST(ContactSurface, RejectsANonManifoldSurface) {
   b.mesh.faces.col(b.mesh.n_faces() - 1) = b.mesh.faces.col(f);
   b.mesh.face_tag.push_back(z0);
   try {
-    make_contact_surface(b.mesh, b.dofs, "z0", "t.toml:3:1");
+    make_contact_surface(b.mesh, b.dofs, "z0", "t.toml:3:1: contact.boundary");
     FAIL() << "a non-manifold surface was accepted";
   } catch (const InputError& e) {
     EXPECT_THAT(std::string(e.what()), testing::HasSubstr("t.toml:3:1: contact.boundary: the "
@@ -235,7 +235,7 @@ TEST(ContactSurface, ADirichletComponentConstrainsThatComponentOnly) {
   }
   const fe::DofMap pinned = dofs_with(2);
   try {
-    make_contact_surface(m, pinned, "z0", "t.toml:3:1");
+    make_contact_surface(m, pinned, "z0", "t.toml:3:1: contact.boundary");
     ADD_FAILURE() << "a contact face with its normal motion fixed was accepted";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("t.toml:3:1: contact.boundary"), std::string::npos);
