@@ -83,8 +83,8 @@ struct ContactSurface {
 };
 
 /// The contact surface of boundary `tag` against `obstacle` (absent: the plane of the surface
-/// itself). Throws InputError naming `where` (the position and name of the pair's boundary key) if the
-/// tag does not exist, the surface is not a manifold (an edge in three or more of its
+/// itself). Throws InputError naming `where` (the position and name of the pair's boundary key) if
+/// the tag does not exist, the surface is not a manifold (an edge in three or more of its
 /// triangles), it is not flat while no obstacle is given, no triangle of it faces a given
 /// obstacle (outward normal with a positive component along n), or no node of it can move
 /// along n.
@@ -93,8 +93,8 @@ ContactSurface make_contact_surface(const mesh::TetMesh& mesh, const fe::DofMap&
                                     const std::optional<Plane>& obstacle = std::nullopt);
 
 /// The initial gap [m] of every surface node to the obstacle, (x - point) . normal. Throws
-/// InputError naming `where` (the position and name of the pair's obstacle key) and the first node below the
-/// plane (a negative gap: the body starts inside the obstacle).
+/// InputError naming `where` (the position and name of the pair's obstacle key) and the first node
+/// below the plane (a negative gap: the body starts inside the obstacle).
 VectorXd initial_gap(const mesh::TetMesh& mesh, const ContactSurface& surface,
                      const Plane& obstacle, const std::string& where);
 

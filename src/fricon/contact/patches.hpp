@@ -38,9 +38,10 @@ struct Patches {
 
 /// The partition of `surface` of the given kind. `patch_size` [m] is the target patch diameter
 /// of PatchKind::Agglomerate (0: the finest stable one, see agglomerate_patches); the other kinds
-/// ignore it. `where` starts messages: the position and name of the key ("file:line:col: contact.patches"). Throws InputError
-/// when the surface does not admit the partition (e.g. a chessboard on a surface that is not a
-/// grid of an even number of squares, or "mesh" on a surface without elementary entities).
+/// ignore it. `where` starts messages: the position and name of the key ("file:line:col:
+/// contact.patches"). Throws InputError when the surface does not admit the partition (e.g. a
+/// chessboard on a surface that is not a grid of an even number of squares, or "mesh" on a surface
+/// without elementary entities).
 Patches make_patches(PatchKind kind, const mesh::TetMesh& mesh, const ContactSurface& surface,
                      Real patch_size, const std::string& where);
 

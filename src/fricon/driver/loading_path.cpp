@@ -284,9 +284,12 @@ VectorXd solve_step_with_search(const Problem& step_problem,
     const VectorXd lambda = state.lambda.size() > 0
                                 ? restrict_multipliers(state.lambda, search.candidates)
                                 : VectorXd();
-    const PathStep step{&state.history, lambda.size() > 0 ? &lambda : nullptr,
-                        state.predicted.size() > 0 ? &state.predicted : nullptr, search.norm_Q,
-                        search.norm_Q_scaled, state.lambda_scale};
+    const PathStep step{&state.history,
+                        lambda.size() > 0 ? &lambda : nullptr,
+                        state.predicted.size() > 0 ? &state.predicted : nullptr,
+                        search.norm_Q,
+                        search.norm_Q_scaled,
+                        state.lambda_scale};
     const PatchSelection selection{disc, search.candidates, round};
     phase_start(options, "outer loop");
     ContactOutcome c = solve_contact(step_problem, m, *search.part, *search.Q, r.report.times,
