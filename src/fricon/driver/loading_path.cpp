@@ -7,7 +7,6 @@
 #include <cmath>
 #include <iterator>
 #include <memory>
-#include <numeric>
 
 #include <fmt/format.h>
 
@@ -273,7 +272,7 @@ VectorXd solve_step_with_search(const Problem& step_problem,
       search);
   const Real tolerance =
       step_problem.solver.qp.rel_tolerance * free_penetration.cwiseAbs().maxCoeff();
-  long earlier_products = 0, earlier_qp_iterations = 0, earlier_kinv = 0;
+  SearchRounds rounds;
   for (int round = 1;; ++round) {
     {
       phase_start(options, "dual");
@@ -296,24 +295,9 @@ VectorXd solve_step_with_search(const Problem& step_problem,
                                      options, &selection, &step);
     search.norm_Q = c.report.norm_Q;
     search.norm_Q_scaled = c.report.norm_Q_scaled;
-    std::vector<Index> added = contact::penetrating_patches(contact::mean_penetration(disc, c.w),
-                                                            search.candidates, tolerance);
-    const bool grow =
-        !added.empty() && !options.stop_was_requested() &&
-        (c.converged || c.report.termination == outer::OuterTermination::CertificateFailed);
-    if (!grow) {
-      c.report.n_mult += earlier_products;
-      c.report.qp_iterations += earlier_qp_iterations;
-      c.report.n_kinv += earlier_kinv;
-      return adopt(std::move(c), r);
-    }
-    earlier_products += c.report.n_mult;
-    earlier_qp_iterations += c.report.qp_iterations;
-    earlier_kinv += c.report.n_kinv;
-    if (round >= kMaxSearchRounds) {
-      added.resize(static_cast<std::size_t>(disc.n_patches()));
-      std::iota(added.begin(), added.end(), Index{0});
-    }
+    const std::vector<Index> added =
+        rounds.patches_to_add(disc, search.candidates, c, tolerance, round, options);
+    if (added.empty()) return rounds.adopt_answer(std::move(c), r);
     grow_candidates(added, search);
   }
 }

@@ -88,7 +88,7 @@ VectorXd solve_with_search(const Problem& problem, const contact::ContactDiscret
   // @sect: solve on the candidates, add the left-out patches that penetrate, again until none
   // does (after kMaxSearchRounds growths, with every patch). The counts of the report are
   // those of every round (and of the solve for u0).
-  long earlier_products = 0, earlier_qp_iterations = 0, earlier_kinv = 1;
+  SearchRounds rounds(/*solves_before=*/1);  // the solve for u0
   // Without friction every radius is 0 and the tangential multipliers stay 0: their rows of B
   // need not enter Q (a third of the rows to form); a dumped QP keeps them (a Q without zero
   // rows, for other solvers).
@@ -109,30 +109,46 @@ VectorXd solve_with_search(const Problem& problem, const contact::ContactDiscret
     phase_start(options, "outer loop");
     const PatchSelection selection{disc, candidates, round};
     ContactOutcome c = solve_contact(problem, m, part, *Q, r.report.times, options, &selection);
-    std::vector<Index> added =
-        contact::penetrating_patches(contact::mean_penetration(disc, c.w), candidates, tolerance);
-    // A round that left out a pressing patch fails its certificate over every patch: that
-    // failure is what the growth repairs; any other is the answer.
-    const bool grow =
-        !added.empty() && !options.stop_was_requested() &&
-        (c.converged || c.report.termination == outer::OuterTermination::CertificateFailed);
-    if (!grow) {
-      c.report.n_mult += earlier_products;
-      c.report.qp_iterations += earlier_qp_iterations;
-      c.report.n_kinv += earlier_kinv;
-      return adopt(std::move(c), r);
-    }
-    earlier_products += c.report.n_mult;
-    earlier_qp_iterations += c.report.qp_iterations;
-    earlier_kinv += c.report.n_kinv;
-    if (round >= kMaxSearchRounds) {
-      added.clear();
-      for (Index p = 0; p < disc.n_patches(); ++p)
-        added.push_back(p);
-      candidates.clear();
-    }
+    const std::vector<Index> added =
+        rounds.patches_to_add(disc, candidates, c, tolerance, round, options);
+    if (added.empty()) return rounds.adopt_answer(std::move(c), r);
     candidates = contact::merge_patches(candidates, added);
   }
+}
+
+std::vector<Index> SearchRounds::patches_to_add(const contact::ContactDiscretization& disc,
+                                                const std::vector<Index>& candidates,
+                                                const ContactOutcome& c, Real tolerance, int round,
+                                                const RunOptions& options) {
+  std::vector<Index> added =
+      contact::penetrating_patches(contact::mean_penetration(disc, c.w), candidates, tolerance);
+  // A round that left out a pressing patch fails its certificate over every patch: that
+  // failure is what the growth repairs; any other is the answer.
+  const bool grow =
+      !added.empty() && !options.stop_was_requested() &&
+      (c.converged || c.report.termination == outer::OuterTermination::CertificateFailed);
+  if (!grow) return {};
+  products_ += c.report.n_mult;
+  qp_iterations_ += c.report.qp_iterations;
+  solves_ += c.report.n_kinv;
+  if (round < kMaxSearchRounds) return added;
+  // Every left-out patch: the candidates are increasing, the rest is their complement.
+  added.clear();
+  std::size_t next = 0;
+  for (Index p = 0; p < disc.n_patches(); ++p) {
+    if (next < candidates.size() && candidates[next] == p)
+      ++next;
+    else
+      added.push_back(p);
+  }
+  return added;
+}
+
+VectorXd SearchRounds::adopt_answer(ContactOutcome&& c, RunResult& r) const {
+  c.report.n_mult += products_;
+  c.report.qp_iterations += qp_iterations_;
+  c.report.n_kinv += solves_;
+  return adopt(std::move(c), r);
 }
 
 namespace {

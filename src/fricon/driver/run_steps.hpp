@@ -37,6 +37,30 @@ VectorXd solve_with_operator(const Problem& problem, const contact::ContactDiscr
 /// After this many growths of the contact search's candidates, the next solve takes every patch.
 inline constexpr int kMaxSearchRounds = 8;
 
+/// The rounds of the contact search on one problem (theory.md §2.7): after each round the
+/// left-out patches to add, and the counts of the rounds before the answer, which its report
+/// includes.
+class SearchRounds {
+ public:
+  /// `solves_before`: solves with K made before the first round (the static run's u0).
+  explicit SearchRounds(long solves_before = 0) : solves_(solves_before) {}
+
+  /// The patches to add (increasing, none of `candidates`) after round `round` (1-based), whose
+  /// outcome c was solved on `candidates` (increasing patch indices of disc): those left out
+  /// whose mean penetration exceeds `tolerance` [m], and after kMaxSearchRounds growths every
+  /// left-out patch. Empty when c is the answer: none penetrates, a stop was requested, or
+  /// the round failed otherwise than by its certificate.
+  std::vector<Index> patches_to_add(const contact::ContactDiscretization& disc,
+                                    const std::vector<Index>& candidates, const ContactOutcome& c,
+                                    Real tolerance, int round, const RunOptions& options);
+  /// The answer c, with the products with Q, QP steps and solves of the earlier rounds added,
+  /// into r (adopt); returns the displacement over the free dofs.
+  VectorXd adopt_answer(ContactOutcome&& c, RunResult& r) const;
+
+ private:
+  long products_ = 0, qp_iterations_ = 0, solves_ = 0;
+};
+
 /// Whether the contact search leaves patches out (theory.md §2.7): solver.contact_search is not
 /// off, and no patch resists without pressure (Tresca with a positive slip bound).
 bool search_applies(const Problem& problem, const contact::ContactDiscretization& disc);
