@@ -1,9 +1,10 @@
 #include "fricon/io/results.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <limits>
-#include <regex>
+#include <string_view>
 
 #include <fmt/format.h>
 
@@ -486,9 +487,23 @@ void remove_earlier_files(const std::filesystem::path& folder, Ours ours) {
 }
 
 // Whether `name` is a per-step file of a loading path (step_file), or its temporary file.
+// NAME-DDDD[D...].EXT[.tmp], NAME solution, contact or patches and EXT vtu or csv.
 bool is_step_file(const std::string& name) {
-  static const std::regex pattern(R"((solution|contact|patches)-\d{4,}\.(vtu|csv)(\.tmp)?)");
-  return std::regex_match(name, pattern);
+  constexpr std::size_t kMinDigits = 4;  // step_file's width
+  std::string_view rest(name);
+  const auto take = [&rest](std::string_view prefix) {
+    if (rest.substr(0, prefix.size()) != prefix) return false;
+    rest.remove_prefix(prefix.size());
+    return true;
+  };
+  if (!take("solution-") && !take("contact-") && !take("patches-")) return false;
+  std::size_t digits = 0;
+  while (digits < rest.size() && std::isdigit(static_cast<unsigned char>(rest[digits])) != 0)
+    ++digits;
+  if (digits < kMinDigits) return false;
+  rest.remove_prefix(digits);
+  if (!take(".vtu") && !take(".csv")) return false;
+  return rest.empty() || rest == ".tmp";
 }
 
 // Removes the result files of an earlier run (converged or not), and with `steps` its per-step
