@@ -273,9 +273,10 @@ std::vector<std::string> result_warnings(const RunReport& report) {
     if (!p.master_kept_out)
       w.push_back(fmt::format(
           "{}: the master '{}' penetrates the contact surface '{}' by {:.3e} m, {:.2g} of the "
-          "surfaces' normal displacement {:.3e} m (more than {}): the master's mesh is too fine "
-          "for the slave's patches; make the finer surface the slave (contact.boundary) and the "
-          "coarser one the master (theory.md §2.8)",
+          "surfaces' normal displacement {:.3e} m (more than {}): the slave's patches keep the "
+          "master out only in the mean, and a master finer than the slave, or a master edge or "
+          "corner pressing into it (a punch's rim), sinks its nodes in; if the master is the "
+          "finer surface, make it the slave (contact.boundary) (theory.md §2.8)",
           p.info.key, p.info.master, p.info.boundary, p.master_penetration,
           p.master_penetration / p.normal_displacement, p.normal_displacement,
           kMasterPenetrationShare));
