@@ -11,11 +11,15 @@ namespace fricon::driver {
 
 VectorXd SlipHistory::slips(const contact::SurfaceDisplacement& d,
                             const std::vector<bool>& in_contact) const {
-  VectorXd s = d.slip();  // the first step's increment, from the zero state
+  // The increment since the last step (the first step's from the zero state), counted only
+  // where the node is in contact.
+  VectorXd s = empty() ? d.slip() : VectorXd(accumulated);
   for (Index k = 0; k < s.size(); ++k) {
-    if (!empty()) s(k) = std::hypot(d.wt1(k) - wt1(k), d.wt2(k) - wt2(k));
-    if (!in_contact.empty() && !in_contact[static_cast<size_t>(k)]) s(k) = 0.0;
-    if (!empty()) s(k) += accumulated(k);
+    const bool touching = in_contact.empty() || in_contact[static_cast<size_t>(k)];
+    if (empty())
+      s(k) = touching ? s(k) : 0.0;
+    else if (touching)
+      s(k) += std::hypot(d.wt1(k) - wt1(k), d.wt2(k) - wt2(k));
   }
   return s;
 }
