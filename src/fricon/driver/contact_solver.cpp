@@ -11,6 +11,7 @@
 #include "fricon/contact/master_penetration.hpp"
 #include "fricon/contact/radii.hpp"
 #include "fricon/core/error.hpp"
+#include "fricon/driver/floating_bodies.hpp"
 #include "fricon/driver/tresca_map.hpp"
 #include "fricon/qp/friction_cone.hpp"
 
@@ -85,6 +86,7 @@ ContactReport describe(const Problem& problem, const contact::ContactDiscretizat
   rep.radius_integration = shared_or_each(problem, f.radius_integration);
   rep.partition_note = disc.partition_note;
   rep.kkt_bound = kCertificateFactor * problem.solver.qp.rel_tolerance;
+  rep.equality_bound = rep.kkt_bound;
   rep.coulomb_bound = problem.solver.certificate_tol;
   return rep;
 }
@@ -177,6 +179,7 @@ outer::OuterReport successive_approximations(TrescaMap& map, VectorXd& phi,
     rep.n_mult += q.n_products;
     rep.qp_iterations += q.iterations;
     rep.n_objective_increases += q.n_objective_increases;
+    rep.smalse_outer_iterations += map.last_smalse().outer_iterations;
     rep.history.push_back(it);
     if (options.on_outer_iteration) options.on_outer_iteration(it);
   };
@@ -253,7 +256,16 @@ outer::OuterReport refine_coulomb(TrescaMap& map, VectorXd& state, const Problem
 // through that solve: Q lambda = B K^-1 B^T lambda = B (u0 - w) (theory.md §5.5).
 VectorXd certify(const contact::ContactDiscretization& disc, const dual::DualOperator& Q,
                  const TrescaMap& map, ContactReport& rep, VectorXd& g) {
-  const VectorXd w = Q.displacement(map.lambda());
+  VectorXd w = Q.displacement(map.lambda());
+  if (Q.n_motions() > 0) {
+    // The rigid motions that contact fixes, and the balance of the floating bodies.
+    w += Q.rigid_displacement(map.alpha());
+    const VectorXd Gl = Q.G() * map.lambda();
+    const Real scale = std::max(Q.e().norm(), Gl.norm());
+    rep.equality_residual = scale > 0.0 ? (Gl - Q.e()).norm() / scale : 0.0;
+    rep.rigid_amplitudes = map.alpha();
+    rep.undetermined_motions = map.last_smalse().undetermined;
+  }
   const VectorXd& w_c = map.w();
   const Real tolerance = kRecoveryTolerance * w.lpNorm<Eigen::Infinity>();
   for (Index dof : disc.dofs)
@@ -443,6 +455,14 @@ void conclude(const outer::OuterReport& loop, ContactOutcome& out) {
         "tolerances",
         rep.coulomb_residual, rep.coulomb_bound, rep.certificate_refinements);
   }
+  if (out.converged && !(rep.equality_residual <= rep.equality_bound)) {
+    rep.termination = outer::OuterTermination::CertificateFailed;
+    out.converged = false;
+    out.message = fmt::format(
+        "the certificate of the final QP failed: the floating bodies' balance G lambda = e has "
+        "the relative residual {:.3e}, more than {:.1e}",
+        rep.equality_residual, rep.equality_bound);
+  }
   if (out.converged && !(rep.kkt.max() <= rep.kkt_bound)) {
     rep.termination = outer::OuterTermination::CertificateFailed;
     out.converged = false;
@@ -500,6 +520,8 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m,
                 qp_options(problem.solver, rep.norm_Q_scaled, options), problem.solver.warm_start,
                 times);
   if (options.keep_first_dual) out.first_dual = first_dual_problem(problem, disc, Q, map);
+  map.set_infeasibility_handler(
+      [&](const qp::Infeasibility& certificate) { refuse_unbalanced_load(problem, m, certificate); });
 
   // @sect: successive approximations (theory.md §5), from the zero state (phi = 0, and for
   // Coulomb lambda_n = 0: the first step is then the frictionless problem); along a loading path

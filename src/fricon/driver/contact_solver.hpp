@@ -160,6 +160,16 @@ struct ContactReport {
   /// lambda_n (separation_threshold): outer_tol times lambda_scale, the accuracy of a path
   /// step's pressures (theory.md §2.9); 0 in a static run.
   Real pressure_floor = 0.0;
+  /// Floating bodies (theory.md §2.10; empty or 0 without): the amplitudes of their free motions
+  /// at the result (the columns of Model::floating.R) [m or rad]; the motions no contact force
+  /// resists (columns over those motions, qp::SmalseReport::undetermined); the relative residual
+  /// ||G lambda - e|| / max(||e||, ||G lambda||) of the certificate and its bound; and the outer
+  /// steps of SMALSE-M over all QPs.
+  VectorXd rigid_amplitudes;
+  MatrixXd undetermined_motions;
+  Real equality_residual = 0.0;
+  Real equality_bound = 0.0;
+  long smalse_outer_iterations = 0;
   /// Rounds of further steps at tighter tolerances that the Coulomb certificate needed.
   int certificate_refinements = 0;
   /// Per outer iteration, the relative change of each block of the state (phi; lambda_n).

@@ -246,6 +246,7 @@ void prepare_part(const Problem& problem, const contact::ContactDiscretization& 
   const contact::ContactDiscretization& part = *search.part;
   dual::DualInput input{m.factor, part.B, m.f, part.dofs, interrupt_poll(options), &part.offset};
   input.expected_recoveries = kOuterIterationsPerStep * steps_left;
+  input.R = &m.floating.R;
   search.Q = dual::make_dual_operator(problem.solver.dual_operator, input);
 }
 
@@ -327,7 +328,7 @@ RunResult run_path(const Problem& problem, const RunOptions& options) {
   std::optional<contact::ContactDiscretization> disc = build_factored_model(problem, options, r);
   if (options.stop_was_requested()) throw Interrupted("interrupted before the first step");
   std::unique_ptr<dual::DualOperator> Q;
-  const bool search = disc && search_applies(problem, *disc);
+  const bool search = disc && search_applies(problem, r.model);
   PathSearch path_search;
   if (disc && !search) {
     phase_start(options, "dual");
@@ -335,6 +336,7 @@ RunResult run_path(const Problem& problem, const RunOptions& options) {
     dual::DualInput input{r.model.factor,          disc->B,      r.model.f, disc->dofs,
                           interrupt_poll(options), &disc->offset};
     input.expected_recoveries = kOuterIterationsPerStep * problem.loading.steps;
+    input.R = &r.model.floating.R;
     Q = dual::make_dual_operator(problem.solver.dual_operator, input);
   }
 

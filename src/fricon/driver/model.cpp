@@ -168,7 +168,8 @@ fe::DofMap make_dofs(const Problem& problem, const mesh::TetMesh& mesh,
         "{}: dirichlet: the [[dirichlet]] conditions fix every displacement component of the "
         "mesh: nothing to solve",
         problem.where("dirichlet")));
-  check_rigid_motions(problem, mesh, bodies, fixed);
+  // With contact, a body that its conditions leave free floats (check_model).
+  if (problem.contact.empty()) check_rigid_motions(problem, mesh, bodies, fixed);
   return dofs;
 }
 
@@ -280,6 +281,7 @@ Model assemble(const Problem& problem, PhaseTimes& times, const PhaseCallback& o
   {
     ScopedPhase phase(times, "assembly");
     model.dofs = make_dofs(problem, model.mesh, model.bodies);
+    model.floating = fe::find_floating_bodies(model.mesh, model.bodies, model.dofs);
     model.prescribed = make_prescribed(problem, model.mesh);
     if (with_stiffness) model.K = fe::assemble_stiffness(model.mesh, model.materials, model.dofs);
     model.f = load_vector(problem, model, Extent::Whole);
@@ -357,7 +359,10 @@ void factorize_model(Model& model, const dual::FactorizationRequest& request, Ph
   if (on_phase_start) on_phase_start("factorize");
   ScopedPhase phase(times, "factorize");
   try {
-    model.factor.factorize(model.K, request.last);
+    if (model.floating.empty())
+      model.factor.factorize(model.K, request.last);
+    else
+      model.factor.factorize(fe::regularized_stiffness(model.K, model.floating), request.last);
   } catch (const NumericalError& e) {
     // Only K not positive definite (linalg/cholesky.hpp), not a failure for lack of memory.
     const bool not_positive_definite =
@@ -430,9 +435,42 @@ void check_steps(const Problem& problem, const mesh::TetMesh& mesh) {
     }
 }
 
+namespace {
+
+// A floating body must touch something: the bodies that carry a contact boundary or a master
+// surface of some pair (theory.md §2.10).
+void check_floating_bodies_touch(const Problem& problem, const Model& model) {
+  if (model.floating.empty()) return;
+  std::vector<bool> touches(static_cast<size_t>(model.bodies.n_bodies()), false);
+  const auto mark = [&](const std::string& tag) {
+    for (Index a : model.mesh.nodes_with_tag(tag))
+      touches[static_cast<size_t>(model.bodies.node_body[static_cast<size_t>(a)])] = true;
+  };
+  for (const ContactOptions& c : problem.contact) {
+    mark(c.boundary);
+    if (c.obstacle && c.obstacle->kind == ObstacleKind::Body) mark(c.obstacle->boundary);
+  }
+  for (const fe::FloatingBody& body : model.floating.bodies) {
+    if (touches[static_cast<size_t>(body.body)]) continue;
+    std::string motions;
+    for (Index j = 0; j < body.n_motions(); ++j)
+      motions += fmt::format("{}{}", j == 0 ? "" : ", ", body.motion_name(j));
+    throw InputError(fmt::format(
+        "{}: dirichlet: {} floats: its [[dirichlet]] conditions leave {} rigid motion(s) free "
+        "({}), and no [[contact]] surface or master lies on it, so nothing holds it and the "
+        "stiffness matrix would be singular; fix enough components of it, or give it a contact "
+        "surface (contact.boundary or obstacle.boundary on it)",
+        problem.where("dirichlet"), mesh::describe_body(model.mesh, model.bodies, body.body),
+        body.n_motions(), motions));
+  }
+}
+
+}  // namespace
+
 std::optional<contact::ContactDiscretization> check_model(const Problem& problem,
                                                           const Model& model) {
   check_steps(problem, model.mesh);
+  check_floating_bodies_touch(problem, model);
   if (problem.contact.empty()) return std::nullopt;
   return discretize_contact(problem, model.mesh, model.dofs);
 }

@@ -15,6 +15,7 @@
 #include "fricon/dual/dual_operator.hpp"
 #include "fricon/fe/assembly.hpp"
 #include "fricon/fe/dof_map.hpp"
+#include "fricon/fe/floating.hpp"
 #include "fricon/fe/material.hpp"
 #include "fricon/linalg/cholesky.hpp"
 #include "fricon/mesh/bodies.hpp"
@@ -25,8 +26,12 @@ namespace fricon::driver {
 struct Model {
   mesh::TetMesh mesh;
   /// The connected bodies of the mesh (mesh::find_bodies), each held by its own Dirichlet
-  /// conditions (make_dofs checks it). Empty in a part of a model (driver::model_part).
+  /// conditions or by contact (a floating body, check_model checks that it has a contact
+  /// surface). Empty in a part of a model (driver::model_part).
   mesh::Bodies bodies;
+  /// The bodies whose Dirichlet conditions leave rigid motions free, and those motions R over
+  /// the free dofs (theory.md §2.10); empty when every body is held.
+  fe::FloatingBodies floating;
   /// The material of each region of the mesh (fe::Materials), or one for the whole body.
   std::vector<fe::Material> materials;
   fe::DofMap dofs{0};
@@ -39,7 +44,9 @@ struct Model {
   /// Load vector over the free dofs [N]: the applied loads minus K_free,fixed times the prescribed
   /// displacements.
   VectorXd f;
-  linalg::CholeskyFactor factor;  ///< Cholesky factor of K (CHOLMOD; empty if distributed)
+  /// Cholesky factor of K (CHOLMOD; empty if distributed); with floating bodies of the
+  /// regularized K, so that its solves are a generalized inverse K^+ (fe/floating.hpp).
+  linalg::CholeskyFactor factor;
 };
 
 /// K w [N] for w over the free dofs: with K when it was assembled, else element by element
@@ -51,8 +58,9 @@ mesh::TetMesh make_mesh(const Problem& problem);
 
 /// The dofs left free by the problem's Dirichlet conditions on `mesh`, whose connected bodies are
 /// `bodies` (mesh::find_bodies(mesh)). Throws InputError when a boundary tag does not exist on the
-/// mesh, nothing is left free, or the conditions leave a rigid motion of a body free (K would be
-/// singular): the message names the problem's [[dirichlet]] position, the number of free rigid
+/// mesh, nothing is left free, or, in a problem without [contact], the conditions leave a rigid
+/// motion of a body free (K would be singular; with contact such a body floats, and check_model
+/// refuses it only if it has no contact surface): the message names the problem's [[dirichlet]] position, the number of free rigid
 /// motions and, for a mesh of several bodies, the first body not held (its index, regions and
 /// bounding box, mesh::describe_body) and the [[dirichlet]] entries that touch it.
 fe::DofMap make_dofs(const Problem& problem, const mesh::TetMesh& mesh, const mesh::Bodies& bodies);

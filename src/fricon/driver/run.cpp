@@ -57,8 +57,9 @@ bool frictionless(const Problem& problem) {
 
 }  // namespace
 
-bool search_applies(const Problem& problem, const contact::ContactDiscretization&) {
+bool search_applies(const Problem& problem, const Model& model) {
   if (problem.solver.contact_search == contact::ContactSearch::Off) return false;
+  if (!model.floating.empty()) return false;
   // A positive Tresca bound g F acts without pressure: every patch of such a pair resists
   // sliding, so none may be left out (theory.md §2.7).
   const bool tresca_with_friction =
@@ -102,8 +103,9 @@ VectorXd solve_with_search(const Problem& problem, const contact::ContactDiscret
     std::unique_ptr<dual::DualOperator> Q;
     {
       ScopedPhase phase(r.report.times, "dual");
-      const dual::DualInput input{m.factor,     part.B, m.f, part.dofs, interrupt_poll(options),
-                                  &part.offset, &u0};
+      dual::DualInput input{m.factor,     part.B, m.f, part.dofs, interrupt_poll(options),
+                            &part.offset, &u0};
+      input.R = &m.floating.R;
       Q = dual::make_dual_operator(problem.solver.dual_operator, input);
     }
     phase_start(options, "outer loop");
@@ -162,8 +164,9 @@ VectorXd solve_with_contact(const Problem& problem, const contact::ContactDiscre
   std::unique_ptr<dual::DualOperator> Q;
   {
     ScopedPhase phase(r.report.times, "dual");
-    const dual::DualInput input{m.factor,    disc.B, m.f, disc.dofs, interrupt_poll(options),
-                                &disc.offset};
+    dual::DualInput input{m.factor,    disc.B, m.f, disc.dofs, interrupt_poll(options),
+                          &disc.offset};
+    input.R = &m.floating.R;
     Q = dual::make_dual_operator(problem.solver.dual_operator, input);
   }
   return solve_with_operator(problem, disc, *Q, options, r);
@@ -172,7 +175,7 @@ VectorXd solve_with_contact(const Problem& problem, const contact::ContactDiscre
 // With contact: on every patch, or on those of the contact search.
 VectorXd solve_contact_problem(const Problem& problem, const contact::ContactDiscretization& disc,
                                const RunOptions& options, RunResult& r) {
-  return search_applies(problem, disc) ? solve_with_search(problem, disc, options, r)
+  return search_applies(problem, r.model) ? solve_with_search(problem, disc, options, r)
                                        : solve_with_contact(problem, disc, options, r);
 }
 
@@ -203,6 +206,9 @@ void postprocess(const Problem& problem, const VectorXd& u, RunResult& r, bool w
   if (!rep.contact) rep.contact_force_magnitude = 0.0;
   rep.force_scale =
       force_magnitude_sum(applied) + rep.contact_force_magnitude + force_magnitude_sum(reactions);
+  rep.bodies = rep.contact ? describe_bodies(m, rep.contact->rigid_amplitudes,
+                                             rep.contact->undetermined_motions)
+                           : describe_bodies(m);
   const Real residual = (rep.applied_force + rep.contact_force + rep.reaction_force).norm();
   rep.equilibrium_residual = rep.force_scale > 0.0 ? residual / rep.force_scale : residual;
 }

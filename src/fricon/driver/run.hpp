@@ -13,6 +13,7 @@
 
 #include "fricon/core/timer.hpp"
 #include "fricon/driver/contact_solver.hpp"
+#include "fricon/driver/floating_bodies.hpp"
 #include "fricon/driver/model.hpp"
 #include "fricon/driver/problem.hpp"
 #include "fricon/parallel/report.hpp"
@@ -76,6 +77,9 @@ struct RunReport {
   /// With [loading] steps > 1: every step done (the last may have failed); the other fields
   /// hold the last step's values.
   std::vector<StepReport> steps;
+  /// Every connected body of the mesh, with the free motions of floating bodies and, after the
+  /// solve, their amplitudes (theory.md §2.10).
+  std::vector<BodyReport> bodies;
   /// What the result's status does not say, one sentence each (result_warnings): a partition
   /// coarsened to pass condition (5.1), a pair whose slips left small sliding, a master that
   /// penetrates its slave. The command line prints them in the summary and on stderr.

@@ -62,8 +62,10 @@ class SearchRounds {
 };
 
 /// Whether the contact search leaves patches out (theory.md §2.7): solver.contact_search is not
-/// off, and no patch resists without pressure (Tresca with a positive slip bound).
-bool search_applies(const Problem& problem, const contact::ContactDiscretization& disc);
+/// off, no patch resists without pressure (Tresca with a positive slip bound), and no body of
+/// `model` floats (its free displacement K^-1 f, from which the search starts, does not exist;
+/// every patch is solved, theory.md §2.10).
+bool search_applies(const Problem& problem, const Model& model);
 
 /// The outer loop of dual QPs on the patches of the contact search (theory.md §2.7): the first
 /// candidates (contact::initial_candidates of the free displacement, or `first_candidates` if

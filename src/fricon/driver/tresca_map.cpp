@@ -9,6 +9,12 @@
 
 namespace fricon::driver {
 
+namespace {
+// The relative residual of G lambda = e asked of SMALSE-M, as a share of qp_rtol: the precision
+// the gradient test gives it (theory.md §4.6).
+constexpr Real kEqualityShare = 1.0;
+}  // namespace
+
 VectorXd SlipHistory::slips(const contact::SurfaceDisplacement& d,
                             const std::vector<bool>& in_contact) const {
   // The increment since the last step (the first step's from the zero state), counted only
@@ -84,6 +90,25 @@ VectorXd TrescaMap::radii(int k, const VectorXd& state) const {
   return bounds_.radii(k, slips(state), lambda_n);
 }
 
+void TrescaMap::solve_with_equality() {
+  // The first step of Coulomb's iteration (every radius 0) balances only what pressure can; the
+  // pressures it finds start the iteration (theory.md §5.8).
+  qp::SmalseOptions options;
+  options.drop_unresisted_load = bounds_.uses_pressure() && radius_.maxCoeff() <= 0.0;
+  // The balance as precise as the QP's gradient test (theory.md §4.6).
+  options.equality_tolerance = kEqualityShare * qp_.rel_tolerance;
+  if (!warm_start_) mu_.resize(0);
+  last_smalse_ = qp::solve_smalse_scaled(apply_Q_, Q_.h(), constraints_, scaling_,
+                                         {Q_.G(), Q_.e()}, options, qp_, lambda_, mu_);
+  alpha_ = -mu_;
+  if (last_smalse_.infeasible && on_infeasible_) on_infeasible_(last_smalse_.infeasibility);
+  last_qp_ = last_smalse_.last_inner;
+  last_qp_.termination = last_smalse_.termination;
+  last_qp_.message = last_smalse_.message;
+  last_qp_.iterations = last_smalse_.iterations;
+  last_qp_.n_products = last_smalse_.n_products;
+}
+
 outer::MapStep TrescaMap::apply(int k, const VectorXd& state, VectorXd& image) {
   // @sect: the Tresca problem with the slip bounds frozen at the state, in its dual form.
   radius_ = radii(k, state);
@@ -91,12 +116,17 @@ outer::MapStep TrescaMap::apply(int k, const VectorXd& state, VectorXd& image) {
   if (!warm_start_) lambda_.setZero();
   {
     ScopedPhase phase(times_, "qp");
-    last_qp_ = qp::solve_mpgp_scaled(apply_Q_, Q_.h(), constraints_, scaling_, qp_, lambda_);
+    if (Q_.n_motions() == 0)
+      last_qp_ = qp::solve_mpgp_scaled(apply_Q_, Q_.h(), constraints_, scaling_, qp_, lambda_);
+    else
+      solve_with_equality();
   }
-  // @sect: the displacement on the contact surface, and its tangential slip.
+  // @sect: the displacement on the contact surface (with the floating bodies' rigid motions),
+  // and its tangential slip.
   {
     ScopedPhase phase(times_, "recovery");
     Q_.contact_displacement(lambda_, w_);
+    if (Q_.n_motions() > 0) w_ += Q_.rigid_displacement(alpha_);
   }
   // @sect: the new state: the slips, and for Coulomb the new pressures.
   const contact::SurfaceDisplacement d = contact::surface_displacement(disc_.surface, dofs_, w_);

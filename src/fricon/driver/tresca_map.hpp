@@ -6,6 +6,7 @@
 // (dual/dual_operator.hpp), and the new state: phi = ||w_t|| at the surface nodes (and the new
 // lambda_n). The outer loop (outer/outer_loop.hpp) iterates it.
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,7 @@
 #include "fricon/qp/constraints.hpp"
 #include "fricon/qp/mpgp.hpp"
 #include "fricon/qp/scaling.hpp"
+#include "fricon/qp/smalse.hpp"
 
 namespace fricon::driver {
 
@@ -81,7 +83,19 @@ class TrescaMap final : public outer::FixedPointMap {
   const VectorXd& radius() const { return radius_; }  ///< radii of the last QP [Pa]
   /// Displacement of the last QP, exact on the contact dofs only [m].
   const VectorXd& w() const { return w_; }
+  /// The last QP's report: MPGP's, or with floating bodies SMALSE-M's totals in MPGP's fields
+  /// (iterations and products of all its inner solves, its termination and message).
   const qp::MpgpReport& last_qp() const { return last_qp_; }
+  /// With floating bodies (Q.n_motions() > 0): the last SMALSE-M report.
+  const qp::SmalseReport& last_smalse() const { return last_smalse_; }
+  /// The amplitudes alpha of the floating bodies' free motions after the last QP (-mu of the
+  /// equality G lambda = e, theory.md §2.10); empty without floating bodies.
+  const VectorXd& alpha() const { return alpha_; }
+  /// Called with the certificate when a QP's equality cannot be met (a load that contact cannot
+  /// carry); it should throw. Without one, the step fails with the QP's message.
+  void set_infeasibility_handler(std::function<void(const qp::Infeasibility&)> handler) {
+    on_infeasible_ = std::move(handler);
+  }
   const qp::SeparableConstraints& constraints() const { return constraints_; }
   const qp::BlockScaling& scaling() const { return scaling_; }
   /// Starts the next QP from these multipliers [Pa] (a warm start from another solve).
@@ -103,6 +117,9 @@ class TrescaMap final : public outer::FixedPointMap {
  private:
   const fe::DofMap& dofs_;
   const contact::ContactDiscretization& disc_;
+  /// The QP with the floating bodies' equality, by SMALSE-M (sets last_qp_, mu_ and alpha_).
+  void solve_with_equality();
+
   const dual::DualOperator& Q_;
   const contact::SlipBounds& bounds_;
   const qp::BlockScaling& scaling_;
@@ -113,6 +130,9 @@ class TrescaMap final : public outer::FixedPointMap {
   qp::SeparableConstraints constraints_;
   VectorXd lambda_, radius_, w_;
   qp::MpgpReport last_qp_;
+  qp::SmalseReport last_smalse_;
+  VectorXd mu_, alpha_;
+  std::function<void(const qp::Infeasibility&)> on_infeasible_;
   const SlipHistory* history_ = nullptr;
   Real pressure_scale_ = 0.0, pressure_floor_ = 0.0;
 };

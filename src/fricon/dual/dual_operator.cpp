@@ -35,11 +35,28 @@ void DualOperator::set_free_solution(VectorXd u0, const SparseMatrix& B, const V
   if (offset != nullptr) h_ -= *offset;
 }
 
+void DualOperator::set_equality(const SparseMatrix* R, const SparseMatrix& B, const VectorXd& f) {
+  if (R == nullptr || R->cols() == 0) return;
+  FRICON_CHECK(R->rows() == B.cols() && R->rows() == f.size(),
+               "set_equality: R of " << R->rows() << " rows for " << B.cols() << " free dofs");
+  R_ = R;
+  if (G_.rows() != R->cols()) G_ = MatrixXd(SparseMatrix(R->transpose() * B.transpose()));
+  e_ = R->transpose() * f;
+}
+
+VectorXd DualOperator::rigid_displacement(const VectorXd& alpha) const {
+  FRICON_CHECK(alpha.size() == n_motions(),
+               "rigid_displacement: " << alpha.size() << " amplitudes for " << n_motions());
+  if (R_ == nullptr) return VectorXd::Zero(u0_.size());
+  return *R_ * alpha;
+}
+
 void DualOperator::set_load(const VectorXd&, const VectorXd&, const VectorXd*) {
   throw Error("this dual operator cannot change its load (a loading path runs on one process)");
 }
 
 FactorDualOperator::FactorDualOperator(const DualInput& input) : in_(input), f_(input.f) {
+  set_equality(in_.R, in_.B, in_.f);
   if (in_.free_solution != nullptr) {
     set_free_solution(*in_.free_solution, in_.B, in_.offset);
     return;
@@ -57,6 +74,7 @@ void FactorDualOperator::set_load(const VectorXd& f, const VectorXd& offset, con
   FRICON_CHECK(f.size() == f_.size() && offset.size() == in_.B.rows(),
                "set_load: a load of " << f.size() << " and an offset of " << offset.size());
   f_ = f;
+  set_equality(in_.R, in_.B, f_);
   if (u0 != nullptr) {
     set_free_solution(*u0, in_.B, &offset);
   } else {

@@ -50,6 +50,10 @@ struct DualInput {
   /// contact rows of K^-1 B^T once instead, when that costs less than the solves, so that each
   /// recovery is a product with them (the forward operator does). 0: a static run's handful.
   long expected_recoveries = 0;
+  /// The free rigid motions of floating bodies over the free dofs (n_free x m, K R = 0,
+  /// fe::FloatingBodies::R), the factor then being of the regularized K (a generalized inverse
+  /// K^+); null or empty: every body is held (theory.md §2.10).
+  const SparseMatrix* R = nullptr;
 };
 
 /// The dual problem's operator, whatever factors K: CHOLMOD here (FactorDualOperator), MUMPS
@@ -75,7 +79,8 @@ class DualOperator {
   /// w = K^-1 (f - B^T lambda) on the contact dofs; w is sized n_free on return and its other
   /// entries are left as they were (exact on every dof pivoted on the contact dofs' reach).
   virtual void contact_displacement(const VectorXd& lambda, VectorXd& w) const = 0;
-  /// w = K^-1 (f - B^T lambda) over all free dofs: one solve with the factor.
+  /// w = K^-1 (f - B^T lambda) over all free dofs: one solve with the factor (with floating
+  /// bodies K^+ (f - B^T lambda), to which their rigid_displacement is added).
   virtual VectorXd displacement(const VectorXd& lambda) const = 0;
   /// Another load on the same K and B (a step of a loading path, theory.md §2.9): f [N] over the
   /// free dofs and the offset c [m^3]; u0 = K^-1 f (one solve, or `u0` when given) and h are
@@ -89,11 +94,27 @@ class DualOperator {
   /// Solves with the factor of K done by this operator so far (a block of m columns counts m).
   long n_kinv() const { return n_kinv_; }
 
+  // The equality constraint G lambda = e of floating bodies (theory.md §2.10): the contact
+  // forces balance the load on every free rigid motion. Without floating bodies m = 0.
+  /// m, the number of free rigid motions.
+  Index n_motions() const { return G_.rows(); }
+  /// G = R^T B^T [m^2 per unit amplitude], m x n_dual.
+  const MatrixXd& G() const { return G_; }
+  /// e = R^T f [N per unit amplitude: N of a translation, N m of a rotation].
+  const VectorXd& e() const { return e_; }
+  /// R alpha over the free dofs [m]: the rigid displacement of amplitudes alpha (m entries).
+  VectorXd rigid_displacement(const VectorXd& alpha) const;
+
  protected:
   DualOperator() = default;
   /// Stores u0 = K^-1 f (solved by the implementation) and h = B u0 - c (c: offset, or zero).
   void set_free_solution(VectorXd u0, const SparseMatrix& B, const VectorXd* offset);
+  /// Stores G = R^T B^T (once) and e = R^T f (R null or empty: none).
+  void set_equality(const SparseMatrix* R, const SparseMatrix& B, const VectorXd& f);
   VectorXd h_, u0_;
+  MatrixXd G_;
+  VectorXd e_;
+  const SparseMatrix* R_ = nullptr;
   mutable long n_kinv_ = 0;
 };
 

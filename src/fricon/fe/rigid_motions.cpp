@@ -1,6 +1,7 @@
 #include "fricon/fe/rigid_motions.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include <fmt/format.h>
@@ -14,7 +15,57 @@ namespace {
 // An eigenvalue of the Gram matrix below this fraction of the largest is a free rigid motion.
 constexpr Real kNullTolerance = 1e-12;
 constexpr Index kRigidMotions = 6;  // three translations, three rotations
+// A coefficient of a free motion below this share of its largest is rounding (set to zero).
+constexpr Real kCoefficientRounding = 1e-9;
+
+// The columns of `null` (6 x k) brought to reduced echelon form over the modes in the order
+// tx .. rz (Gauss-Jordan on the transpose, pivoting on the largest entry of each mode), so that
+// a mode free alone becomes a unit column. The column space is unchanged.
+Eigen::Matrix<Real, 6, Eigen::Dynamic> echelon(Eigen::Matrix<Real, 6, Eigen::Dynamic> null) {
+  Eigen::Matrix<Real, Eigen::Dynamic, 6> rows = null.transpose();
+  const Index k = rows.rows();
+  Index pivot_row = 0;
+  for (Index mode = 0; mode < 6 && pivot_row < k; ++mode) {
+    Index best = pivot_row;
+    rows.col(mode).segment(pivot_row, k - pivot_row).cwiseAbs().maxCoeff(&best);
+    best += pivot_row;
+    if (std::abs(rows(best, mode)) <= kCoefficientRounding * rows.cwiseAbs().maxCoeff()) continue;
+    rows.row(pivot_row).swap(rows.row(best));
+    rows.row(pivot_row) /= rows(pivot_row, mode);
+    for (Index r = 0; r < k; ++r)
+      if (r != pivot_row) rows.row(r) -= rows(r, mode) * rows.row(pivot_row);
+    ++pivot_row;
+  }
+  for (Index r = 0; r < k; ++r) {
+    const Real largest = rows.row(r).cwiseAbs().maxCoeff();
+    for (Index c = 0; c < 6; ++c)
+      if (std::abs(rows(r, c)) <= kCoefficientRounding * largest) rows(r, c) = 0.0;
+  }
+  return rows.transpose();
+}
 }  // namespace
+
+std::string describe_motion(const MotionCoefficients& c) {
+  static const char* const names[6] = {"translation x", "translation y", "translation z",
+                                       "rotation about x", "rotation about y", "rotation about z"};
+  static const char* const symbols[6] = {"tx", "ty", "tz", "rx", "ry", "rz"};
+  Index n_nonzero = 0, only = 0;
+  for (Index i = 0; i < 6; ++i)
+    if (c(i) != 0.0) {
+      ++n_nonzero;
+      only = i;
+    }
+  if (n_nonzero == 1) return names[only];
+  std::string s;
+  for (Index i = 0; i < 6; ++i)
+    if (c(i) != 0.0)
+      s += fmt::format("{}{:.3g} {}", s.empty() ? "" : " + ", c(i), symbols[i]);
+  return s.empty() ? "none" : s;
+}
+
+Vec3 motion_at(const MotionCoefficients& c, const Vec3& centre, const Vec3& x) {
+  return c.head<3>() + c.tail<3>().cross(x - centre);
+}
 
 RigidMotionCheck free_rigid_motions(const mesh::TetMesh& mesh, const std::vector<Index>& nodes,
                                     const std::vector<bool>& fixed) {
@@ -41,14 +92,22 @@ RigidMotionCheck free_rigid_motions(const mesh::TetMesh& mesh, const std::vector
     }
   }
   const Eigen::Matrix<Real, 6, 6> g = gram.cast<Real>();
+  check.centre = centre;
+  // The null space of the Gram matrix, in the scaled coordinates (x - centre) / scale; a
+  // rotation coefficient there is scale times the physical one.
+  Eigen::Matrix<Real, 6, Eigen::Dynamic> null;
   if (check.n_fixed == 0) {
     check.n_free = kRigidMotions;
+    null = Eigen::Matrix<Real, 6, 6>::Identity();
   } else {
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<Real, 6, 6>> eig(g, Eigen::EigenvaluesOnly);
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<Real, 6, 6>> eig(g);
     const Real lmax = eig.eigenvalues().maxCoeff();
     for (Index i = 0; i < kRigidMotions; ++i)
       check.n_free += eig.eigenvalues()(i) <= kNullTolerance * lmax ? 1 : 0;
+    null = eig.eigenvectors().leftCols(check.n_free);  // eigenvalues ascending
   }
+  null.bottomRows<3>() /= scale;
+  check.free = echelon(null);
   std::vector<char> loose;  // components fixed nowhere
   for (int c = 0; c < 3; ++c)
     if (g(c, c) == 0.0) loose.push_back("xyz"[c]);

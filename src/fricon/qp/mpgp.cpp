@@ -535,7 +535,9 @@ void Mpgp::split_and_restart() {
 // Line 3, ||g^P|| <= threshold, where BarzilaiBorwein first recomputes a recursive gradient
 // (counted in n_refreshes); then the other ends of the iteration.
 std::optional<Stop> Mpgp::stop_test() {
-  if (s_.recursive && std::isfinite(s_.split.gp2) && norm_gp() <= threshold_) {
+  const double threshold =
+      opt_.adaptive_tolerance ? std::max(threshold_, opt_.adaptive_tolerance(s_.x)) : threshold_;
+  if (s_.recursive && std::isfinite(s_.split.gp2) && norm_gp() <= threshold) {
     refresh_gradient();
     split_and_restart();  // the free set is the same, phi has changed
     s_.q_prev = objective();
@@ -546,10 +548,10 @@ std::optional<Stop> Mpgp::stop_test() {
     return Stop{QpTermination::NumericalFailure,
                 fmt::format("non-finite gradient or objective after {} iterations", done)};
   }
-  if (norm_gp() <= threshold_) {
+  if (norm_gp() <= threshold) {
     return Stop{
         QpTermination::Converged,
-        fmt::format("||g^P|| = {:.3e} <= {:.3e} after {} iterations", norm_gp(), threshold_, done)};
+        fmt::format("||g^P|| = {:.3e} <= {:.3e} after {} iterations", norm_gp(), threshold, done)};
   }
   if (s_.stopped) {
     return Stop{QpTermination::UserStopped,

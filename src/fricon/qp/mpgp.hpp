@@ -195,6 +195,9 @@ struct MpgpOptions {
   /// s a fixed scale of x (the largest of ||P(x_init)||_inf, the largest radius and
   /// ||b||_2 / ||A||). Default 1e-12; range [0, 1e-3].
   double active_tolerance = 1e-12;
+  /// Optional: a stopping threshold that depends on the iterate (the inner test of SMALSE-M,
+  /// qp/smalse.hpp): the test becomes ||g^P|| <= max(the threshold above, adaptive_tolerance(x)).
+  std::function<double(const Eigen::VectorXd& x)> adaptive_tolerance;
   /// Optional; called after every iteration and once for the starting point. Return false to
   /// stop (QpTermination::UserStopped).
   std::function<bool(const MpgpIteration&)> monitor;

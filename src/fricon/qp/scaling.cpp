@@ -57,6 +57,21 @@ MpgpReport solve_mpgp_scaled(const Operator& A, const Eigen::VectorXd& b,
   return rep;
 }
 
+SmalseReport solve_smalse_scaled(const Operator& A, const Eigen::VectorXd& b,
+                                 const SeparableConstraints& c, const BlockScaling& D,
+                                 const EqualityConstraint& eq, const SmalseOptions& opt,
+                                 const MpgpOptions& inner, Eigen::VectorXd& x,
+                                 Eigen::VectorXd& mu) {
+  FRICON_CHECK(x.size() == D.size() && b.size() == D.size(),
+               "x has " << x.size() << " and b " << b.size() << " entries for " << D.size());
+  const EqualityConstraint eq_scaled{eq.G * D.d().asDiagonal(), eq.e};
+  Eigen::VectorXd y = D.to_scaled(x);
+  SmalseReport rep = solve_smalse(D.scaled(A), D.dual_to_scaled(b), D.scaled(c), eq_scaled, opt,
+                                  inner, y, mu);
+  x = D.from_scaled(y);
+  return rep;
+}
+
 KktResiduals scaled_kkt_residuals(const Eigen::VectorXd& x, const Eigen::VectorXd& g,
                                   const Eigen::VectorXd& b, const SeparableConstraints& c,
                                   const BlockScaling& D, StopReference reference) {

@@ -17,6 +17,7 @@
 #include "fricon/qp/kkt.hpp"
 #include "fricon/qp/mpgp.hpp"
 #include "fricon/qp/operator.hpp"
+#include "fricon/qp/smalse.hpp"
 
 namespace fricon::qp {
 
@@ -54,6 +55,14 @@ class BlockScaling {
 MpgpReport solve_mpgp_scaled(const Operator& A, const Eigen::VectorXd& b,
                              const SeparableConstraints& c, const BlockScaling& D,
                              const MpgpOptions& opt, Eigen::VectorXd& x);
+
+/// solve_smalse (qp/smalse.hpp) on the scaled problem, as solve_mpgp_scaled: G becomes G D;
+/// x and mu stay in the original variables (mu is the same in both).
+SmalseReport solve_smalse_scaled(const Operator& A, const Eigen::VectorXd& b,
+                                 const SeparableConstraints& c, const BlockScaling& D,
+                                 const EqualityConstraint& eq, const SmalseOptions& opt,
+                                 const MpgpOptions& inner, Eigen::VectorXd& x,
+                                 Eigen::VectorXd& mu);
 
 /// The KKT residuals (kkt.hpp) of x with gradient g = A x - b, measured in the scaled problem
 /// and relative to its stopping test's reference: scale_x = max(||D^-1 x||_inf, largest scaled

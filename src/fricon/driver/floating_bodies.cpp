@@ -1,0 +1,107 @@
+#include "fricon/driver/floating_bodies.hpp"
+
+#include <fmt/format.h>
+
+#include "fricon/core/error.hpp"
+
+namespace fricon::driver {
+
+namespace {
+
+// A motion counts as a force rather than a moment when its translation moves the body's
+// farthest point at least this share as much as its rotation does.
+constexpr Real kTranslationShare = 0.5;
+
+// The columns of R of floating body `body` within an m-vector over every free motion.
+VectorXd block_of(const fe::FloatingBody& body, const VectorXd& v) {
+  return v.segment(body.first_column, body.n_motions());
+}
+
+std::string vector_text(const Vec3& v) {
+  return fmt::format("({:.3g}, {:.3g}, {:.3g})", v(0), v(1), v(2));
+}
+
+}  // namespace
+
+std::vector<BodyReport> describe_bodies(const Model& model) {
+  std::vector<BodyReport> out;
+  for (Index b = 0; b < model.bodies.n_bodies(); ++b)
+  {
+    BodyReport r;
+    r.index = b;
+    r.description = mesh::describe_body(model.mesh, model.bodies, b);
+    out.push_back(std::move(r));
+  }
+  for (const fe::FloatingBody& body : model.floating.bodies)
+    for (Index j = 0; j < body.n_motions(); ++j)
+      out[static_cast<size_t>(body.body)].free_motions.push_back(body.motion_name(j));
+  return out;
+}
+
+std::vector<BodyReport> describe_bodies(const Model& model, const VectorXd& alpha,
+                                        const MatrixXd& undetermined) {
+  std::vector<BodyReport> out = describe_bodies(model);
+  if (alpha.size() != model.floating.n_motions()) return out;
+  for (const fe::FloatingBody& body : model.floating.bodies) {
+    BodyReport& r = out[static_cast<size_t>(body.body)];
+    const VectorXd a = block_of(body, alpha);
+    r.amplitudes.assign(a.data(), a.data() + a.size());
+    for (Index k = 0; k < undetermined.cols(); ++k) {
+      const VectorXd d = block_of(body, undetermined.col(k));
+      if (d.norm() <= 1e-12 * undetermined.col(k).norm()) continue;
+      fe::MotionCoefficients c = body.motions * d;
+      c /= c.cwiseAbs().maxCoeff();
+      for (Index i = 0; i < 6; ++i)
+        if (std::abs(c(i)) < 1e-9) c(i) = 0.0;
+      r.undetermined.push_back(fe::describe_motion(c));
+    }
+  }
+  return out;
+}
+
+void refuse_unbalanced_load(const Problem& problem, const Model& model,
+                            const qp::Infeasibility& certificate) {
+  // The body that carries most of the certificate's direction.
+  const fe::FloatingBody* worst = nullptr;
+  Real largest = -1.0;
+  for (const fe::FloatingBody& body : model.floating.bodies) {
+    const Real share = block_of(body, certificate.direction).norm();
+    if (share > largest) {
+      largest = share;
+      worst = &body;
+    }
+  }
+  FRICON_CHECK(worst != nullptr, "refuse_unbalanced_load: no floating body");
+  const fe::MotionCoefficients c = worst->motions * block_of(*worst, certificate.direction);
+  const mesh::BoundingBox box =
+      mesh::bounding_box(model.mesh, model.bodies.nodes[static_cast<size_t>(worst->body)]);
+  const Real reach = 0.5 * (box.hi - box.lo).norm();  // [m]
+  const Vec3 t = c.head<3>(), w = c.tail<3>();
+  const bool force = t.norm() >= kTranslationShare * w.norm() * reach;
+  const Real unit = force ? t.norm() : w.norm();
+  const Real applied = certificate.applied / unit, carried = certificate.carried / unit;
+  const std::string what =
+      force ? fmt::format("the applied force along {} is {:.4g} N, but contact{} can carry at "
+                          "most {:.4g} N along it",
+                          vector_text(t / unit), applied,
+                          carried > 0.0 ? " and friction" : "", carried)
+            : fmt::format("the applied moment about the axis {} through {} m is {:.4g} N m, but "
+                          "contact{} can carry at most {:.4g} N m about it",
+                          vector_text(w / unit), vector_text(worst->centre), applied,
+                          carried > 0.0 ? " and friction" : "", carried);
+  throw InputError(fmt::format(
+      "{}: contact: {} floats (its free motions: {}), and the load on it cannot be balanced by "
+      "contact: {}; a pull away from the obstacle, or a push along it beyond the friction "
+      "limit, moves the body without bound. Reduce the load, or hold the body by [[dirichlet]] "
+      "conditions (theory.md §2.10)",
+      problem.where("contact"), mesh::describe_body(model.mesh, model.bodies, worst->body),
+      [&] {
+        std::string s;
+        for (Index j = 0; j < worst->n_motions(); ++j)
+          s += fmt::format("{}{}", j == 0 ? "" : ", ", worst->motion_name(j));
+        return s;
+      }(),
+      what));
+}
+
+}  // namespace fricon::driver

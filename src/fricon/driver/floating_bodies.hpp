@@ -1,0 +1,46 @@
+#pragma once
+// driver: the bodies of a model in words, for `fricon check`, the summary and report.json, and
+// the refusal of a load that contact cannot carry (theory.md §2.10). A floating body's free
+// motions are found from its Dirichlet conditions (fe/floating.hpp); their amplitudes come from
+// the multipliers of the dual QP's equality G lambda = e (dual/dual_operator.hpp).
+
+#include <string>
+#include <vector>
+
+#include "fricon/core/types.hpp"
+#include "fricon/driver/model.hpp"
+#include "fricon/driver/problem.hpp"
+#include "fricon/qp/smalse.hpp"
+
+namespace fricon::driver {
+
+/// One connected body of the mesh.
+struct BodyReport {
+  Index index = 0;
+  std::string description;  ///< mesh::describe_body: regions, node count, bounding box
+  /// Its free rigid motions (fe::describe_motion), empty for a body its Dirichlet conditions
+  /// hold.
+  std::vector<std::string> free_motions;
+  /// After a solve: the amplitude of each free motion [m of a translation, rad of a rotation],
+  /// the rigid motion that contact fixes; empty before.
+  std::vector<Real> amplitudes;
+  /// Motions that no contact force resists (frictionless contact leaves the sliding motions
+  /// free): the solution takes the one of least norm, zero amplitude in them.
+  std::vector<std::string> undetermined;
+};
+
+/// Every body of the model, with the free motions of those that float.
+std::vector<BodyReport> describe_bodies(const Model& model);
+
+/// describe_bodies with the amplitudes alpha of the free motions (Model::floating.R's columns)
+/// and the undetermined motions (columns over those motions, qp::SmalseReport::undetermined).
+std::vector<BodyReport> describe_bodies(const Model& model, const VectorXd& alpha,
+                                        const MatrixXd& undetermined);
+
+/// Throws InputError for a load that contact cannot carry, from the certificate of the QP's
+/// infeasible equality: the body, the free motion along which the load exceeds what contact and
+/// friction can carry, and the two figures (a force [N] or a moment [N m]).
+[[noreturn]] void refuse_unbalanced_load(const Problem& problem, const Model& model,
+                                         const qp::Infeasibility& certificate);
+
+}  // namespace fricon::driver

@@ -1,0 +1,233 @@
+#include "fricon/qp/smalse.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+#include <Eigen/Eigenvalues>
+
+#include "fricon/core/error.hpp"
+#include "fricon/core/range.hpp"
+#include "fricon/core/timer.hpp"
+
+namespace fricon::qp {
+
+namespace {
+
+// A row direction of G whose squared length is below this share of the largest acts on no
+// multiplier that is free to move (theory.md §4.6).
+constexpr double kRankTolerance = 1e-12;
+// A bound's entry of G^T d up to this share of the largest counts as 0 in the certificate of
+// infeasibility (a pressure would have to exceed the certified gap divided by it).
+constexpr double kSupportTolerance = 1e-6;
+// The certificate needs d^T e to exceed sup d^T G x by this share of d^T e ...
+constexpr double kInfeasibleMargin = 1e-3;
+// ... after the residual ||G x - e|| has decreased by less than this factor in
+// kStagnantSteps consecutive outer steps (a feasible equality is met at a linear rate).
+constexpr double kStagnation = 0.9;
+constexpr int kStagnantSteps = 2;
+
+// G with the columns of the discs pinned to zero (radius 0) cleared: those multipliers stay 0.
+Eigen::MatrixXd active_columns(const Eigen::MatrixXd& G, const SeparableConstraints& c) {
+  Eigen::MatrixXd Ga = G;
+  for (std::size_t k = 0; k < c.blocks.size(); ++k) {
+    const Block& block = c.blocks[k];
+    if (block.kind == BlockKind::Disc && c.radius(static_cast<Index>(k)) == 0.0)
+      Ga.middleCols(block.offset, 2).setZero();
+  }
+  return Ga;
+}
+
+// The rows of G made orthonormal: W (m x r) with W^T G_a G_a^T W = I over the range of G_a G_a^T,
+// and the rest of the row space (m x (m - r)), orthonormal, on which G_a vanishes.
+struct Whitening {
+  Eigen::MatrixXd W, null;
+};
+
+Whitening whiten(const Eigen::MatrixXd& Ga) {
+  const Eigen::MatrixXd S = Ga * Ga.transpose();
+  Whitening w;
+  if (S.rows() == 0) return w;
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(S);
+  const double largest = std::max(eig.eigenvalues().maxCoeff(), 0.0);
+  std::vector<Index> range, null;
+  for (Index i = 0; i < S.rows(); ++i)
+    (largest > 0.0 && eig.eigenvalues()(i) > kRankTolerance * largest ? range : null).push_back(i);
+  w.W.resize(S.rows(), static_cast<Index>(range.size()));
+  w.null.resize(S.rows(), static_cast<Index>(null.size()));
+  for (std::size_t j = 0; j < range.size(); ++j)
+    w.W.col(static_cast<Index>(j)) =
+        eig.eigenvectors().col(range[j]) / std::sqrt(eig.eigenvalues()(range[j]));
+  for (std::size_t j = 0; j < null.size(); ++j)
+    w.null.col(static_cast<Index>(j)) = eig.eigenvectors().col(null[j]);
+  return w;
+}
+
+double relative_equality_residual(const EqualityConstraint& eq, const Eigen::VectorXd& x) {
+  const Eigen::VectorXd Gx = eq.G * x;
+  const double scale = std::max(eq.e.norm(), Gx.norm());
+  return scale > 0.0 ? (Gx - eq.e).norm() / scale : 0.0;
+}
+
+void accumulate(const MpgpReport& inner, SmalseReport& rep) {
+  rep.iterations += inner.iterations;
+  rep.n_products += inner.n_products;
+  rep.last_inner = inner;
+}
+
+}  // namespace
+
+void SmalseOptions::validate() const {
+  require("SmalseOptions::rho_factor", rho_factor, positive());
+  require("SmalseOptions::M_factor", M_factor, positive());
+  require("SmalseOptions::beta", beta, open_interval(1.0, std::numeric_limits<double>::infinity()));
+  require("SmalseOptions::eta_factor", eta_factor, positive());
+  require("SmalseOptions::equality_tolerance", equality_tolerance, positive());
+  require("SmalseOptions::max_outer", max_outer, integer_at_least(1));
+}
+
+double support(const Eigen::VectorXd& g, const SeparableConstraints& c, double tolerance) {
+  const double largest = g.lpNorm<Eigen::Infinity>();
+  double s = 0.0;
+  for (std::size_t k = 0; k < c.blocks.size(); ++k) {
+    const Block& block = c.blocks[k];
+    if (block.kind == BlockKind::Disc)
+      s += c.radius(static_cast<Index>(k)) * g.segment<2>(block.offset).norm();
+    else if (g(block.offset) > tolerance * largest)
+      return std::numeric_limits<double>::infinity();
+  }
+  return s;
+}
+
+SmalseReport solve_smalse(const Operator& A, const Eigen::VectorXd& b,
+                          const SeparableConstraints& c, const EqualityConstraint& eq,
+                          const SmalseOptions& opt, const MpgpOptions& inner, Eigen::VectorXd& x,
+                          Eigen::VectorXd& mu) {
+  const Stopwatch watch;
+  opt.validate();
+  const Index n = c.size(), m = eq.G.rows();
+  if (eq.G.cols() != n || eq.e.size() != m || b.size() != n || x.size() != n ||
+      (mu.size() != 0 && mu.size() != m))
+    throw InputError(fmt::format(
+        "solve_smalse: G is {} x {}, e has {}, b {}, x {}, mu {} entries for {} unknowns", m,
+        eq.G.cols(), eq.e.size(), b.size(), x.size(), mu.size(), n));
+  if (mu.size() == 0) mu = Eigen::VectorXd::Zero(m);
+  SmalseReport rep;
+
+  // @sect: the rows of G over the multipliers free to move, made orthonormal; a row direction on
+  // none of them must carry no load.
+  const Eigen::MatrixXd Ga = active_columns(eq.G, c);
+  const Whitening w = whiten(Ga);
+  rep.undetermined = w.null;
+  for (Index j = 0; j < w.null.cols() && !opt.drop_unresisted_load; ++j) {
+    const double load = w.null.col(j).dot(eq.e);
+    if (std::abs(load) > opt.equality_tolerance * eq.e.norm()) {
+      rep.infeasible = true;
+      rep.infeasibility = {load > 0 ? Eigen::VectorXd(w.null.col(j)) : Eigen::VectorXd(-w.null.col(j)),
+                           std::abs(load), 0.0};
+      rep.termination = QpTermination::NumericalFailure;
+      rep.message = "the equality constraint cannot be met: a load acts on a motion no multiplier "
+                    "resists";
+      rep.seconds = watch.seconds();
+      return rep;
+    }
+  }
+  // The equality as it is solved: without the dropped load, if it is dropped.
+  const EqualityConstraint kept{
+      Ga, opt.drop_unresisted_load ? Eigen::VectorXd(eq.e - w.null * (w.null.transpose() * eq.e))
+                                   : eq.e};
+  const Eigen::MatrixXd Gh = w.W.transpose() * Ga;  // r x n, orthonormal rows
+  const Eigen::VectorXd eh = w.W.transpose() * eq.e;
+  // mu = W mu_h (the null directions keep no multiplier: least norm).
+  Eigen::VectorXd mu_h = w.W.rows() > 0
+                             ? Eigen::VectorXd(w.W.completeOrthogonalDecomposition().solve(mu))
+                             : Eigen::VectorXd();
+
+  // @sect: the penalty, the inner precision and the augmented Hessian A + rho Gh^T Gh.
+  long power_products = 0;
+  const double norm_A = inner.norm_A > 0.0
+                            ? inner.norm_A
+                            : estimate_norm(A, n, inner.power_iterations, inner.power_tolerance,
+                                            &power_products);
+  if (!(norm_A > 0.0) || !std::isfinite(norm_A))
+    throw NumericalError(fmt::format("solve_smalse: ||A|| = {}", norm_A));
+  rep.rho = opt.rho_factor * norm_A;
+  const double rho = rep.rho;
+  const Operator A_aug = [&](const Eigen::VectorXd& v, Eigen::VectorXd& y) {
+    A(v, y);
+    y.noalias() += rho * (Gh.transpose() * (Gh * v));
+  };
+  rep.reference_norm = std::max(resisted_part(b, c).norm(), rho * eh.norm());
+  const double eps_g = std::max(inner.rel_tolerance * rep.reference_norm, inner.abs_tolerance);
+  const double eta = opt.eta_factor * rep.reference_norm;
+  double M = opt.M_factor * norm_A;
+  MpgpOptions io = inner;
+  io.rel_tolerance = 0.0;
+  io.abs_tolerance = eps_g;
+  io.norm_A = norm_A + rho;  // ||Gh^T Gh|| = 1
+  io.adaptive_tolerance = [&](const Eigen::VectorXd& v) {
+    return std::min(M * (Gh * v - eh).norm(), eta);
+  };
+
+  // @sect: the outer steps.
+  double L_prev = 0.0, residual_prev = std::numeric_limits<double>::infinity();
+  int stagnant = 0;
+  for (int k = 0; k < opt.max_outer; ++k) {
+    rep.outer_iterations = k + 1;
+    const Eigen::VectorXd b_aug = b - Gh.transpose() * mu_h + rho * (Gh.transpose() * eh);
+    const MpgpReport r = solve_mpgp(A_aug, b_aug, c, io, x);
+    accumulate(r, rep);
+    rep.norm_gp = r.norm_gp;
+    rep.equality_residual = relative_equality_residual(kept, x);
+    if (r.termination != QpTermination::Converged) {
+      rep.termination = r.termination;
+      rep.message = fmt::format("inner solve {}: {}", k + 1, r.message);
+      break;
+    }
+    const Eigen::VectorXd res = Gh * x - eh;
+    if (r.norm_gp <= eps_g && rep.equality_residual <= opt.equality_tolerance) {
+      rep.termination = QpTermination::Converged;
+      rep.message = fmt::format(
+          "||g^P|| = {:.3e} <= {:.3e} and ||G x - e|| / ||e|| = {:.3e} <= {:.1e} after {} outer "
+          "steps",
+          r.norm_gp, eps_g, rep.equality_residual, opt.equality_tolerance, k + 1);
+      break;
+    }
+    // The certificate of infeasibility, once the residual has stopped decreasing.
+    stagnant = res.norm() > kStagnation * residual_prev ? stagnant + 1 : 0;
+    residual_prev = res.norm();
+    if (stagnant >= kStagnantSteps) {
+      const Eigen::VectorXd d = -res;
+      const double applied = d.dot(eh);
+      const double carried = support(Gh.transpose() * d, c, kSupportTolerance);
+      if (applied > 0.0 && applied - carried > kInfeasibleMargin * applied) {
+        rep.infeasible = true;
+        rep.infeasibility = {w.W * d, applied, carried};
+        rep.termination = QpTermination::NumericalFailure;
+        rep.message = fmt::format(
+            "the equality constraint cannot be met in Omega: along the certificate direction the "
+            "load is {:.4g} but Omega gives at most {:.4g}",
+            applied, carried);
+        break;
+      }
+    }
+    // Lagrange multipliers, then the semi-monotonic update of M.
+    const double L = r.objective - mu_h.dot(eh) + 0.5 * rho * eh.squaredNorm() +
+                     rho * res.squaredNorm();  // L(x_k, mu_{k+1}, rho)
+    mu_h += rho * res;
+    if (k > 0 && L < L_prev + 0.5 * rho * res.squaredNorm()) M /= opt.beta;
+    L_prev = L;
+    if (k + 1 == opt.max_outer) {
+      rep.termination = QpTermination::MaxIterations;
+      rep.message = fmt::format(
+          "reached max_outer = {} with ||G x - e|| / ||e|| = {:.3e} (target {:.1e})",
+          opt.max_outer, rep.equality_residual, opt.equality_tolerance);
+    }
+  }
+  mu = w.W.cols() > 0 ? Eigen::VectorXd(w.W * mu_h) : Eigen::VectorXd::Zero(m);
+  rep.seconds = watch.seconds();
+  return rep;
+}
+
+}  // namespace fricon::qp

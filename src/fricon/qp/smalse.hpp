@@ -1,0 +1,109 @@
+#pragma once
+// qp: SMALSE-M, Dostal's semi-monotonic augmented Lagrangian method for a QP with bound and disc
+// constraints and linear equalities (docs/theory.md §4.6; Dostal, "Optimal Quadratic Programming
+// Algorithms", 2009, ch. 9):
+//
+//   min q(x) = 1/2 x^T A x - b^T x   subject to x in Omega (qp/constraints.hpp) and G x = e,
+//
+// G with few rows (the free rigid motions of floating bodies). Each outer step minimizes the
+// augmented Lagrangian
+//
+//   L(x, mu, rho) = q(x) + mu^T (G x - e) + rho/2 ||G x - e||^2
+//
+// over Omega by MPGP (qp/mpgp.hpp) to the adaptive precision ||g^P|| <= min(M ||G x - e||, eta),
+// then updates mu += rho (G x - e), and divides M by beta when L did not increase by at least
+// rho/2 ||G x - e||^2. The rows of G are first made orthonormal (over the multipliers that are
+// not pinned to zero), so that G^T G is the orthogonal projector Q = I - P onto their span and
+// A + rho Q stays as well conditioned as A for rho ~ ||A||.
+//
+// When no x in Omega satisfies G x = e (a load that contact cannot carry), the residual
+// r = e - G x converges to the shortest one and stays away from 0; the solver then checks the
+// certificate of infeasibility (Farkas): r^T e > sup over Omega of r^T G x, computed in closed
+// form block by block, and reports it with the two figures.
+
+#include <string>
+
+#include <Eigen/Core>
+
+#include "fricon/core/types.hpp"
+#include "fricon/qp/constraints.hpp"
+#include "fricon/qp/mpgp.hpp"
+#include "fricon/qp/operator.hpp"
+
+namespace fricon::qp {
+
+/// G x = e: m rows over the n unknowns of the QP.
+struct EqualityConstraint {
+  Eigen::MatrixXd G;  ///< m x n
+  Eigen::VectorXd e;  ///< m
+};
+
+struct SmalseOptions {
+  /// rho = rho_factor ||A||, the penalty. Default 1 (||A + rho Q|| <= 2 ||A||); range > 0.
+  double rho_factor = 1.0;
+  /// M_0 = M_factor ||A||, the initial ratio of the inner precision to ||G x - e||. Default 1;
+  /// range > 0.
+  double M_factor = 1.0;
+  /// M is divided by beta when L fails to increase enough. Default 10; range > 1.
+  double beta = 10.0;
+  /// eta = eta_factor times the reference of the stopping test: the cap of the inner
+  /// precision. Default 0.1; range > 0.
+  double eta_factor = 0.1;
+  /// Stop when ||G x - e|| <= equality_tolerance max(||e||, ||G x||) (besides the gradient test
+  /// of the inner options at the last inner solve). Default 1e-8; range > 0.
+  double equality_tolerance = 1e-8;
+  /// Cap on the outer steps. Default 200; range >= 1.
+  int max_outer = 200;
+  /// The load along row directions of G that act on no multiplier free to move (only on discs
+  /// pinned to zero): false (default) refuses a nonzero one as infeasible; true drops it, e.g.
+  /// in the first, frictionless step of Coulomb's successive approximations, whose pressures only
+  /// start the iteration (theory.md §5.8).
+  bool drop_unresisted_load = false;
+
+  /// Throws InputError naming the first field out of range.
+  void validate() const;
+};
+
+/// How an infeasible equality shows: a direction d of the m rows (the certificate) with the load
+/// along it, d^T e, exceeding what Omega can give, sup { d^T G x : x in Omega }.
+struct Infeasibility {
+  Eigen::VectorXd direction;  ///< d, m entries
+  double applied = 0.0;       ///< d^T e
+  double carried = 0.0;       ///< sup over Omega of d^T G x (finite)
+};
+
+struct SmalseReport {
+  QpTermination termination = QpTermination::NumericalFailure;
+  std::string message;     ///< one sentence: why the solver stopped
+  int outer_iterations = 0;
+  int iterations = 0;      ///< MPGP steps over all inner solves
+  long n_products = 0;     ///< products with A over all inner solves (power method excluded)
+  double rho = 0.0;        ///< the penalty used
+  double equality_residual = 0.0;  ///< ||G x - e|| / max(||e||, ||G x||) at the end (0 if both 0)
+  double norm_gp = 0.0;    ///< ||g^P|| of the augmented Lagrangian at the end
+  double reference_norm = 0.0;  ///< the reference of the gradient test
+  /// Set when the equality cannot be met in Omega (termination NumericalFailure).
+  bool infeasible = false;
+  Infeasibility infeasibility;
+  /// Rows of G that act only on multipliers pinned to zero (directions of the m rows, as columns):
+  /// their amplitude is not determined by the QP; the solution has none of it (least norm).
+  Eigen::MatrixXd undetermined;
+  MpgpReport last_inner;  ///< the report of the last inner MPGP solve
+  double seconds = 0.0;
+};
+
+/// Solves the QP above. x: in, the initial guess; out, the last iterate. mu: in, the initial
+/// multipliers of the equality (m entries, or empty for zero); out, the last ones, in the rows
+/// of G as given (so that the gradient of the Lagrangian is A x - b + G^T mu). `inner` are the
+/// MPGP options (its tolerance is the gradient test; its norm_A must be ||A|| > 0 or 0 to
+/// estimate it). Throws InputError on bad sizes or options.
+SmalseReport solve_smalse(const Operator& A, const Eigen::VectorXd& b,
+                          const SeparableConstraints& c, const EqualityConstraint& eq,
+                          const SmalseOptions& opt, const MpgpOptions& inner, Eigen::VectorXd& x,
+                          Eigen::VectorXd& mu);
+
+/// sup { d^T G x : x in Omega } for the direction g = G^T d over the unknowns: per disc its
+/// radius times ||g_i||, per bound 0 if g_i <= tolerance ||g||_inf, else infinity.
+double support(const Eigen::VectorXd& g, const SeparableConstraints& c, double tolerance);
+
+}  // namespace fricon::qp
