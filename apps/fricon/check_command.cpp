@@ -12,6 +12,7 @@
 
 #include "command.hpp"
 #include "fricon/contact/friction_law.hpp"
+#include "fricon/driver/floating_bodies.hpp"
 #include "fricon/driver/model.hpp"
 #include "fricon/io/problem_file.hpp"
 
@@ -52,6 +53,9 @@ int check(const std::string& file, const std::vector<std::string>& sets) {
   fmt::print("  mesh       {} nodes, {} tetrahedra, {} regions, {} boundary triangles (tags: {})\n",
              mesh.n_nodes(), mesh.n_tets(), mesh.n_regions(), mesh.n_faces(), mesh.tag_list());
   fmt::print("  unknowns   n_primal = {}\n", dofs.n_free());
+  if (!model.floating.empty() || model.bodies.n_bodies() > 1)
+    for (const driver::BodyReport& body : driver::describe_bodies(model))
+      fmt::print("  {:<10} {}\n", body.index == 0 ? "bodies" : "", driver::body_line(body));
   if (disc) {
     fmt::print(
         "  contact    '{}': {} surface nodes ({} contact nodes), {} patches ({}), n_dual = {}, "

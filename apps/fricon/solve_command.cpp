@@ -1,4 +1,5 @@
 // fricon solve PROBLEM.toml: read, run, write the results, print the summary.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -105,6 +106,13 @@ void print_summary(const driver::RunResult& result, const std::filesystem::path&
               ? fmt::format(" after {} round(s) at tighter tolerances", c.certificate_refinements)
               : std::string(),
           c.coulomb_residual <= c.coulomb_bound ? "passed" : "FAILED");
+    if (c.rigid_amplitudes.size() > 0)
+      fmt::print(
+          "  balance       floating bodies: ||G lambda - e|| / ||e|| = {:.1e} {} {:.1e}, "
+          "certificate {}; SMALSE-M {} outer steps\n",
+          c.equality_residual, c.equality_residual <= c.equality_bound ? "<=" : ">",
+          c.equality_bound, c.equality_residual <= c.equality_bound ? "passed" : "FAILED",
+          c.smalse_outer_iterations);
     fmt::print("  patches       {} stick, {} slip, {} separated\n", c.n_stick, c.n_slip,
                c.n_separated);
     print_pairs(c);
@@ -127,6 +135,12 @@ void print_summary(const driver::RunResult& result, const std::filesystem::path&
           "{:.4e} N on prescribed components (taken by their supports)\n",
           c.transmitted_normal_force, c.total_normal_force - c.transmitted_normal_force);
   }
+  const bool floats = std::any_of(r.bodies.begin(), r.bodies.end(), [](const auto& b) {
+    return !b.free_motions.empty();
+  });
+  if (floats || r.bodies.size() > 1)
+    for (const driver::BodyReport& body : r.bodies)
+      fmt::print("  {:<13} {}\n", body.index == 0 ? "bodies" : "", driver::body_line(body));
   fmt::print("  max |u|       {:.6e} m\n", r.max_displacement);
   fmt::print(
       "  equilibrium   |applied + contact + reactions| / sum of the nodal forces' magnitudes "

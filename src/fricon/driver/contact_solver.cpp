@@ -254,8 +254,19 @@ outer::OuterReport refine_coulomb(TrescaMap& map, VectorXd& state, const Problem
 // The displacement of the whole body from the final multipliers (one solve), checked against
 // the recovery on the contact dofs, and the KKT residuals of the final QP with the gradient
 // through that solve: Q lambda = B K^-1 B^T lambda = B (u0 - w) (theory.md §5.5).
+// The motions N (columns over the free motions) that no contact force resists leave every
+// constraint as it is (G_a^T N = 0, theory.md §2.10); the solution is the one with none of them
+// in the least-squares sense: w -= R N c, c minimizing ||w - R N c||.
+void remove_undetermined_motions(const dual::DualOperator& Q, const SparseMatrix& R,
+                                 const MatrixXd& N, VectorXd& w) {
+  if (N.cols() == 0 || R.cols() != N.rows()) return;
+  const MatrixXd RN = R * N;
+  const VectorXd c = (RN.transpose() * RN).ldlt().solve(RN.transpose() * w);
+  w -= Q.rigid_displacement(N * c);
+}
+
 VectorXd certify(const contact::ContactDiscretization& disc, const dual::DualOperator& Q,
-                 const TrescaMap& map, ContactReport& rep, VectorXd& g) {
+                 const SparseMatrix& R, const TrescaMap& map, ContactReport& rep, VectorXd& g) {
   VectorXd w = Q.displacement(map.lambda());
   if (Q.n_motions() > 0) {
     // The rigid motions that contact fixes, and the balance of the floating bodies.
@@ -273,6 +284,7 @@ VectorXd certify(const contact::ContactDiscretization& disc, const dual::DualOpe
                  "the recovery of the contact displacement (dof "
                      << dof << ": " << w_c(dof) << ") disagrees with the full solve (" << w(dof)
                      << ")");
+  if (Q.n_motions() > 0) remove_undetermined_motions(Q, R, rep.undetermined_motions, w);
   g = disc.B * (Q.u0() - w) - Q.h();
   rep.kkt = qp::scaled_kkt_residuals(map.lambda(), g, Q.h(), map.constraints(), map.scaling(),
                                      qp::StopReference::Resisted);
@@ -541,7 +553,7 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m,
   VectorXd g;
   {
     ScopedPhase phase(times, "recovery");
-    out.w = certify(disc, Q, map, rep, g);
+    out.w = certify(disc, Q, m.floating.R, map, rep, g);
   }
   const contact::ContactDiscretization& whole = selection ? selection->whole : disc;
   WholeResult result{map.lambda(), map.radius(), std::move(g)};

@@ -17,11 +17,39 @@ VectorXd block_of(const fe::FloatingBody& body, const VectorXd& v) {
   return v.segment(body.first_column, body.n_motions());
 }
 
-std::string vector_text(const Vec3& v) {
+// A unit direction in words, components below a thousandth of the largest shown as 0.
+std::string vector_text(Vec3 v) {
+  const Real largest = v.cwiseAbs().maxCoeff();
+  for (int i = 0; i < 3; ++i)
+    if (std::abs(v(i)) < 1e-3 * largest) v(i) = 0.0;
   return fmt::format("({:.3g}, {:.3g}, {:.3g})", v(0), v(1), v(2));
 }
 
 }  // namespace
+
+std::string body_line(const BodyReport& body) {
+  if (body.free_motions.empty())
+    return fmt::format("{}: held by its Dirichlet conditions", body.description);
+  std::string motions;
+  for (std::size_t j = 0; j < body.free_motions.size(); ++j) {
+    const std::string& name = body.free_motions[j];
+    const std::string_view unit = name.starts_with("translation") ? " m"
+                                  : name.starts_with("rotation")  ? " rad"
+                                                                  : "";
+    motions += fmt::format("{}{}", j == 0 ? "" : ", ", name);
+    if (j < body.amplitudes.size()) motions += fmt::format(" = {:.4e}{}", body.amplitudes[j], unit);
+  }
+  std::string undetermined;
+  for (std::size_t j = 0; j < body.undetermined.size(); ++j)
+    undetermined += fmt::format("{}{}", j == 0 ? "" : ", ", body.undetermined[j]);
+  return fmt::format(
+      "{}: floats, held by contact in its free motions {}{}", body.description, motions,
+      undetermined.empty()
+          ? std::string()
+          : fmt::format("; no contact force resists {} (frictionless): the solution is the one "
+                        "of least norm in them",
+                        undetermined));
+}
 
 std::vector<BodyReport> describe_bodies(const Model& model) {
   std::vector<BodyReport> out;
@@ -38,15 +66,20 @@ std::vector<BodyReport> describe_bodies(const Model& model) {
   return out;
 }
 
-std::vector<BodyReport> describe_bodies(const Model& model, const VectorXd& alpha,
+std::vector<BodyReport> describe_bodies(const Model& model, const VectorXd& u,
                                         const MatrixXd& undetermined) {
   std::vector<BodyReport> out = describe_bodies(model);
-  if (alpha.size() != model.floating.n_motions()) return out;
+  if (model.floating.empty() || u.size() != model.floating.R.rows()) return out;
   for (const fe::FloatingBody& body : model.floating.bodies) {
     BodyReport& r = out[static_cast<size_t>(body.body)];
-    const VectorXd a = block_of(body, alpha);
+    // The body's columns of R are zero outside it: R_b^T R_b a = R_b^T u.
+    const MatrixXd R_b =
+        MatrixXd(model.floating.R.middleCols(body.first_column, body.n_motions()));
+    const VectorXd a = (R_b.transpose() * R_b).ldlt().solve(R_b.transpose() * u);
     r.amplitudes.assign(a.data(), a.data() + a.size());
-    for (Index k = 0; k < undetermined.cols(); ++k) {
+    const Index n_undetermined =
+        undetermined.rows() == model.floating.n_motions() ? undetermined.cols() : 0;
+    for (Index k = 0; k < n_undetermined; ++k) {
       const VectorXd d = block_of(body, undetermined.col(k));
       if (d.norm() <= 1e-12 * undetermined.col(k).norm()) continue;
       fe::MotionCoefficients c = body.motions * d;

@@ -21,20 +21,26 @@ struct BodyReport {
   /// Its free rigid motions (fe::describe_motion), empty for a body its Dirichlet conditions
   /// hold.
   std::vector<std::string> free_motions;
-  /// After a solve: the amplitude of each free motion [m of a translation, rad of a rotation],
-  /// the rigid motion that contact fixes; empty before.
+  /// After a solve: the amplitude of each free motion [m of a translation, rad of a rotation]
+  /// in the body's displacement, its rigid part (the least-squares fit of the free motions to the
+  /// displacement over the body's free dofs); empty before.
   std::vector<Real> amplitudes;
   /// Motions that no contact force resists (frictionless contact leaves the sliding motions
   /// free): the solution takes the one of least norm, zero amplitude in them.
   std::vector<std::string> undetermined;
 };
 
+/// One line of text for a body: held by its Dirichlet conditions, or floating with its free
+/// motions (and their amplitudes after a solve, and which are undetermined).
+std::string body_line(const BodyReport& body);
+
 /// Every body of the model, with the free motions of those that float.
 std::vector<BodyReport> describe_bodies(const Model& model);
 
-/// describe_bodies with the amplitudes alpha of the free motions (Model::floating.R's columns)
-/// and the undetermined motions (columns over those motions, qp::SmalseReport::undetermined).
-std::vector<BodyReport> describe_bodies(const Model& model, const VectorXd& alpha,
+/// describe_bodies with the amplitudes of the free motions in the displacement u [m] over the
+/// free dofs, and the undetermined motions (columns over the free motions,
+/// qp::SmalseReport::undetermined; empty: none).
+std::vector<BodyReport> describe_bodies(const Model& model, const VectorXd& u,
                                         const MatrixXd& undetermined);
 
 /// Throws InputError for a load that contact cannot carry, from the certificate of the QP's

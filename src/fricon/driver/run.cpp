@@ -206,9 +206,7 @@ void postprocess(const Problem& problem, const VectorXd& u, RunResult& r, bool w
   if (!rep.contact) rep.contact_force_magnitude = 0.0;
   rep.force_scale =
       force_magnitude_sum(applied) + rep.contact_force_magnitude + force_magnitude_sum(reactions);
-  rep.bodies = rep.contact ? describe_bodies(m, rep.contact->rigid_amplitudes,
-                                             rep.contact->undetermined_motions)
-                           : describe_bodies(m);
+  rep.bodies = describe_bodies(m, u, rep.contact ? rep.contact->undetermined_motions : MatrixXd());
   const Real residual = (rep.applied_force + rep.contact_force + rep.reaction_force).norm();
   rep.equilibrium_residual = rep.force_scale > 0.0 ? residual / rep.force_scale : residual;
 }

@@ -90,11 +90,11 @@ VectorXd TrescaMap::radii(int k, const VectorXd& state) const {
   return bounds_.radii(k, slips(state), lambda_n);
 }
 
-void TrescaMap::solve_with_equality() {
+void TrescaMap::solve_with_equality(int k) {
   // The first step of Coulomb's iteration (every radius 0) balances only what pressure can; the
   // pressures it finds start the iteration (theory.md §5.8).
   qp::SmalseOptions options;
-  options.drop_unresisted_load = bounds_.uses_pressure() && radius_.maxCoeff() <= 0.0;
+  options.drop_unresisted_load = k == 1 && bounds_.uses_pressure() && radius_.maxCoeff() <= 0.0;
   // The balance as precise as the QP's gradient test (theory.md §4.6).
   options.equality_tolerance = kEqualityShare * qp_.rel_tolerance;
   if (!warm_start_) mu_.resize(0);
@@ -119,7 +119,7 @@ outer::MapStep TrescaMap::apply(int k, const VectorXd& state, VectorXd& image) {
     if (Q_.n_motions() == 0)
       last_qp_ = qp::solve_mpgp_scaled(apply_Q_, Q_.h(), constraints_, scaling_, qp_, lambda_);
     else
-      solve_with_equality();
+      solve_with_equality(k);
   }
   // @sect: the displacement on the contact surface (with the floating bodies' rigid motions),
   // and its tangential slip.

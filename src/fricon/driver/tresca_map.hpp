@@ -117,8 +117,9 @@ class TrescaMap final : public outer::FixedPointMap {
  private:
   const fe::DofMap& dofs_;
   const contact::ContactDiscretization& disc_;
-  /// The QP with the floating bodies' equality, by SMALSE-M (sets last_qp_, mu_ and alpha_).
-  void solve_with_equality();
+  /// The QP of outer iteration k with the floating bodies' equality, by SMALSE-M (sets
+  /// last_qp_, mu_ and alpha_).
+  void solve_with_equality(int k);
 
   const dual::DualOperator& Q_;
   const contact::SlipBounds& bounds_;

@@ -54,6 +54,10 @@ void add_contact_report(const driver::ContactReport& c, nlohmann::json& j) {
                     {"scale", c.lambda_scale},
                     {"refinements", c.certificate_refinements}};
   j["patch_states"] = {{"stick", c.n_stick}, {"slip", c.n_slip}, {"separated", c.n_separated}};
+  if (c.rigid_amplitudes.size() > 0)
+    j["balance"] = {{"equality_residual", c.equality_residual},
+                    {"bound", c.equality_bound},
+                    {"smalse_outer_iterations", c.smalse_outer_iterations}};
   j["state_blocks"] = c.state_blocks;
   j["block_err_history"] = c.block_history;
   nlohmann::json history = nlohmann::json::array();
@@ -287,6 +291,14 @@ nlohmann::json report_json(const driver::Problem& problem, const driver::RunResu
   j["linear_residual"] = r.linear_residual;
   j["max_von_mises"] = result.von_mises.size() ? result.von_mises.maxCoeff() : 0.0;
   add_regions(result.model.mesh, j);
+  j["bodies"] = nlohmann::json::array();
+  for (const driver::BodyReport& b : r.bodies)
+    j["bodies"].push_back({{"index", b.index},
+                           {"description", b.description},
+                           {"floating", !b.free_motions.empty()},
+                           {"free_motions", b.free_motions},
+                           {"amplitudes", b.amplitudes},
+                           {"undetermined", b.undetermined}});
   if (r.contact) add_contact_report(*r.contact, j);
   if (r.parallel) add_parallel_report(*r.parallel, j);
   if (result.contact) add_contact_geometry(problem, result.model.mesh, *result.contact, j);

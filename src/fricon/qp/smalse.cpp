@@ -18,15 +18,17 @@ namespace {
 // A row direction of G whose squared length is below this share of the largest acts on no
 // multiplier that is free to move (theory.md §4.6).
 constexpr double kRankTolerance = 1e-12;
-// A bound's entry of G^T d up to this share of the largest counts as 0 in the certificate of
-// infeasibility (a pressure would have to exceed the certified gap divided by it).
-constexpr double kSupportTolerance = 1e-6;
-// The certificate needs d^T e to exceed sup d^T G x by this share of d^T e ...
-constexpr double kInfeasibleMargin = 1e-3;
-// ... after the residual ||G x - e|| has decreased by less than this factor in
-// kStagnantSteps consecutive outer steps (a feasible equality is met at a linear rate).
+// The phase-one problem is solved when the residual ||G x - e|| has decreased by less than this
+// factor in kStagnantSteps consecutive outer steps (a feasible equality is met at a linear rate).
 constexpr double kStagnation = 0.9;
 constexpr int kStagnantSteps = 2;
+// Phase one: min 1/2 ||G x - e||^2 + delta/2 ||x||^2 over Omega (G with orthonormal rows), delta
+// this small against ||G^T G|| = 1 (it only makes the Hessian definite) ...
+constexpr double kPhaseOneRegularization = 1e-12;
+// ... to this relative gradient; the equality is infeasible when the shortest residual exceeds
+// this share of ||e|| (and the asked equality tolerance).
+constexpr double kPhaseOneTolerance = 1e-10;
+constexpr double kInfeasibleShare = 1e-6;
 
 // G with the columns of the discs pinned to zero (radius 0) cleared: those multipliers stay 0.
 Eigen::MatrixXd active_columns(const Eigen::MatrixXd& G, const SeparableConstraints& c) {
@@ -70,6 +72,27 @@ double relative_equality_residual(const EqualityConstraint& eq, const Eigen::Vec
   return scale > 0.0 ? (Gx - eq.e).norm() / scale : 0.0;
 }
 
+// Phase one (theory.md §4.6): the point x1 of Omega whose image G x1 is nearest to e, for the
+// orthonormal G and e of the solver; its residual d = e - G x1 certifies infeasibility when it is
+// not small: for every x in Omega, d^T G x <= d^T G x1 < d^T e. Costs products with G only.
+// Returns d (empty if the phase-one solve failed).
+Eigen::VectorXd phase_one(const Eigen::MatrixXd& Gh, const Eigen::VectorXd& eh,
+                          const SeparableConstraints& c, const MpgpOptions& inner,
+                          Eigen::VectorXd& x1) {
+  const Operator GtG = [&](const Eigen::VectorXd& v, Eigen::VectorXd& y) {
+    y = Gh.transpose() * (Gh * v) + kPhaseOneRegularization * v;
+  };
+  MpgpOptions o;
+  o.variant = inner.variant;
+  o.rel_tolerance = kPhaseOneTolerance;
+  o.reference = StopReference::Whole;
+  o.norm_A = 1.0 + kPhaseOneRegularization;
+  o.max_iterations = inner.max_iterations;
+  const MpgpReport r = solve_mpgp(GtG, Gh.transpose() * eh, c, o, x1);
+  if (r.termination != QpTermination::Converged) return {};
+  return eh - Gh * x1;
+}
+
 void accumulate(const MpgpReport& inner, SmalseReport& rep) {
   rep.iterations += inner.iterations;
   rep.n_products += inner.n_products;
@@ -85,19 +108,6 @@ void SmalseOptions::validate() const {
   require("SmalseOptions::eta_factor", eta_factor, positive());
   require("SmalseOptions::equality_tolerance", equality_tolerance, positive());
   require("SmalseOptions::max_outer", max_outer, integer_at_least(1));
-}
-
-double support(const Eigen::VectorXd& g, const SeparableConstraints& c, double tolerance) {
-  const double largest = g.lpNorm<Eigen::Infinity>();
-  double s = 0.0;
-  for (std::size_t k = 0; k < c.blocks.size(); ++k) {
-    const Block& block = c.blocks[k];
-    if (block.kind == BlockKind::Disc)
-      s += c.radius(static_cast<Index>(k)) * g.segment<2>(block.offset).norm();
-    else if (g(block.offset) > tolerance * largest)
-      return std::numeric_limits<double>::infinity();
-  }
-  return s;
 }
 
 SmalseReport solve_smalse(const Operator& A, const Eigen::VectorXd& b,
@@ -194,21 +204,23 @@ SmalseReport solve_smalse(const Operator& A, const Eigen::VectorXd& b,
           r.norm_gp, eps_g, rep.equality_residual, opt.equality_tolerance, k + 1);
       break;
     }
-    // The certificate of infeasibility, once the residual has stopped decreasing.
+    // Once the residual has stopped decreasing: is the equality feasible at all (phase one)?
     stagnant = res.norm() > kStagnation * residual_prev ? stagnant + 1 : 0;
     residual_prev = res.norm();
     if (stagnant >= kStagnantSteps) {
-      const Eigen::VectorXd d = -res;
-      const double applied = d.dot(eh);
-      const double carried = support(Gh.transpose() * d, c, kSupportTolerance);
-      if (applied > 0.0 && applied - carried > kInfeasibleMargin * applied) {
+      stagnant = 0;
+      Eigen::VectorXd x1 = x;
+      const Eigen::VectorXd d = phase_one(Gh, eh, c, inner, x1);
+      const double shortest = d.size() > 0 ? d.norm() : 0.0;
+      if (shortest > std::max(kInfeasibleShare, opt.equality_tolerance) * eh.norm()) {
+        // d^T e - d^T G x1 = ||d||^2 > 0, and d^T G x1 is the most Omega gives along d.
         rep.infeasible = true;
-        rep.infeasibility = {w.W * d, applied, carried};
+        rep.infeasibility = {w.W * d, d.dot(eh), d.dot(Gh * x1)};
         rep.termination = QpTermination::NumericalFailure;
         rep.message = fmt::format(
             "the equality constraint cannot be met in Omega: along the certificate direction the "
             "load is {:.4g} but Omega gives at most {:.4g}",
-            applied, carried);
+            rep.infeasibility.applied, rep.infeasibility.carried);
         break;
       }
     }

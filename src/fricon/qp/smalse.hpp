@@ -16,10 +16,10 @@
 // not pinned to zero), so that G^T G is the orthogonal projector Q = I - P onto their span and
 // A + rho Q stays as well conditioned as A for rho ~ ||A||.
 //
-// When no x in Omega satisfies G x = e (a load that contact cannot carry), the residual
-// r = e - G x converges to the shortest one and stays away from 0; the solver then checks the
-// certificate of infeasibility (Farkas): r^T e > sup over Omega of r^T G x, computed in closed
-// form block by block, and reports it with the two figures.
+// When no x in Omega satisfies G x = e (a load that contact cannot carry), the residual G x - e
+// stops decreasing; the solver then solves the phase-one problem min ||G x - e|| over Omega
+// (products with G only) and, if its shortest residual d = e - G x1 is not small, reports the
+// certificate of infeasibility (Farkas): d^T e > d^T G x1 = sup over Omega of d^T G x.
 
 #include <string>
 
@@ -101,9 +101,5 @@ SmalseReport solve_smalse(const Operator& A, const Eigen::VectorXd& b,
                           const SeparableConstraints& c, const EqualityConstraint& eq,
                           const SmalseOptions& opt, const MpgpOptions& inner, Eigen::VectorXd& x,
                           Eigen::VectorXd& mu);
-
-/// sup { d^T G x : x in Omega } for the direction g = G^T d over the unknowns: per disc its
-/// radius times ||g_i||, per bound 0 if g_i <= tolerance ||g||_inf, else infinity.
-double support(const Eigen::VectorXd& g, const SeparableConstraints& c, double tolerance);
 
 }  // namespace fricon::qp
