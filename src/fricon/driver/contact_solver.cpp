@@ -220,12 +220,14 @@ Real coulomb_pairs_residual(const contact::SlipBounds& bounds, const VectorXd& l
 
 // That residual on the patches of the QP (those a contact search left out carry no pressure
 // and, unpenetrated, no residual), from the current multipliers and slips: g = Q lambda - h, one
-// product with Q.
+// product with Q (with floating bodies the Lagrangian's gradient, - G^T alpha added: theory.md
+// §2.10).
 Real coulomb_residual_now(const TrescaMap& map, const VectorXd& state, const dual::DualOperator& Q,
                           const contact::SlipBounds& bounds, const ContactReport& rep) {
   VectorXd g;
   Q.apply(map.lambda(), g);
   g -= Q.h();
+  if (Q.n_motions() > 0) g -= Q.G().transpose() * map.alpha();
   return coulomb_pairs_residual(bounds, map.lambda(), g, bounds.mean_coefficients(map.slips(state)),
                                 1.0 / rep.norm_Q, rep.lambda_scale);
 }

@@ -168,13 +168,14 @@ SmalseReport solve_smalse(const Operator& A, const Eigen::VectorXd& b,
     A(v, y);
     y.noalias() += rho * (Gh.transpose() * (Gh * v));
   };
-  rep.reference_norm = std::max(resisted_part(b, c).norm(), rho * eh.norm());
-  const double eps_g = std::max(inner.rel_tolerance * rep.reference_norm, inner.abs_tolerance);
-  const double eta = opt.eta_factor * rep.reference_norm;
+  // The gradient test is relative to the data of the problem (b_R and the load rho e) or, when
+  // larger, to that of the augmented one (b_aug_R below, which holds the multipliers mu: the
+  // rounding level of its gradient).
+  const double reference = std::max(resisted_part(b, c).norm(), rho * eh.norm());
+  const double eta = opt.eta_factor * reference;
   double M = opt.M_factor * norm_A;
   MpgpOptions io = inner;
   io.rel_tolerance = 0.0;
-  io.abs_tolerance = eps_g;
   io.norm_A = norm_A + rho;  // ||Gh^T Gh|| = 1
   io.adaptive_tolerance = [&](const Eigen::VectorXd& v) {
     return std::min(M * (Gh * v - eh).norm(), eta);
@@ -186,6 +187,10 @@ SmalseReport solve_smalse(const Operator& A, const Eigen::VectorXd& b,
   for (int k = 0; k < opt.max_outer; ++k) {
     rep.outer_iterations = k + 1;
     const Eigen::VectorXd b_aug = b - Gh.transpose() * mu_h + rho * (Gh.transpose() * eh);
+    rep.reference_norm = std::max(reference, resisted_part(b_aug, c).norm());
+    const double eps_g =
+        std::max(inner.rel_tolerance * rep.reference_norm, inner.abs_tolerance);
+    io.abs_tolerance = eps_g;
     const MpgpReport r = solve_mpgp(A_aug, b_aug, c, io, x);
     accumulate(r, rep);
     rep.norm_gp = r.norm_gp;

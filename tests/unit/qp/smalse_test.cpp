@@ -1,0 +1,136 @@
+// qp::solve_smalse (theory.md §4.6) on small dense QPs with bounds, discs and equalities, checked
+// from outside the solver: the KKT conditions of the whole problem (the Lagrangian's gradient
+// A x - b + G^T mu in the normal cone of Omega, qp::kkt_residuals) and G x = e; infeasible
+// equalities are reported with a certificate d (d^T e > sup over Omega of d^T G x, checked here by
+// brute force over the blocks), not as a solver that runs out of steps.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "fricon/qp/kkt.hpp"
+#include "fricon/qp/smalse.hpp"
+
+using namespace fricon;
+using namespace fricon::qp;
+
+namespace {
+
+// A random SPD matrix of order n (fixed seed through Eigen's Random after srand).
+Eigen::MatrixXd spd(Index n, unsigned seed) {
+  std::srand(seed);
+  const Eigen::MatrixXd M = Eigen::MatrixXd::Random(n, n);
+  return M * M.transpose() + 0.5 * Eigen::MatrixXd::Identity(n, n);
+}
+
+Operator dense(const Eigen::MatrixXd& A) {
+  return [&A](const Eigen::VectorXd& x, Eigen::VectorXd& y) { y = A * x; };
+}
+
+MpgpOptions tight() {
+  MpgpOptions o;
+  o.rel_tolerance = 1e-10;
+  return o;
+}
+
+// sup over Omega of g^T x, by the blocks: infinite if a bound has g_i > 0.
+double support_of(const Eigen::VectorXd& g, const SeparableConstraints& c) {
+  double s = 0.0;
+  for (std::size_t k = 0; k < c.blocks.size(); ++k) {
+    const Block& b = c.blocks[k];
+    if (b.kind == BlockKind::Disc)
+      s += c.radius(static_cast<Index>(k)) * g.segment<2>(b.offset).norm();
+    else if (g(b.offset) > 1e-9 * g.norm())
+      return INFINITY;
+  }
+  return s;
+}
+
+TEST(Smalse, MeetsTheEqualityAndTheKktConditionsOfTheWholeProblem) {
+  const Index patches = 6, n = 3 * patches;
+  SeparableConstraints c = SeparableConstraints::contact_layout(patches);
+  c.set_disc_radii(Eigen::VectorXd::Constant(patches, 0.4));
+  const Eigen::MatrixXd A = spd(n, 7);
+  std::srand(11);
+  const Eigen::VectorXd b = Eigen::VectorXd::Random(n);
+  // Two rows: the sum of the normal multipliers, and of the first tangential ones; e reachable.
+  EqualityConstraint eq{Eigen::MatrixXd::Zero(2, n), Eigen::VectorXd(2)};
+  for (Index p = 0; p < patches; ++p) {
+    eq.G(0, 3 * p) = 1.0;
+    eq.G(1, 3 * p + 1) = 1.0 + 0.1 * static_cast<double>(p);
+  }
+  eq.e << 3.0, 0.5;
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(n), mu;
+  const SmalseReport r = solve_smalse(dense(A), b, c, eq, SmalseOptions{}, tight(), x, mu);
+  ASSERT_EQ(r.termination, QpTermination::Converged) << r.message;
+  EXPECT_LE((eq.G * x - eq.e).norm(), 1e-8 * eq.e.norm());
+  const Eigen::VectorXd g = A * x - b + eq.G.transpose() * mu;
+  const KktResiduals k = kkt_residuals(x, g, c, 1.0, b.norm());
+  EXPECT_LE(k.max(), 1e-7) << k.feasibility << " " << k.stationarity << " " << k.complementarity;
+}
+
+TEST(Smalse, AnEqualityOmegaCannotMeetIsCertifiedInfeasible) {
+  const Index patches = 4, n = 3 * patches;
+  SeparableConstraints c = SeparableConstraints::contact_layout(patches);
+  c.set_disc_radii(Eigen::VectorXd::Constant(patches, 1.0));
+  const Eigen::MatrixXd A = spd(n, 3);
+  const Eigen::VectorXd b = Eigen::VectorXd::Ones(n);
+  // The tangential multipliers can sum to at most 4 (four unit discs); ask for 6.
+  EqualityConstraint eq{Eigen::MatrixXd::Zero(1, n), Eigen::VectorXd::Constant(1, 6.0)};
+  for (Index p = 0; p < patches; ++p) eq.G(0, 3 * p + 1) = 1.0;
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(n), mu;
+  const SmalseReport r = solve_smalse(dense(A), b, c, eq, SmalseOptions{}, tight(), x, mu);
+  ASSERT_TRUE(r.infeasible) << r.message;
+  const Infeasibility& cert = r.infeasibility;
+  EXPECT_NEAR(cert.applied / cert.direction(0), 6.0, 1e-6);
+  EXPECT_NEAR(cert.carried / cert.direction(0), 4.0, 1e-6);
+  // The certificate holds: d^T e exceeds the most Omega gives along d, found here by blocks.
+  EXPECT_GT(cert.direction.dot(eq.e), support_of(eq.G.transpose() * cert.direction, c));
+}
+
+TEST(Smalse, ANegativeResultantOfBoundsIsInfeasible) {
+  const Index patches = 3, n = 3 * patches;
+  const SeparableConstraints c = SeparableConstraints::contact_layout(patches);
+  const Eigen::MatrixXd A = spd(n, 5);
+  const Eigen::VectorXd b = Eigen::VectorXd::Ones(n);
+  EqualityConstraint eq{Eigen::MatrixXd::Zero(1, n), Eigen::VectorXd::Constant(1, -2.0)};
+  for (Index p = 0; p < patches; ++p) eq.G(0, 3 * p) = 1.0;  // lambda_n >= 0 sum to -2?
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(n), mu;
+  const SmalseReport r = solve_smalse(dense(A), b, c, eq, SmalseOptions{}, tight(), x, mu);
+  ASSERT_TRUE(r.infeasible) << r.message;
+  EXPECT_NEAR(r.infeasibility.carried, 0.0, 1e-9 * std::abs(r.infeasibility.applied));
+  EXPECT_GT(r.infeasibility.applied, 0.0);
+}
+
+TEST(Smalse, ARowOnPinnedDiscsOnlyIsUndeterminedAndMustCarryNoLoad) {
+  const Index patches = 3, n = 3 * patches;
+  const SeparableConstraints c = SeparableConstraints::contact_layout(patches);  // radii 0
+  const Eigen::MatrixXd A = spd(n, 9);
+  const Eigen::VectorXd b = Eigen::VectorXd::Ones(n);
+  EqualityConstraint eq{Eigen::MatrixXd::Zero(2, n), Eigen::VectorXd::Zero(2)};
+  for (Index p = 0; p < patches; ++p) {
+    eq.G(0, 3 * p) = 1.0;      // the normal resultant
+    eq.G(1, 3 * p + 1) = 1.0;  // a tangential one, on pinned discs
+  }
+  eq.e << 2.0, 0.0;
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(n), mu;
+  SmalseReport r = solve_smalse(dense(A), b, c, eq, SmalseOptions{}, tight(), x, mu);
+  ASSERT_EQ(r.termination, QpTermination::Converged) << r.message;
+  ASSERT_EQ(r.undetermined.cols(), 1);
+  EXPECT_NEAR(std::abs(r.undetermined(1, 0)), 1.0, 1e-12);
+  EXPECT_NEAR(mu(1), 0.0, 1e-12);  // least norm: no multiplier on the undetermined row
+  // A load on that row cannot be carried, unless it is dropped (Coulomb's first step).
+  eq.e(1) = 1.0;
+  x.setZero();
+  mu.resize(0);
+  r = solve_smalse(dense(A), b, c, eq, SmalseOptions{}, tight(), x, mu);
+  EXPECT_TRUE(r.infeasible);
+  SmalseOptions drop;
+  drop.drop_unresisted_load = true;
+  x.setZero();
+  mu.resize(0);
+  r = solve_smalse(dense(A), b, c, eq, drop, tight(), x, mu);
+  EXPECT_EQ(r.termination, QpTermination::Converged) << r.message;
+  EXPECT_NEAR((eq.G.row(0) * x)(0), 2.0, 1e-8);
+}
+
+}  // namespace
