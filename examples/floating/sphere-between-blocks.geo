@@ -15,8 +15,8 @@ SetFactory("OpenCASCADE");
 R = 20;          // radius of the sphere [mm]
 L = 40;          // half width of the blocks (the quarter's x and y extent) [mm]
 T = 20;          // thickness of the blocks [mm]
-h_slave = 0.15;  // element size of the two slave surfaces near the poles [mm]
-h_master = 0.2;  // element size of the two master surfaces there [mm]
+h_slave = 0.15;  // element size of the ball's lower half and the upper block's bottom near the poles [mm]
+h_master = 0.2;  // element size of the other sides there [mm]
 h_far = 4;       // element size far from the contacts [mm]
 d_fine = 3;      // the fine sizes hold up to this distance from a pole [mm]
 d_coarse = 18;   // and grow linearly to h_far at this distance [mm]
@@ -70,8 +70,8 @@ Physical Surface("upper_top") = {up_top()};
 Physical Surface("upper_sym_x") = {up_sx()};
 Physical Surface("upper_sym_y") = {up_sy()};
 
-// Sizes, by the distance from each pole: the slave side of each pair (the ball at the south
-// pole, the upper block at the north pole) gets h_slave, the master side h_master, within d_fine,
+// Sizes, by the distance from each pole: the ball at the south pole and the upper block at the
+// north pole get h_slave, the other side h_master, within d_fine,
 // growing to h_far at d_coarse. Fields 3 and 4 (h_master) act everywhere; fields 6 and 8
 // (h_slave) are restricted to the ball and to the upper block, with their boundaries; the mesh
 // takes the smallest.

@@ -113,6 +113,9 @@ void refuse_unbalanced_load(const Problem& problem, const Model& model,
   const bool force = t.norm() >= kTranslationShare * w.norm() * reach;
   const Real unit = force ? t.norm() : w.norm();
   const Real applied = certificate.applied / unit, carried = certificate.carried / unit;
+  // A rotation with a translation t turns about the axis along w through c + w x t / |w|^2 (plus
+  // a slide along w): the point to name.
+  const Vec3 axis_point = force ? worst->centre : Vec3(worst->centre + w.cross(t) / w.squaredNorm());
   const std::string what =
       force ? fmt::format("the applied force along {} is {:.4g} N, but contact{} can carry at "
                           "most {:.4g} N along it",
@@ -120,13 +123,12 @@ void refuse_unbalanced_load(const Problem& problem, const Model& model,
                           carried > 0.0 ? " and friction" : "", carried)
             : fmt::format("the applied moment about the axis {} through {} m is {:.4g} N m, but "
                           "contact{} can carry at most {:.4g} N m about it",
-                          vector_text(w / unit), vector_text(worst->centre), applied,
+                          vector_text(w / unit), vector_text(axis_point), applied,
                           carried > 0.0 ? " and friction" : "", carried);
-  throw InputError(fmt::format(
+  throw UnbalancedLoad(fmt::format(
       "{}: contact: {} floats (its free motions: {}), and the load on it cannot be balanced by "
-      "contact: {}; a pull away from the obstacle, or a push along it beyond the friction "
-      "limit, moves the body without bound. Reduce the load, or hold the body by [[dirichlet]] "
-      "conditions (theory.md §2.10)",
+      "contact: {}; {}. Reduce the load, or hold the body by [[dirichlet]] conditions (theory.md "
+      "§2.10)",
       problem.where("contact"), mesh::describe_body(model.mesh, model.bodies, worst->body),
       [&] {
         std::string s;
@@ -134,7 +136,11 @@ void refuse_unbalanced_load(const Problem& problem, const Model& model,
           s += fmt::format("{}{}", j == 0 ? "" : ", ", worst->motion_name(j));
         return s;
       }(),
-      what));
+      what,
+      force ? "a pull away from the obstacle, or a push along it beyond the friction limit, "
+              "moves the body without bound"
+            : "a twist beyond what friction resists, or a tilt beyond what the pressure can "
+              "balance, turns the body without bound"));
 }
 
 }  // namespace fricon::driver

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "fricon/core/error.hpp"
 #include "fricon/core/types.hpp"
 #include "fricon/driver/model.hpp"
 #include "fricon/driver/problem.hpp"
@@ -43,7 +44,14 @@ std::vector<BodyReport> describe_bodies(const Model& model);
 std::vector<BodyReport> describe_bodies(const Model& model, const VectorXd& u,
                                         const MatrixXd& undetermined);
 
-/// Throws InputError for a load that contact cannot carry, from the certificate of the QP's
+/// The InputError of a load that contact cannot carry (a contact search that left patches out
+/// catches it and tries every patch).
+class UnbalancedLoad : public InputError {
+ public:
+  using InputError::InputError;
+};
+
+/// Throws UnbalancedLoad for a load that contact cannot carry, from the certificate of the QP's
 /// infeasible equality: the body, the free motion along which the load exceeds what contact and
 /// friction can carry, and the two figures (a force [N] or a moment [N m]).
 [[noreturn]] void refuse_unbalanced_load(const Problem& problem, const Model& model,

@@ -328,7 +328,8 @@ RunResult run_path(const Problem& problem, const RunOptions& options) {
   std::optional<contact::ContactDiscretization> disc = build_factored_model(problem, options, r);
   if (options.stop_was_requested()) throw Interrupted("interrupted before the first step");
   std::unique_ptr<dual::DualOperator> Q;
-  const bool search = disc && search_applies(problem, r.model);
+  // A floating body has no free displacement to start each step's search from (theory.md §2.10).
+  const bool search = disc && search_applies(problem, r.model) && r.model.floating.empty();
   PathSearch path_search;
   if (disc && !search) {
     phase_start(options, "dual");

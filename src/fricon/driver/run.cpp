@@ -57,9 +57,8 @@ bool frictionless(const Problem& problem) {
 
 }  // namespace
 
-bool search_applies(const Problem& problem, const Model& model) {
+bool search_applies(const Problem& problem, const Model&) {
   if (problem.solver.contact_search == contact::ContactSearch::Off) return false;
-  if (!model.floating.empty()) return false;
   // A positive Tresca bound g F acts without pressure: every patch of such a pair resists
   // sliding, so none may be left out (theory.md §2.7).
   const bool tresca_with_friction =
@@ -73,14 +72,16 @@ VectorXd solve_with_search(const Problem& problem, const contact::ContactDiscret
                            const RunOptions& options, RunResult& r,
                            const std::vector<Index>* first_candidates) {
   const Model& m = r.model;
-  // @sect: the free displacement and the first candidates (theory.md §2.7).
+  // @sect: the free displacement and the first candidates (theory.md §2.7); with a floating
+  // body, whose free displacement does not exist, those of the closed gaps (theory.md §2.10).
   VectorXd u0;
   std::vector<Index> candidates;
   Real tolerance = 0.0;
   {
     ScopedPhase phase(r.report.times, "dual");
     u0 = m.factor.solve(m.f);
-    const VectorXd free_penetration = contact::mean_penetration(disc, u0);
+    const VectorXd free_penetration = contact::mean_penetration(
+        disc, m.floating.empty() ? u0 : VectorXd(VectorXd::Zero(u0.size())));
     candidates = first_candidates ? *first_candidates
                                   : contact::initial_candidates(
                                         free_penetration, problem.solver.contact_search_margin);
@@ -110,12 +111,27 @@ VectorXd solve_with_search(const Problem& problem, const contact::ContactDiscret
     }
     phase_start(options, "outer loop");
     const PatchSelection selection{disc, candidates, round};
-    ContactOutcome c = solve_contact(problem, m, part, *Q, r.report.times, options, &selection);
+    ContactOutcome c;
+    try {
+      c = solve_contact(problem, m, part, *Q, r.report.times, options, &selection);
+    } catch (const UnbalancedLoad&) {
+      // Candidates that cannot balance a floating body: again with every patch, which decides.
+      if (static_cast<Index>(candidates.size()) == disc.n_patches()) throw;
+      candidates = all_patches(disc);
+      continue;
+    }
     const std::vector<Index> added =
         rounds.patches_to_add(disc, candidates, c, tolerance, round, options);
     if (added.empty()) return rounds.adopt_answer(std::move(c), r);
     candidates = contact::merge_patches(candidates, added);
   }
+}
+
+std::vector<Index> all_patches(const contact::ContactDiscretization& disc) {
+  std::vector<Index> all(static_cast<size_t>(disc.n_patches()));
+  for (Index p = 0; p < disc.n_patches(); ++p)
+    all[static_cast<size_t>(p)] = p;
+  return all;
 }
 
 std::vector<Index> SearchRounds::patches_to_add(const contact::ContactDiscretization& disc,

@@ -62,10 +62,14 @@ class SearchRounds {
 };
 
 /// Whether the contact search leaves patches out (theory.md §2.7): solver.contact_search is not
-/// off, no patch resists without pressure (Tresca with a positive slip bound), and no body of
-/// `model` floats (its free displacement K^-1 f, from which the search starts, does not exist;
-/// every patch is solved, theory.md §2.10).
+/// off, and no patch resists without pressure (Tresca with a positive slip bound). With a
+/// floating body of `model` (theory.md §2.10) a static run starts the search from the closed
+/// gaps; a loading path, whose search starts each step from a free displacement, solves every
+/// patch.
 bool search_applies(const Problem& problem, const Model& model);
+
+/// Every patch of `disc`, 0 .. n_patches - 1.
+std::vector<Index> all_patches(const contact::ContactDiscretization& disc);
 
 /// The outer loop of dual QPs on the patches of the contact search (theory.md §2.7): the first
 /// candidates (contact::initial_candidates of the free displacement, or `first_candidates` if

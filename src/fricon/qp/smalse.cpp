@@ -164,10 +164,38 @@ SmalseReport solve_smalse(const Operator& A, const Eigen::VectorXd& b,
     throw NumericalError(fmt::format("solve_smalse: ||A|| = {}", norm_A));
   rep.rho = opt.rho_factor * norm_A;
   const double rho = rep.rho;
+  // On the affine set Gh x = eh, with P = I - Gh^T Gh and x_e = Gh^T eh, P x = x - x_e and
+  //   q(x) = 1/2 x^T (P A P) x - x^T P (b - A x_e) + const,
+  // so the QP may take the projected Hessian P A P (TFETI's natural coarse space, theory.md
+  // §4.6): the part of A along the rows, which the generalized inverse leaves arbitrary, drops
+  // out, and P A P + rho Gh^T Gh has the norm of A for rho = ||A||. The discs stay centred (x
+  // itself is not shifted). The multiplier of the original problem is then
+  // mu_h - Gh (A x - b) at the solution.
+  const auto project = [&](Eigen::VectorXd& v) { v.noalias() -= Gh.transpose() * (Gh * v); };
+  Eigen::VectorXd Pv, APv;
   const Operator A_aug = [&](const Eigen::VectorXd& v, Eigen::VectorXd& y) {
-    A(v, y);
+    if (opt.projector) {
+      Pv = v;
+      project(Pv);
+      A(Pv, y);
+      project(y);
+    } else {
+      A(v, y);
+    }
     y.noalias() += rho * (Gh.transpose() * (Gh * v));
   };
+  Eigen::VectorXd b_base = b;
+  if (opt.projector) {
+    const Eigen::VectorXd x_e = Gh.transpose() * eh;
+    Eigen::VectorXd Ax(n);
+    A(x_e, Ax);
+    b_base -= Ax;
+    project(b_base);
+    // The warm start's multiplier in the projected problem.
+    A(x, Ax);
+    mu_h += Gh * (Ax - b);
+    rep.n_products += 2;
+  }
   // The gradient test is relative to the data of the problem (b_R and the load rho e) or, when
   // larger, to that of the augmented one (b_aug_R below, which holds the multipliers mu: the
   // rounding level of its gradient).
@@ -176,7 +204,8 @@ SmalseReport solve_smalse(const Operator& A, const Eigen::VectorXd& b,
   double M = opt.M_factor * norm_A;
   MpgpOptions io = inner;
   io.rel_tolerance = 0.0;
-  io.norm_A = norm_A + rho;  // ||Gh^T Gh|| = 1
+  // ||Gh^T Gh|| = 1; with the projector the two terms act on orthogonal subspaces.
+  io.norm_A = opt.projector ? std::max(norm_A, rho) : norm_A + rho;
   io.adaptive_tolerance = [&](const Eigen::VectorXd& v) {
     return std::min(M * (Gh * v - eh).norm(), eta);
   };
@@ -186,7 +215,7 @@ SmalseReport solve_smalse(const Operator& A, const Eigen::VectorXd& b,
   int stagnant = 0;
   for (int k = 0; k < opt.max_outer; ++k) {
     rep.outer_iterations = k + 1;
-    const Eigen::VectorXd b_aug = b - Gh.transpose() * mu_h + rho * (Gh.transpose() * eh);
+    const Eigen::VectorXd b_aug = b_base - Gh.transpose() * mu_h + rho * (Gh.transpose() * eh);
     rep.reference_norm = std::max(reference, resisted_part(b_aug, c).norm());
     const double eps_g =
         std::max(inner.rel_tolerance * rep.reference_norm, inner.abs_tolerance);
@@ -241,6 +270,12 @@ SmalseReport solve_smalse(const Operator& A, const Eigen::VectorXd& b,
           "reached max_outer = {} with ||G x - e|| / ||e|| = {:.3e} (target {:.1e})",
           opt.max_outer, rep.equality_residual, opt.equality_tolerance);
     }
+  }
+  if (opt.projector && w.W.cols() > 0) {
+    Eigen::VectorXd Ax(n);
+    A(x, Ax);
+    ++rep.n_products;
+    mu_h -= Gh * (Ax - b);
   }
   mu = w.W.cols() > 0 ? Eigen::VectorXd(w.W * mu_h) : Eigen::VectorXd::Zero(m);
   rep.seconds = watch.seconds();

@@ -59,6 +59,10 @@ struct SmalseOptions {
   /// in the first, frictionless step of Coulomb's successive approximations, whose pressures only
   /// start the iteration (theory.md §5.8).
   bool drop_unresisted_load = false;
+  /// Solve with the projected Hessian P A P + rho G^T G, P = I - G^T G (rows made orthonormal),
+  /// and the linear term P (b - A G^T e): the same QP on the affine set G x = e, with the part of
+  /// A along the rows of G left out (theory.md §4.6). Default true.
+  bool projector = true;
 
   /// Throws InputError naming the first field out of range.
   void validate() const;

@@ -38,6 +38,19 @@ namespace fricon::parallel {
 
 namespace {
 
+// The distributed operator carries no balance G lambda = e (theory.md §2.10): a floating body is
+// refused by name, before any factorization.
+void refuse_floating_bodies(const driver::Problem& problem, const driver::Model& model) {
+  if (model.floating.empty()) return;
+  const fe::FloatingBody& body = model.floating.bodies.front();
+  throw InputError(fmt::format(
+      "{}: solver.backend: {} floats (its [[dirichlet]] conditions leave {} rigid motion(s) "
+      "free, held by contact), and the backend \"petsc\" does not solve floating bodies; use "
+      "backend \"cholmod\" (one process), or hold the body by [[dirichlet]] conditions",
+      problem.where("solver.backend"), mesh::describe_body(model.mesh, model.bodies, body.body),
+      body.n_motions()));
+}
+
 using driver::RunOptions;
 using driver::RunResult;
 
@@ -242,6 +255,7 @@ RunResult run_on_rank(const driver::Problem& problem, const RunOptions& options,
       ScopedPhase phase(rep.times, "contact");
       disc = driver::check_model(problem, r.model);
     }
+    refuse_floating_bodies(problem, r.model);
   });
   const ModelSizes sizes = broadcast_sizes(r.model, disc.has_value(), world());
   test_fault("share");  // (between two broadcasts: the job ends, see run_distributed)
