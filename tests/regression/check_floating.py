@@ -20,6 +20,8 @@ held by contact alone must be balanced by its contact forces, whatever the mesh.
     applied_force, the 100 MPa on the facetted quarter disc: within 0.1 % of p pi R^2 / 4) to
     1e-5. With Coulomb friction the pair's tangential force is at most 0.1 times its normal force
     and |lambda_t| <= F lambda_n on every patch.
+  - free-block along a loading path of 4 steps (the push 0, 0.5, 1 and 1.4 times the example's):
+    every step converges, the contact carries N and friction exactly the step's push (1e-5 of N).
   - sphere-between-blocks: the ball and the upper block float in "translation z" only; the lower
     block is held. The upper block rests on pair (b) alone and the ball on pair (a) alone, so
     both pairs carry the 8 kN on the upper block's top, to 1e-5, and the lower block's reaction
@@ -199,8 +201,27 @@ def check_sphere(name, *sets):
     check_balance(report)
 
 
+def check_block_path():
+    """free-block.toml along a loading path: pressed, then pushed by 0, 0.5, 1 and 1.4 times the
+    example's push (up to 5.6 kN < mu N = 6 kN): at every step the contact carries the 20 kN and
+    friction exactly the step's push (equilibrium of the floating block), to 1e-5 of N."""
+    factors = [0.0, 0.5, 1.0, 1.4]
+    folder, report = solve("free-block-path", "loading.steps=4",
+                           "traction[0].path=[1.0,1.0,1.0,1.0]",
+                           f"traction[1].path=[{','.join(map(str, factors))}]",
+                           problem="free-block")
+    steps = common.read_rows(folder / "steps.csv")
+    assert len(steps) == len(factors), steps
+    for step, factor in zip(steps, factors):
+        assert step["status"] == "converged", step
+        close(float(step["normal_force"]), N_BLOCK, 1e-5, f"step {step['step']} normal force")
+        assert abs(float(step["tangential_force_x"]) + factor * T_BLOCK) <= 1e-5 * N_BLOCK, (
+            step["step"], step["tangential_force_x"], factor * T_BLOCK)
+
+
 start = time.monotonic()
 check("free-block", check_free_block)
+check("free-block along a loading path", check_block_path)
 check("free-block frictionless", check_frictionless_block)
 check("nafems-punch-frictionless", lambda: check_punch("nafems-punch-frictionless", 0.0))
 check("nafems-punch-coulomb", lambda: check_punch("nafems-punch-coulomb", MU_PUNCH))

@@ -27,6 +27,8 @@ augmented matrix) and a different dual operator:
   stop_signal             SIGUSR1 to mpirun during the outer loop: every rank stops, rank 0
                           writes the last iterate (*.not-converged.*), exit code 2
   cholmod_under_mpirun    backend cholmod on 2 ranks is refused once, with the fix
+  floating2               a floating body (examples/floating/free-block.toml) on 2 ranks is
+                          refused once, naming the body and the backend that solves it
   fault-PHASE-RANK-KIND   a fault injected on one rank in one phase of the run (the test-only
                           FRICON_TEST_FAULT=PHASE:RANK:KIND, docs/parallel.md) on 2 ranks: every
                           rank ends within FAULT_TIMEOUT_S (no process of the job is left) with
@@ -389,6 +391,14 @@ def main():
             sys.exit(f"FAIL: rank 0's error is given as another rank's: {message!r}")
         on_every_rank(cmd, message)
         nothing_written(out / "m")
+    elif case == "floating2":
+        # The distributed operator has no balance G lambda = e: a floating body is refused by
+        # name before any factorization, once, and nothing is written.
+        block = examples / "floating" / "free-block.toml"
+        cmd = mpirun(mpi, 2) + [fricon, "solve", str(block), *PETSC, "-q", "-o", str(out / "fl")]
+        expect_error(cmd, ["solver.backend", "body 0", "floats", "does not solve floating bodies",
+                           "cholmod"], "a floating body under the PETSc backend is refused")
+        nothing_written(out / "fl")
     elif case == "stop_signal":
         stop_signal(fricon, mpi, brick, out / "s")
     elif case.startswith("fault-") and case[len("fault-"):] in FAULTS:
