@@ -70,6 +70,7 @@ bench: build
 	  /usr/bin/python3 bench/hertz_bench.py $(BUILD)/apps/fricon/fricon; fi
 	@echo "== bench/python_study.py"; PYTHONPATH=$(BUILD)/python /usr/bin/python3 bench/python_study.py \
 	  $(BUILD)/apps/fricon/fricon
+	@echo "== bench/floating_bench.py"; /usr/bin/python3 bench/floating_bench.py $(BUILD)/apps/fricon/fricon
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.hpp')

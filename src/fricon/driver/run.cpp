@@ -10,6 +10,11 @@
 
 namespace fricon::driver {
 
+namespace {
+// Mean gaps within this share of the smallest are the same (rounding of a flat face's gaps).
+constexpr Real kSameGap = 1e-9;
+}  // namespace
+
 void phase_start(const RunOptions& o, const std::string& name) {
   if (o.on_phase_start) o.on_phase_start(name);
 }
@@ -68,6 +73,24 @@ bool search_applies(const Problem& problem, const Model&) {
   return !tresca_with_friction;
 }
 
+namespace {
+
+// The first candidates of a model with a floating body (theory.md §2.10): the patches whose mean
+// gap is the smallest, every one that ties (a flat face on a plane), and those within `margin`
+// of the gaps' spread above it. `penetration` is minus the mean gap per patch.
+std::vector<Index> closed_gaps(const VectorXd& penetration, Real margin) {
+  std::vector<Index> candidates;
+  if (penetration.size() == 0) return candidates;
+  const Real closest = penetration.maxCoeff();
+  const Real spread = closest - penetration.minCoeff();
+  const Real threshold = closest - std::max(margin * spread, kSameGap * std::abs(closest));
+  for (Index p = 0; p < penetration.size(); ++p)
+    if (penetration(p) >= threshold) candidates.push_back(p);
+  return candidates;
+}
+
+}  // namespace
+
 VectorXd solve_with_search(const Problem& problem, const contact::ContactDiscretization& disc,
                            const RunOptions& options, RunResult& r,
                            const std::vector<Index>* first_candidates) {
@@ -82,9 +105,11 @@ VectorXd solve_with_search(const Problem& problem, const contact::ContactDiscret
     u0 = m.factor.solve(m.f);
     const VectorXd free_penetration = contact::mean_penetration(
         disc, m.floating.empty() ? u0 : VectorXd(VectorXd::Zero(u0.size())));
-    candidates = first_candidates ? *first_candidates
-                                  : contact::initial_candidates(
-                                        free_penetration, problem.solver.contact_search_margin);
+    candidates = first_candidates      ? *first_candidates
+                 : m.floating.empty() ? contact::initial_candidates(
+                                             free_penetration, problem.solver.contact_search_margin)
+                                       : closed_gaps(free_penetration,
+                                                     problem.solver.contact_search_margin);
     tolerance = problem.solver.qp.rel_tolerance * free_penetration.cwiseAbs().maxCoeff();
   }
   // @sect: solve on the candidates, add the left-out patches that penetrate, again until none

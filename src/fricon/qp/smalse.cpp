@@ -184,17 +184,27 @@ SmalseReport solve_smalse(const Operator& A, const Eigen::VectorXd& b,
     }
     y.noalias() += rho * (Gh.transpose() * (Gh * v));
   };
+  // A cold start begins at the least-norm solution of the equality, x_e, projected onto Omega
+  // (feasible for a load that pressure alone balances).
+  const Eigen::VectorXd x_e = Gh.transpose() * eh;
+  const bool cold = x.isZero(0.0);
+  if (cold) {
+    x = x_e;
+    c.project(x);
+  }
   Eigen::VectorXd b_base = b;
   if (opt.projector) {
-    const Eigen::VectorXd x_e = Gh.transpose() * eh;
     Eigen::VectorXd Ax(n);
     A(x_e, Ax);
     b_base -= Ax;
     project(b_base);
+    ++rep.n_products;
     // The warm start's multiplier in the projected problem.
-    A(x, Ax);
-    mu_h += Gh * (Ax - b);
-    rep.n_products += 2;
+    if (!cold) {
+      A(x, Ax);
+      mu_h += Gh * (Ax - b);
+      ++rep.n_products;
+    }
   }
   // The gradient test is relative to the data of the problem (b_R and the load rho e) or, when
   // larger, to that of the augmented one (b_aug_R below, which holds the multipliers mu: the
@@ -216,7 +226,7 @@ SmalseReport solve_smalse(const Operator& A, const Eigen::VectorXd& b,
   for (int k = 0; k < opt.max_outer; ++k) {
     rep.outer_iterations = k + 1;
     const Eigen::VectorXd b_aug = b_base - Gh.transpose() * mu_h + rho * (Gh.transpose() * eh);
-    rep.reference_norm = std::max(reference, resisted_part(b_aug, c).norm());
+    rep.reference_norm = std::max(reference, resisted_part(b_base, c).norm());
     const double eps_g =
         std::max(inner.rel_tolerance * rep.reference_norm, inner.abs_tolerance);
     io.abs_tolerance = eps_g;

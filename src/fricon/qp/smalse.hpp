@@ -39,11 +39,12 @@ struct EqualityConstraint {
 };
 
 struct SmalseOptions {
-  /// rho = rho_factor ||A||, the penalty. Default 1 (||A + rho Q|| <= 2 ||A||); range > 0.
-  double rho_factor = 1.0;
-  /// M_0 = M_factor ||A||, the initial ratio of the inner precision to ||G x - e||. Default 1;
-  /// range > 0.
-  double M_factor = 1.0;
+  /// rho = rho_factor ||A||, the penalty. Default 0.3 (with the projector ||P A P + rho Q|| =
+  /// ||A||; measured on examples/floating, bench/floating_bench.py, theory.md §4.6); range > 0.
+  double rho_factor = 0.3;
+  /// M_0 = M_factor ||A||, the initial ratio of the inner precision to ||G x - e||. Default 0.3
+  /// (measured likewise); range > 0.
+  double M_factor = 0.3;
   /// M is divided by beta when L fails to increase enough. Default 10; range > 1.
   double beta = 10.0;
   /// eta = eta_factor times the reference of the stopping test: the cap of the inner
