@@ -5,7 +5,9 @@ held by contact alone must be balanced by its contact forces, whatever the mesh.
     1 MPa on its top (N = 1e6 * 0.2 * 0.1 = 20 kN) and 0.8 MPa along +x on its back face
     (T = 8e5 * 0.1 * 0.05 = 4 kN), Coulomb F = 0.3. Equilibrium alone fixes the contact's
     resultants: its normal force is 20 kN and its tangential force 4 kN along -x (0 along y), to
-    1e-6; T <= F N as a whole and |lambda_t| <= F lambda_n on every patch (to the Coulomb
+    1e-5 of N (the balance is as precise as the QP's tolerance, qp_rtol = 1e-6, lets it be: a
+    run under load, with other threads, differs by a few 1e-6); T <= F N as a whole and
+    |lambda_t| <= F lambda_n on every patch (to the Coulomb
     certificate's tolerance times the largest pressure). The body is reported
     floating in all six rigid motions, none undetermined (friction holds them), and the dual
     QP's equality G lambda = e is met within its bound.
@@ -124,10 +126,10 @@ def check_free_block():
     t = tangential(report)
     print(f"free-block: normal force {normal:.9e} N, tangential ({t[0]:.9e}, {t[1]:.3e}) N, "
           f"T / N = {math.hypot(*t) / normal:.4f}")
-    close(normal, N_BLOCK, 1e-6, "normal force")
-    close(force_z, N_BLOCK, 1e-6, "contact force z")
-    close(t[0], -T_BLOCK, 1e-6, "tangential force x")
-    assert abs(t[1]) <= 1e-6 * T_BLOCK, f"tangential force y {t[1]!r}"
+    close(normal, N_BLOCK, 1e-5, "normal force")
+    close(force_z, N_BLOCK, 1e-5, "contact force z")
+    assert abs(t[0] + T_BLOCK) <= 1e-5 * N_BLOCK, f"tangential force x {t[0]!r} (-{T_BLOCK})"
+    assert abs(t[1]) <= 1e-5 * N_BLOCK, f"tangential force y {t[1]!r}"
     assert math.hypot(*t) <= MU_BLOCK * normal, (t, normal)
     check_coulomb_patches(folder, report, MU_BLOCK)
     assert report["coulomb"]["residual"] <= report["coulomb"]["bound"], report["coulomb"]
@@ -143,7 +145,7 @@ def check_frictionless_block():
     close(report["applied_force"][2], -N_BLOCK, 1e-12, "applied force z")
     assert report["applied_force"][:2] == [0.0, 0.0], report["applied_force"]
     normal = sum(p["normal_force"] for p in report["pairs"])
-    close(normal, N_BLOCK, 1e-6, "normal force")
+    close(normal, N_BLOCK, 1e-5, "normal force")
     t = tangential(report)
     assert math.hypot(*t) <= 1e-12 * N_BLOCK, f"tangential force {t}"
     check_body(report, "body", ALL_MOTIONS)
