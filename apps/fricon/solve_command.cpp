@@ -135,9 +135,8 @@ void print_summary(const driver::RunResult& result, const std::filesystem::path&
           "{:.4e} N on prescribed components (taken by their supports)\n",
           c.transmitted_normal_force, c.total_normal_force - c.transmitted_normal_force);
   }
-  const bool floats = std::any_of(r.bodies.begin(), r.bodies.end(), [](const auto& b) {
-    return !b.free_motions.empty();
-  });
+  const bool floats = std::any_of(r.bodies.begin(), r.bodies.end(),
+                                  [](const auto& b) { return !b.free_motions.empty(); });
   if (floats || r.bodies.size() > 1)
     for (const driver::BodyReport& body : r.bodies)
       fmt::print("  {:<13} {}\n", body.index == 0 ? "bodies" : "", driver::body_line(body));

@@ -93,7 +93,8 @@ TEST(FloatingBodies, CoulombFrictionCarriesAShearBelowMuPAndRefusesOneAbove) {
               kExact * kPressure * area);
   EXPECT_LE(r.report.contact->equality_residual, r.report.contact->equality_bound);
 
-  const std::string error = test::input_error_of([&] { run(with_coulomb_shear(kMu, 0.5 * kPressure)); });
+  const std::string error =
+      test::input_error_of([&] { run(with_coulomb_shear(kMu, 0.5 * kPressure)); });
   EXPECT_THAT(error, HasSubstr("floats"));
   EXPECT_THAT(error, HasSubstr("the applied force along (1, 0, 0) is 4e+04 N"));
   EXPECT_THAT(error, HasSubstr("at most 2.4e+04 N"));  // mu p area
@@ -126,7 +127,8 @@ TEST(FloatingBodies, FloatingInZEqualsTheBlockHeldAtOneNodeWhereTheFloatingSolve
   ASSERT_EQ(a.report.bodies.front().free_motions, std::vector<std::string>{"translation z"});
 
   Problem held = floating;
-  held.dirichlet.push_back({"pin", {false, false, true}, Vec3(0.0, 0.0, a.displacement(2, corner))});
+  held.dirichlet.push_back(
+      {"pin", {false, false, true}, Vec3(0.0, 0.0, a.displacement(2, corner))});
   const RunResult b = run(held);
   ASSERT_EQ(b.report.status, RunStatus::Converged) << b.report.message;
   EXPECT_TRUE(b.report.bodies.front().free_motions.empty());

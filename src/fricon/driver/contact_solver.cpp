@@ -534,8 +534,9 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m,
                 qp_options(problem.solver, rep.norm_Q_scaled, options), problem.solver.warm_start,
                 times);
   if (options.keep_first_dual) out.first_dual = first_dual_problem(problem, disc, Q, map);
-  map.set_infeasibility_handler(
-      [&](const qp::Infeasibility& certificate) { refuse_unbalanced_load(problem, m, certificate); });
+  map.set_infeasibility_handler([&](const qp::Infeasibility& certificate) {
+    refuse_unbalanced_load(problem, m, certificate);
+  });
 
   // @sect: successive approximations (theory.md §5), from the zero state (phi = 0, and for
   // Coulomb lambda_n = 0: the first step is then the frictionless problem); along a loading path

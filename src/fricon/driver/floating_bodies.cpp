@@ -53,8 +53,7 @@ std::string body_line(const BodyReport& body) {
 
 std::vector<BodyReport> describe_bodies(const Model& model) {
   std::vector<BodyReport> out;
-  for (Index b = 0; b < model.bodies.n_bodies(); ++b)
-  {
+  for (Index b = 0; b < model.bodies.n_bodies(); ++b) {
     BodyReport r;
     r.index = b;
     r.description = mesh::describe_body(model.mesh, model.bodies, b);
@@ -73,8 +72,7 @@ std::vector<BodyReport> describe_bodies(const Model& model, const VectorXd& u,
   for (const fe::FloatingBody& body : model.floating.bodies) {
     BodyReport& r = out[static_cast<size_t>(body.body)];
     // The body's columns of R are zero outside it: R_b^T R_b a = R_b^T u.
-    const MatrixXd R_b =
-        MatrixXd(model.floating.R.middleCols(body.first_column, body.n_motions()));
+    const MatrixXd R_b = MatrixXd(model.floating.R.middleCols(body.first_column, body.n_motions()));
     const VectorXd a = (R_b.transpose() * R_b).ldlt().solve(R_b.transpose() * u);
     r.amplitudes.assign(a.data(), a.data() + a.size());
     const Index n_undetermined =
@@ -115,16 +113,18 @@ void refuse_unbalanced_load(const Problem& problem, const Model& model,
   const Real applied = certificate.applied / unit, carried = certificate.carried / unit;
   // A rotation with a translation t turns about the axis along w through c + w x t / |w|^2 (plus
   // a slide along w): the point to name.
-  const Vec3 axis_point = force ? worst->centre : Vec3(worst->centre + w.cross(t) / w.squaredNorm());
+  const Vec3 axis_point =
+      force ? worst->centre : Vec3(worst->centre + w.cross(t) / w.squaredNorm());
   const std::string what =
-      force ? fmt::format("the applied force along {} is {:.4g} N, but contact{} can carry at "
-                          "most {:.4g} N along it",
-                          vector_text(t / unit), applied,
-                          carried > 0.0 ? " and friction" : "", carried)
-            : fmt::format("the applied moment about the axis {} through {} m is {:.4g} N m, but "
-                          "contact{} can carry at most {:.4g} N m about it",
-                          vector_text(w / unit), vector_text(axis_point), applied,
-                          carried > 0.0 ? " and friction" : "", carried);
+      force ? fmt::format(
+                  "the applied force along {} is {:.4g} N, but contact{} can carry at "
+                  "most {:.4g} N along it",
+                  vector_text(t / unit), applied, carried > 0.0 ? " and friction" : "", carried)
+            : fmt::format(
+                  "the applied moment about the axis {} through {} m is {:.4g} N m, but "
+                  "contact{} can carry at most {:.4g} N m about it",
+                  vector_text(w / unit), vector_text(axis_point), applied,
+                  carried > 0.0 ? " and friction" : "", carried);
   throw UnbalancedLoad(fmt::format(
       "{}: contact: {} floats (its free motions: {}), and the load on it cannot be balanced by "
       "contact: {}; {}. Reduce the load, or hold the body by [[dirichlet]] conditions (theory.md "

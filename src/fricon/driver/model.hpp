@@ -60,9 +60,10 @@ mesh::TetMesh make_mesh(const Problem& problem);
 /// `bodies` (mesh::find_bodies(mesh)). Throws InputError when a boundary tag does not exist on the
 /// mesh, nothing is left free, or, in a problem without [contact], the conditions leave a rigid
 /// motion of a body free (K would be singular; with contact such a body floats, and check_model
-/// refuses it only if it has no contact surface): the message names the problem's [[dirichlet]] position, the number of free rigid
-/// motions and, for a mesh of several bodies, the first body not held (its index, regions and
-/// bounding box, mesh::describe_body) and the [[dirichlet]] entries that touch it.
+/// refuses it only if it has no contact surface): the message names the problem's [[dirichlet]]
+/// position, the number of free rigid motions and, for a mesh of several bodies, the first body not
+/// held (its index, regions and bounding box, mesh::describe_body) and the [[dirichlet]] entries
+/// that touch it.
 fe::DofMap make_dofs(const Problem& problem, const mesh::TetMesh& mesh, const mesh::Bodies& bodies);
 
 /// make_dofs with the bodies found on `mesh`.

@@ -105,11 +105,13 @@ VectorXd solve_with_search(const Problem& problem, const contact::ContactDiscret
     u0 = m.factor.solve(m.f);
     const VectorXd free_penetration = contact::mean_penetration(
         disc, m.floating.empty() ? u0 : VectorXd(VectorXd::Zero(u0.size())));
-    candidates = first_candidates      ? *first_candidates
-                 : m.floating.empty() ? contact::initial_candidates(
-                                             free_penetration, problem.solver.contact_search_margin)
-                                       : closed_gaps(free_penetration,
-                                                     problem.solver.contact_search_margin);
+    const Real margin = problem.solver.contact_search_margin;
+    if (first_candidates)
+      candidates = *first_candidates;
+    else if (m.floating.empty())
+      candidates = contact::initial_candidates(free_penetration, margin);
+    else
+      candidates = closed_gaps(free_penetration, margin);
     tolerance = problem.solver.qp.rel_tolerance * free_penetration.cwiseAbs().maxCoeff();
   }
   // @sect: solve on the candidates, add the left-out patches that penetrate, again until none
@@ -205,8 +207,7 @@ VectorXd solve_with_contact(const Problem& problem, const contact::ContactDiscre
   std::unique_ptr<dual::DualOperator> Q;
   {
     ScopedPhase phase(r.report.times, "dual");
-    dual::DualInput input{m.factor,    disc.B, m.f, disc.dofs, interrupt_poll(options),
-                          &disc.offset};
+    dual::DualInput input{m.factor, disc.B, m.f, disc.dofs, interrupt_poll(options), &disc.offset};
     input.R = &m.floating.R;
     Q = dual::make_dual_operator(problem.solver.dual_operator, input);
   }
@@ -217,7 +218,7 @@ VectorXd solve_with_contact(const Problem& problem, const contact::ContactDiscre
 VectorXd solve_contact_problem(const Problem& problem, const contact::ContactDiscretization& disc,
                                const RunOptions& options, RunResult& r) {
   return search_applies(problem, r.model) ? solve_with_search(problem, disc, options, r)
-                                       : solve_with_contact(problem, disc, options, r);
+                                          : solve_with_contact(problem, disc, options, r);
 }
 
 // Without contact: one solve with the factor of K.

@@ -98,8 +98,8 @@ void TrescaMap::solve_with_equality(int k) {
   // The balance as precise as the QP's gradient test (theory.md §4.6).
   options.equality_tolerance = kEqualityShare * qp_.rel_tolerance;
   if (!warm_start_) mu_.resize(0);
-  last_smalse_ = qp::solve_smalse_scaled(apply_Q_, Q_.h(), constraints_, scaling_,
-                                         {Q_.G(), Q_.e()}, options, qp_, lambda_, mu_);
+  last_smalse_ = qp::solve_smalse_scaled(apply_Q_, Q_.h(), constraints_, scaling_, {Q_.G(), Q_.e()},
+                                         options, qp_, lambda_, mu_);
   alpha_ = -mu_;
   if (last_smalse_.infeasible && on_infeasible_) on_infeasible_(last_smalse_.infeasibility);
   last_qp_ = last_smalse_.last_inner;

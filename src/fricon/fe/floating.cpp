@@ -41,8 +41,8 @@ Index farthest(const mesh::TetMesh& mesh, const std::vector<Index>& nodes, const
 
 // Three far-apart nodes of the body (a triangle as large as a quick search finds): their free
 // dofs hold every rigid motion of the body that is not already fixed.
-std::vector<Index> regularization_nodes(const mesh::TetMesh& mesh,
-                                        const std::vector<Index>& nodes, const Vec3& centre) {
+std::vector<Index> regularization_nodes(const mesh::TetMesh& mesh, const std::vector<Index>& nodes,
+                                        const Vec3& centre) {
   const Index a1 = farthest(mesh, nodes, centre);
   const Index a2 = farthest(mesh, nodes, mesh.nodes.col(a1));
   const Vec3 axis = (mesh.nodes.col(a2) - mesh.nodes.col(a1)).normalized();
@@ -78,7 +78,8 @@ FloatingBodies find_floating_bodies(const mesh::TetMesh& mesh, const mesh::Bodie
       for (Index a : nodes) {
         const Vec3 r = motion_at(body.motions.col(j), body.centre, mesh.nodes.col(a));
         for (int c = 0; c < 3; ++c)
-          if (dofs.dof(a, c) >= 0 && r(c) != 0.0) entries.emplace_back(dofs.dof(a, c), column, r(c));
+          if (dofs.dof(a, c) >= 0 && r(c) != 0.0)
+            entries.emplace_back(dofs.dof(a, c), column, r(c));
       }
     body.regularization_dofs = dofs.free_dofs(regularization_nodes(mesh, nodes, check.centre));
     f.bodies.push_back(std::move(body));

@@ -46,7 +46,7 @@ Eigen::Matrix<Real, 6, Eigen::Dynamic> echelon(Eigen::Matrix<Real, 6, Eigen::Dyn
 }  // namespace
 
 std::string describe_motion(const MotionCoefficients& c) {
-  static const char* const names[6] = {"translation x", "translation y", "translation z",
+  static const char* const names[6] = {"translation x",    "translation y",    "translation z",
                                        "rotation about x", "rotation about y", "rotation about z"};
   static const char* const symbols[6] = {"tx", "ty", "tz", "rx", "ry", "rz"};
   Index n_nonzero = 0, only = 0;
@@ -58,8 +58,7 @@ std::string describe_motion(const MotionCoefficients& c) {
   if (n_nonzero == 1) return names[only];
   std::string s;
   for (Index i = 0; i < 6; ++i)
-    if (c(i) != 0.0)
-      s += fmt::format("{}{:.3g} {}", s.empty() ? "" : " + ", c(i), symbols[i]);
+    if (c(i) != 0.0) s += fmt::format("{}{:.3g} {}", s.empty() ? "" : " + ", c(i), symbols[i]);
   return s.empty() ? "none" : s;
 }
 

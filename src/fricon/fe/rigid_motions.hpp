@@ -19,9 +19,9 @@ namespace fricon::fe {
 using MotionCoefficients = Eigen::Matrix<Real, 6, 1>;
 
 struct RigidMotionCheck {
-  Index n_free = 0;        ///< rigid motions (of six) the fixed dofs leave free
-  std::string loose_axes;  ///< components fixed nowhere, e.g. "x or y" (empty if none)
-  Index n_fixed = 0;       ///< fixed dofs among the nodes checked (0: nothing holds them)
+  Index n_free = 0;            ///< rigid motions (of six) the fixed dofs leave free
+  std::string loose_axes;      ///< components fixed nowhere, e.g. "x or y" (empty if none)
+  Index n_fixed = 0;           ///< fixed dofs among the nodes checked (0: nothing holds them)
   Vec3 centre = Vec3::Zero();  ///< the centre of the rotations [m]: of the nodes' bounding box
   /// The free motions, n_free columns of MotionCoefficients about `centre`, in reduced echelon
   /// form over the modes in the order tx, ty, tz, rx, ry, rz: a translation or rotation that is

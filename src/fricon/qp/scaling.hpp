@@ -61,8 +61,7 @@ MpgpReport solve_mpgp_scaled(const Operator& A, const Eigen::VectorXd& b,
 SmalseReport solve_smalse_scaled(const Operator& A, const Eigen::VectorXd& b,
                                  const SeparableConstraints& c, const BlockScaling& D,
                                  const EqualityConstraint& eq, const SmalseOptions& opt,
-                                 const MpgpOptions& inner, Eigen::VectorXd& x,
-                                 Eigen::VectorXd& mu);
+                                 const MpgpOptions& inner, Eigen::VectorXd& x, Eigen::VectorXd& mu);
 
 /// The KKT residuals (kkt.hpp) of x with gradient g = A x - b, measured in the scaled problem
 /// and relative to its stopping test's reference: scale_x = max(||D^-1 x||_inf, largest scaled

@@ -134,11 +134,13 @@ SmalseReport solve_smalse(const Operator& A, const Eigen::VectorXd& b,
     const double load = w.null.col(j).dot(eq.e);
     if (std::abs(load) > opt.equality_tolerance * eq.e.norm()) {
       rep.infeasible = true;
-      rep.infeasibility = {load > 0 ? Eigen::VectorXd(w.null.col(j)) : Eigen::VectorXd(-w.null.col(j)),
-                           std::abs(load), 0.0};
+      rep.infeasibility = {
+          load > 0 ? Eigen::VectorXd(w.null.col(j)) : Eigen::VectorXd(-w.null.col(j)),
+          std::abs(load), 0.0};
       rep.termination = QpTermination::NumericalFailure;
-      rep.message = "the equality constraint cannot be met: a load acts on a motion no multiplier "
-                    "resists";
+      rep.message =
+          "the equality constraint cannot be met: a load acts on a motion no multiplier "
+          "resists";
       rep.seconds = watch.seconds();
       return rep;
     }
@@ -156,10 +158,9 @@ SmalseReport solve_smalse(const Operator& A, const Eigen::VectorXd& b,
 
   // @sect: the penalty, the inner precision and the augmented Hessian A + rho Gh^T Gh.
   long power_products = 0;
-  const double norm_A = inner.norm_A > 0.0
-                            ? inner.norm_A
-                            : estimate_norm(A, n, inner.power_iterations, inner.power_tolerance,
-                                            &power_products);
+  const double norm_A = inner.norm_A > 0.0 ? inner.norm_A
+                                           : estimate_norm(A, n, inner.power_iterations,
+                                                           inner.power_tolerance, &power_products);
   if (!(norm_A > 0.0) || !std::isfinite(norm_A))
     throw NumericalError(fmt::format("solve_smalse: ||A|| = {}", norm_A));
   rep.rho = opt.rho_factor * norm_A;
@@ -227,8 +228,7 @@ SmalseReport solve_smalse(const Operator& A, const Eigen::VectorXd& b,
     rep.outer_iterations = k + 1;
     const Eigen::VectorXd b_aug = b_base - Gh.transpose() * mu_h + rho * (Gh.transpose() * eh);
     rep.reference_norm = std::max(reference, resisted_part(b_base, c).norm());
-    const double eps_g =
-        std::max(inner.rel_tolerance * rep.reference_norm, inner.abs_tolerance);
+    const double eps_g = std::max(inner.rel_tolerance * rep.reference_norm, inner.abs_tolerance);
     io.abs_tolerance = eps_g;
     const MpgpReport r = solve_mpgp(A_aug, b_aug, c, io, x);
     accumulate(r, rep);
@@ -276,9 +276,9 @@ SmalseReport solve_smalse(const Operator& A, const Eigen::VectorXd& b,
     L_prev = L;
     if (k + 1 == opt.max_outer) {
       rep.termination = QpTermination::MaxIterations;
-      rep.message = fmt::format(
-          "reached max_outer = {} with ||G x - e|| / ||e|| = {:.3e} (target {:.1e})",
-          opt.max_outer, rep.equality_residual, opt.equality_tolerance);
+      rep.message =
+          fmt::format("reached max_outer = {} with ||G x - e|| / ||e|| = {:.3e} (target {:.1e})",
+                      opt.max_outer, rep.equality_residual, opt.equality_tolerance);
     }
   }
   if (opt.projector && w.W.cols() > 0) {

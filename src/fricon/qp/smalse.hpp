@@ -79,14 +79,14 @@ struct Infeasibility {
 
 struct SmalseReport {
   QpTermination termination = QpTermination::NumericalFailure;
-  std::string message;     ///< one sentence: why the solver stopped
+  std::string message;  ///< one sentence: why the solver stopped
   int outer_iterations = 0;
-  int iterations = 0;      ///< MPGP steps over all inner solves
-  long n_products = 0;     ///< products with A over all inner solves (power method excluded)
-  double rho = 0.0;        ///< the penalty used
+  int iterations = 0;   ///< MPGP steps over all inner solves
+  long n_products = 0;  ///< products with A over all inner solves (power method excluded)
+  double rho = 0.0;     ///< the penalty used
   double equality_residual = 0.0;  ///< ||G x - e|| / max(||e||, ||G x||) at the end (0 if both 0)
-  double norm_gp = 0.0;    ///< ||g^P|| of the augmented Lagrangian at the end
-  double reference_norm = 0.0;  ///< the reference of the gradient test
+  double norm_gp = 0.0;            ///< ||g^P|| of the augmented Lagrangian at the end
+  double reference_norm = 0.0;     ///< the reference of the gradient test
   /// Set when the equality cannot be met in Omega (termination NumericalFailure).
   bool infeasible = false;
   Infeasibility infeasibility;

@@ -76,7 +76,8 @@ TEST(Smalse, AnEqualityOmegaCannotMeetIsCertifiedInfeasible) {
   const Eigen::VectorXd b = Eigen::VectorXd::Ones(n);
   // The tangential multipliers can sum to at most 4 (four unit discs); ask for 6.
   EqualityConstraint eq{Eigen::MatrixXd::Zero(1, n), Eigen::VectorXd::Constant(1, 6.0)};
-  for (Index p = 0; p < patches; ++p) eq.G(0, 3 * p + 1) = 1.0;
+  for (Index p = 0; p < patches; ++p)
+    eq.G(0, 3 * p + 1) = 1.0;
   Eigen::VectorXd x = Eigen::VectorXd::Zero(n), mu;
   const SmalseReport r = solve_smalse(dense(A), b, c, eq, SmalseOptions{}, tight(), x, mu);
   ASSERT_TRUE(r.infeasible) << r.message;
@@ -93,7 +94,8 @@ TEST(Smalse, ANegativeResultantOfBoundsIsInfeasible) {
   const Eigen::MatrixXd A = spd(n, 5);
   const Eigen::VectorXd b = Eigen::VectorXd::Ones(n);
   EqualityConstraint eq{Eigen::MatrixXd::Zero(1, n), Eigen::VectorXd::Constant(1, -2.0)};
-  for (Index p = 0; p < patches; ++p) eq.G(0, 3 * p) = 1.0;  // lambda_n >= 0 sum to -2?
+  for (Index p = 0; p < patches; ++p)
+    eq.G(0, 3 * p) = 1.0;  // lambda_n >= 0 sum to -2?
   Eigen::VectorXd x = Eigen::VectorXd::Zero(n), mu;
   const SmalseReport r = solve_smalse(dense(A), b, c, eq, SmalseOptions{}, tight(), x, mu);
   ASSERT_TRUE(r.infeasible) << r.message;
