@@ -217,8 +217,17 @@ std::vector<SuiteSparse_long> fill_reducing_order(const SparseMatrix& K,
   return perm;
 }
 
-// The dofs of the trailing block in pivot order; postordering keeps the constrained dofs last
-// (they are the root chain), which is checked.
+// Whether the factor's order ends with the dofs `last`.
+bool trailing_is_last(const cholmod_factor* L, const std::vector<Index>& last) {
+  const auto* P = static_cast<const SuiteSparse_long*>(L->Perm);
+  const Index n = static_cast<Index>(L->n), m = static_cast<Index>(last.size());
+  std::vector<Index> trailing(P + (n - m), P + n), sorted_last = last;
+  std::sort(trailing.begin(), trailing.end());
+  std::sort(sorted_last.begin(), sorted_last.end());
+  return trailing == sorted_last;
+}
+
+// The dofs of the trailing block in pivot order: the constrained dofs, last (checked).
 std::vector<Index> trailing_dofs(const cholmod_factor* L, const std::vector<Index>& last) {
   const auto* P = static_cast<const SuiteSparse_long*>(L->Perm);
   const Index n = static_cast<Index>(L->n), m = static_cast<Index>(last.size());
@@ -254,6 +263,15 @@ void CholeskyFactor::factorize(const SparseMatrix& K, const std::vector<Index>& 
   c->method[0].ordering = CHOLMOD_GIVEN;
   c->postorder = 1;
   impl_->L = cholmod_l_analyze_p(&A, perm.data(), nullptr, 0, c);
+  // Postordering keeps a connected trailing block last (it is the root chain of the elimination
+  // tree), but not one spread over several bodies, whose trees it visits one after the other:
+  // then the given order is kept as it is.
+  if (impl_->L && !last.empty() && !trailing_is_last(impl_->L, last)) {
+    cholmod_l_free_factor(&impl_->L, c);
+    c->postorder = 0;
+    impl_->L = cholmod_l_analyze_p(&A, perm.data(), nullptr, 0, c);
+    c->postorder = 1;
+  }
   c->nmethods = 0;
   if (!impl_->L || c->status < CHOLMOD_OK)
     throw NumericalError(

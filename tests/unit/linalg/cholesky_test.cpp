@@ -8,6 +8,7 @@
 #include "fricon/core/error.hpp"
 #include "fricon/fe/assembly.hpp"
 #include "fricon/linalg/cholesky.hpp"
+#include "fricon/mesh/bodies.hpp"
 #include "fricon/mesh/brick.hpp"
 
 using namespace fricon;
@@ -65,11 +66,10 @@ TEST(Cholesky, UnclampedStiffnessIsReportedAsNotPositiveDefinite) {
   }
 }
 
-TEST(Cholesky, TrailingBlockIsTheFactorOfTheSchurComplement) {
-  // Constrain the dofs of the bottom face to come last; then L22 L22^T must equal the Schur
-  // complement S = K22 - K21 K11^-1 K12 computed with dense algebra.
-  const auto [m, dofs, K] = clamped_steel(Vec3(2, 1, 1), {4, 2, 2});
-  const std::vector<Index> last = dofs.free_dofs(m.nodes_with_tag("z0"));
+namespace {
+// L22 L22^T of a factor of K with the dofs `last` last must equal the Schur complement
+// S = K22 - K21 K11^-1 K12 computed with dense algebra, and its solves K's.
+void expect_trailing_schur_complement(const SparseMatrix& K, const std::vector<Index>& last) {
   linalg::CholeskyFactor chol;
   chol.factorize(K, last);
   const auto& order = chol.trailing_order();
@@ -98,6 +98,34 @@ TEST(Cholesky, TrailingBlockIsTheFactorOfTheSchurComplement) {
   // Solves with the constrained factor agree with dense algebra too.
   const VectorXd b = VectorXd::LinSpaced(n, -1.0, 1.0);
   EXPECT_NEAR((chol.solve(b) - Kd.llt().solve(b)).norm() / Kd.llt().solve(b).norm(), 0.0, 1e-12);
+}
+}  // namespace
+
+TEST(Cholesky, TrailingBlockIsTheFactorOfTheSchurComplement) {
+  // The dofs of the bottom face last.
+  const auto [m, dofs, K] = clamped_steel(Vec3(2, 1, 1), {4, 2, 2});
+  expect_trailing_schur_complement(K, dofs.free_dofs(m.nodes_with_tag("z0")));
+}
+
+TEST(Cholesky, TrailingBlockOverTwoBodiesIsTheFactorOfTheSchurComplement) {
+  // Two bricks that share no node, both bottoms last (the contact dofs of two bodies): K is block
+  // diagonal, its elimination tree a forest, and the trailing block spans two of its trees
+  // (postordering them would interleave the bodies' dofs).
+  mesh::TetMesh b = mesh::make_brick({Vec3(1, 1, 1), {2, 2, 2}});
+  b.nodes.colwise() += Vec3(3, 0, 0);
+  const mesh::TetMesh m =
+      mesh::disjoint_union({mesh::make_brick({Vec3(2, 1, 1), {4, 2, 2}}), b}, {"a_", "b_"});
+  std::vector<bool> fixed(static_cast<size_t>(3 * m.n_nodes()), false);
+  for (const char* tag : {"a_x0", "b_x0"})
+    for (Index a : m.nodes_with_tag(tag))
+      for (int c = 0; c < 3; ++c)
+        fixed[static_cast<size_t>(3 * a + c)] = true;
+  const fe::DofMap dofs(fixed);
+  const SparseMatrix K = fe::assemble_stiffness(m, fe::isotropic(2e11, 0.3), dofs);
+  std::vector<Index> last = dofs.free_dofs(m.nodes_with_tag("a_z0"));
+  const std::vector<Index> second = dofs.free_dofs(m.nodes_with_tag("b_z0"));
+  last.insert(last.end(), second.begin(), second.end());
+  expect_trailing_schur_complement(K, last);
 }
 
 namespace {
