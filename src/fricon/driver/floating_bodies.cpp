@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "fricon/core/error.hpp"
+#include "fricon/driver/contact_solver.hpp"
 
 namespace fricon::driver {
 
@@ -88,6 +89,21 @@ std::vector<BodyReport> describe_bodies(const Model& model, const VectorXd& u,
     }
   }
   return out;
+}
+
+void check_balance(const Problem& problem, const Model& model,
+                   const contact::ContactDiscretization& disc) {
+  if (model.floating.empty() || problem.loading.steps > 1) return;
+  const auto bounds = make_slip_bounds(problem, model.mesh, disc);
+  if (bounds->uses_pressure()) return;
+  qp::SeparableConstraints c = qp::SeparableConstraints::contact_layout(disc.n_patches());
+  c.set_disc_radii(
+      bounds->radii(1, VectorXd::Zero(disc.surface.n_nodes()), VectorXd::Zero(disc.n_patches())));
+  const SparseMatrix& R = model.floating.R;
+  const qp::EqualityConstraint balance{MatrixXd(SparseMatrix(R.transpose() * disc.B.transpose())),
+                                       R.transpose() * model.f};
+  if (auto certificate = qp::balance_certificate(balance, c, problem.solver.qp.rel_tolerance))
+    refuse_unbalanced_load(problem, model, *certificate);
 }
 
 void refuse_unbalanced_load(const Problem& problem, const Model& model,

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "fricon/contact/discretization.hpp"
 #include "fricon/core/error.hpp"
 #include "fricon/core/types.hpp"
 #include "fricon/driver/model.hpp"
@@ -43,6 +44,15 @@ std::vector<BodyReport> describe_bodies(const Model& model);
 /// qp::SmalseReport::undetermined; empty: none).
 std::vector<BodyReport> describe_bodies(const Model& model, const VectorXd& u,
                                         const MatrixXd& undetermined);
+
+/// The check, before any factorization, that contact can balance the load on the floating bodies
+/// of `model` (theory.md §2.10): with frictionless or Tresca pairs only, whose slip bounds at zero
+/// slip are known, and in a static run (a loading path's loads change with the step), G = R^T B^T
+/// and e = R^T f need no solve with K, and phase one (qp::balance_certificate) decides. Throws
+/// UnbalancedLoad as refuse_unbalanced_load does; a load it passes may still be refused by the
+/// solve (a slip bound that weakens with the slip, Coulomb's pressures).
+void check_balance(const Problem& problem, const Model& model,
+                   const contact::ContactDiscretization& disc);
 
 /// The InputError of a load that contact cannot carry (a contact search that left patches out
 /// catches it and tries every patch).

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "fricon/core/error.hpp"
+#include "fricon/driver/floating_bodies.hpp"
 #include "fricon/driver/option_table.hpp"
 #include "fricon/fe/rigid_motions.hpp"
 #include "fricon/mesh/brick.hpp"
@@ -472,7 +473,9 @@ std::optional<contact::ContactDiscretization> check_model(const Problem& problem
   check_steps(problem, model.mesh);
   check_floating_bodies_touch(problem, model);
   if (problem.contact.empty()) return std::nullopt;
-  return discretize_contact(problem, model.mesh, model.dofs);
+  contact::ContactDiscretization disc = discretize_contact(problem, model.mesh, model.dofs);
+  check_balance(problem, model, disc);
+  return disc;
 }
 
 Model build_model(const Problem& problem, PhaseTimes& times, const PhaseCallback& on_phase_start) {

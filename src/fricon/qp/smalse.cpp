@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include <fmt/format.h>
 #include <Eigen/Eigenvalues>
@@ -93,6 +94,34 @@ Eigen::VectorXd phase_one(const Eigen::MatrixXd& Gh, const Eigen::VectorXd& eh,
   return eh - Gh * x1;
 }
 
+// A load along a row direction that acts on no free multiplier (w.null): the first such
+// direction, signed so that the load along it is positive, as a certificate; none if every such
+// load is below `tolerance` ||e||.
+std::optional<Infeasibility> unresisted_load(const Whitening& w, const Eigen::VectorXd& e,
+                                             double tolerance) {
+  for (Index j = 0; j < w.null.cols(); ++j) {
+    const double load = w.null.col(j).dot(e);
+    if (std::abs(load) > tolerance * e.norm())
+      return Infeasibility{
+          load > 0 ? Eigen::VectorXd(w.null.col(j)) : Eigen::VectorXd(-w.null.col(j)),
+          std::abs(load), 0.0};
+  }
+  return std::nullopt;
+}
+
+// The certificate of phase one when its shortest residual exceeds `tolerance` ||eh||, mapped back
+// to the rows of G by W.
+std::optional<Infeasibility> phase_one_certificate(const Whitening& w, const Eigen::MatrixXd& Gh,
+                                                   const Eigen::VectorXd& eh,
+                                                   const SeparableConstraints& c,
+                                                   const MpgpOptions& inner, Eigen::VectorXd x1,
+                                                   double tolerance) {
+  const Eigen::VectorXd d = phase_one(Gh, eh, c, inner, x1);
+  if (d.size() == 0 || !(d.norm() > tolerance * eh.norm())) return std::nullopt;
+  // d^T e - d^T G x1 = ||d||^2 > 0, and d^T G x1 is the most Omega gives along d.
+  return Infeasibility{w.W * d, d.dot(eh), d.dot(Gh * x1)};
+}
+
 void accumulate(const MpgpReport& inner, SmalseReport& rep) {
   rep.iterations += inner.iterations;
   rep.n_products += inner.n_products;
@@ -100,6 +129,20 @@ void accumulate(const MpgpReport& inner, SmalseReport& rep) {
 }
 
 }  // namespace
+
+std::optional<Infeasibility> balance_certificate(const EqualityConstraint& eq,
+                                                 const SeparableConstraints& c, double tolerance) {
+  FRICON_CHECK(eq.G.cols() == c.size() && eq.e.size() == eq.G.rows(),
+               "balance_certificate: G is " << eq.G.rows() << " x " << eq.G.cols() << " for "
+                                            << c.size() << " unknowns");
+  const Eigen::MatrixXd Ga = active_columns(eq.G, c);
+  const Whitening w = whiten(Ga);
+  if (auto certificate = unresisted_load(w, eq.e, tolerance)) return certificate;
+  const Eigen::MatrixXd Gh = w.W.transpose() * Ga;
+  const Eigen::VectorXd eh = w.W.transpose() * eq.e;
+  return phase_one_certificate(w, Gh, eh, c, MpgpOptions{}, Eigen::VectorXd::Zero(c.size()),
+                               std::max(kInfeasibleShare, tolerance));
+}
 
 void SmalseOptions::validate() const {
   require("SmalseOptions::rho_factor", rho_factor, positive());
@@ -130,13 +173,10 @@ SmalseReport solve_smalse(const Operator& A, const Eigen::VectorXd& b,
   const Eigen::MatrixXd Ga = active_columns(eq.G, c);
   const Whitening w = whiten(Ga);
   rep.undetermined = w.null;
-  for (Index j = 0; j < w.null.cols() && !opt.drop_unresisted_load; ++j) {
-    const double load = w.null.col(j).dot(eq.e);
-    if (std::abs(load) > opt.equality_tolerance * eq.e.norm()) {
+  if (!opt.drop_unresisted_load)
+    if (auto certificate = unresisted_load(w, eq.e, opt.equality_tolerance)) {
       rep.infeasible = true;
-      rep.infeasibility = {
-          load > 0 ? Eigen::VectorXd(w.null.col(j)) : Eigen::VectorXd(-w.null.col(j)),
-          std::abs(load), 0.0};
+      rep.infeasibility = std::move(*certificate);
       rep.termination = QpTermination::NumericalFailure;
       rep.message =
           "the equality constraint cannot be met: a load acts on a motion no multiplier "
@@ -144,7 +184,6 @@ SmalseReport solve_smalse(const Operator& A, const Eigen::VectorXd& b,
       rep.seconds = watch.seconds();
       return rep;
     }
-  }
   // The equality as it is solved: without the dropped load, if it is dropped.
   const EqualityConstraint kept{
       Ga, opt.drop_unresisted_load ? Eigen::VectorXd(eq.e - w.null * (w.null.transpose() * eq.e))
@@ -253,13 +292,10 @@ SmalseReport solve_smalse(const Operator& A, const Eigen::VectorXd& b,
     residual_prev = res.norm();
     if (stagnant >= kStagnantSteps) {
       stagnant = 0;
-      Eigen::VectorXd x1 = x;
-      const Eigen::VectorXd d = phase_one(Gh, eh, c, inner, x1);
-      const double shortest = d.size() > 0 ? d.norm() : 0.0;
-      if (shortest > std::max(kInfeasibleShare, opt.equality_tolerance) * eh.norm()) {
-        // d^T e - d^T G x1 = ||d||^2 > 0, and d^T G x1 is the most Omega gives along d.
+      if (auto certificate = phase_one_certificate(
+              w, Gh, eh, c, inner, x, std::max(kInfeasibleShare, opt.equality_tolerance))) {
         rep.infeasible = true;
-        rep.infeasibility = {w.W * d, d.dot(eh), d.dot(Gh * x1)};
+        rep.infeasibility = std::move(*certificate);
         rep.termination = QpTermination::NumericalFailure;
         rep.message = fmt::format(
             "the equality constraint cannot be met in Omega: along the certificate direction the "

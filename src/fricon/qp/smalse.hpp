@@ -21,6 +21,7 @@
 // (products with G only) and, if its shortest residual d = e - G x1 is not small, reports the
 // certificate of infeasibility (Farkas): d^T e > d^T G x1 = sup over Omega of d^T G x.
 
+#include <optional>
 #include <string>
 
 #include <Eigen/Core>
@@ -96,6 +97,13 @@ struct SmalseReport {
   MpgpReport last_inner;  ///< the report of the last inner MPGP solve
   double seconds = 0.0;
 };
+
+/// Whether G x = e can be met for some x in Omega, decided without A (the rows of G made
+/// orthonormal over the multipliers free to move, then phase one, as solve_smalse does when it
+/// stagnates): the certificate of infeasibility, or none when the shortest residual is at most
+/// max(1e-6, tolerance) ||e|| (in the orthonormal rows). Costs products with G only.
+std::optional<Infeasibility> balance_certificate(const EqualityConstraint& eq,
+                                                 const SeparableConstraints& c, double tolerance);
 
 /// Solves the QP above. x: in, the initial guess; out, the last iterate. mu: in, the initial
 /// multipliers of the equality (m entries, or empty for zero); out, the last ones, in the rows

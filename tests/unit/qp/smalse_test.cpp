@@ -136,3 +136,30 @@ TEST(Smalse, ARowOnPinnedDiscsOnlyIsUndeterminedAndMustCarryNoLoad) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(BalanceCertificate, DecidesFeasibilityWithoutTheHessian) {
+  const Index patches = 4, n = 3 * patches;
+  SeparableConstraints c = SeparableConstraints::contact_layout(patches);
+  c.set_disc_radii(Eigen::VectorXd::Constant(patches, 1.0));
+  // Row 0: the tangential resultant (at most 4 in Omega); row 1: the normal one (any >= 0).
+  EqualityConstraint eq{Eigen::MatrixXd::Zero(2, n), Eigen::VectorXd(2)};
+  for (Index p = 0; p < patches; ++p) {
+    eq.G(0, 3 * p + 1) = 1.0;
+    eq.G(1, 3 * p) = 1.0;
+  }
+  eq.e << 3.5, 2.0;
+  EXPECT_FALSE(balance_certificate(eq, c, 1e-8));
+  eq.e << 6.0, 2.0;
+  const auto tangential = balance_certificate(eq, c, 1e-8);
+  ASSERT_TRUE(tangential);
+  EXPECT_GT(tangential->direction.dot(eq.e),
+            support_of(eq.G.transpose() * tangential->direction, c));
+  eq.e << 1.0, -2.0;  // a pull: the normal multipliers cannot give a negative resultant
+  const auto pull = balance_certificate(eq, c, 1e-8);
+  ASSERT_TRUE(pull);
+  EXPECT_NEAR(pull->carried, 0.0, 1e-9 * pull->applied);
+}
+
+}  // namespace
