@@ -22,6 +22,8 @@ held by contact alone must be balanced by its contact forces, whatever the mesh.
     applied_force, the 100 MPa on the facetted quarter disc: within 0.1 % of p pi R^2 / 4) to
     1e-5. With Coulomb friction the pair's tangential force is at most 0.1 times its normal force
     and |lambda_t| <= F lambda_n on every patch.
+  - free-block with the paper's slip-dependent F(s) (F(0) = 0.3): friction carries the push
+    exactly (1e-5 of N), and the Coulomb certificate passes.
   - free-block along a loading path of 4 steps (the push 0, 0.5, 1 and 1.4 times the example's):
     every step converges, the contact carries N and friction exactly the step's push (1e-5 of N).
   - sphere-between-blocks: the ball and the upper block float in "translation z" only; the lower
@@ -221,8 +223,21 @@ def check_block_path():
             step["step"], step["tangential_force_x"], factor * T_BLOCK)
 
 
+def check_block_slip_weakening():
+    """free-block.toml with the paper's slip-dependent coefficient F(s) (param 6e4 1/m; F(0) =
+    0.3, the same as the example's constant, falling with the slip): it still sticks as a whole,
+    friction carrying exactly the push (1e-5 of N), and the Coulomb certificate passes."""
+    _, report = solve("free-block-paper-law", 'contact.friction={law="paper", param=6.0e4}',
+                      problem="free-block")
+    t = tangential(report)
+    assert abs(t[0] + T_BLOCK) <= 1e-5 * N_BLOCK, f"tangential force x {t[0]!r} (-{T_BLOCK})"
+    assert report["coulomb"]["residual"] <= report["coulomb"]["bound"], report["coulomb"]
+    check_balance(report)
+
+
 start = time.monotonic()
 check("free-block", check_free_block)
+check("free-block with a slip-dependent coefficient", check_block_slip_weakening)
 check("free-block along a loading path", check_block_path)
 check("free-block frictionless", check_frictionless_block)
 check("nafems-punch-frictionless", lambda: check_punch("nafems-punch-frictionless", 0.0))
