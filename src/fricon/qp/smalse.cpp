@@ -30,6 +30,8 @@ constexpr double kPhaseOneRegularization = 1e-12;
 // this share of ||e|| (and the asked equality tolerance).
 constexpr double kPhaseOneTolerance = 1e-10;
 constexpr double kInfeasibleShare = 1e-6;
+// A row's load must exceed what Omega gives along it by this share of the load to certify.
+constexpr double kRowExcess = 1e-9;
 
 // G with the columns of the discs pinned to zero (radius 0) cleared: those multipliers stay 0.
 Eigen::MatrixXd active_columns(const Eigen::MatrixXd& G, const SeparableConstraints& c) {
@@ -122,6 +124,41 @@ std::optional<Infeasibility> phase_one_certificate(const Whitening& w, const Eig
   return Infeasibility{w.W * d, d.dot(eh), d.dot(Gh * x1)};
 }
 
+// sup { g^T x : x in Omega }: per disc its radius times ||g_i||, per bound 0 when g_i <= 0,
+// infinity when g_i > 0 (a bound's multiplier grows without limit).
+double support(const Eigen::VectorXd& g, const SeparableConstraints& c) {
+  double s = 0.0;
+  for (std::size_t k = 0; k < c.blocks.size(); ++k) {
+    const Block& block = c.blocks[k];
+    if (block.kind == BlockKind::Disc)
+      s += c.radius(static_cast<Index>(k)) * g.segment<2>(block.offset).norm();
+    else if (g(block.offset) > 0.0)
+      return std::numeric_limits<double>::infinity();
+  }
+  return s;
+}
+
+// A certificate along one row of G (one of the motions as they are numbered) rather than the
+// phase one's direction, whose metric is that of the orthonormal rows: the row whose load most
+// exceeds what Omega gives along it, if one does (then the figures are those of that motion
+// alone, e.g. a push against mu N); else `found` as it is.
+Infeasibility along_one_row(const Eigen::MatrixXd& Ga, const Eigen::VectorXd& e,
+                            const SeparableConstraints& c, Infeasibility found) {
+  double best = 0.0;
+  for (Index j = 0; j < Ga.rows(); ++j) {
+    if (e(j) == 0.0) continue;
+    const double sign = e(j) > 0.0 ? 1.0 : -1.0;
+    const double applied = std::abs(e(j));
+    const double carried = support(sign * Ga.row(j).transpose(), c);
+    const double excess = (applied - carried) / applied;
+    if (excess > kRowExcess && excess > best) {
+      best = excess;
+      found = {sign * Eigen::VectorXd::Unit(Ga.rows(), j), applied, carried};
+    }
+  }
+  return found;
+}
+
 void accumulate(const MpgpReport& inner, SmalseReport& rep) {
   rep.iterations += inner.iterations;
   rep.n_products += inner.n_products;
@@ -140,8 +177,11 @@ std::optional<Infeasibility> balance_certificate(const EqualityConstraint& eq,
   if (auto certificate = unresisted_load(w, eq.e, tolerance)) return certificate;
   const Eigen::MatrixXd Gh = w.W.transpose() * Ga;
   const Eigen::VectorXd eh = w.W.transpose() * eq.e;
-  return phase_one_certificate(w, Gh, eh, c, MpgpOptions{}, Eigen::VectorXd::Zero(c.size()),
-                               std::max(kInfeasibleShare, tolerance));
+  const auto certificate =
+      phase_one_certificate(w, Gh, eh, c, MpgpOptions{}, Eigen::VectorXd::Zero(c.size()),
+                            std::max(kInfeasibleShare, tolerance));
+  if (!certificate) return std::nullopt;
+  return along_one_row(Ga, eq.e, c, *certificate);
 }
 
 void SmalseOptions::validate() const {
@@ -295,7 +335,7 @@ SmalseReport solve_smalse(const Operator& A, const Eigen::VectorXd& b,
       if (auto certificate = phase_one_certificate(
               w, Gh, eh, c, inner, x, std::max(kInfeasibleShare, opt.equality_tolerance))) {
         rep.infeasible = true;
-        rep.infeasibility = std::move(*certificate);
+        rep.infeasibility = along_one_row(Ga, eq.e, c, std::move(*certificate));
         rep.termination = QpTermination::NumericalFailure;
         rep.message = fmt::format(
             "the equality constraint cannot be met in Omega: along the certificate direction the "
