@@ -236,10 +236,9 @@ SmalseReport solve_smalse(const Operator& A, const Eigen::VectorXd& b,
                              : Eigen::VectorXd();
 
   // @sect: the penalty, the inner precision and the augmented Hessian A + rho Gh^T Gh.
-  long power_products = 0;
-  const double norm_A = inner.norm_A > 0.0 ? inner.norm_A
-                                           : estimate_norm(A, n, inner.power_iterations,
-                                                           inner.power_tolerance, &power_products);
+  const double norm_A = inner.norm_A > 0.0
+                            ? inner.norm_A
+                            : estimate_norm(A, n, inner.power_iterations, inner.power_tolerance);
   if (!(norm_A > 0.0) || !std::isfinite(norm_A))
     throw NumericalError(fmt::format("solve_smalse: ||A|| = {}", norm_A));
   rep.rho = opt.rho_factor * norm_A;
@@ -252,7 +251,7 @@ SmalseReport solve_smalse(const Operator& A, const Eigen::VectorXd& b,
   // itself is not shifted). The multiplier of the original problem is then
   // mu_h - Gh (A x - b) at the solution.
   const auto project = [&](Eigen::VectorXd& v) { v.noalias() -= Gh.transpose() * (Gh * v); };
-  Eigen::VectorXd Pv, APv;
+  Eigen::VectorXd Pv;
   const Operator A_aug = [&](const Eigen::VectorXd& v, Eigen::VectorXd& y) {
     if (opt.projector) {
       Pv = v;
@@ -287,8 +286,7 @@ SmalseReport solve_smalse(const Operator& A, const Eigen::VectorXd& b,
     }
   }
   // The gradient test is relative to the data of the problem (b_R and the load rho e) or, when
-  // larger, to that of the augmented one (b_aug_R below, which holds the multipliers mu: the
-  // rounding level of its gradient).
+  // larger, to the projected linear term's (b_base_R below: the rounding level of its gradient).
   const double reference = std::max(resisted_part(b, c).norm(), rho * eh.norm());
   const double eta = opt.eta_factor * reference;
   double M = opt.M_factor * norm_A;
