@@ -43,7 +43,7 @@ int mesh_info(const MeshFileOptions& o) {
   const driver::LengthUnit unit = parse_enum<driver::LengthUnit>(o.unit);
   mesh::TetMesh mesh =
       o.size_factor > 0 ? mesh::read_gmsh(o.file, o.size_factor) : mesh::read_gmsh(o.file);
-  mesh.nodes *= driver::metres_per(unit);  // as the problem reader scales it
+  mesh::scale_lengths(mesh, driver::metres_per(unit));  // as the problem reader scales it
   fmt::print("{}: {} nodes, {} tetrahedra, {} boundary triangles\n", o.file, mesh.n_nodes(),
              mesh.n_tets(), mesh.n_faces());
   const Vec3 extent = mesh.nodes.rowwise().maxCoeff() - mesh.nodes.rowwise().minCoeff();

@@ -83,6 +83,14 @@ void print_summary(const driver::RunResult& result, const std::filesystem::path&
           "  search        {} of {} patches in the QP, {} left out (none penetrates), {} {}\n",
           c.n_candidate_patches, c.n_patches, c.n_patches - c.n_candidate_patches, c.search_rounds,
           c.search_rounds == 1 ? "round" : "rounds");
+    if (c.geometry_updates >= 0)
+      fmt::print(
+          "  geometry      {} geometric update(s): the linearized gap is within {:.2e} m of the "
+          "true one at the deformed position ({:.2e} of the normal displacement {:.3e} m; "
+          "tolerance {:g})\n",
+          c.geometry_updates, c.geometry_change,
+          c.geometry_scale > 0.0 ? c.geometry_change / c.geometry_scale : 0.0, c.geometry_scale,
+          c.geometry_tolerance);
     fmt::print("  outer loop    {} iterations ({}), err(k):", c.outer_iterations,
                enum_name(c.termination));
     for (double e : c.err_history)

@@ -1,6 +1,7 @@
 #include "fricon/contact/b_matrix.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <tuple>
 #include <utility>
@@ -16,13 +17,14 @@ namespace fricon::contact {
 
 Frames patch_frames(const mesh::TetMesh& mesh, const ContactSurface& surface,
                     const Patches& patches) {
-  if (surface.master.size() == 0)
+  if (surface.master.size() == 0 && !surface.frames_vary)
     return Frames::constant(surface.n, surface.t1, surface.t2, patches.size());
   Frames f;
   f.n.resize(3, patches.size());
   f.t1.resize(3, patches.size());
   f.t2.resize(3, patches.size());
-  // Against a body: the area-weighted mean of the nodes' contact normals (theory.md §2.8).
+  // Against a body or a curved obstacle: the area-weighted mean of the nodes' contact normals
+  // (theory.md §2.8, §2.11).
   for (Index p = 0; p < patches.size(); ++p) {
     Vec3 sum = Vec3::Zero();
     for (Index k : patches.faces[static_cast<size_t>(p)]) {
@@ -41,23 +43,79 @@ Frames patch_frames(const mesh::TetMesh& mesh, const ContactSurface& surface,
   return f;
 }
 
+namespace {
+
+/// The directions (rows n, t1, t2) at surface node k inside patch frame F: F itself, or against
+/// a curved obstacle F turned onto the node's normal (t1 the projection of F's t1 on the node's
+/// tangent plane, t2 = t1 x n), so that the frame varies smoothly inside the patch.
+Mat3 node_directions(const ContactSurface& surface, const Mat3& F, Index k) {
+  if (!surface.frames_vary) return F;
+  const Vec3 n = surface.node_frames.n.col(k);
+  const Vec3 t1 = (Vec3(F.row(1)) - F.row(1).dot(n) * n).normalized();
+  Mat3 d;
+  d.row(0) = n.transpose();
+  d.row(1) = t1.transpose();
+  d.row(2) = t1.cross(n).transpose();
+  return d;
+}
+
+}  // namespace
+
+std::vector<PatchRowWeights> patch_row_weights(const mesh::TetMesh& mesh,
+                                               const ContactSurface& surface,
+                                               const Patches& patches, const Frames& frames) {
+  std::vector<PatchRowWeights> out(static_cast<size_t>(patches.size()));
+  std::vector<Index> slot(static_cast<size_t>(surface.n_nodes()), -1);
+  for (Index p = 0; p < patches.size(); ++p) {
+    PatchRowWeights& w = out[static_cast<size_t>(p)];
+    const Mat3 F = frames.rows(p);
+    for (Index k : patches.faces[static_cast<size_t>(p)]) {
+      const Index f = surface.faces[static_cast<size_t>(k)];
+      const Real area = mesh::face_area(mesh, f);
+      std::array<Mat3, 3> d;
+      for (int v = 0; v < 3; ++v)
+        d[static_cast<size_t>(v)] = node_directions(surface, F, surface.face_nodes(v, k));
+      for (int a = 0; a < 3; ++a) {
+        const Index node = surface.face_nodes(a, k);
+        Index& s = slot[static_cast<size_t>(node)];
+        if (s < 0) {
+          s = static_cast<Index>(w.nodes.size());
+          w.nodes.push_back(node);
+          w.W.push_back(Mat3::Zero());
+        }
+        // int_T phi_a phi_b dS = |T| (1 + delta_ab) / 12; with one frame, |T|/3 F.
+        Mat3& W = w.W[static_cast<size_t>(s)];
+        if (!surface.frames_vary) {
+          W += area / 3.0 * F;
+          continue;
+        }
+        for (int b = 0; b < 3; ++b)
+          W += area * (a == b ? 2.0 : 1.0) / 12.0 * d[static_cast<size_t>(b)];
+      }
+    }
+    for (size_t i = 0; i < w.nodes.size(); ++i) {
+      w.integral += w.W[i];
+      slot[static_cast<size_t>(w.nodes[i])] = -1;
+    }
+  }
+  return out;
+}
+
 SparseMatrix assemble_b(const mesh::TetMesh& mesh, const fe::DofMap& dofs,
                         const ContactSurface& surface, const Patches& patches, const Frames& frames,
                         const SparseMatrix* mortar) {
   std::vector<Eigen::Triplet<Real, SparseIndex>> triplets;
-  // @sect: the slave's part, int_R phi_a dir dS over R's triangles.
+  // @sect: the slave's part, int_R phi_a d dS (patch_row_weights).
+  const std::vector<PatchRowWeights> weights = patch_row_weights(mesh, surface, patches, frames);
   for (Index p = 0; p < patches.size(); ++p) {
-    const Mat3 dirs = frames.rows(p);
-    for (Index k : patches.faces[static_cast<size_t>(p)]) {
-      const Index f = surface.faces[static_cast<size_t>(k)];
-      const Real share = mesh::face_area(mesh, f) / 3.0;  // int_T phi_a = |T|/3
-      for (int v = 0; v < 3; ++v)
-        for (int r = 0; r < 3; ++r)
-          for (int c = 0; c < 3; ++c) {
-            const Index col = dofs.dof(mesh.faces(v, f), c);
-            if (col >= 0 && dirs(r, c) != 0.0)
-              triplets.emplace_back(3 * p + r, col, share * dirs(r, c));
-          }
+    const PatchRowWeights& w = weights[static_cast<size_t>(p)];
+    for (size_t i = 0; i < w.nodes.size(); ++i) {
+      const Index node = surface.nodes[static_cast<size_t>(w.nodes[i])];
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) {
+          const Index col = dofs.dof(node, c);
+          if (col >= 0 && w.W[i](r, c) != 0.0) triplets.emplace_back(3 * p + r, col, w.W[i](r, c));
+        }
     }
   }
   // @sect: the master's part, minus int_R phi_a(projection) dir dS.

@@ -13,17 +13,34 @@
 namespace fricon::contact {
 
 /// The frame of each patch, in which its multipliers act: the surface's (n, t1, t2) against a
-/// plane; against a body the frame of the area-weighted mean of its nodes' contact normals
-/// (ContactSurface::node_frames; Frames::tangents).
+/// plane; against a body or a curved obstacle the frame of the area-weighted mean of its nodes'
+/// contact normals (ContactSurface::node_frames; Frames::tangents).
 Frames patch_frames(const mesh::TetMesh& mesh, const ContactSurface& surface,
                     const Patches& patches);
 
+/// The rows of one patch at the surface nodes of its triangles: W_a (rows n, t1, t2) with
+/// (B v)_p = sum_a W_a v_a [m^2] over the nodes a of the patch (v_a the displacement of surface
+/// node a); each row is int_R phi_a d dS for the row's direction d. With one frame per patch
+/// (a plane, a body) d is the patch's and W_a = (int_R phi_a dS) F_p; against a curved obstacle
+/// (ContactSurface::frames_vary, theory.md §2.11) d varies inside the patch: the P1 interpolant
+/// of the patch's frame turned onto each node's normal, integrated exactly.
+struct PatchRowWeights {
+  std::vector<Index> nodes;      ///< surface nodes of the patch
+  std::vector<Mat3> W;           ///< per node [m^2]
+  Mat3 integral = Mat3::Zero();  ///< sum of W: rows int_R d dS [m^2]
+};
+
+/// The row weights of every patch, in the patches' frames `frames`.
+std::vector<PatchRowWeights> patch_row_weights(const mesh::TetMesh& mesh,
+                                               const ContactSurface& surface,
+                                               const Patches& patches, const Frames& frames);
+
 /// B over the free dofs: n_dual = 3 n_patches rows ordered (n, t1, t2) per patch, in the patch's
-/// frame (frames, one per patch), (B v)_{n,p} = int_{R_p} v.n_p dS and likewise for t1, t2
-/// [m^2], exact for the P1 traces; fixed dofs have no column. With `mortar` (against a body:
-/// n_patches x mesh nodes, mortar(p, a) = int_{R_p} of master node a's shape function at the
-/// projection, theory.md §2.8), the master's displacement is subtracted:
-/// (B v)_{n,p} = int_{R_p} (v - v_master).n_p dS.
+/// frame (frames, one per patch), (B v)_{n,p} = int_{R_p} v.n dS and likewise for t1, t2
+/// [m^2] (patch_row_weights), exact for the P1 traces; fixed dofs have no column. With `mortar`
+/// (against a body: n_patches x mesh nodes, mortar(p, a) = int_{R_p} of master node a's shape
+/// function at the projection, theory.md §2.8), the master's displacement is subtracted: (B
+/// v)_{n,p} = int_{R_p} (v - v_master).n_p dS.
 SparseMatrix assemble_b(const mesh::TetMesh& mesh, const fe::DofMap& dofs,
                         const ContactSurface& surface, const Patches& patches, const Frames& frames,
                         const SparseMatrix* mortar = nullptr);

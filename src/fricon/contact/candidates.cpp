@@ -101,6 +101,7 @@ ContactDiscretization restrict_to_patches(const ContactDiscretization& disc,
     sub.patch_frames.t1.col(i) = disc.patch_frames.t1.col(p);
     sub.patch_frames.t2.col(i) = disc.patch_frames.t2.col(p);
     sub.patch_pair.push_back(disc.patch_pair[static_cast<size_t>(p)]);
+    sub.frame_integrals.push_back(disc.frame_integrals[static_cast<size_t>(p)]);
     sub.offset.segment<3>(3 * i) = disc.offset.segment<3>(3 * p);
     if (rows == PatchRows::Normal) sub.offset.segment<2>(3 * i + 1).setZero();
   }

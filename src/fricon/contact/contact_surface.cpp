@@ -44,10 +44,8 @@ namespace {
 // A component with a share of the normal below this (relative) does not move the node along it.
 constexpr Real kNormalShareTolerance = 1e-12;
 
-// Relative tolerances: a face normal this close to the mean is flat, a node this far below the
-// plane (relative to the surface's extent) is on it.
+// A face normal this close to the mean is flat (relative).
 constexpr Real kFlatTolerance = 1e-9;
-constexpr Real kGapRoundoff = 1e-12;
 // A face whose outward normal has at most this component towards the obstacle does not face it.
 constexpr Real kFacingTolerance = 1e-8;
 
@@ -130,31 +128,88 @@ void mark_fixed_components(const fe::DofMap& dofs, ContactSurface& s, const std:
 }
 
 /// With an obstacle: some triangle of the surface must face it (its outward normal a positive
-/// component along n); a surface that faces away (a body's top against a plane below it) could
-/// never touch and would solve silently without contact.
+/// component along its nodes' mean n); a surface that faces away (a body's top against a plane
+/// below it) could never touch and would solve silently without contact.
 void require_facing_obstacle(const mesh::TetMesh& mesh, const ContactSurface& s,
                              const std::string& where) {
-  for (Index f : s.faces)
-    if (mesh::face_normal(mesh, f).dot(s.n) > kFacingTolerance) return;
+  for (size_t k = 0; k < s.faces.size(); ++k) {
+    Vec3 n = Vec3::Zero();
+    for (int v = 0; v < 3; ++v)
+      n += s.node_frames.n.col(s.face_nodes(v, static_cast<Index>(k)));
+    if (mesh::face_normal(mesh, s.faces[k]).dot(n.normalized()) > kFacingTolerance) return;
+  }
   throw InputError(fmt::format(
       "{}: no triangle of the surface '{}' faces the obstacle (every outward "
-      "normal n_f has n_f . ({:.3g}, {:.3g}, {:.3g}) <= 0, the direction towards the plane): the "
-      "body could never touch it; check the tag, and the direction of contact.obstacle.normal, "
-      "which points out of the obstacle towards the body",
+      "normal n_f has n_f . n <= 0 for the direction n towards the obstacle, ({:.3g}, {:.3g}, "
+      "{:.3g}) on the mean): the body could never touch it; check the tag, and where the "
+      "obstacle is (a plane's normal points out of the obstacle towards the body)",
       where, s.tag, s.n(0) + 0.0, s.n(1) + 0.0, s.n(2) + 0.0));  // + 0.0: no "-0"
+}
+
+/// The point of surface node k in rigid's configuration, relative to the obstacle at rest:
+/// x + u_L - d_L.
+Vec3 linearization_point(const mesh::TetMesh& mesh, const ContactSurface& s,
+                         const RigidContact& rigid, Index k) {
+  const Index a = s.nodes[static_cast<size_t>(k)];
+  Vec3 y = mesh.nodes.col(a) - rigid.displacement;
+  if (rigid.deformation != nullptr) y += rigid.deformation->col(a);
+  return y;
+}
+
+/// Each node's frame from the obstacle's normal at its nearest point (theory.md §2.11), and the
+/// surface's n: the plane's, or the area-weighted mean of the nodes' against a curved obstacle.
+void obstacle_frames(const mesh::TetMesh& mesh, const RigidContact& rigid, ContactSurface& s) {
+  const Obstacle& obstacle = *rigid.obstacle;
+  if (obstacle.flat()) {
+    s.n = -obstacle.closest(mesh.nodes.col(s.nodes.front())).normal;
+    std::tie(s.t1, s.t2) = Frames::tangents(s.n);
+    s.node_frames = Frames::constant(s.n, s.t1, s.t2, s.n_nodes());
+    return;
+  }
+  s.frames_vary = true;
+  s.node_frames.n.resize(3, s.n_nodes());
+  s.node_frames.t1.resize(3, s.n_nodes());
+  s.node_frames.t2.resize(3, s.n_nodes());
+  for (Index k = 0; k < s.n_nodes(); ++k) {
+    const Vec3 n = -obstacle.closest(linearization_point(mesh, s, rigid, k)).normal;
+    const auto [t1, t2] = Frames::tangents(n);
+    s.node_frames.n.col(k) = n;
+    s.node_frames.t1.col(k) = t1;
+    s.node_frames.t2.col(k) = t2;
+  }
+  Vec3 sum = Vec3::Zero();
+  for (size_t f = 0; f < s.faces.size(); ++f)
+    for (int v = 0; v < 3; ++v)
+      sum += mesh::face_area(mesh, s.faces[f]) *
+             s.node_frames.n.col(s.face_nodes(v, static_cast<Index>(f)));
+  s.n = sum.normalized();
+  std::tie(s.t1, s.t2) = Frames::tangents(s.n);
+}
+
+/// The largest distance of a node of the surface from its first node [m] (at least half its
+/// diameter).
+Real surface_extent(const mesh::TetMesh& mesh, const ContactSurface& s) {
+  Real extent = 0.0;
+  for (Index a : s.nodes)
+    extent = std::max(extent, (mesh.nodes.col(a) - mesh.nodes.col(s.nodes[0])).norm());
+  return extent;
 }
 
 }  // namespace
 
 ContactSurface make_contact_surface(const mesh::TetMesh& mesh, const fe::DofMap& dofs,
                                     const std::string& tag, const std::string& where,
-                                    const std::optional<Plane>& obstacle) {
+                                    const RigidContact* rigid) {
   ContactSurface s = surface_of_tag(mesh, tag, where);
   check_manifold(mesh, s, where);
-  s.n = obstacle ? Vec3(-obstacle->normal.normalized()) : flat_surface_normal(mesh, s, where);
-  if (obstacle) require_facing_obstacle(mesh, s, where);
-  std::tie(s.t1, s.t2) = Frames::tangents(s.n);
-  s.node_frames = Frames::constant(s.n, s.t1, s.t2, s.n_nodes());
+  if (rigid != nullptr) {
+    obstacle_frames(mesh, *rigid, s);
+    require_facing_obstacle(mesh, s, where);
+  } else {
+    s.n = flat_surface_normal(mesh, s, where);
+    std::tie(s.t1, s.t2) = Frames::tangents(s.n);
+    s.node_frames = Frames::constant(s.n, s.t1, s.t2, s.n_nodes());
+  }
   s.node_pair.assign(s.nodes.size(), 0);
   mark_fixed_components(dofs, s, where);
   return s;
@@ -213,25 +268,41 @@ Frames nodal_frames(const mesh::TetMesh& mesh, const ContactSurface& s) {
   return f;
 }
 
-VectorXd initial_gap(const mesh::TetMesh& mesh, const ContactSurface& surface,
-                     const Plane& obstacle, const std::string& where) {
-  const Vec3 normal = obstacle.normal.normalized();
+VectorXd obstacle_gap(const mesh::TetMesh& mesh, const ContactSurface& surface,
+                      const RigidContact& rigid) {
+  const bool reference = rigid.displacement.isZero(0.0) && rigid.deformation == nullptr;
   VectorXd gap(surface.n_nodes());
-  Real extent = 0.0;
-  for (Index a : surface.nodes)
-    extent = std::max(extent, (mesh.nodes.col(a) - mesh.nodes.col(surface.nodes[0])).norm());
   for (Index k = 0; k < surface.n_nodes(); ++k) {
-    const Index a = surface.nodes[static_cast<size_t>(k)];
-    gap(k) = (mesh.nodes.col(a) - obstacle.point).dot(normal);
-    if (gap(k) < -kGapRoundoff * extent)
-      throw InputError(fmt::format(
-          "{}: node {} of '{}' at ({:.6g}, {:.6g}, {:.6g}) is inside the "
-          "obstacle (gap {:.6g} m < 0): the body must start on or above the plane (check point "
-          "and the direction of normal, which points out of the obstacle towards the body)",
-          where, a, surface.tag, mesh.nodes(0, a), mesh.nodes(1, a), mesh.nodes(2, a), gap(k)));
-    gap(k) = std::max(gap(k), 0.0);
+    const Vec3 y = linearization_point(mesh, surface, rigid, k);
+    const Vec3 moved = y - mesh.nodes.col(surface.nodes[static_cast<size_t>(k)]);  // u_L - d_L
+    gap(k) = rigid.obstacle->closest(y).distance + surface.node_frames.n.col(k).dot(moved);
+    // At rest, a node within the start tolerance below the surface touches it
+    // (check_outside_obstacle refuses deeper ones).
+    if (reference) gap(k) = std::max(gap(k), 0.0);
   }
   return gap;
+}
+
+void check_outside_obstacle(const mesh::TetMesh& mesh, const ContactSurface& surface,
+                            const Obstacle& obstacle, const std::string& where) {
+  const Real tolerance = kStartPenetrationTolerance * surface_extent(mesh, surface);
+  Index deepest = -1;
+  Real depth = tolerance;
+  for (Index a : surface.nodes) {
+    const Real d = -obstacle.closest(mesh.nodes.col(a)).distance;
+    if (d > depth) {
+      depth = d;
+      deepest = a;
+    }
+  }
+  if (deepest < 0) return;
+  throw InputError(fmt::format(
+      "{}: the contact surface '{}' starts inside the {} obstacle: node {} at ({:.6g}, {:.6g}, "
+      "{:.6g}) lies {:.6g} m deep in it (more than the tolerance {:.3g} m, {:g} of the surface's "
+      "extent); the obstacle is taken at rest, before its displacement: check where it is (a "
+      "plane's normal points out of the obstacle towards the body)",
+      where, surface.tag, obstacle.kind(), deepest, mesh.nodes(0, deepest), mesh.nodes(1, deepest),
+      mesh.nodes(2, deepest), depth, tolerance, kStartPenetrationTolerance));
 }
 
 VectorXd SurfaceDisplacement::slip() const {
@@ -251,7 +322,8 @@ SurfaceDisplacement surface_displacement(const ContactSurface& s, const fe::DofM
       const Index dof = dofs.dof(s.nodes[static_cast<size_t>(k)], c);
       if (dof >= 0) u(c) = w(dof);
     }
-    if (s.master.size() > 0) u -= master_displacement(s, dofs, w, k);
+    if (s.master.size() > 0 || s.master_prescribed.size() > 0)
+      u -= master_displacement(s, dofs, w, k);
     d.wn(k) = u.dot(s.node_frames.n.col(k));
     d.wt1(k) = u.dot(s.node_frames.t1.col(k));
     d.wt2(k) = u.dot(s.node_frames.t2.col(k));
@@ -262,6 +334,7 @@ SurfaceDisplacement surface_displacement(const ContactSurface& s, const fe::DofM
 Vec3 master_displacement(const ContactSurface& s, const fe::DofMap& dofs, const VectorXd& w,
                          Index k) {
   Vec3 u = s.master_prescribed.size() > 0 ? Vec3(s.master_prescribed.col(k)) : Vec3::Zero();
+  if (k >= s.master.rows()) return u;  // against a rigid obstacle: its displacement alone
   for (decltype(s.master)::InnerIterator it(s.master, k); it; ++it)
     for (int c = 0; c < 3; ++c) {
       const Index dof = dofs.dof(it.col(), c);

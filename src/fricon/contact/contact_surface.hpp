@@ -1,9 +1,10 @@
 #pragma once
-// contact: the contact surface, the tagged boundary that may touch the rigid plane (theory.md
-// §2.2): its triangles and nodes, which displacement components Dirichlet conditions fix there,
-// and the orthonormal basis (n, t1, t2) of the plane, n = -(the obstacle's normal), the direction
-// in which the body would penetrate it. The surface may be curved or in pieces; without an
-// obstacle it must be flat and the plane is its own, at zero gap (the paper's setting).
+// contact: the contact surface, the tagged boundary that may touch a rigid obstacle (theory.md
+// §2.2, §2.11): its triangles and nodes, which displacement components Dirichlet conditions fix
+// there, and per node the frame (n, t1, t2), n = -(the obstacle's outward normal at the node's
+// nearest point), the direction in which the body would penetrate it. The surface may be curved
+// or in pieces; without an obstacle it must be flat and the plane is its own, at zero gap (the
+// paper's setting).
 // The other pieces of the contact discretization build on it: patches.hpp (the multiplier
 // partition), b_matrix.hpp (B and its stability), radii.hpp (slip bounds), and
 // discretization.hpp, which assembles them into one value.
@@ -13,18 +14,26 @@
 #include <string>
 #include <vector>
 
+#include "fricon/contact/obstacle.hpp"
 #include "fricon/core/types.hpp"
 #include "fricon/fe/dof_map.hpp"
 #include "fricon/mesh/tet_mesh.hpp"
 
 namespace fricon::contact {
 
-/// A rigid plane obstacle: the points x with (x - point) . normal = 0; `normal` is its unit
-/// normal pointing out of the obstacle, towards the body.
-struct Plane {
-  Vec3 point = Vec3::Zero();          ///< [m]
-  Vec3 normal = Vec3(0.0, 0.0, 1.0);  ///< unit
+/// A rigid obstacle as a contact surface meets it (theory.md §2.11): the obstacle, and the
+/// configuration at which its gap and normal are evaluated (linearized): the obstacle moved by
+/// `displacement`, the body by `deformation`. The reference configuration has both zero.
+struct RigidContact {
+  const Obstacle* obstacle = nullptr;
+  Vec3 displacement = Vec3::Zero();  ///< d_L, the obstacle's translation [m]
+  /// u_L, the displacement of every mesh node (3 x mesh nodes) [m]; null: zero.
+  const Eigen::Matrix<Real, 3, Eigen::Dynamic>* deformation = nullptr;
 };
+
+/// A node of the contact surface may start inside the obstacle by this share of the surface's
+/// diameter (rounding, and the chords of a meshed surface) before it is refused.
+inline constexpr Real kStartPenetrationTolerance = 1e-6;
 
 /// Orthonormal frames (n, t1, t2), one per column: n the direction of penetration, t2 = t1 x n.
 struct Frames {
@@ -63,16 +72,21 @@ struct ContactSurface {
   /// 3 x n_nodes, or empty when nothing is prescribed).
   Eigen::Matrix<Real, 3, Eigen::Dynamic> prescribed;
   /// Per surface node: its frame, in which its relative displacement is split into normal and
-  /// tangential parts (the slip). Against a plane every node has (n, t1, t2); against a body
-  /// n is the node's mean outward normal (theory.md §2.8).
+  /// tangential parts (the slip). Against a plane every node has (n, t1, t2); against a curved
+  /// obstacle n is minus the obstacle's normal at the node's nearest point (theory.md §2.11);
+  /// against a body n is the node's mean outward normal (theory.md §2.8).
   Frames node_frames;
+  /// Whether the rows of B follow the nodes' normals inside a patch (a curved rigid obstacle,
+  /// theory.md §2.11) instead of the patch's one frame (a plane, a body).
+  bool frames_vary = false;
   /// Against a body: the master's displacement at each node's projection, as weights of the mesh
   /// nodes (n_nodes x mesh nodes, three per row: the P1 shape functions of the master triangle
   /// the node's normal meets); empty against a plane. The relative displacement of surface node
   /// k is u(nodes[k]) - sum_a master(k, a) u(a).
   Eigen::SparseMatrix<Real, Eigen::RowMajor, SparseIndex> master;
   /// Against a body: sum_a master(k, a) u_p(a) per surface node, the master's prescribed
-  /// displacement at the projection [m] (3 x n_nodes, or empty when nothing is prescribed).
+  /// displacement at the projection [m]; against a rigid obstacle that moves, its displacement
+  /// (3 x n_nodes, or empty when nothing is prescribed or moves).
   Eigen::Matrix<Real, 3, Eigen::Dynamic> master_prescribed;
   /// Per surface node: the contact pair it belongs to (0 with one pair).
   std::vector<Index> node_pair;
@@ -82,21 +96,30 @@ struct ContactSurface {
   Index n_contact_nodes() const;
 };
 
-/// The contact surface of boundary `tag` against `obstacle` (absent: the plane of the surface
-/// itself). Throws InputError naming `where` (the position and name of the pair's boundary key) if
-/// the tag does not exist, the surface is not a manifold (an edge in three or more of its
-/// triangles), it is not flat while no obstacle is given, no triangle of it faces a given
-/// obstacle (outward normal with a positive component along n), or no node of it can move
-/// along n.
+/// The contact surface of boundary `tag` against a rigid obstacle (`rigid`; null: the plane of
+/// the surface itself), with each node's frame from the obstacle's normal at the node's position
+/// in rigid's configuration and n the area-weighted mean of those normals. Throws InputError
+/// naming `where` (the position and name of the pair's boundary key) if the tag does not exist,
+/// the surface is not a manifold (an edge in three or more of its triangles), it is not flat while
+/// no obstacle is given, no triangle of it faces the obstacle (outward normal with a positive
+/// component along its nodes' n), or no node of it can move along n.
 ContactSurface make_contact_surface(const mesh::TetMesh& mesh, const fe::DofMap& dofs,
                                     const std::string& tag, const std::string& where,
-                                    const std::optional<Plane>& obstacle = std::nullopt);
+                                    const RigidContact* rigid = nullptr);
 
-/// The initial gap [m] of every surface node to the obstacle, (x - point) . normal. Throws
-/// InputError naming `where` (the position and name of the pair's obstacle key) and the first node
-/// below the plane (a negative gap: the body starts inside the obstacle).
-VectorXd initial_gap(const mesh::TetMesh& mesh, const ContactSurface& surface,
-                     const Plane& obstacle, const std::string& where);
+/// The gap [m] of every surface node to the obstacle, linearized at rigid's configuration
+/// (theory.md §2.11): g = dist(x + u_L - d_L) + n . (u_L - d_L), so that the constraint on the
+/// displacement u relative to the obstacle's d reads n . (u - d) <= g. In the reference
+/// configuration it is the signed distance, and gaps within the start tolerance below zero count
+/// as zero.
+VectorXd obstacle_gap(const mesh::TetMesh& mesh, const ContactSurface& surface,
+                      const RigidContact& rigid);
+
+/// Refuses a body that starts inside the obstacle at rest: throws InputError naming `where`
+/// (the position and name of the pair's obstacle key), the surface and the deepest node, when a
+/// node lies deeper than kStartPenetrationTolerance times the surface's diameter.
+void check_outside_obstacle(const mesh::TetMesh& mesh, const ContactSurface& surface,
+                            const Obstacle& obstacle, const std::string& where);
 
 /// The relative displacement on the surface in each node's frame, per surface node [m]: the
 /// displacement itself against a plane, minus the master's at the node's projection against a

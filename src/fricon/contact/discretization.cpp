@@ -1,6 +1,7 @@
 #include "fricon/contact/discretization.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
 
 #include <fmt/format.h>
@@ -38,22 +39,20 @@ VectorXd gap_offset(const mesh::TetMesh& mesh, const ContactSurface& s, const Pa
 }
 
 /// The prescribed part P of ContactDiscretization::offset: the patch integrals of the prescribed
-/// displacement in the patch frames (slave, P1 exactly), minus the master's through the mortar
-/// integrals against a body (theory.md §2.8); c = G - P vec(u_p).
+/// displacement in the rows' directions (slave, P1 exactly: patch_row_weights), minus the
+/// master's through the mortar integrals against a body (theory.md §2.8); c = G - P vec(u_p).
 SparseMatrix prescribed_offset(const mesh::TetMesh& mesh, const ContactSurface& s,
                                const Patches& patches, const Frames& frames,
+                               const std::vector<PatchRowWeights>& weights,
                                const SparseMatrix& mortar) {
   std::vector<Eigen::Triplet<Real, SparseIndex>> entries;
   for (Index p = 0; p < patches.size(); ++p) {
-    const Mat3 dirs = frames.rows(p);
-    for (Index k : patches.faces[static_cast<size_t>(p)]) {
-      const Real third = mesh::face_area(mesh, s.faces[static_cast<size_t>(k)]) / 3.0;
-      for (int v = 0; v < 3; ++v) {
-        const Index node = s.nodes[static_cast<size_t>(s.face_nodes(v, k))];
-        for (int r = 0; r < 3; ++r)
-          for (int c = 0; c < 3; ++c)
-            entries.emplace_back(3 * p + r, 3 * node + c, third * dirs(r, c));
-      }
+    const PatchRowWeights& w = weights[static_cast<size_t>(p)];
+    for (size_t i = 0; i < w.nodes.size(); ++i) {
+      const Index node = s.nodes[static_cast<size_t>(w.nodes[i])];
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c)
+          entries.emplace_back(3 * p + r, 3 * node + c, w.W[i](r, c));
     }
   }
   for (Index a = 0; a < mortar.outerSize(); ++a)
@@ -208,10 +207,21 @@ Reach make_surface(const mesh::TetMesh& mesh, const fe::DofMap& dofs, const Cont
     pair.master_element_size = slave.master_element_size;
     return {std::move(slave.master), slave.search_distance};
   }
-  d.surface = make_contact_surface(mesh, dofs, spec.boundary, spec.where_boundary, spec.obstacle);
+  if (!spec.obstacle) {
+    d.surface = make_contact_surface(mesh, dofs, spec.boundary, spec.where_boundary);
+    d.gap = VectorXd::Zero(d.surface.n_nodes());
+  } else {
+    const RigidContact rigid{spec.obstacle.get(), spec.linearized_displacement,
+                             spec.deformation.size() > 0 ? &spec.deformation : nullptr};
+    d.surface = make_contact_surface(mesh, dofs, spec.boundary, spec.where_boundary, &rigid);
+    check_outside_obstacle(mesh, d.surface, *spec.obstacle, spec.where_obstacle);
+    d.gap = obstacle_gap(mesh, d.surface, rigid);
+    pair.obstacle = spec.obstacle;
+    pair.obstacle_displacement = spec.obstacle_displacement;
+    if (!spec.obstacle_displacement.isZero(0.0))
+      d.surface.master_prescribed = spec.obstacle_displacement.replicate(1, d.surface.n_nodes());
+  }
   d.surface.prescribed = prescribed_on_surface(d.surface, spec.prescribed);
-  d.gap = spec.obstacle ? initial_gap(mesh, d.surface, *spec.obstacle, spec.where_obstacle)
-                        : VectorXd::Zero(d.surface.n_nodes());
   pair.n_tag_faces = static_cast<Index>(d.surface.faces.size());
   return {};
 }
@@ -244,8 +254,13 @@ ContactDiscretization discretize_contact(const mesh::TetMesh& mesh, const fe::Do
   d.pairs.front().stability = p.stability;
   d.pairs.front().master_coverage = p.coverage;
   d.slip_bound = VectorXd::Constant(d.surface.n_nodes(), spec.slip_bound);
+  const std::vector<PatchRowWeights> weights =
+      patch_row_weights(mesh, d.surface, d.patches, d.patch_frames);
+  for (const PatchRowWeights& w : weights)
+    d.frame_integrals.push_back(w.integral);
   d.gap_offset = gap_offset(mesh, d.surface, d.patches, d.gap);
-  d.prescribed_offset = prescribed_offset(mesh, d.surface, d.patches, d.patch_frames, p.mortar);
+  d.prescribed_offset =
+      prescribed_offset(mesh, d.surface, d.patches, d.patch_frames, weights, p.mortar);
   d.offset = constraint_offset(d, spec.prescribed);
   d.dofs = dofs.free_dofs(coupled_nodes(d.surface, p.mortar));
   d.radius_integration = kRadiusIntegration;
@@ -322,17 +337,53 @@ void append_surface(ContactSurface& a, const ContactSurface& b, Index pair, Inde
 
 }  // namespace
 
+namespace {
+
+/// Per multiplier row: int_R u_o . d dS [m^3] for the translation u_o of each pair's rigid
+/// obstacle (frame_integrals[p] times it); zero against a body.
+VectorXd obstacle_integrals(const ContactDiscretization& disc) {
+  VectorXd out = VectorXd::Zero(disc.n_dual());
+  for (Index p = 0; p < disc.n_patches(); ++p) {
+    const PairInfo& pair = disc.pairs[static_cast<size_t>(disc.patch_pair[static_cast<size_t>(p)])];
+    out.segment<3>(3 * p) =
+        disc.frame_integrals[static_cast<size_t>(p)] * pair.obstacle_displacement;
+  }
+  return out;
+}
+
+/// The obstacles' displacements at the surface nodes (ContactSurface::master_prescribed of the
+/// rigid pairs; the body pairs' rows are left as they are): empty when nothing moves.
+void obstacle_node_displacements(ContactDiscretization& disc) {
+  ContactSurface& s = disc.surface;
+  bool moves = false;
+  for (const PairInfo& pair : disc.pairs)
+    moves = moves || (pair.obstacle && !pair.obstacle_displacement.isZero(0.0));
+  if (!moves) {
+    if (s.master.size() == 0) s.master_prescribed.resize(3, 0);
+    return;
+  }
+  if (s.master_prescribed.size() == 0) s.master_prescribed.setZero(3, s.n_nodes());
+  for (Index k = 0; k < s.n_nodes(); ++k) {
+    const PairInfo& pair = disc.pairs[static_cast<size_t>(s.node_pair[static_cast<size_t>(k)])];
+    if (pair.obstacle) s.master_prescribed.col(k) = pair.obstacle_displacement;
+  }
+}
+
+}  // namespace
+
 VectorXd constraint_offset(const ContactDiscretization& disc,
                            const Eigen::Matrix<Real, 3, Eigen::Dynamic>& prescribed) {
-  if (prescribed.size() == 0) return disc.gap_offset;
+  const VectorXd moved = disc.gap_offset + obstacle_integrals(disc);
+  if (prescribed.size() == 0) return moved;
   FRICON_CHECK(3 * prescribed.cols() == disc.prescribed_offset.cols(),
                "constraint_offset: a prescribed field of " << prescribed.cols() << " nodes");
   const Eigen::Map<const VectorXd> u(prescribed.data(), prescribed.size());
-  return disc.gap_offset - disc.prescribed_offset * u;
+  return moved - disc.prescribed_offset * u;
 }
 
 void set_prescribed(ContactDiscretization& disc,
-                    const Eigen::Matrix<Real, 3, Eigen::Dynamic>& prescribed) {
+                    const Eigen::Matrix<Real, 3, Eigen::Dynamic>& prescribed,
+                    const std::vector<Vec3>* obstacle_displacements) {
   ContactSurface& s = disc.surface;
   s.prescribed = prescribed_on_surface(s, prescribed);
   if (s.master.size() > 0)
@@ -340,7 +391,42 @@ void set_prescribed(ContactDiscretization& disc,
                               ? Eigen::Matrix<Real, 3, Eigen::Dynamic>(
                                     (s.master * prescribed.transpose()).transpose())
                               : Eigen::Matrix<Real, 3, Eigen::Dynamic>();
+  if (obstacle_displacements) {
+    FRICON_CHECK(obstacle_displacements->size() == disc.pairs.size(),
+                 "set_prescribed: " << obstacle_displacements->size() << " obstacle displacements");
+    for (size_t i = 0; i < disc.pairs.size(); ++i)
+      disc.pairs[i].obstacle_displacement =
+          disc.pairs[i].obstacle ? (*obstacle_displacements)[i] : Vec3(Vec3::Zero());
+  }
+  obstacle_node_displacements(disc);
   disc.offset = constraint_offset(disc, prescribed);
+}
+
+VectorXd patch_integrals(const ContactDiscretization& disc, const VectorXd& w,
+                         const Eigen::Matrix<Real, 3, Eigen::Dynamic>& prescribed) {
+  VectorXd d = disc.B * w - obstacle_integrals(disc);
+  if (prescribed.size() == 0) return d;
+  const Eigen::Map<const VectorXd> up(prescribed.data(), prescribed.size());
+  return d + disc.prescribed_offset * up;
+}
+
+LinearizationError linearization_error(const mesh::TetMesh& mesh, const ContactDiscretization& disc,
+                                       const Eigen::Matrix<Real, 3, Eigen::Dynamic>& u,
+                                       const std::vector<bool>& in_contact) {
+  const ContactSurface& s = disc.surface;
+  LinearizationError e;
+  for (Index k = 0; k < s.n_nodes(); ++k) {
+    const PairInfo& pair = disc.pairs[static_cast<size_t>(s.node_pair[static_cast<size_t>(k)])];
+    if (!pair.obstacle || !in_contact[static_cast<size_t>(k)]) continue;
+    const Index a = s.nodes[static_cast<size_t>(k)];
+    const Vec3 relative = u.col(a) - pair.obstacle_displacement;
+    const Real wn = s.node_frames.n.col(k).dot(relative);
+    const Real linearized = disc.gap(k) - wn;
+    const Real exact = pair.obstacle->closest(mesh.nodes.col(a) + relative).distance;
+    e.change = std::max(e.change, std::abs(exact - linearized));
+    e.scale = std::max(e.scale, std::abs(wn));
+  }
+  return e;
 }
 
 ContactDiscretization merge_pairs(std::vector<ContactDiscretization> pairs) {
@@ -362,6 +448,8 @@ ContactDiscretization merge_pairs(std::vector<ContactDiscretization> pairs) {
     d.patches.centroid = stack_columns(d.patches.centroid, d.patches.size() - b.patches.size(),
                                        b.patches.centroid, b.patches.size());
     d.patch_frames = stack(d.patch_frames, b.patch_frames);
+    d.frame_integrals.insert(d.frame_integrals.end(), b.frame_integrals.begin(),
+                             b.frame_integrals.end());
     d.patch_pair.insert(d.patch_pair.end(), static_cast<size_t>(b.patches.size()), pair);
     d.B = stack_rows(d.B, b.B, d.B.cols());
     d.slip_bound = stack(d.slip_bound, b.slip_bound);

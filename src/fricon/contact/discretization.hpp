@@ -26,9 +26,16 @@ struct ContactSpec {
   /// Target diameter [m] of the patches of PatchKind::Agglomerate; 0: chosen from the mesh.
   Real patch_size = 0.0;
   Real slip_bound = 0.0;  ///< g [Pa], the same at every surface node
-  /// The rigid plane: a point of it [m] and its unit normal pointing out of the obstacle, towards
-  /// the body. Absent: the plane of a flat contact surface, at zero gap (or a master, below).
-  std::optional<Plane> obstacle;
+  /// The rigid obstacle (theory.md §2.11). Null: the plane of a flat contact surface, at zero
+  /// gap (or a master, below).
+  ObstaclePtr obstacle;
+  /// The obstacle's displacement [m]: its translation from where it rests.
+  Vec3 obstacle_displacement = Vec3::Zero();
+  /// Where gap and normal of a rigid obstacle are evaluated (theory.md §2.11): the obstacle moved
+  /// by `linearized_displacement` [m] and the body by `deformation` (3 x mesh nodes [m]; empty:
+  /// the reference configuration).
+  Vec3 linearized_displacement = Vec3::Zero();
+  Eigen::Matrix<Real, 3, Eigen::Dynamic> deformation;
   /// Against a body (theory.md §2.8): the master surface; exclusive with `obstacle`.
   std::optional<MasterSpec> master;
   /// The pair's key path ("contact", "contact[1]"), for reports.
@@ -46,9 +53,13 @@ struct ContactSpec {
 
 /// One contact pair of a discretization: what the reports say of it.
 struct PairInfo {
-  std::string key;        ///< "contact" or "contact[i]"
-  std::string boundary;   ///< the contact surface's tag (the slave)
-  std::string master;     ///< the master surface's tag; empty against a plane
+  std::string key;       ///< "contact" or "contact[i]"
+  std::string boundary;  ///< the contact surface's tag (the slave)
+  std::string master;    ///< the master surface's tag; empty against a rigid obstacle
+  /// The rigid obstacle (null against a body; the flat surface's own plane when none was given)
+  /// and its displacement at the current load [m].
+  ObstaclePtr obstacle;
+  Vec3 obstacle_displacement = Vec3::Zero();
   Index n_tag_faces = 0;  ///< triangles of the slave tag (against a body: some may be out of reach)
   Real search_distance = 0.0;      ///< against a body: d [m]
   Real master_coverage = 1.0;      ///< against a body: share of the surface opposite the master
@@ -64,8 +75,8 @@ struct ContactDiscretization {
   Patches patches;
   SparseMatrix B;       ///< n_dual x n_free [m^2], rows (n, t1, t2) per patch (b_matrix.hpp)
   VectorXd slip_bound;  ///< g per surface node [Pa]
-  /// Initial gap per surface node [m]: its distance to the obstacle plane (0 without an
-  /// obstacle: the body rests on its own plane).
+  /// Gap per surface node [m]: its distance to the obstacle, linearized (contact::obstacle_gap;
+  /// 0 without an obstacle: the body rests on its own plane).
   VectorXd gap;
   /// c per multiplier row [m^3], the constant part of the constraints (theory.md §2.4): normal
   /// row int_R (gap - u_p.n) dS, tangential rows -int_R u_p.t dS, with u_p the prescribed
@@ -82,6 +93,11 @@ struct ContactDiscretization {
   std::vector<Index> dofs;
   /// Per patch: the frame (n, t1, t2) of its multipliers (b_matrix.hpp, patch_frames).
   Frames patch_frames;
+  /// Per patch: int_R d dS for its directions d (rows n, t1, t2) [m^2] (PatchRowWeights::integral):
+  /// the force on the body is -frame_integrals[p]^T lambda_p, and a translation d of a rigid
+  /// obstacle adds frame_integrals[p] d to the patch's offset. Area times the frame with one
+  /// frame per patch.
+  std::vector<Mat3> frame_integrals;
   /// Per patch: its pair (an index into `pairs`); the surface's node_pair does the same for nodes.
   std::vector<Index> patch_pair;
   std::vector<PairInfo> pairs;  ///< the contact pairs, in the problem's order
@@ -109,15 +125,38 @@ ContactDiscretization discretize_contact(const mesh::TetMesh& mesh, const fe::Do
                                          const ContactSpec& spec);
 
 /// ContactDiscretization::offset for the prescribed displacement `prescribed` of every mesh node
-/// (3 x n_nodes; empty: none) [m^3].
+/// (3 x n_nodes; empty: none) and the pairs' obstacle displacements [m^3].
 VectorXd constraint_offset(const ContactDiscretization& disc,
                            const Eigen::Matrix<Real, 3, Eigen::Dynamic>& prescribed);
 
 /// Moves the discretization to another prescribed displacement of the mesh nodes (3 x n_nodes;
-/// empty: none), a step of a loading path: the surface's prescribed values (slave and master) and
-/// the offset. B, the gap and everything else stay.
+/// empty: none) and, when given, other displacements of the pairs' rigid obstacles (one per pair,
+/// zero for a pair against a body) [m], a step of a loading path: the surface's prescribed values
+/// (slave and master or obstacle) and the offset. B, the gap and everything else stay.
 void set_prescribed(ContactDiscretization& disc,
-                    const Eigen::Matrix<Real, 3, Eigen::Dynamic>& prescribed);
+                    const Eigen::Matrix<Real, 3, Eigen::Dynamic>& prescribed,
+                    const std::vector<Vec3>* obstacle_displacements = nullptr);
+
+/// Per multiplier row: int_R (u - u_o) . d dS [m^3] of the whole displacement u (w over the free
+/// dofs, the prescribed values `prescribed` elsewhere, 3 x n_nodes or empty) relative to the
+/// obstacle's u_o (a rigid obstacle's displacement; a master's prescribed part through the mortar
+/// integrals), in the rows' directions d.
+VectorXd patch_integrals(const ContactDiscretization& disc, const VectorXd& w,
+                         const Eigen::Matrix<Real, 3, Eigen::Dynamic>& prescribed);
+
+/// How far the linearized gap of each rigid pair is from the true one at the displacement u of
+/// every mesh node (3 x mesh nodes [m]; theory.md §2.11): per surface node of a rigid obstacle
+/// whose `in_contact` is true, |dist(x + u - d) - (g - n . (u - d))| [m], with d the obstacle's
+/// displacement and g the node's linearized gap; the largest such change, and the largest
+/// |n . (u - d)| of those nodes (the scale it is judged against). Zero for planes (exact) and
+/// without such nodes.
+struct LinearizationError {
+  Real change = 0.0;  ///< [m]
+  Real scale = 0.0;   ///< [m]
+};
+LinearizationError linearization_error(const mesh::TetMesh& mesh, const ContactDiscretization& disc,
+                                       const Eigen::Matrix<Real, 3, Eigen::Dynamic>& u,
+                                       const std::vector<bool>& in_contact);
 
 /// Several pairs as one discretization: surfaces, patches and rows of B in the order of `pairs`
 /// (each discretize_contact of one pair), the pair of every node and patch recorded. One pair is

@@ -417,12 +417,13 @@ void report_pairs(const Problem& problem, const Model& m,
   for (Index p = 0; p < disc.n_patches(); ++p) {
     PairReport& r = pairs[static_cast<size_t>(disc.patch_pair[static_cast<size_t>(p)])];
     const Vec3 lambda = f.lambda.segment<3>(3 * p);
-    const Mat3 frame = disc.patch_frames.rows(p);
-    const Real area = disc.patches.area(p);
+    // int_R of the directions of the rows: the force of the multipliers on the body (area times
+    // the patch's frame where it has one frame).
+    const Mat3& integral = disc.frame_integrals[static_cast<size_t>(p)];
     r.n_patches += 1;
-    r.normal_force += area * lambda(0);
-    r.force -= area * (frame.transpose() * lambda);
-    r.tangential_force -= area * (lambda(1) * frame.row(1) + lambda(2) * frame.row(2)).transpose();
+    r.normal_force += disc.patches.area(p) * lambda(0);
+    r.force -= integral.transpose() * lambda;
+    r.tangential_force -= integral.bottomRows<2>().transpose() * lambda.tail<2>();
     const PatchState state = f.state[static_cast<size_t>(p)];
     r.n_stick += state == PatchState::Stick ? 1 : 0;
     r.n_slip += state == PatchState::Slip ? 1 : 0;

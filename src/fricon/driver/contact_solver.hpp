@@ -170,6 +170,14 @@ struct ContactReport {
   Real equality_residual = 0.0;
   Real equality_bound = 0.0;
   long smalse_outer_iterations = 0;
+  /// Against a curved rigid obstacle (theory.md §2.11): the geometric updates made (solves
+  /// again at the deformed position) and, at the result, the largest difference between the
+  /// linearized and the true gap of a node in contact [m], the largest normal displacement there
+  /// [m] and the share of it allowed (contact.geometry_tolerance); -1 updates: no curved obstacle.
+  int geometry_updates = -1;
+  Real geometry_change = 0.0;
+  Real geometry_scale = 0.0;
+  Real geometry_tolerance = 0.0;
   /// Rounds of further steps at tighter tolerances that the Coulomb certificate needed.
   int certificate_refinements = 0;
   /// Per outer iteration, the relative change of each block of the state (phi; lambda_n).

@@ -74,10 +74,20 @@ LoadBasis load_basis(const Problem& problem, Model& m) {
   return basis;
 }
 
+// The translation of each pair's rigid obstacle at step k (zero against a body) [m].
+std::vector<Vec3> obstacle_displacements(const Problem& problem, int k) {
+  std::vector<Vec3> d;
+  for (const ContactOptions& c : problem.contact)
+    d.push_back(c.obstacle && is_rigid(*c.obstacle)
+                    ? obstacle_displacement(*c.obstacle, k, problem.loading.steps)
+                    : Vec3(Vec3::Zero()));
+  return d;
+}
+
 // The loads of step k (factors `a`): the prescribed displacements, f and u0, into the model and
 // `u0`; the contact discretization moved to them, its tangential rows offset by the last step's
 // displacement.
-void apply_step_loads(const Problem& step_problem, const std::vector<Real>& a,
+void apply_step_loads(const Problem& step_problem, int k, const std::vector<Real>& a,
                       const LoadBasis& basis, const PathState& state, Model& m, VectorXd& u0,
                       contact::ContactDiscretization* disc) {
   m.prescribed = make_prescribed(step_problem, m.mesh);
@@ -88,16 +98,16 @@ void apply_step_loads(const Problem& step_problem, const std::vector<Real>& a,
     u0 += a[i] * basis.u0[i + 1];
   }
   if (!disc) return;
-  contact::set_prescribed(*disc, m.prescribed);
+  const std::vector<Vec3> obstacles = obstacle_displacements(step_problem, k);
+  contact::set_prescribed(*disc, m.prescribed, &obstacles);
   disc->offset += state.tangential;
 }
 
-// int_R u dS per multiplier row, in the patch frames, of the whole displacement (free dofs w and
-// the prescribed values); its tangential rows offset the next step.
+// int_R (u - u_o) . d dS per multiplier row of the whole displacement (free dofs w and the
+// prescribed values) relative to the obstacle's; its tangential rows offset the next step.
 VectorXd patch_tangential(const contact::ContactDiscretization& disc, const Model& m,
                           const VectorXd& w) {
-  const Eigen::Map<const VectorXd> up(m.prescribed.data(), m.prescribed.size());
-  VectorXd d = disc.B * w + disc.prescribed_offset * up;
+  VectorXd d = contact::patch_integrals(disc, w, m.prescribed);
   for (Index p = 0; p < disc.n_patches(); ++p)
     d(3 * p) = 0.0;
   return d;
@@ -356,7 +366,8 @@ RunResult run_path(const Problem& problem, const RunOptions& options) {
     const Problem step_problem = scaled_loads(problem, factors, 1.0);  // at_step(problem, k)
     {
       ScopedPhase phase(rep.times, "assembly");
-      apply_step_loads(step_problem, factors, basis, state, r.model, u0, disc ? &*disc : nullptr);
+      apply_step_loads(step_problem, k, factors, basis, state, r.model, u0,
+                       disc ? &*disc : nullptr);
     }
     const int steps_left = problem.loading.steps - k + 1;
     const VectorXd u = !disc    ? solve_elastic_step(u0, r)

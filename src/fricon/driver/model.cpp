@@ -7,6 +7,7 @@
 
 #include "fricon/core/error.hpp"
 #include "fricon/driver/floating_bodies.hpp"
+#include "fricon/driver/obstacle.hpp"
 #include "fricon/driver/option_table.hpp"
 #include "fricon/fe/rigid_motions.hpp"
 #include "fricon/mesh/brick.hpp"
@@ -244,7 +245,7 @@ mesh::TetMesh make_brick_mesh(const Problem& problem) {
 mesh::TetMesh read_gmsh_mesh(const Problem& problem) {
   try {
     mesh::TetMesh mesh = mesh::read_gmsh(problem.mesh.file, problem.mesh.size_factor);
-    mesh.nodes *= metres_per(problem.mesh.unit);  // a uniform scaling keeps every check
+    mesh::scale_lengths(mesh, metres_per(problem.mesh.unit));  // uniform: keeps every check
     return mesh;
   } catch (const InputError& e) {
     throw InputError(fmt::format("{}: mesh.file: {}", problem.where("mesh.file"), e.what()));
@@ -392,8 +393,13 @@ contact::ContactSpec pair_spec(const Problem& problem, std::size_t i, const mesh
   spec.patches = c.patches;
   spec.slip_bound = c.slip_bound;
   if (c.patch_size) spec.patch_size = *c.patch_size;
-  if (c.obstacle && c.obstacle->kind == ObstacleKind::Plane)
-    spec.obstacle = contact::Plane{c.obstacle->point, c.obstacle->normal.stableNormalized()};
+  if (c.obstacle && is_rigid(*c.obstacle)) {
+    spec.obstacle = make_obstacle(*c.obstacle, mesh, c.boundary, where("obstacle.boundary"));
+    spec.obstacle_displacement = obstacle_displacement(*c.obstacle, 0, problem.loading.steps);
+    // A static run evaluates gap and normal where the obstacle is moved; a loading path, whose
+    // steps move it, where it rests (theory.md §2.11).
+    if (problem.loading.steps == 1) spec.linearized_displacement = spec.obstacle_displacement;
+  }
   if (c.obstacle && c.obstacle->kind == ObstacleKind::Body) {
     contact::MasterSpec master;
     master.boundary = c.obstacle->boundary;
@@ -413,13 +419,17 @@ contact::ContactSpec pair_spec(const Problem& problem, std::size_t i, const mesh
 }  // namespace
 
 contact::ContactDiscretization discretize_contact(const Problem& problem, const mesh::TetMesh& mesh,
-                                                  const fe::DofMap& dofs) {
+                                                  const fe::DofMap& dofs,
+                                                  const fe::NodalField* deformation) {
   FRICON_CHECK(!problem.contact.empty(), "discretize_contact: the problem has no [contact]");
   const Eigen::Matrix<Real, 3, Eigen::Dynamic> prescribed = make_prescribed(problem, mesh);
   std::vector<contact::ContactDiscretization> pairs;
-  for (std::size_t i = 0; i < problem.contact.size(); ++i)
-    pairs.push_back(
-        contact::discretize_contact(mesh, dofs, pair_spec(problem, i, mesh, prescribed)));
+  for (std::size_t i = 0; i < problem.contact.size(); ++i) {
+    contact::ContactSpec spec = pair_spec(problem, i, mesh, prescribed);
+    if (deformation != nullptr && spec.obstacle && !spec.obstacle->flat())
+      spec.deformation = *deformation;
+    pairs.push_back(contact::discretize_contact(mesh, dofs, spec));
+  }
   return contact::merge_pairs(std::move(pairs));
 }
 

@@ -69,7 +69,10 @@ struct Option {
   OptionType type = OptionType::Real;
   int count = 0;  ///< numbers: 0 one value, N > 0 exactly N, kList a non-empty list
   int rows = 0;   ///< numbers: > 0 for a matrix of `rows` arrays of `count`
-  Range range;    ///< numbers: the range of each value (its unit included)
+  /// numbers, a list: > 0 when the list may also be written as arrays of this many numbers
+  /// (read in row order, flat: [[1, 2, 3], [4, 5, 6]] is [1, 2, 3, 4, 5, 6]).
+  int list_rows_of = 0;
+  Range range;  ///< numbers: the range of each value (its unit included)
   /// The phrase of "expected ..." for a Text (e.g. "a non-empty boundary tag").
   std::string_view phrase;
   bool may_be_empty = false;              ///< Text: "" is allowed
@@ -125,6 +128,10 @@ struct Option {
   }
   Option& path() {
     is_path = true;
+    return *this;
+  }
+  Option& or_rows_of(int n) {
+    list_rows_of = n;
     return *this;
   }
   Option& allow_empty() {

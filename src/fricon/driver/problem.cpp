@@ -21,15 +21,35 @@ std::span<const std::string_view> mesh_parameters(MeshKind kind) {
 }
 
 std::span<const std::string_view> obstacle_parameters(ObstacleKind kind) {
-  static constexpr std::string_view kPlane[] = {"point", "normal"};
+  static constexpr std::string_view kPlane[] = {"point", "normal", "displacement", "path"};
   static constexpr std::string_view kBody[] = {"boundary"};
+  static constexpr std::string_view kSphere[] = {"center", "radius", "displacement", "path"};
+  static constexpr std::string_view kCylinder[] = {"point", "axis", "radius", "displacement",
+                                                   "path"};
+  static constexpr std::string_view kSurface[] = {"boundary", "displacement", "path"};
   switch (kind) {
     case ObstacleKind::Plane:
       return kPlane;
     case ObstacleKind::Body:
       return kBody;
+    case ObstacleKind::Sphere:
+      return kSphere;
+    case ObstacleKind::Cylinder:
+      return kCylinder;
+    case ObstacleKind::Surface:
+      return kSurface;
   }
   return {};
+}
+
+Vec3 obstacle_displacement(const ObstacleOptions& o, int k, int steps) {
+  if (k <= 0 || o.path.empty()) return o.displacement;
+  const auto step = static_cast<std::size_t>(k - 1);
+  // One factor per step, or one per component and step (3 steps values, the obstacle table's
+  // check).
+  if (o.path.size() == static_cast<std::size_t>(steps)) return o.path.at(step) * o.displacement;
+  return o.displacement.cwiseProduct(
+      Vec3(o.path.at(3 * step), o.path.at(3 * step + 1), o.path.at(3 * step + 2)));
 }
 
 Real metres_per(LengthUnit unit) {

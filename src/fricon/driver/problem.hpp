@@ -114,8 +114,11 @@ using FrictionOptions = contact::FrictionLawSpec;
 
 /// What the contact surface touches ([contact.obstacle] kind).
 enum class ObstacleKind {
-  Plane,  ///< a rigid plane (half-space)
-  Body,   ///< another surface of the mesh, usually of another elastic body (theory.md §2.8)
+  Plane,     ///< a rigid plane (half-space)
+  Body,      ///< another surface of the mesh, usually of another elastic body (theory.md §2.8)
+  Sphere,    ///< a rigid ball (theory.md §2.11)
+  Cylinder,  ///< a rigid infinite circular cylinder
+  Surface,   ///< a rigid surface of the mesh file that no elastic body carries
 };
 
 /// The keys of [contact.obstacle] that `kind` uses (besides kind).
@@ -129,9 +132,32 @@ struct ObstacleOptions {
   /// non-zero (it is normalized).
   Vec3 normal = Vec3(0.0, 0.0, 1.0);
   /// [contact.obstacle.boundary] kind body: the tag of the master surface, a boundary of the same
-  /// mesh, facing the contact surface.
+  /// mesh, facing the contact surface; kind surface: the tag of the rigid surface.
   std::string boundary;
+  Vec3 center = Vec3::Zero();  ///< [contact.obstacle.center] kind sphere: its centre [m]
+  Real radius = 0.0;           ///< [contact.obstacle.radius] sphere and cylinder [m], > 0
+  Vec3 axis = Vec3::UnitZ();   ///< [contact.obstacle.axis] cylinder: its axis, non-zero
+  /// [contact.obstacle.displacement] every kind but body: the obstacle's translation [m].
+  Vec3 displacement = Vec3::Zero();
+  /// [contact.obstacle.path] with [loading] steps > 1: the factor of `displacement` at each step
+  /// (steps values), or of each of its components ([fx, fy, fz] per step, 3 steps values);
+  /// empty: the displacement holds at every step.
+  std::vector<Real> path{};
 };
+
+/// Whether the obstacle is rigid (any kind but body).
+inline bool is_rigid(const ObstacleOptions& o) {
+  return o.kind != ObstacleKind::Body;
+}
+
+/// The obstacle's translation [m] at step k (1-based) of a loading path of `steps` steps (k = 0,
+/// or no path: its displacement).
+Vec3 obstacle_displacement(const ObstacleOptions& o, int k, int steps);
+
+/// [contact.geometry_updates] and [contact.geometry_tolerance] by default: enough for the
+/// examples in examples/obstacles (docs/benchmarks.md shows what each update changes).
+inline constexpr int kDefaultGeometryUpdates = 3;
+inline constexpr Real kDefaultGeometryTolerance = 1e-3;
 
 /// [contact] or one table of [[contact]]: one contact pair, a tagged boundary (the slave, which
 /// carries the patches and the multipliers) against a rigid plane or another surface.
@@ -155,6 +181,13 @@ struct ContactOptions {
   /// chosen from the mesh (the stars of an independent set of vertices).
   std::optional<Real> patch_size;
   FrictionOptions friction;  ///< [contact.friction]
+  /// [contact.geometry_updates] against a curved rigid obstacle in a static run: at most this many
+  /// times gap and normal are evaluated again at the deformed position and the problem solved
+  /// again (theory.md §2.11), >= 0.
+  int geometry_updates = kDefaultGeometryUpdates;
+  /// [contact.geometry_tolerance] the updates stop when the linearized gap is within this share
+  /// of the normal displacement of the true gap at every node in contact, > 0.
+  Real geometry_tolerance = kDefaultGeometryTolerance;
 };
 
 /// [solver] (driver/problem_options.cpp documents each key, its range and default).
@@ -277,4 +310,7 @@ FRICON_ENUM_NAMES(fricon::driver::MeshKind, "mesh.kind", {driver::MeshKind::Bric
 FRICON_ENUM_NAMES(fricon::driver::LengthUnit, "mesh.unit", {driver::LengthUnit::Metre, "m"},
                   {driver::LengthUnit::Centimetre, "cm"}, {driver::LengthUnit::Millimetre, "mm"});
 FRICON_ENUM_NAMES(fricon::driver::ObstacleKind, "contact.obstacle.kind",
-                  {driver::ObstacleKind::Plane, "plane"}, {driver::ObstacleKind::Body, "body"});
+                  {driver::ObstacleKind::Plane, "plane"}, {driver::ObstacleKind::Body, "body"},
+                  {driver::ObstacleKind::Sphere, "sphere"},
+                  {driver::ObstacleKind::Cylinder, "cylinder"},
+                  {driver::ObstacleKind::Surface, "surface"});

@@ -118,7 +118,8 @@ void check_friction(const Problem& p, const std::string& path, const FrictionOpt
 }
 
 /// A load's path (theory.md §2.9): given only with [loading] steps > 1, one factor per step.
-void check_path(const Problem& p, const std::string& key, const std::vector<Real>& factors) {
+void check_path(const Problem& p, const std::string& key, const std::vector<Real>& factors,
+                bool per_component = false) {
   if (factors.empty()) return;
   // The step count first: a path is measured against it ([loading] comes later in the file, so
   // its own range check would come after this one).
@@ -129,10 +130,15 @@ void check_path(const Problem& p, const std::string& key, const std::vector<Real
     fail(p, key,
          "a path needs [loading] steps > 1 (with steps = 1, the default, the problem is static: "
          "drop the path or set loading.steps)");
+  if (per_component && factors.size() == 3 * steps) return;
   if (factors.size() != steps)
     fail(p, key,
-         fmt::format("expected one factor per step, loading.steps = {} values, got {}", steps,
-                     factors.size()));
+         per_component
+             ? fmt::format("expected one factor per step, loading.steps = {} values, or one "
+                           "[fx, fy, fz] per step ({} values), got {}",
+                           steps, 3 * steps, factors.size())
+             : fmt::format("expected one factor per step, loading.steps = {} values, got {}", steps,
+                           factors.size()));
 }
 
 /// The steps whose files a loading path writes: only along a path, within it, increasing.
@@ -453,6 +459,14 @@ const OptionTable& contact_table() {
            "with `patches = \"agglomerate\"`");
     b.table("friction", &ContactOptions::friction, friction_table,
             "the coefficient of friction: see `[contact.friction]`");
+    b.number("geometry_updates", &ContactOptions::geometry_updates, integer_at_least(0),
+             "against a curved rigid obstacle in a static run: at most this many times gap and "
+             "normal are evaluated again at the deformed position and the problem solved again, "
+             "while the linearized gap differs from the true one by more than geometry_tolerance "
+             "(theory.md §2.11); a loading path keeps the reference linearization");
+    b.number("geometry_tolerance", &ContactOptions::geometry_tolerance, open_interval(0.0, 1.0),
+             "the geometric updates stop when the linearized gap of every node in contact is "
+             "within this share of the largest normal displacement of the true gap");
     return b.build();
   }();
   return table;
@@ -462,24 +476,51 @@ const OptionTable& obstacle_table() {
   static const OptionTable table = [] {
     OptionTableBuilder<ObstacleOptions> b(
         "contact.obstacle",
-        "a table { kind = \"plane\", point = [x, y, z], normal = [nx, ny, nz] } or "
-        "{ kind = \"body\", boundary = \"tag\" }");
+        "a table { kind = \"plane\", point = [x, y, z], normal = [nx, ny, nz] }, "
+        "{ kind = \"sphere\", center = [x, y, z], radius = r }, { kind = \"cylinder\", point "
+        "= [x, y, z], axis = [ax, ay, az], radius = r }, { kind = \"surface\", boundary = "
+        "\"tag\" } or { kind = \"body\", boundary = \"tag\" }");
     b.choice("kind", &ObstacleOptions::kind,
-             "`\"plane\"`: a rigid plane (half-space); `\"body\"`: a surface of the mesh, "
-             "usually of another elastic body (theory.md §2.8)");
+             "`\"plane\"`: a rigid plane (half-space); `\"sphere\"`: a rigid ball; "
+             "`\"cylinder\"`: a rigid infinite circular cylinder; `\"surface\"`: a rigid "
+             "surface of the mesh file that no elastic body carries (theory.md §2.11); "
+             "`\"body\"`: a surface of the mesh, usually of another elastic body (theory.md "
+             "§2.8)");
     b.selector("kind", &ObstacleOptions::kind, obstacle_parameters,
                [](const ObstacleOptions& o, std::string_view) {
                  return fmt::format("not used by kind \"{}\"", enum_name(o.kind));
                });
-    b.number("point", &ObstacleOptions::point, any_number("m"), "a point of the plane")
-        .require("a point of the plane [m]");
+    b.number("point", &ObstacleOptions::point, any_number("m"),
+             "kind plane: a point of the plane; kind cylinder: a point of its axis")
+        .require("a point of the plane, or of the cylinder's axis [m]");
     b.number("normal", &ObstacleOptions::normal, any_number(),
              "the plane's normal, non-zero (normalized by fricon), pointing out of the obstacle, "
              "towards the body")
         .require("the plane's normal, towards the body");
     b.text("boundary", &ObstacleOptions::boundary, "a non-empty boundary tag",
-           "the tag of the master surface, facing the contact surface")
-        .require("kind \"body\" needs the tag of the master surface");
+           "kind body: the tag of the master surface, facing the contact surface; kind surface: "
+           "the tag of a surface of the mesh file that no tetrahedron carries (a surface-only "
+           "physical group, or the surface of a volume left out of the physical groups)")
+        .require(
+            "the tag of the master surface (kind body) or of the rigid surface (kind surface)");
+    b.number("center", &ObstacleOptions::center, any_number("m"), "the ball's centre")
+        .require("the ball's centre [m]");
+    b.number("radius", &ObstacleOptions::radius, positive("m"),
+             "the radius of the ball or of the cylinder")
+        .require("the radius [m]");
+    b.number("axis", &ObstacleOptions::axis, any_number(),
+             "the cylinder's axis, non-zero (normalized by fricon)")
+        .require("the cylinder's axis");
+    b.number("displacement", &ObstacleOptions::displacement, any_number("m"),
+             "the obstacle's translation from where it is given (which the body may not "
+             "penetrate); with a path, the value its factors multiply")
+        .show_default("[0, 0, 0]");
+    b.number("path", &ObstacleOptions::path, any_number(),
+             "with `[loading] steps > 1`: the factor of `displacement` at each step, one per "
+             "step, or one [fx, fy, fz] per step, the factors of its components (press, then "
+             "slide; written flat or as rows, [[fx, fy, fz], ...]); absent: the displacement "
+             "holds at every step")
+        .or_rows_of(3);
     b.check([](const Problem& p, const std::string& path, const ObstacleOptions& o) {
       // stableNorm: the norm of [0, 0, 1e308] (or of [0, 0, 1e-200]) without overflow or
       // underflow of its square.
@@ -487,6 +528,10 @@ const OptionTable& obstacle_table() {
         fail(p, join_key(path, "normal"),
              "expected a non-zero vector (the plane's normal, pointing towards the body), got "
              "[0, 0, 0]");
+      if (o.kind == ObstacleKind::Cylinder && !(o.axis.stableNorm() > 0.0))
+        fail(p, join_key(path, "axis"),
+             "expected a non-zero vector (the cylinder's axis), got [0, 0, 0]");
+      check_path(p, join_key(path, "path"), o.path, /*per_component=*/true);
     });
     return b.build();
   }();

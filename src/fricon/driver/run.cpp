@@ -221,6 +221,74 @@ VectorXd solve_contact_problem(const Problem& problem, const contact::ContactDis
                                           : solve_with_contact(problem, disc, options, r);
 }
 
+// The geometric updates of the pairs against curved rigid obstacles (theory.md §2.11): at most
+// the largest contact.geometry_updates, and their smallest tolerance; none without such a pair.
+struct GeometryUpdates {
+  int max = -1;
+  Real tolerance = 1.0;
+};
+
+GeometryUpdates geometry_updates(const Problem& problem,
+                                 const contact::ContactDiscretization& disc) {
+  GeometryUpdates g;
+  for (std::size_t i = 0; i < disc.pairs.size(); ++i) {
+    const contact::PairInfo& pair = disc.pairs[i];
+    if (!pair.obstacle || pair.obstacle->flat()) continue;
+    g.max = std::max(g.max, problem.contact[i].geometry_updates);
+    g.tolerance = std::min(g.tolerance, problem.contact[i].geometry_tolerance);
+  }
+  return g;
+}
+
+// Per surface node: whether a patch of it is not separated.
+std::vector<bool> nodes_in_contact(const contact::ContactDiscretization& disc,
+                                   const ContactFields& fields) {
+  std::vector<bool> in(static_cast<size_t>(disc.surface.n_nodes()), false);
+  for (Index p = 0; p < disc.n_patches(); ++p) {
+    if (fields.state[static_cast<size_t>(p)] == PatchState::Separated) continue;
+    for (Index face : disc.patches.faces[static_cast<size_t>(p)])
+      for (int v = 0; v < 3; ++v)
+        in[static_cast<size_t>(disc.surface.face_nodes(v, face))] = true;
+  }
+  return in;
+}
+
+// Against curved rigid obstacles: while the linearized gap at the solution u is off the true one
+// by more than the tolerance, gap and normal are evaluated again at the deformed position and the
+// problem solved again (theory.md §2.11). The report counts the work of every solve.
+VectorXd update_geometry(const Problem& problem, contact::ContactDiscretization disc, VectorXd u,
+                         const RunOptions& options, RunResult& r) {
+  const GeometryUpdates updates = geometry_updates(problem, disc);
+  if (updates.max < 0 || !r.report.contact || !r.contact) return u;
+  long products = 0, qp_iterations = 0, solves = 0;
+  for (int done = 0;; ++done) {
+    ContactReport& c = *r.report.contact;
+    const fe::NodalField deformation = r.model.dofs.to_nodal(u) + r.model.prescribed;
+    const contact::LinearizationError e = contact::linearization_error(
+        r.model.mesh, disc, deformation, nodes_in_contact(disc, *r.contact));
+    c.geometry_updates = done;
+    c.geometry_change = e.change;
+    c.geometry_scale = e.scale;
+    c.geometry_tolerance = updates.tolerance;
+    c.n_mult += products;
+    c.qp_iterations += qp_iterations;
+    c.n_kinv += solves;
+    const bool close = e.change <= updates.tolerance * e.scale;
+    if (close || done == updates.max || r.report.status != RunStatus::Converged ||
+        options.stop_was_requested())
+      return u;
+    products = c.n_mult;
+    qp_iterations = c.qp_iterations;
+    solves = c.n_kinv;
+    {
+      phase_start(options, "contact");
+      ScopedPhase phase(r.report.times, "contact");
+      disc = discretize_contact(problem, r.model.mesh, r.model.dofs, &deformation);
+    }
+    u = solve_contact_problem(problem, disc, options, r);
+  }
+}
+
 // Without contact: one solve with the factor of K.
 VectorXd solve_elastic(RunResult& r) {
   ScopedPhase phase(r.report.times, "solve");
@@ -307,6 +375,13 @@ std::vector<std::string> result_warnings(const RunReport& report) {
         "the contact partition failed condition (5.1) and was coarsened: {}; the patches are "
         "coarser than asked for (theory.md §2.3)",
         c.partition_note));
+  if (c.geometry_updates >= 0 && c.geometry_change > c.geometry_tolerance * c.geometry_scale)
+    w.push_back(fmt::format(
+        "the linearized gap against the curved obstacle is off the true gap at the deformed "
+        "position by {:.3e} m, more than contact.geometry_tolerance = {:g} of the normal "
+        "displacement {:.3e} m, after {} geometric update(s) (contact.geometry_updates): raise "
+        "geometry_updates (theory.md §2.11)",
+        c.geometry_change, c.geometry_tolerance, c.geometry_scale, c.geometry_updates));
   for (const PairReport& p : c.pairs) {
     if (!p.small_sliding)
       w.push_back(fmt::format(
@@ -348,7 +423,8 @@ RunResult run(const Problem& problem, const RunOptions& options) {
   if (options.stop_was_requested()) throw Interrupted("interrupted before the solve");
 
   // @sect: the displacement: one solve, or the outer loop of dual QPs.
-  const VectorXd u = disc ? solve_contact_problem(problem, *disc, options, r) : solve_elastic(r);
+  VectorXd u = disc ? solve_contact_problem(problem, *disc, options, r) : solve_elastic(r);
+  if (disc) u = update_geometry(problem, *disc, std::move(u), options, r);
 
   // @sect: fields and the self-check of the result.
   finish_run(problem, u, r);

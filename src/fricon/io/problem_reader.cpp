@@ -90,6 +90,19 @@ OptionValue read_numbers(const Context& ctx, const Field& f, const Option& o) {
     return out;
   }
   const auto& a = get_array(ctx, f, fmt::format("a non-empty array of {}", noun));
+  // A list that may be written as rows: [[1, 2, 3], [4, 5, 6]], read flat.
+  if (o.list_rows_of > 0 && !a.empty() && a[0].as_array() != nullptr) {
+    const std::string expected = fmt::format("an array of {} {}", o.list_rows_of, noun);
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      const Field row = element(ctx, f, a, i);
+      const auto& r = get_array(ctx, row, expected);
+      if (r.size() != static_cast<std::size_t>(o.list_rows_of))
+        fail(ctx, row, fmt::format("expected {}, got {} element(s)", expected, r.size()));
+      for (std::size_t j = 0; j < r.size(); ++j)
+        out.push_back(one(element(ctx, row, r, j)));
+    }
+    return out;
+  }
   for (std::size_t i = 0; i < a.size(); ++i)
     out.push_back(one(element(ctx, f, a, i)));
   return out;

@@ -17,8 +17,19 @@
 namespace fricon::io {
 
 namespace {
+
 nlohmann::json vec3(const Vec3& v) {
   return nlohmann::json::array({v(0), v(1), v(2)});
+}
+
+// A rigid obstacle: its kind, its parameters at rest ("point", "normal", "center", "radius",
+// ...) and its displacement [m] (the position it is in: the points moved by it).
+nlohmann::json obstacle_json(const contact::Obstacle& obstacle, const Vec3& displacement) {
+  nlohmann::json j = {{"kind", std::string(obstacle.kind())}};
+  for (const contact::ObstacleParameter& p : obstacle.parameters())
+    j[p.name] = p.value.size() == 1 ? nlohmann::json(p.value.front()) : nlohmann::json(p.value);
+  j["displacement"] = vec3(displacement);
+  return j;
 }
 
 // The contact part of the report: counts, the paper's measures, the certificate and the outer
@@ -86,13 +97,20 @@ void add_contact_report(const driver::ContactReport& c, nlohmann::json& j) {
                   {"fixed_point_residual", c.fixed_point_residual},
                   {"history", history}};
   if (!c.partition_note.empty()) j["partition_note"] = c.partition_note;
+  if (c.geometry_updates >= 0)
+    j["geometry"] = {{"updates", c.geometry_updates},
+                     {"change", c.geometry_change},
+                     {"normal_displacement", c.geometry_scale},
+                     {"tolerance", c.geometry_tolerance}};
   nlohmann::json pairs = nlohmann::json::array();
   for (const driver::PairReport& r : c.pairs) {
     const contact::PairInfo& p = r.info;
     nlohmann::json pair = {
         {"key", p.key},
         {"boundary", p.boundary},
-        {"obstacle", p.master.empty() ? "plane" : "body"},
+        {"obstacle", !p.master.empty() ? std::string("body")
+                     : p.obstacle      ? std::string(p.obstacle->kind())
+                                       : std::string("plane")},
         {"model", enum_name(r.model)},
         {"friction_law", r.friction_law},
         {"n_patches", r.n_patches},
@@ -103,6 +121,7 @@ void add_contact_report(const driver::ContactReport& c, nlohmann::json& j) {
         {"stability_ratio", p.stability.ratio},
         {"basis", {{"n", vec3(p.n)}, {"t1", vec3(p.t1)}, {"t2", vec3(p.t2)}}},
         {"max_slip", r.max_slip}};
+    if (p.obstacle) pair["obstacle_geometry"] = obstacle_json(*p.obstacle, p.obstacle_displacement);
     if (!p.master.empty()) {
       pair["master"] = p.master;
       pair["search_distance"] = p.search_distance;
@@ -138,12 +157,13 @@ void add_regions(const mesh::TetMesh& mesh, nlohmann::json& j) {
   j["regions"] = regions;
 }
 
-// The first pair's obstacle: the plane (a point of it and its unit normal towards the body;
-// without [contact.obstacle] the plane of the flat contact surface, through its mean node), or
-// the master's tag; and the basis (n, t1, t2) of the (first) contact surface, in which the
+// The first pair's obstacle: a rigid one (its kind, parameters at rest and displacement; a plane
+// without [contact.obstacle] is that of the flat contact surface, through its mean node), or the
+// master's tag; and the basis (n, t1, t2) of the (first) contact surface, in which the
 // tangential components are given (README, Conventions; each pair's in report.json's pairs).
 void add_contact_geometry(const driver::Problem& problem, const mesh::TetMesh& mesh,
-                          const driver::ContactFields& c, nlohmann::json& j) {
+                          const driver::RunReport& report, const driver::ContactFields& c,
+                          nlohmann::json& j) {
   const auto& s = c.surface;
   j["contact_basis"] = {{"n", vec3(s.n)}, {"t1", vec3(s.t1)}, {"t2", vec3(s.t2)}};
   const auto& first = problem.contact.front().obstacle;
@@ -151,18 +171,23 @@ void add_contact_geometry(const driver::Problem& problem, const mesh::TetMesh& m
     j["obstacle"] = {{"kind", "body"}, {"boundary", first->boundary}};
     return;
   }
-  Vec3 point = Vec3::Zero();
-  if (first) {
-    point = first->point;
-  } else {
-    for (Index node : s.nodes)
-      point += mesh.nodes.col(node);
-    point /= static_cast<Real>(std::max<Index>(s.n_nodes(), 1));
+  const contact::PairInfo* pair = report.contact && !report.contact->pairs.empty()
+                                      ? &report.contact->pairs.front().info
+                                      : nullptr;
+  if (first && pair && pair->obstacle) {
+    j["obstacle"] = obstacle_json(*pair->obstacle, pair->obstacle_displacement);
+    j["obstacle"]["given"] = true;
+    return;
   }
+  Vec3 point = Vec3::Zero();
+  for (Index node : s.nodes)
+    point += mesh.nodes.col(node);
+  point /= static_cast<Real>(std::max<Index>(s.n_nodes(), 1));
   j["obstacle"] = {{"kind", "plane"},
                    {"point", vec3(point)},
                    {"normal", vec3(-s.n)},
-                   {"given", first.has_value()}};
+                   {"displacement", vec3(Vec3::Zero())},
+                   {"given", false}};
 }
 
 // A distributed run: its ranks, partition and each rank's work and memory.
@@ -179,6 +204,26 @@ void add_parallel_report(const parallel::ParallelReport& p, nlohmann::json& j) {
       {"backend", "petsc"},   {"n_ranks", p.n_ranks},       {"partition", enum_name(p.partition)},
       {"n_schur", p.n_schur}, {"analysis_s", p.analysis_s}, {"factorization_s", p.factorization_s},
       {"ranks", ranks}};
+}
+
+}  // namespace
+
+namespace {
+
+// A rigid obstacle that moves: a displacement or a path.
+bool moving_obstacle(const driver::ContactOptions& c) {
+  return c.obstacle && driver::is_rigid(*c.obstacle) &&
+         (!c.obstacle->path.empty() || !c.obstacle->displacement.isZero(0.0));
+}
+
+// Per pair whose rigid obstacle moves: its displacement at step k [m].
+nlohmann::json obstacle_steps(const driver::Problem& problem, int k) {
+  nlohmann::json out = nlohmann::json::object();
+  for (size_t i = 0; i < problem.contact.size(); ++i)
+    if (moving_obstacle(problem.contact[i]))
+      out[problem.contact_key(i)] = vec3(
+          driver::obstacle_displacement(*problem.contact[i].obstacle, k, problem.loading.steps));
+  return out;
 }
 
 }  // namespace
@@ -201,6 +246,7 @@ nlohmann::json step_json(const driver::Problem& problem, const driver::StepRepor
       {"reaction_force", vec3(s.reaction_force)},
       {"applied_force", vec3(s.applied_force)},
       {"load_displacement", displacement},
+      {"obstacle_displacement", obstacle_steps(problem, s.step)},
       {"max_slip", s.max_slip},
       {"max_accumulated_slip", s.max_accumulated_slip},
       {"patch_states", {{"stick", s.n_stick}, {"slip", s.n_slip}, {"separated", s.n_separated}}},
@@ -237,6 +283,13 @@ Table steps_table(const driver::Problem& problem, const driver::RunReport& repor
     if (!loads[i].boundary.empty())
       vector_columns("displacement." + loads[i].key,
                      [i](const driver::StepReport& s) { return s.load_displacement[i]; });
+  for (size_t i = 0; i < problem.contact.size(); ++i)
+    if (moving_obstacle(problem.contact[i]))
+      vector_columns("obstacle." + problem.contact_key(i),
+                     [&problem, i](const driver::StepReport& s) {
+                       return driver::obstacle_displacement(*problem.contact[i].obstacle, s.step,
+                                                            problem.loading.steps);
+                     });
   column("max_slip", [](const driver::StepReport& s) { return s.max_slip; });
   column("max_accumulated_slip",
          [](const driver::StepReport& s) { return s.max_accumulated_slip; });
@@ -301,7 +354,7 @@ nlohmann::json report_json(const driver::Problem& problem, const driver::RunResu
                            {"undetermined", b.undetermined}});
   if (r.contact) add_contact_report(*r.contact, j);
   if (r.parallel) add_parallel_report(*r.parallel, j);
-  if (result.contact) add_contact_geometry(problem, result.model.mesh, *result.contact, j);
+  if (result.contact) add_contact_geometry(problem, result.model.mesh, r, *result.contact, j);
   if (!r.steps.empty()) {
     j["steps"] = nlohmann::json::array();
     for (const driver::StepReport& s : r.steps)

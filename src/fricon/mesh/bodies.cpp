@@ -139,6 +139,10 @@ TetMesh disjoint_union(const std::vector<TetMesh>& parts,
       whole.tet_region.push_back(index_of(whole.region_names, prefixes[i] + region));
     }
     whole.faces.middleCols(face0, part.n_faces()) = part.faces.array() + node0;
+    for (const RigidSurface& surface : part.rigid_surfaces) {
+      whole.rigid_surfaces.push_back(surface);
+      whole.rigid_surfaces.back().name = prefixes[i] + surface.name;
+    }
     int max_entity = 0;
     for (Index f = 0; f < part.n_faces(); ++f) {
       whole.face_tag.push_back(

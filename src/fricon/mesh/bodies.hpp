@@ -69,10 +69,10 @@ std::string describe_body(const TetMesh& mesh, const Bodies& bodies, Index b);
 /// is a body of the result): their nodes, tetrahedra and boundary triangles in the order of the
 /// parts, indices shifted. Each boundary tag and region of parts[i] is renamed
 /// `prefixes[i] + name` (an unnamed region is "body"); equal names after renaming are one tag or
-/// region. Face entities are shifted so that those of different parts differ (-1 stays -1).
-/// Expects as many prefixes as parts. Builds meshes of several bodies from the brick generator,
-/// e.g. disjoint_union({a, b}, {"", "b_"}) with b's tags "b_x0", ... and regions "body",
-/// "b_body".
+/// region. Each rigid surface of parts[i] is copied, renamed `prefixes[i] + name`. Face entities
+/// are shifted so that those of different parts differ (-1 stays -1). Expects as many prefixes as
+/// parts. Builds meshes of several bodies from the brick generator, e.g. disjoint_union({a, b},
+/// {"", "b_"}) with b's tags "b_x0", ... and regions "body", "b_body".
 TetMesh disjoint_union(const std::vector<TetMesh>& parts, const std::vector<std::string>& prefixes);
 
 }  // namespace fricon::mesh

@@ -304,15 +304,6 @@ GmshTets read_tets(const std::string& source, const GmshNodes& nodes, TetMesh& m
   return tets;
 }
 
-void require_all_nodes_used(const std::string& source, const GmshNodes& nodes,
-                            const TetMesh& mesh) {
-  if (const auto n = first_unused_node(mesh))
-    throw InputError(fmt::format(
-        "{}: node {} (Gmsh node {}) belongs to no tetrahedron (remove it, or mesh the volume "
-        "it lies in)",
-        source, *n, nodes.tag_of[static_cast<size_t>(*n)]));
-}
-
 // Every face of every tetrahedron, sorted by its vertex set, with its tetrahedron: to name the
 // tetrahedra of a non-conforming face.
 struct TetFaceRef {
@@ -356,42 +347,156 @@ void require_conforming(const std::string& source, const std::vector<TetFaceRef>
           tets.element_tag[static_cast<size_t>(faces[i + 2].tet)]));
 }
 
-// The 3-node triangles of every 2D physical group, one face per group they are in, oriented
-// outward.
-void read_tagged_faces(const std::string& source, const GmshNodes& nodes, TetMesh& mesh) {
-  std::vector<Index> corners;
-  std::vector<std::size_t> element_of_face;
-  for (const auto& [group, name] : physical_groups(2)) {
-    const int tag = static_cast<int>(mesh.tag_names.size());
-    mesh.tag_names.push_back(name);
-    // MSH 2.2 repeats an element once per physical group it is in: keep one copy per group.
-    std::set<std::array<Index, 3>> in_group;
-    for (int entity : entities_of_group(2, group)) {
-      require_element_type(source, 2, entity, kGmshTriangle, kHowToGetLinearTriangles);
-      std::vector<std::size_t> element_tags, node_tags;
-      gmsh::model::mesh::getElementsByType(kGmshTriangle, element_tags, node_tags, entity);
-      for (size_t e = 0; e < element_tags.size(); ++e) {
-        std::array<Index, 3> triangle{};
-        for (size_t v = 0; v < kNodesPerTriangle; ++v)
-          triangle[v] = nodes.index_of.at(node_tags[kNodesPerTriangle * e + v]);
-        if (!in_group.insert(sorted_key(triangle[0], triangle[1], triangle[2])).second) continue;
-        corners.insert(corners.end(), triangle.begin(), triangle.end());
-        element_of_face.push_back(element_tags[e]);
-        mesh.face_tag.push_back(tag);
-        mesh.face_entity.push_back(entity);
-      }
+// Whether the triangle with the sorted vertex set `key` is a face of a tetrahedron.
+bool is_tet_face(const std::vector<TetFaceRef>& faces, const std::array<Index, 3>& key) {
+  const auto it = std::lower_bound(
+      faces.begin(), faces.end(), key,
+      [](const TetFaceRef& f, const std::array<Index, 3>& k) { return f.key < k; });
+  return it != faces.end() && it->key == key;
+}
+
+// A 2D physical group none of whose triangles is a face of a tetrahedron: its triangles as in the
+// file (node indices of the whole model), before its points are copied out.
+struct RigidGroup {
+  std::string name;
+  std::vector<std::array<Index, 3>> triangles;
+};
+
+// The triangles of a 2D physical group: each distinct triangle once (MSH 2.2 repeats an element
+// once per physical group it is in), with its Gmsh element and entity.
+struct GroupTriangles {
+  std::vector<std::array<Index, 3>> corners;
+  std::vector<std::size_t> element;
+  std::vector<int> entity;
+};
+
+GroupTriangles triangles_of_group(const std::string& source, const GmshNodes& nodes, int group) {
+  GroupTriangles triangles;
+  std::set<std::array<Index, 3>> seen;
+  for (int entity : entities_of_group(2, group)) {
+    require_element_type(source, 2, entity, kGmshTriangle, kHowToGetLinearTriangles);
+    std::vector<std::size_t> element_tags, node_tags;
+    gmsh::model::mesh::getElementsByType(kGmshTriangle, element_tags, node_tags, entity);
+    for (size_t e = 0; e < element_tags.size(); ++e) {
+      std::array<Index, 3> triangle{};
+      for (size_t v = 0; v < kNodesPerTriangle; ++v)
+        triangle[v] = nodes.index_of.at(node_tags[kNodesPerTriangle * e + v]);
+      if (!seen.insert(sorted_key(triangle[0], triangle[1], triangle[2])).second) continue;
+      triangles.corners.push_back(triangle);
+      triangles.element.push_back(element_tags[e]);
+      triangles.entity.push_back(entity);
     }
   }
-  mesh.faces.resize(kNodesPerTriangle, static_cast<Index>(element_of_face.size()));
+  return triangles;
+}
+
+// The 3-node triangles of every 2D physical group. A group whose triangles are all faces of the
+// tetrahedra (or that has none) is a boundary tag: one face per triangle and group (not yet
+// oriented). A group none of whose triangles is a face of a tetrahedron is a rigid surface,
+// returned. A group with some triangles on the tetrahedra and some not is refused.
+std::vector<RigidGroup> read_tagged_faces(const std::string& source, const GmshNodes& nodes,
+                                          const std::vector<TetFaceRef>& tet_face_refs,
+                                          TetMesh& mesh) {
+  std::vector<RigidGroup> rigid;
+  std::vector<std::array<Index, 3>> corners;
+  for (const auto& [group, name] : physical_groups(2)) {
+    GroupTriangles triangles = triangles_of_group(source, nodes, group);
+    std::vector<bool> on_tets(triangles.corners.size());
+    size_t n_on = 0;
+    for (size_t k = 0; k < on_tets.size(); ++k) {
+      const auto& c = triangles.corners[k];
+      on_tets[k] = is_tet_face(tet_face_refs, sorted_key(c[0], c[1], c[2]));
+      n_on += on_tets[k] ? 1 : 0;
+    }
+    if (n_on == 0 && !triangles.corners.empty()) {
+      rigid.push_back({name, std::move(triangles.corners)});
+      continue;
+    }
+    if (n_on < on_tets.size()) {
+      const size_t k =
+          static_cast<size_t>(std::find(on_tets.begin(), on_tets.end(), false) - on_tets.begin());
+      throw InputError(fmt::format(
+          "{}: a triangle (Gmsh element {}) of physical group '{}' is no face of any tetrahedron, "
+          "while {} of its {} triangles are: a physical surface is either a boundary of the "
+          "tetrahedra or, none of its triangles on them, a rigid surface (a rigid obstacle's)",
+          source, triangles.element[k], name, n_on, on_tets.size()));
+    }
+    const int tag = static_cast<int>(mesh.tag_names.size());
+    mesh.tag_names.push_back(name);
+    corners.insert(corners.end(), triangles.corners.begin(), triangles.corners.end());
+    mesh.face_tag.insert(mesh.face_tag.end(), triangles.corners.size(), tag);
+    mesh.face_entity.insert(mesh.face_entity.end(), triangles.entity.begin(),
+                            triangles.entity.end());
+  }
+  mesh.faces.resize(kNodesPerTriangle, static_cast<Index>(corners.size()));
   for (Index f = 0; f < mesh.n_faces(); ++f)
     for (int v = 0; v < kNodesPerTriangle; ++v)
-      mesh.faces(v, f) = corners[static_cast<size_t>(kNodesPerTriangle * f + v)];
+      mesh.faces(v, f) = corners[static_cast<size_t>(f)][static_cast<size_t>(v)];
+  return rigid;
+}
+
+// The rigid surfaces of `groups`, each with a copy of its points (in the order of their Gmsh
+// tags); then the nodes of no tetrahedron taken out of the mesh (tetrahedra, faces and
+// nodes.index_of renumbered; a dropped node's index becomes -1). A node of no tetrahedron and no
+// rigid surface is refused.
+void split_off_rigid_surfaces(const std::string& source, const std::vector<RigidGroup>& groups,
+                              GmshNodes& nodes, TetMesh& mesh) {
+  const size_t n_nodes = static_cast<size_t>(mesh.n_nodes());
+  std::vector<bool> on_tets(n_nodes, false), on_rigid(n_nodes, false);
+  for (Index t = 0; t < mesh.n_tets(); ++t)
+    for (int v = 0; v < kNodesPerTet; ++v)
+      on_tets[static_cast<size_t>(mesh.tets(v, t))] = true;
+  std::vector<Index> local(n_nodes, -1);
+  for (const RigidGroup& group : groups) {
+    std::vector<Index> used;
+    for (const auto& triangle : group.triangles)
+      used.insert(used.end(), triangle.begin(), triangle.end());
+    std::sort(used.begin(), used.end());
+    used.erase(std::unique(used.begin(), used.end()), used.end());
+    RigidSurface surface{group.name, mesh.nodes(Eigen::all, used), {}};
+    for (size_t k = 0; k < used.size(); ++k) {
+      local[static_cast<size_t>(used[k])] = static_cast<Index>(k);
+      on_rigid[static_cast<size_t>(used[k])] = true;
+    }
+    surface.triangles.resize(kNodesPerTriangle, static_cast<Index>(group.triangles.size()));
+    for (size_t f = 0; f < group.triangles.size(); ++f)
+      for (size_t v = 0; v < kNodesPerTriangle; ++v)
+        surface.triangles(static_cast<Index>(v), static_cast<Index>(f)) =
+            local[static_cast<size_t>(group.triangles[f][v])];
+    mesh.rigid_surfaces.push_back(std::move(surface));
+  }
+  // Each node's index once the nodes of no tetrahedron are out.
+  std::vector<Index> renumbered(n_nodes, -1);
+  std::vector<Index> kept;
+  for (size_t n = 0; n < n_nodes; ++n) {
+    if (on_tets[n]) {
+      renumbered[n] = static_cast<Index>(kept.size());
+      kept.push_back(static_cast<Index>(n));
+    } else if (!on_rigid[n]) {
+      throw InputError(fmt::format(
+          "{}: node {} (Gmsh node {}) belongs to no tetrahedron (remove it, or mesh the volume "
+          "it lies in)",
+          source, n, nodes.tag_of[n]));
+    }
+  }
+  if (kept.size() == n_nodes) return;
+  const auto renumber = [&renumbered](Index v) { return renumbered[static_cast<size_t>(v)]; };
+  mesh.nodes = mesh.nodes(Eigen::all, kept).eval();
+  mesh.tets = mesh.tets.unaryExpr(renumber).eval();
+  mesh.faces = mesh.faces.unaryExpr(renumber).eval();
+  std::vector<std::size_t> tag_of;
+  for (Index n : kept)
+    tag_of.push_back(nodes.tag_of[static_cast<size_t>(n)]);
+  for (auto& [tag, index] : nodes.index_of)
+    index = renumber(index);
+  nodes.tag_of = std::move(tag_of);
+}
+
+// Orients every boundary face outward (each one is a face of a tetrahedron: read_tagged_faces).
+void orient_faces(const std::string& source, TetMesh& mesh) {
   if (const Index f = orient_faces_outward(mesh); f >= 0)
-    throw InputError(
-        fmt::format("{}: triangle {} (Gmsh element {}) of physical group '{}' is no face of any "
-                    "tetrahedron",
-                    source, f, element_of_face[static_cast<size_t>(f)],
-                    mesh.tag_names[static_cast<size_t>(mesh.face_tag[static_cast<size_t>(f)])]));
+    throw Error(fmt::format("{}: boundary face {} is no face of any tetrahedron (internal error)",
+                            source, f));
 }
 
 // The physical groups of dimension 1 (curves) and 0 (points), each the node set of all nodes of
@@ -400,7 +505,7 @@ void read_tagged_faces(const std::string& source, const GmshNodes& nodes, TetMes
 void read_node_sets(const std::string& source, const GmshNodes& nodes, TetMesh& mesh) {
   for (int dim : {kCurveDimension, kPointDimension})
     for (const auto& [group, name] : physical_groups(dim)) {
-      if (mesh.find_tag(name) >= 0)
+      if (mesh.find_tag(name) >= 0 || mesh.find_rigid_surface(name) != nullptr)
         throw InputError(fmt::format(
             "{}: physical group '{}' of dimension {} has the name of a physical surface too; "
             "give the {} a name of its own",
@@ -411,8 +516,15 @@ void read_node_sets(const std::string& source, const GmshNodes& nodes, TetMesh& 
         std::vector<double> coords, parametric;
         gmsh::model::mesh::getNodes(tags, coords, parametric, dim, entity,
                                     /*includeBoundary=*/true, /*returnParametricCoord=*/false);
-        for (std::size_t tag : tags)
-          set.nodes.push_back(nodes.index_of.at(tag));
+        for (std::size_t tag : tags) {
+          const Index index = nodes.index_of.at(tag);
+          if (index < 0)
+            throw InputError(fmt::format(
+                "{}: physical {} '{}' has Gmsh node {}, which belongs to no tetrahedron, only to a "
+                "rigid surface: a {} must lie on an elastic body",
+                source, node_set_kind(dim), name, tag, node_set_kind(dim)));
+          set.nodes.push_back(index);
+        }
       }
       std::sort(set.nodes.begin(), set.nodes.end());
       set.nodes.erase(std::unique(set.nodes.begin(), set.nodes.end()), set.nodes.end());
@@ -517,12 +629,21 @@ void add_volumes(const TetMesh& mesh) {
   }
 }
 
-// Surfaces: the planned discrete surfaces, and one 2D physical group per tag with faces.
-void add_surfaces(const TetMesh& mesh) {
+// The next free tags of the model being written.
+struct NextTags {
+  int entity = 1;           // surface entity
+  std::size_t element = 1;  // element
+};
+
+// Surfaces: the planned discrete surfaces, and one 2D physical group per tag with faces (tag i is
+// physical group i + 1).
+NextTags add_surfaces(const TetMesh& mesh) {
   const SurfacePlan plan = plan_surfaces(mesh);
   std::size_t next_element = static_cast<std::size_t>(mesh.n_tets()) + 1;
   std::vector<std::vector<int>> surfaces_of_tag(mesh.tag_names.size());
+  int max_entity = 0;
   for (const auto& s : plan.surfaces) {
+    max_entity = std::max(max_entity, s.gmsh_tag);
     gmsh::model::addDiscreteEntity(2, s.gmsh_tag);
     gmsh::model::mesh::addElementsByType(
         s.gmsh_tag, kGmshTriangle, consecutive_tags(next_element, s.faces.size()),
@@ -537,6 +658,35 @@ void add_surfaces(const TetMesh& mesh) {
     const int group =
         gmsh::model::addPhysicalGroup(2, surfaces_of_tag[tag], static_cast<int>(tag) + 1);
     gmsh::model::setPhysicalName(2, group, mesh.tag_names[tag]);
+  }
+  return {max_entity + 1, next_element};
+}
+
+// Rigid surfaces: each one discrete surface with nodes of its own (after the mesh's nodes) and a
+// 2D physical group after those of the tags, so that read_gmsh reads it back as a rigid surface.
+void add_rigid_surfaces(const TetMesh& mesh, NextTags next) {
+  std::size_t next_node = static_cast<std::size_t>(mesh.n_nodes()) + 1;
+  int next_group = static_cast<int>(mesh.tag_names.size()) + 1;
+  for (const RigidSurface& surface : mesh.rigid_surfaces) {
+    const int entity = next.entity++;
+    gmsh::model::addDiscreteEntity(2, entity);
+    const auto n_points = static_cast<std::size_t>(surface.points.cols());
+    std::vector<double> coords(surface.points.data(),
+                               surface.points.data() + surface.points.size());
+    gmsh::model::mesh::addNodes(2, entity, consecutive_tags(next_node, n_points), coords);
+    std::vector<Index> triangles(static_cast<size_t>(surface.triangles.cols()));
+    for (size_t f = 0; f < triangles.size(); ++f)
+      triangles[f] = static_cast<Index>(f);
+    const std::size_t first_node = next_node;
+    gmsh::model::mesh::addElementsByType(
+        entity, kGmshTriangle, consecutive_tags(next.element, triangles.size()),
+        gmsh_node_tags(triangles, kNodesPerTriangle, [&](int v, Index f) {
+          return static_cast<Index>(first_node - 1) + surface.triangles(v, f);
+        }));
+    next.element += triangles.size();
+    next_node += n_points;
+    const int group = gmsh::model::addPhysicalGroup(2, {entity}, next_group++);
+    gmsh::model::setPhysicalName(2, group, surface.name);
   }
 }
 
@@ -567,9 +717,11 @@ TetMesh read_gmsh(const std::filesystem::path& file, std::optional<Real> size_fa
   session.run("reading the mesh", [&] {
     nodes = read_nodes(mesh);
     tets = read_tets(source, nodes, mesh);
-    require_all_nodes_used(source, nodes, mesh);
-    require_conforming(source, tet_faces(mesh), tets);
-    read_tagged_faces(source, nodes, mesh);
+    const std::vector<TetFaceRef> faces = tet_faces(mesh);
+    require_conforming(source, faces, tets);
+    const std::vector<RigidGroup> rigid = read_tagged_faces(source, nodes, faces, mesh);
+    split_off_rigid_surfaces(source, rigid, nodes, mesh);
+    orient_faces(source, mesh);
     read_node_sets(source, nodes, mesh);
   });
   check_mesh(mesh, source);
@@ -597,7 +749,7 @@ void write_gmsh(const std::filesystem::path& file, const TetMesh& mesh, int msh_
       gmsh::option::setNumber("Mesh.Binary", binary ? 1 : 0);
       gmsh::model::add("fricon");
       add_volumes(mesh);
-      add_surfaces(mesh);
+      add_rigid_surfaces(mesh, add_surfaces(mesh));
       gmsh::write(temporary.string());
     });
   } catch (...) {

@@ -9,6 +9,10 @@
 //   - a physical group of dimension 2 is a boundary tag (its name, or "2:<tag>"); each of its
 //     3-node triangles is one boundary face with that tag, and the elementary surface it lies on
 //     is the face's entity (so `[contact] patches = "mesh"` makes each surface one patch);
+//   - but a physical group of dimension 2 none of whose triangles is a face of a tetrahedron (a
+//     surface meshed alone, or the surface of a volume that is in no physical group, which Gmsh
+//     leaves out of an .msh file it saves) is a rigid surface (TetMesh::rigid_surfaces), for a
+//     rigid obstacle: its triangles as in the file, on copies of their nodes;
 //   - a physical group of dimension 1 or 0 (a curve, a point) is a node set (its name, or
 //     "1:<tag>", "0:<tag>"): the nodes of its entities, curves' end points included; a
 //     [[dirichlet]] boundary may name it (TetMesh::node_sets).
@@ -38,15 +42,21 @@ namespace fricon::mesh {
 /// once per group, face_entity the Gmsh surface tag of each face, and the regions (tet_region,
 /// region_names) of the 3D physical groups: tetrahedra in none of them form a region "body";
 /// without any 3D physical group tet_region and region_names are empty (one region, "body"),
-/// and the node sets of the 1D and 0D physical groups.
+/// the node sets of the 1D and 0D physical groups, and the rigid surfaces: each 2D physical
+/// group none of whose triangles is a face of a tetrahedron, with its triangles in the file's
+/// vertex order and its own points (the Gmsh nodes of its triangles, in the order of their tags);
+/// a node that only rigid surfaces use is not a node of the mesh. (In a .geo file every volume
+/// is meshed, so the surface of a volume in no physical group is a boundary of its region
+/// "body", not a rigid surface: a rigid surface there must be meshed without a volume.)
 ///
 /// Throws InputError naming the file, and where it applies the Gmsh element or node tag, if the
 /// file does not exist or Gmsh cannot read it (with Gmsh's own message), if it has no volume
 /// element, a volume element other than a 4-node tetrahedron (second order, hexahedra, prisms,
 /// pyramids), a tagged surface element other than a 3-node triangle, an inverted or degenerate
-/// tetrahedron, a node of no tetrahedron, a tagged triangle that is no face of a tetrahedron, or
-/// a face shared by three or more tetrahedra (a non-conforming mesh), a 1D or 0D physical group
-/// with no node or with the name of a 2D one; for a size_factor given
+/// tetrahedron, a node of no tetrahedron (nor of a rigid surface), a 2D physical group with some
+/// triangles that are faces of the tetrahedra and some that are not, or a face shared by three or
+/// more tetrahedra (a non-conforming mesh), a 1D or 0D physical group with no node, with the name
+/// of a 2D one, or with a node only of a rigid surface; for a size_factor given
 /// with an MSH file or not positive; and if libgmsh cannot be loaded (naming the library, its
 /// Debian package and the loader's message). Finally runs check_mesh.
 TetMesh read_gmsh(const std::filesystem::path& file, std::optional<Real> size_factor = {});
@@ -61,8 +71,10 @@ inline constexpr int kMsh41 = 41;
 /// face_entity value is one discrete surface, with that value as its Gmsh tag where it is
 /// positive (faces with entity -1 get one new surface per tag); each boundary tag with faces is
 /// a physical group of dimension 2. Node i is Gmsh node i+1, so read_gmsh gives back the same
-/// nodes, tetrahedra, tags and face entities. Empty tags are not written (Gmsh cannot store them),
-/// nor are node sets (curves and points).
+/// nodes, tetrahedra, tags and face entities. Each rigid surface is one more discrete surface
+/// with nodes of its own (numbered after the mesh's) and a 2D physical group of its name, so that
+/// read_gmsh gives it back too. Empty tags are not written (Gmsh cannot store them), nor are node
+/// sets (curves and points).
 ///
 /// The file is written atomically (a temporary file in the same folder, then renamed); the
 /// folder is created if needed. Throws InputError for a bad version or file name, fricon::Error

@@ -43,6 +43,12 @@ const NodeSet* TetMesh::find_node_set(const std::string& name) const {
   return it == node_sets.end() ? nullptr : &*it;
 }
 
+const RigidSurface* TetMesh::find_rigid_surface(const std::string& name) const {
+  const auto it = std::find_if(rigid_surfaces.begin(), rigid_surfaces.end(),
+                               [&](const RigidSurface& s) { return s.name == name; });
+  return it == rigid_surfaces.end() ? nullptr : &*it;
+}
+
 std::vector<Index> TetMesh::nodes_with_tag(const std::string& name) const {
   std::vector<Index> result;
   if (find_tag(name) < 0) {
@@ -63,6 +69,8 @@ std::string TetMesh::tag_list() const {
     s += (s.empty() ? "" : ", ") + name;
   for (const NodeSet& set : node_sets)
     s += fmt::format("{}{} ({})", s.empty() ? "" : ", ", set.name, node_set_kind(set.dim));
+  for (const RigidSurface& surface : rigid_surfaces)
+    s += fmt::format("{}{} (rigid surface)", s.empty() ? "" : ", ", surface.name);
   return s;
 }
 
@@ -73,6 +81,12 @@ std::string TetMesh::no_surface(const std::string& name) const {
         "[[dirichlet]] boundary may be a curve or a point; this key needs triangles, a physical "
         "group of dimension 2 (tags: {})",
         name, node_set_kind(set->dim), set->dim, tag_list());
+  if (find_rigid_surface(name) != nullptr && find_tag(name) < 0)
+    return fmt::format(
+        "boundary '{}' is a rigid surface (a physical surface of the mesh file none of whose "
+        "triangles is a face of a tetrahedron), not a boundary of an elastic body: it can only be "
+        "a rigid obstacle, `obstacle = {{ kind = \"surface\", boundary = \"{}\" }}` (tags: {})",
+        name, name, tag_list());
   return fmt::format("boundary '{}' does not exist on the mesh (tags: {})", name, tag_list());
 }
 
@@ -84,6 +98,13 @@ std::optional<Index> first_unused_node(const TetMesh& mesh) {
   for (std::size_t n = 0; n < used.size(); ++n)
     if (!used[n]) return static_cast<Index>(n);
   return std::nullopt;
+}
+
+void scale_lengths(TetMesh& mesh, Real factor) {
+  FRICON_CHECK(factor > 0.0 && std::isfinite(factor), "scale_lengths: factor " << factor);
+  mesh.nodes *= factor;
+  for (RigidSurface& surface : mesh.rigid_surfaces)
+    surface.points *= factor;
 }
 
 Real signed_volume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
@@ -115,6 +136,27 @@ Vec3 face_normal(const TetMesh& mesh, Index f) {
 }
 
 namespace {
+// Each rigid surface has a name of its own, triangles, finite points and valid point indices.
+void check_rigid_surfaces(const TetMesh& mesh, const std::string& source) {
+  for (const RigidSurface& surface : mesh.rigid_surfaces) {
+    const std::string what = fmt::format("{}: rigid surface '{}'", source, surface.name);
+    if (mesh.find_tag(surface.name) >= 0 || mesh.find_node_set(surface.name) != nullptr ||
+        mesh.find_rigid_surface(surface.name) != &surface)
+      throw InputError(fmt::format(
+          "{} has the name of a boundary tag, a node set or another rigid surface too; give it a "
+          "name of its own",
+          what));
+    if (surface.triangles.cols() == 0) throw InputError(fmt::format("{} has no triangle", what));
+    if (!surface.points.allFinite())
+      throw InputError(fmt::format("{} has a non-finite coordinate", what));
+    for (Index f = 0; f < surface.triangles.cols(); ++f)
+      for (int v = 0; v < 3; ++v)
+        if (surface.triangles(v, f) < 0 || surface.triangles(v, f) >= surface.points.cols())
+          throw InputError(fmt::format("{}: triangle {} refers to point {}, but it has {} points",
+                                       what, f, surface.triangles(v, f), surface.points.cols()));
+  }
+}
+
 // tet_region is empty or gives each tetrahedron a valid index into region_names.
 void check_regions(const TetMesh& mesh, const std::string& source) {
   if (mesh.tet_region.empty()) return;
@@ -161,6 +203,7 @@ void check_mesh(const TetMesh& mesh, const std::string& source, Real relative_to
     throw InputError(fmt::format("{}: {} boundary faces but {} face entities", source,
                                  mesh.n_faces(), mesh.face_entity.size()));
   check_regions(mesh, source);
+  check_rigid_surfaces(mesh, source);
   for (Index f = 0; f < mesh.n_faces(); ++f) {
     for (int v = 0; v < 3; ++v)
       if (mesh.faces(v, f) < 0 || mesh.faces(v, f) >= n)
@@ -337,6 +380,7 @@ TetMesh submesh(const TetMesh& mesh, const std::vector<Index>& tets, std::vector
       if (local[static_cast<size_t>(v)] >= 0) in_part.nodes.push_back(local_of(v));
     part.node_sets.push_back(std::move(in_part));  // ascending: `local` keeps the order
   }
+  part.rigid_surfaces = mesh.rigid_surfaces;  // points of their own: nothing to renumber
   if (nodes != nullptr) *nodes = std::move(global);
   return part;
 }

@@ -33,6 +33,17 @@ struct NodeSet {
 /// "curve" or "point", the kind of a node set of dimension `dim`, for messages.
 const char* node_set_kind(int dim);
 
+/// A surface of the mesh file that is no boundary of the tetrahedra: a physical surface group
+/// none of whose triangles is a face of a tetrahedron (a surface-only group, or the surface of a
+/// volume that is not in any physical group, hence not simulated: in an .msh file, which Gmsh
+/// saves without such volumes; read_gmsh says what a .geo file gives). A rigid obstacle
+/// (contact.obstacle kind "surface") may use it; the elastic model ignores it.
+struct RigidSurface {
+  std::string name;
+  Eigen::Matrix<Real, 3, Eigen::Dynamic> points;      ///< its own vertices [m]
+  Eigen::Matrix<Index, 3, Eigen::Dynamic> triangles;  ///< indices into points, as in the file
+};
+
 struct TetMesh {
   /// Node coordinates [m], one column per node.
   Eigen::Matrix<Real, 3, Eigen::Dynamic> nodes;
@@ -55,6 +66,9 @@ struct TetMesh {
   /// The boundaries of lower dimension (curves, points), by name; a name that is also a tag of
   /// tag_names means the tag's triangles (the reader keeps none such).
   std::vector<NodeSet> node_sets;
+  /// The rigid surfaces of the mesh file, by name: their points are their own (copies), and a
+  /// node that only they use is not in `nodes`. Their names are neither tags nor node sets.
+  std::vector<RigidSurface> rigid_surfaces;
 
   Index n_nodes() const { return nodes.cols(); }
   Index n_tets() const { return tets.cols(); }
@@ -66,15 +80,18 @@ struct TetMesh {
   std::vector<Index> faces_with_tag(const std::string& name) const;
   /// The node set called `name`, or nullptr.
   const NodeSet* find_node_set(const std::string& name) const;
+  /// The rigid surface called `name`, or nullptr.
+  const RigidSurface* find_rigid_surface(const std::string& name) const;
   /// Sorted, unique node indices of the triangles carrying tag `name`, else of the node set
   /// `name` (a curve or point); empty if there is neither.
   std::vector<Index> nodes_with_tag(const std::string& name) const;
   /// Comma-separated list of the tag names, then of the node sets with their kind ("edge
-  /// (curve)"), for error messages.
+  /// (curve)"), then of the rigid surfaces ("ball (rigid surface)"), for error messages.
   std::string tag_list() const;
   /// Why boundary `name` has no triangles, for the message of a key that needs a surface:
   /// "boundary 'NAME' is a curve (a Gmsh physical group of dimension 1), not a surface: ..." for
-  /// a node set, else "boundary 'NAME' does not exist on the mesh (tags: ...)".
+  /// a node set, "boundary 'NAME' is a rigid surface (...), not a boundary of an elastic body:
+  /// ..." for a rigid surface, else "boundary 'NAME' does not exist on the mesh (tags: ...)".
   std::string no_surface(const std::string& name) const;
   /// Region index of tetrahedron t (0 when the mesh has one region).
   int region(Index t) const { return tet_region.empty() ? 0 : tet_region[static_cast<size_t>(t)]; }
@@ -87,6 +104,10 @@ struct TetMesh {
 /// The first node of no tetrahedron, or nothing when every node belongs to one (a reader
 /// refuses such nodes: they would be free dofs that nothing holds).
 std::optional<Index> first_unused_node(const TetMesh& mesh);
+
+/// Multiplies every length of the mesh by `factor` > 0 (a change of unit, [mesh] unit): the
+/// nodes and the points of the rigid surfaces. A uniform scaling keeps every check of check_mesh.
+void scale_lengths(TetMesh& mesh, Real factor);
 
 /// Signed volume [m^3] of the tetrahedron (a, b, c, d): det[b-a, c-a, d-a] / 6.
 Real signed_volume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
@@ -103,8 +124,11 @@ Vec3 face_normal(const TetMesh& mesh, Index f);
 /// Checks that the mesh is usable: non-empty, node indices in range, finite coordinates, every
 /// tetrahedron with volume > relative_tolerance * (its longest edge)^3, boundary faces with
 /// positive area and valid tags, face_entity empty or one per face, tet_region empty or one valid
-/// region per tetrahedron, node sets of dimension 0 or 1 with valid, sorted, unique nodes. Throws
-/// InputError naming the first offending entity and `source` (a file name or "brick generator").
+/// region per tetrahedron, node sets of dimension 0 or 1 with valid, sorted, unique nodes, rigid
+/// surfaces with triangles, finite points and valid indices, named neither as a tag nor as a node
+/// set (their triangles' shape is the obstacle's to check, contact/obstacles/meshed_surface.hpp).
+/// Throws InputError naming the first offending entity and `source` (a file name or "brick
+/// generator").
 void check_mesh(const TetMesh& mesh, const std::string& source, Real relative_tolerance = 1e-12);
 
 /// Counts of how the triangular faces of the tetrahedra are shared.
@@ -133,8 +157,9 @@ std::vector<Index> tets_of_faces(const TetMesh& mesh, const std::vector<Index>& 
 /// The mesh of the tetrahedra `tets` (ascending indices into mesh.tets) alone: their nodes (in
 /// ascending order of their index in `mesh`, given back in `nodes` when not null), the boundary
 /// triangles that are faces of them (faces_of) with their tags and entities, their regions, the
-/// nodes of each node set among theirs (every node set, perhaps empty), and every tag and region
-/// name of `mesh` (so that a part knows the names of the whole).
+/// nodes of each node set among theirs (every node set, perhaps empty), every tag and region
+/// name of `mesh` (so that a part knows the names of the whole), and every rigid surface of
+/// `mesh` as it is (they have points of their own).
 TetMesh submesh(const TetMesh& mesh, const std::vector<Index>& tets,
                 std::vector<Index>* nodes = nullptr);
 

@@ -123,19 +123,68 @@ TEST(ContactSurface, RejectsANonManifoldSurface) {
 TEST(ContactSurface, TheObstacleGivesTheBasisAndTheGap) {
   Brick b = paper_brick(4);
   const Vec3 normal = Vec3(0.01, -0.02, 1.0).normalized();
-  const Plane plane{Vec3(0.0, 0.0, -0.1), normal};
-  const ContactSurface s = make_contact_surface(b.mesh, b.dofs, "z0", "test", plane);
+  const Vec3 point(0.0, 0.0, -0.1);
+  const ObstaclePtr plane = make_plane(point, normal);
+  const RigidContact rigid{plane.get()};
+  const ContactSurface s = make_contact_surface(b.mesh, b.dofs, "z0", "test", &rigid);
   EXPECT_LE((s.n + normal).norm(), 1e-15);
   EXPECT_NEAR(s.t1.dot(s.n), 0.0, 1e-15);
   EXPECT_NEAR(s.t2.dot(s.n), 0.0, 1e-15);
   EXPECT_LE((s.t1.cross(s.t2) + s.n).norm(), 1e-15);  // t2 = t1 x n: (t1, t2, -n) right-handed
-  const VectorXd gap = initial_gap(b.mesh, s, plane, "test");
+  EXPECT_FALSE(s.frames_vary);
+  const VectorXd gap = obstacle_gap(b.mesh, s, rigid);
   for (Index k = 0; k < s.n_nodes(); ++k) {
     const Vec3 x = b.mesh.nodes.col(s.nodes[static_cast<size_t>(k)]);
-    EXPECT_NEAR(gap(k), (x - plane.point).dot(normal), 1e-15);
+    EXPECT_NEAR(gap(k), (x - point).dot(normal), 1e-15);
   }
-  const Plane above{Vec3(0.0, 0.0, 1e-3), normal};
-  EXPECT_THROW(initial_gap(b.mesh, s, above, "test"), InputError);
+  // A plane is linear: the gap linearized where it is moved is the gap at rest.
+  const RigidContact moved{plane.get(), Vec3(1e-3, -2e-3, 0.05)};
+  EXPECT_LE((obstacle_gap(b.mesh, s, moved) - gap).cwiseAbs().maxCoeff(), 1e-15);
+  EXPECT_NO_THROW(check_outside_obstacle(b.mesh, s, *plane, "test"));
+  const ObstaclePtr above = make_plane(Vec3(0.0, 0.0, 1e-3), normal);
+  EXPECT_THROW(check_outside_obstacle(b.mesh, s, *above, "test"), InputError);
+}
+
+TEST(ContactSurface, ABallGivesEachNodeItsNormalAndGap) {
+  // The brick's bottom z = 0 over a ball below it that touches its centre: every node's n
+  // points from it to the centre, its gap is |x - c| - r.
+  Brick b = paper_brick(4);
+  const Real r = 0.5;
+  const Vec3 c(0.5, 0.5, -r);
+  const ObstaclePtr ball = make_sphere(c, r);
+  const RigidContact rigid{ball.get()};
+  const ContactSurface s = make_contact_surface(b.mesh, b.dofs, "z0", "test", &rigid);
+  EXPECT_TRUE(s.frames_vary);
+  EXPECT_NO_THROW(check_outside_obstacle(b.mesh, s, *ball, "test"));
+  const VectorXd gap = obstacle_gap(b.mesh, s, rigid);
+  for (Index k = 0; k < s.n_nodes(); ++k) {
+    const Vec3 x = b.mesh.nodes.col(s.nodes[static_cast<size_t>(k)]);
+    EXPECT_LE((s.node_frames.n.col(k) - (c - x).normalized()).norm(), 1e-14);
+    EXPECT_NEAR(gap(k), (x - c).norm() - r, 1e-15);
+    EXPECT_NEAR(s.node_frames.t1.col(k).dot(s.node_frames.n.col(k)), 0.0, 1e-15);
+  }
+  // Moved up by d, the ball's linearized gap is its distance in the moved position plus n . d
+  // (the constraint n . (u - d) <= g).
+  const Vec3 d(0.0, 0.0, 0.1);
+  const RigidContact moved{ball.get(), d};
+  const ContactSurface sm = make_contact_surface(b.mesh, b.dofs, "z0", "test", &moved);
+  const VectorXd gm = obstacle_gap(b.mesh, sm, moved);
+  for (Index k = 0; k < sm.n_nodes(); ++k) {
+    const Vec3 x = b.mesh.nodes.col(sm.nodes[static_cast<size_t>(k)]);
+    EXPECT_NEAR(gm(k), (x - c - d).norm() - r - sm.node_frames.n.col(k).dot(d), 1e-15);
+    EXPECT_LE((sm.node_frames.n.col(k) - (c + d - x).normalized()).norm(), 1e-14);
+  }
+  // Raised above the bottom by its own centre's height, the ball would start inside the body.
+  const ObstaclePtr inside = make_sphere(Vec3(0.5, 0.5, -0.4), r);
+  try {
+    check_outside_obstacle(b.mesh, s, *inside, "t.toml:4:1: contact.obstacle");
+    FAIL() << "a body inside the ball was accepted";
+  } catch (const InputError& e) {
+    EXPECT_THAT(std::string(e.what()),
+                testing::HasSubstr("t.toml:4:1: contact.obstacle: the contact surface 'z0' starts "
+                                   "inside the sphere obstacle"));
+    EXPECT_THAT(std::string(e.what()), testing::HasSubstr("0.1 m deep"));
+  }
 }
 
 TEST(ContactSurface, RejectsMissingAndClampedSurfaces) {

@@ -1,7 +1,11 @@
 // Tests of the Gmsh reader and writer: round trips of the brick through every MSH flavour, .geo
-// files meshed on the fly (volumes, areas, outward normals, regions) and the refused meshes.
+// files meshed on the fly (volumes, areas, outward normals, regions), rigid surfaces (physical
+// surfaces off the tetrahedra, read, scaled and written back) and the refused meshes.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <functional>
@@ -15,6 +19,7 @@
 #include "fricon/core/error.hpp"
 #include "fricon/mesh/brick.hpp"
 #include "fricon/mesh/gmsh_file.hpp"
+#include "fricon/mesh/tet_mesh.hpp"
 
 using namespace fricon;
 using namespace fricon::mesh;
@@ -425,11 +430,167 @@ TEST_F(GmshFile, RefusesNodeOfNoTetrahedron) {
 }
 
 TEST_F(GmshFile, RefusesTaggedTriangleThatIsNoTetFace) {
-  // A second tetrahedron (2 3 4 5) and the triangle 1 2 5 (Gmsh element 20) on neither.
+  // A second tetrahedron (2 3 4 5); the group "contact" has the triangle 1 2 5 (Gmsh element 20)
+  // on neither and the face 1 3 2 of the first: neither a boundary nor a rigid surface.
+  const std::string msh = one_tet_msh("1 2 3 4", "5 1 1 1\n", 1,
+                                      "8 4 2 0 1 2 3 4 5\n20 2 2 3 5 1 2 5\n21 2 2 3 5 1 3 2\n", 3);
+  expect_input_error([&] { read_gmsh(write_file("loose.msh", msh)); },
+                     {"loose.msh", "Gmsh element 20", "contact", "1 of its 2", "rigid surface"});
+}
+
+// @sect: rigid surfaces.
+
+// The corners of the unit cube, corner i + 2 j + 4 k at (i, j, k).
+Vec3 cube_corner(int c) {
+  return Vec3(c & 1, (c >> 1) & 1, (c >> 2) & 1);
+}
+
+// An MSH 2.2 file: the unit cube cut into six tetrahedra around its diagonal (Gmsh elements 1-6,
+// physical volume "block"), its bottom z = 0 (elements 7, 8, physical surface "bottom"), and the
+// square [0, 1]^2 at z = 2 (elements 9, 10, physical surface "plate") on Gmsh nodes 5, 6, 11, 12
+// between the cube's (1-4 and 7-10 for corners 0-7); then the element lines `extra`.
+std::string block_and_plate_msh(const std::string& extra = "", int n_extra = 0) {
+  const std::array<int, 8> tag_of_corner{1, 2, 3, 4, 7, 8, 9, 10};
+  std::string nodes;
+  for (int c = 0; c < 8; ++c) {
+    const Vec3 x = cube_corner(c);
+    nodes += fmt::format("{} {} {} {}\n", tag_of_corner[c], x(0), x(1), x(2));
+  }
+  nodes += "5 0 0 2\n6 1 0 2\n11 1 1 2\n12 0 1 2\n";
+  std::string elements;
+  int element = 1;
+  std::array<int, 3> axes{0, 1, 2};
+  do {  // corners 0, e_a, e_a + e_b, 7 for each order (a, b, c) of the axes
+    std::array<int, 4> tet{0, 1 << axes[0], (1 << axes[0]) + (1 << axes[1]), 7};
+    if (signed_volume(cube_corner(tet[0]), cube_corner(tet[1]), cube_corner(tet[2]),
+                      cube_corner(tet[3])) < 0)
+      std::swap(tet[2], tet[3]);
+    elements += fmt::format("{} 4 2 1 1 {} {} {} {}\n", element++, tag_of_corner[tet[0]],
+                            tag_of_corner[tet[1]], tag_of_corner[tet[2]], tag_of_corner[tet[3]]);
+  } while (std::next_permutation(axes.begin(), axes.end()));
+  elements += "7 2 2 2 2 1 2 4\n8 2 2 2 2 1 4 3\n";  // corners 0 1 3, 0 3 2
+  elements += "9 2 2 3 3 5 6 11\n10 2 2 3 3 5 11 12\n";
+  return fmt::format(
+      "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n3\n3 1 \"block\"\n2 2 "
+      "\"bottom\"\n2 3 \"plate\"\n$EndPhysicalNames\n$Nodes\n12\n{}$EndNodes\n$Elements\n{}\n{}{}"
+      "$EndElements\n",
+      nodes, 10 + n_extra, elements, extra);
+}
+
+void expect_block_and_plate(const TetMesh& m) {
+  // The block as it is, with its nodes only.
+  ASSERT_EQ(m.n_nodes(), 8);
+  for (int c = 0; c < 8; ++c)
+    EXPECT_EQ(m.nodes.col(c), cube_corner(c)) << c;
+  EXPECT_FALSE(first_unused_node(m).has_value());
+  EXPECT_EQ(m.n_tets(), 6);
+  EXPECT_NEAR(total_volume(m), 1.0, 1e-15);
+  EXPECT_EQ(m.tag_names, std::vector<std::string>{"bottom"});
+  EXPECT_NEAR(tag_area(m, "bottom"), 1.0, 1e-15);
+  EXPECT_NEAR((tag_area_normal(m, "bottom") + Vec3::UnitZ()).norm(), 0.0, 1e-15);
+  // The plate: its own four points, in the order of their Gmsh tags, and its triangles as given.
+  ASSERT_EQ(m.rigid_surfaces.size(), 1u);
+  const RigidSurface* plate = m.find_rigid_surface("plate");
+  ASSERT_NE(plate, nullptr);
+  Eigen::Matrix<Real, 3, 4> points;
+  points << 0, 1, 1, 0, 0, 0, 1, 1, 2, 2, 2, 2;
+  EXPECT_EQ(plate->points, points);
+  Eigen::Matrix<Index, 3, 2> triangles;
+  triangles << 0, 0, 1, 2, 2, 3;
+  EXPECT_EQ(plate->triangles, triangles);
+}
+
+TEST_F(GmshFile, ASurfaceOffTheTetrahedraIsARigidSurface) {
+  TetMesh m = read_gmsh(write_file("plate.msh", block_and_plate_msh()));
+  expect_block_and_plate(m);
+  EXPECT_EQ(m.find_tag("plate"), -1);
+  EXPECT_TRUE(m.faces_with_tag("plate").empty());
+  EXPECT_EQ(m.find_rigid_surface("bottom"), nullptr);
+  EXPECT_EQ(m.tag_list(), "bottom, plate (rigid surface)");
+  const std::string why = m.no_surface("plate");
+  for (const char* part : {"boundary 'plate' is a rigid surface", "not a boundary of an elastic",
+                           "kind = \"surface\", boundary = \"plate\""})
+    EXPECT_NE(why.find(part), std::string::npos) << why;
+  // A change of unit scales the plate with the block.
+  scale_lengths(m, 1e-3);
+  EXPECT_NEAR((m.nodes.col(7) - Vec3(1e-3, 1e-3, 1e-3)).norm(), 0.0, 1e-18);
+  EXPECT_NEAR((m.rigid_surfaces[0].points.col(2) - Vec3(1e-3, 1e-3, 2e-3)).norm(), 0.0, 1e-18);
+  // A part of the mesh keeps the rigid surfaces.
+  const TetMesh part = submesh(m, {0, 1});
+  ASSERT_EQ(part.rigid_surfaces.size(), 1u);
+  EXPECT_EQ(part.rigid_surfaces[0].points, m.rigid_surfaces[0].points);
+}
+
+TEST_F(GmshFile, RigidSurfacesRoundTrip) {
+  const TetMesh m = read_gmsh(write_file("plate.msh", block_and_plate_msh()));
+  for (int version : {kMsh41, kMsh22}) {
+    const fs::path file = test_dir() / fmt::format("plate_back{}.msh", version);
+    write_gmsh(file, m, version);
+    SCOPED_TRACE(version);
+    expect_block_and_plate(read_gmsh(file));
+  }
+}
+
+TEST_F(GmshFile, ATriangleOnNodesOfTheTetrahedraMayBeARigidSurface) {
+  // The triangle 1 2 5 is no face of the tetrahedra 1 2 3 4 and 2 3 4 5, though its nodes are
+  // theirs: a rigid surface with copies of them, every node staying in the mesh.
   const std::string msh =
       one_tet_msh("1 2 3 4", "5 1 1 1\n", 1, "8 4 2 0 1 2 3 4 5\n20 2 2 3 5 1 2 5\n", 2);
-  expect_input_error([&] { read_gmsh(write_file("loose.msh", msh)); },
-                     {"loose.msh", "Gmsh element 20", "contact"});
+  const TetMesh m = read_gmsh(write_file("loose.msh", msh));
+  EXPECT_EQ(m.n_nodes(), 5);
+  ASSERT_EQ(m.rigid_surfaces.size(), 1u);
+  EXPECT_EQ(m.rigid_surfaces[0].name, "contact");
+  Eigen::Matrix<Real, 3, 3> points;
+  points << 0, 1, 1, 0, 0, 1, 0, 0, 1;
+  EXPECT_EQ(m.rigid_surfaces[0].points, points);
+  EXPECT_TRUE(m.tag_names.empty());
+}
+
+TEST_F(GmshFile, RefusesASurfacePartlyOnTheTetrahedra) {
+  // A triangle of the block's bottom in the group "plate" too.
+  expect_input_error(
+      [&] { read_gmsh(write_file("mixed.msh", block_and_plate_msh("11 2 2 3 3 1 2 4\n", 1))); },
+      {"mixed.msh", "physical group 'plate'", "Gmsh element", "is no face of any tetrahedron",
+       "1 of its 3"});
+}
+
+const char* const kBlockAndPlateGeo = R"(SetFactory("OpenCASCADE");
+Box(1) = {0, 0, 0, 1, 1, 1};
+Rectangle(10) = {0, 0, 2, 1, 1};
+Mesh.MeshSizeMax = 0.5;
+Physical Volume("block") = {1};
+Physical Surface("bottom") = {5};
+Physical Surface("plate") = {10};
+)";
+
+TEST_F(GmshFile, GeoSurfaceMeshedAloneIsARigidSurface) {
+  const TetMesh m = read_gmsh(write_file("plate.geo", kBlockAndPlateGeo));
+  EXPECT_NEAR(total_volume(m), 1.0, 1e-12);
+  EXPECT_EQ(m.tag_names, std::vector<std::string>{"bottom"});
+  EXPECT_FALSE(first_unused_node(m).has_value());
+  EXPECT_LE(m.nodes.row(2).maxCoeff(), 1.0);
+  const RigidSurface* plate = m.find_rigid_surface("plate");
+  ASSERT_NE(plate, nullptr);
+  EXPECT_GE(plate->triangles.cols(), 8);
+  Real area = 0.0;
+  for (Index t = 0; t < plate->triangles.cols(); ++t) {
+    const Vec3 a = plate->points.col(plate->triangles(0, t));
+    area += 0.5 * (plate->points.col(plate->triangles(1, t)) - a)
+                      .cross(plate->points.col(plate->triangles(2, t)) - a)
+                      .norm();
+  }
+  EXPECT_NEAR(area, 1.0, 1e-12);
+  EXPECT_NEAR((plate->points.row(2).array() - 2.0).abs().maxCoeff(), 0.0, 1e-12);
+}
+
+TEST_F(GmshFile, RefusesACurveOnARigidSurfaceOnly) {
+  expect_input_error(
+      [&] {
+        (void)read_gmsh(write_file("rim.geo", std::string(kBlockAndPlateGeo) + R"(e = 1e-6;
+Physical Curve("rim") = Curve In BoundingBox{-e, -e, 2 - e, 1 + e, e, 2 + e};
+)"));
+      },
+      {"rim.geo", "physical curve 'rim'", "only to a rigid surface"});
 }
 
 TEST_F(GmshFile, RefusesMissingFile) {
