@@ -141,7 +141,10 @@ def test_ctrl_c_during_a_path_raises_keyboard_interrupt_with_the_steps_done(on_s
     # failure is an abort; several delays, since it depends on where the signal lands.
     # The 1000 steps take 0.4 s here: 20000 steps (about 8 s) are still running when
     # the signal comes.
+    # Under load (the CI runs tests side by side) the shortest delay may come before the first
+    # step ends: every run must stop cleanly with its steps in order, and some must have steps.
     env = dict(os.environ)
+    done = []
     for delay in ("1.5", "2.0", "3.0"):
         run = subprocess.run([sys.executable, "-c", CTRL_C_SCRIPT, str(HYSTERESIS), "20000",
                               delay, on_step], capture_output=True, text=True, env=env,
@@ -150,7 +153,9 @@ def test_ctrl_c_during_a_path_raises_keyboard_interrupt_with_the_steps_done(on_s
         assert "terminate called" not in run.stderr
         words = run.stdout.split()
         assert words[0] == "interrupted", run.stdout
-        assert int(words[1]) > 0 and words[2] == "True"  # the steps done, in order
+        assert words[2] == "True"  # the steps done, in order
+        done.append(int(words[1]))
+    assert max(done) > 0, done
 
 
 def _step_numbers(folder, base="solution", ext=".vtu"):
