@@ -480,9 +480,27 @@ VtuGrid body_grid(const driver::RunResult& result) {
   return body;
 }
 
+// Per pair against a rigid obstacle given in the problem: its parameters at rest and its
+// displacement, named "obstacle<i>.<kind>.<parameter>" (the field data of contact.vtu).
+std::vector<VtuField> obstacle_fields(const driver::ContactReport* report) {
+  std::vector<VtuField> fields;
+  if (report == nullptr) return fields;
+  for (size_t i = 0; i < report->pairs.size(); ++i) {
+    const contact::PairInfo& pair = report->pairs[i].info;
+    if (!pair.obstacle) continue;
+    const std::string prefix = fmt::format("obstacle{}.{}.", i, pair.obstacle->kind());
+    for (const contact::ObstacleParameter& p : pair.obstacle->parameters())
+      fields.push_back({prefix + p.name, Eigen::Map<const VectorXd>(
+                                             p.value.data(), static_cast<Index>(p.value.size()))});
+    fields.push_back({prefix + "displacement", pair.obstacle_displacement});
+  }
+  return fields;
+}
+
 // The contact surface as triangles: nodal initial gap, w and slip, per-triangle multipliers of
-// its patch.
-VtuGrid contact_grid(const mesh::TetMesh& mesh, const driver::ContactFields& c) {
+// its patch; the rigid obstacles as field data.
+VtuGrid contact_grid(const mesh::TetMesh& mesh, const driver::ContactFields& c,
+                     const driver::ContactReport* report) {
   const auto& s = c.surface;
   VtuGrid surface;
   surface.points.resize(3, s.n_nodes());
@@ -517,6 +535,7 @@ VtuGrid contact_grid(const mesh::TetMesh& mesh, const driver::ContactFields& c) 
                        {"norm_lambda_t", per_face.row(1)}, {"radius", per_face.row(2)},
                        {"patch", per_face.row(3)},         {"F_patch", per_face.row(4)},
                        {"state", per_face.row(5)},         {"pair", per_face.row(6)}};
+  surface.field_data = obstacle_fields(report);
   return surface;
 }
 
@@ -655,7 +674,8 @@ std::optional<StepFiles> step_files(const driver::RunResult& result) {
   files.step = result.report.steps.back().step;
   files.body = body_grid(result);
   if (result.contact) {
-    files.contact = contact_grid(result.model.mesh, *result.contact);
+    files.contact = contact_grid(result.model.mesh, *result.contact,
+                                 result.report.contact ? &*result.report.contact : nullptr);
     files.patches = patch_table(*result.contact);
   }
   return files;
@@ -705,7 +725,9 @@ std::vector<std::filesystem::path> write_results(const std::filesystem::path& di
       write_csv(path("contact_nodes", ".csv"),
                 contact_node_table(result.model.mesh, *result.contact));
       write_csv(path("patches", ".csv"), patch_table(*result.contact));
-      write_vtu(path("contact", ".vtu"), contact_grid(result.model.mesh, *result.contact));
+      write_vtu(path("contact", ".vtu"),
+                contact_grid(result.model.mesh, *result.contact,
+                             result.report.contact ? &*result.report.contact : nullptr));
       parts.push_back(written.back().filename().string());
     }
     if (!result.report.steps.empty())

@@ -46,6 +46,21 @@ void write_vtu(const std::filesystem::path& path, const VtuGrid& grid) {
     out << "<?xml version=\"1.0\"?>\n"
            "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
            "header_type=\"UInt64\">\n  <UnstructuredGrid>\n";
+    if (!grid.field_data.empty()) {
+      out << "    <FieldData>\n";
+      for (const auto& f : grid.field_data) {
+        FRICON_CHECK(f.values.cols() == 1,
+                     "field data " << f.name << " of " << f.values.cols() << " tuples");
+        fmt::print(out,
+                   "      <DataArray type=\"Float64\" Name=\"{}\" NumberOfTuples=\"1\" "
+                   "NumberOfComponents=\"{}\" format=\"ascii\">\n       ",
+                   f.name, f.values.rows());
+        for (Index i = 0; i < f.values.rows(); ++i)
+          fmt::print(out, " {}", f.values(i, 0));
+        out << "\n      </DataArray>\n";
+      }
+      out << "    </FieldData>\n";
+    }
     fmt::print(out, "    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n", n_points, n_cells);
     out << "      <Points>\n";
     write_data_array(out, VtuField{"Points", grid.points}, n_points);

@@ -26,6 +26,9 @@ struct VtuGrid {
   Eigen::Matrix<Index, Eigen::Dynamic, Eigen::Dynamic> cells;
   std::vector<VtuField> point_data;
   std::vector<VtuField> cell_data;
+  /// Values of the whole dataset (VTK FieldData), each one tuple of `values.rows()` components
+  /// (e.g. an obstacle's centre): ParaView's Information panel and meshio's field_data show them.
+  std::vector<VtuField> field_data;
 };
 
 /// Writes `grid` to `path` atomically. Throws fricon::Error on I/O failure or inconsistent sizes.
