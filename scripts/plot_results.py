@@ -207,6 +207,10 @@ def load_contact(results, report, pair=None):
     surface["patches"] = patch_table(tri, patch, cells("radius"),
                                      cells("lambda_t") @ tangents.T, state)
     surface["patch_edges"] = patch_boundary_segments(tri, patch)
+    # Against a rigid obstacle: its signed distance at the undeformed nodes, where it is moved
+    # (the zero line is its outline on the surface, draw_obstacle_outline).
+    surface["obstacle_distance"] = (point_field(mesh, "obstacle_distance")
+                                    if "obstacle_distance" in mesh.point_data else None)
     return surface
 
 
@@ -488,6 +492,17 @@ def add_colorbar(fig, mappable, ax, label, extend="neither"):
     return cb
 
 
+def draw_obstacle_outline(ax, surface, color="c"):
+    """The rigid obstacle's outline on the undeformed contact surface: the zero line of its
+    signed distance where it is moved (inside it, the obstacle overlaps the undeformed body),
+    dashed; nothing where the obstacle does not reach the surface or is a body."""
+    distance = surface.get("obstacle_distance")
+    if distance is None or not (distance.min() < 0.0 < distance.max()):
+        return
+    ax.tricontour(surface["tri"], distance, levels=[0.0], colors=color, linewidths=1.2,
+                  linestyles="--")
+
+
 def draw_patch_edges(ax, surface, color="k", lw=0.6, alpha=0.6):
     """The outlines of the multiplier patches."""
     ax.add_collection(LineCollection(surface["patch_edges"], colors=color, linewidths=lw,
@@ -639,11 +654,16 @@ def plot_contact_maps(report, surface):
             m = ax.tripcolor(tri, facecolors=values, cmap=cmap, edgecolors="none")
         draw_patch_edges(ax, surface, color="w" if kind == "patch" else "k", lw=0.5,
                          alpha=0.5 if kind == "patch" else 0.25)
+        draw_obstacle_outline(ax, surface)
         setup_plane_axes(ax, surface, f"{title}\nmin {sci(values.min())} {unit}, "
                                       f"max {sci(values.max())} {unit}", limits)
         add_colorbar(fig, m, ax, f"{symbol} [{unit}]{note}", extend=extend)
+    outline = ""
+    if surface.get("obstacle_distance") is not None:
+        kind = report.get("obstacle", {}).get("kind", "obstacle")
+        outline = f"\ndashed: the {kind}'s outline on the undeformed surface"
     fig.suptitle(f"Contact surface: displacements (nodal) and multipliers (piecewise constant on "
-                 f"patches)\n{run_label(report)}", fontsize=11)
+                 f"patches)\n{run_label(report)}{outline}", fontsize=11)
     return fig
 
 

@@ -536,6 +536,21 @@ VtuGrid contact_grid(const mesh::TetMesh& mesh, const driver::ContactFields& c,
                        {"patch", per_face.row(3)},         {"F_patch", per_face.row(4)},
                        {"state", per_face.row(5)},         {"pair", per_face.row(6)}};
   surface.field_data = obstacle_fields(report);
+  // Against a rigid obstacle: the signed distance of each node (undeformed) to the obstacle where
+  // it is moved; its zero line is the obstacle's outline on the surface (`fricon plot`).
+  if (report != nullptr) {
+    MatrixXd distance = MatrixXd::Zero(1, s.n_nodes());
+    bool any = false;
+    for (Index k = 0; k < s.n_nodes(); ++k) {
+      const auto pair = static_cast<size_t>(s.node_pair[static_cast<size_t>(k)]);
+      if (pair >= report->pairs.size() || !report->pairs[pair].info.obstacle) continue;
+      const contact::PairInfo& info = report->pairs[pair].info;
+      distance(0, k) =
+          info.obstacle->closest(surface.points.col(k) - info.obstacle_displacement).distance;
+      any = true;
+    }
+    if (any) surface.point_data.push_back({"obstacle_distance", distance});
+  }
   return surface;
 }
 
