@@ -359,6 +359,11 @@ RunResult run_path(const Problem& problem, const RunOptions& options) {
   }
   PathState state;
   VectorXd u0;
+  // The step whose linearized gap was farthest from the true one, relative to its normal
+  // displacement (the path's report gives that step's figures).
+  struct {
+    Real ratio = 0.0, change = 0.0, scale = 0.0;
+  } worst_linearization;
   if (disc) state.tangential = VectorXd::Zero(disc->n_dual());
   for (int k = 1; k <= problem.loading.steps; ++k) {
     const Stopwatch step_clock;
@@ -375,6 +380,18 @@ RunResult run_path(const Problem& problem, const RunOptions& options) {
                                                          path_search, options, r)
                                 : solve_step(step_problem, *disc, *Q, u0, state, options, r);
     if (rep.contact) keep_worst_sliding(k, state, *rep.contact);
+    // A path keeps the reference linearization: the step reports its error (theory.md §2.11).
+    if (disc && rep.status == RunStatus::Converged) {
+      (void)measure_linearization(step_problem, *disc, u, 0, r);
+      if (rep.contact && rep.contact->geometry_updates >= 0) {
+        ContactReport& c = *rep.contact;
+        const Real ratio = c.geometry_scale > 0.0 ? c.geometry_change / c.geometry_scale : 0.0;
+        if (ratio >= worst_linearization.ratio)
+          worst_linearization = {ratio, c.geometry_change, c.geometry_scale};
+        c.geometry_change = worst_linearization.change;
+        c.geometry_scale = worst_linearization.scale;
+      }
+    }
     // The stresses of a step only for whom watches the steps, and for the result.
     const bool last = k == problem.loading.steps;
     finish_run(step_problem, u, r, options.on_step || last);

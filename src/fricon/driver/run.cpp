@@ -253,6 +253,25 @@ std::vector<bool> nodes_in_contact(const contact::ContactDiscretization& disc,
   return in;
 }
 
+}  // namespace
+
+bool measure_linearization(const Problem& problem, const contact::ContactDiscretization& disc,
+                           const VectorXd& u, int updates_done, RunResult& r) {
+  const GeometryUpdates updates = geometry_updates(problem, disc);
+  if (updates.max < 0 || !r.report.contact || !r.contact) return true;
+  ContactReport& c = *r.report.contact;
+  const fe::NodalField deformation = r.model.dofs.to_nodal(u) + r.model.prescribed;
+  const contact::LinearizationError e = contact::linearization_error(
+      r.model.mesh, disc, deformation, nodes_in_contact(disc, *r.contact));
+  c.geometry_updates = updates_done;
+  c.geometry_change = e.change;
+  c.geometry_scale = e.scale;
+  c.geometry_tolerance = updates.tolerance;
+  return e.change <= updates.tolerance * e.scale;
+}
+
+namespace {
+
 // Against curved rigid obstacles: while the linearized gap at the solution u is off the true one
 // by more than the tolerance, gap and normal are evaluated again at the deformed position and the
 // problem solved again (theory.md §2.11). The report counts the work of every solve.
@@ -262,18 +281,11 @@ VectorXd update_geometry(const Problem& problem, contact::ContactDiscretization 
   if (updates.max < 0 || !r.report.contact || !r.contact) return u;
   long products = 0, qp_iterations = 0, solves = 0;
   for (int done = 0;; ++done) {
+    const bool close = measure_linearization(problem, disc, u, done, r);
     ContactReport& c = *r.report.contact;
-    const fe::NodalField deformation = r.model.dofs.to_nodal(u) + r.model.prescribed;
-    const contact::LinearizationError e = contact::linearization_error(
-        r.model.mesh, disc, deformation, nodes_in_contact(disc, *r.contact));
-    c.geometry_updates = done;
-    c.geometry_change = e.change;
-    c.geometry_scale = e.scale;
-    c.geometry_tolerance = updates.tolerance;
     c.n_mult += products;
     c.qp_iterations += qp_iterations;
     c.n_kinv += solves;
-    const bool close = e.change <= updates.tolerance * e.scale;
     if (close || done == updates.max || r.report.status != RunStatus::Converged ||
         options.stop_was_requested())
       return u;
@@ -283,6 +295,7 @@ VectorXd update_geometry(const Problem& problem, contact::ContactDiscretization 
     {
       phase_start(options, "contact");
       ScopedPhase phase(r.report.times, "contact");
+      const fe::NodalField deformation = r.model.dofs.to_nodal(u) + r.model.prescribed;
       disc = discretize_contact(problem, r.model.mesh, r.model.dofs, &deformation);
     }
     u = solve_contact_problem(problem, disc, options, r);
@@ -375,7 +388,16 @@ std::vector<std::string> result_warnings(const RunReport& report) {
         "the contact partition failed condition (5.1) and was coarsened: {}; the patches are "
         "coarser than asked for (theory.md §2.3)",
         c.partition_note));
-  if (c.geometry_updates >= 0 && c.geometry_change > c.geometry_tolerance * c.geometry_scale)
+  const bool off =
+      c.geometry_updates >= 0 && c.geometry_change > c.geometry_tolerance * c.geometry_scale;
+  if (off && !report.steps.empty())
+    w.push_back(fmt::format(
+        "along the loading path the linearized gap against the curved obstacle is off the true "
+        "gap at the deformed position by up to {:.3e} m, more than contact.geometry_tolerance = "
+        "{:g} of the normal displacement {:.3e} m: a path keeps the linearization at rest, whose "
+        "error grows as s^2/(2R) with the slide s on a radius R (theory.md §2.11)",
+        c.geometry_change, c.geometry_tolerance, c.geometry_scale));
+  else if (off)
     w.push_back(fmt::format(
         "the linearized gap against the curved obstacle is off the true gap at the deformed "
         "position by {:.3e} m, more than contact.geometry_tolerance = {:g} of the normal "

@@ -81,6 +81,13 @@ VectorXd solve_with_search(const Problem& problem, const contact::ContactDiscret
                            const RunOptions& options, RunResult& r,
                            const std::vector<Index>* first_candidates = nullptr);
 
+/// Against curved rigid obstacles (theory.md §2.11): how far the linearized gap of `disc` is from
+/// the true one at the solution u (over the free dofs, with r.model's prescribed values) at the
+/// nodes in contact (r.contact's patch states), into r.report.contact's geometry fields with
+/// `updates_done`; whether it is within contact.geometry_tolerance (true without such a pair).
+bool measure_linearization(const Problem& problem, const contact::ContactDiscretization& disc,
+                           const VectorXd& u, int updates_done, RunResult& r);
+
 /// The model's sizes in the report (nodes, tetrahedra, free dofs).
 void report_sizes(const Model& model, RunReport& report);
 
