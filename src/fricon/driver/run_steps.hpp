@@ -88,6 +88,16 @@ VectorXd solve_with_search(const Problem& problem, const contact::ContactDiscret
 bool measure_linearization(const Problem& problem, const contact::ContactDiscretization& disc,
                            const VectorXd& u, int updates_done, RunResult& r);
 
+/// Against curved rigid obstacles (theory.md §2.11), after the solve u of `disc`: while the
+/// linearized gap is off the true one by more than contact.geometry_tolerance, at most
+/// contact.geometry_updates times, the discretization is made again at the deformed position and
+/// `solve_again` solves it (filling r as the first solve did); the report counts the work of
+/// every solve. Returns the last displacement over the free dofs (u itself without such a pair).
+VectorXd update_geometry(
+    const Problem& problem, contact::ContactDiscretization disc, VectorXd u,
+    const RunOptions& options, RunResult& r,
+    const std::function<VectorXd(const contact::ContactDiscretization&)>& solve_again);
+
 /// The model's sizes in the report (nodes, tetrahedra, free dofs).
 void report_sizes(const Model& model, RunReport& report);
 

@@ -218,7 +218,11 @@ VectorXd solve_on_rank_0(const driver::Problem& problem,
     ScopedPhase phase(rep.times, "dual");
     Q = make_mumps_operator(kind, solves, &factor.schur(), disc->B, &disc->offset);
   }
-  return driver::solve_with_operator(problem, *disc, *Q, opts, r);
+  VectorXd u = driver::solve_with_operator(problem, *disc, *Q, opts, r);
+  // Every rank holds B (DistributedSolves): the reference linearization is kept, and its error
+  // reported (theory.md §2.11).
+  (void)driver::measure_linearization(problem, *disc, u, 0, r);
+  return u;
 }
 
 // run_distributed on this rank, MPI started; the factor is made in `factor`.
