@@ -85,10 +85,9 @@ TEST(MovingObstacle, MovingThePlaneAlongAPathIsMovingTheSupportsTheOtherWay) {
         << "step " << k + 1;
 }
 
-TEST(MovingObstacle, AGeometricUpdateLinearizesTheBallAtTheSolution) {
-  // The brick's bottom pressed 2 cm onto a ball below it (contact radius about 0.45 m, some
-  // patches across), frictionless; updated until the linearized
-  // gap is the ball's distance at the deformed position within 1e-9 of the normal displacement.
+/// The brick's bottom pressed 2 cm onto a ball of radius 5 m below it (contact radius about
+/// 0.45 m), frictionless, geometric updates to `tolerance`.
+Problem brick_on_ball(Real tolerance) {
   Problem p = paper_problem(4, 6e4);
   p.traction.clear();
   p.dirichlet = {DirichletOptions{"z1", {true, true, true}, Vec3(0, 0, -2e-2)}};
@@ -99,16 +98,55 @@ TEST(MovingObstacle, AGeometricUpdateLinearizesTheBallAtTheSolution) {
   c.patches = contact::PatchKind::Agglomerate;
   c.obstacle = ObstacleOptions{};
   c.obstacle->kind = ObstacleKind::Sphere;
-  c.obstacle->center = Vec3(1.5, 0.5, -5.0);
+  c.obstacle->center = Vec3(1.2, 0.5, -5.0);
   c.obstacle->radius = 5.0;
   c.geometry_updates = 5;
-  c.geometry_tolerance = 1e-9;
-  const RunResult r = run(p);
+  c.geometry_tolerance = tolerance;
+  p.solver.qp.rel_tolerance = 1e-12;
+  return p;
+}
+
+TEST(MovingObstacle, AGeometricUpdateLinearizesTheBallAtTheSolution) {
+  // Updated until the linearized gap is the ball's distance at the deformed position within
+  // 1e-9 of the normal displacement.
+  const RunResult r = run(brick_on_ball(1e-9));
   ASSERT_EQ(r.report.status, RunStatus::Converged) << r.report.message;
   const ContactReport& report = *r.report.contact;
   EXPECT_GE(report.geometry_updates, 1);
   EXPECT_LE(report.geometry_change, 1e-9 * report.geometry_scale);
   ASSERT_GT(report.total_normal_force, 0.0);
+}
+
+TEST(MovingObstacle, AFrictionlessSlideUpdatedAtEveryStepEndsAsTheStaticRunThere) {
+  // Frictionless, the answer of a step depends on its loads only: the ball slid 0.6 m along x in
+  // three steps (a slide s with s^2/(2R) = 0.036 m, more than the indentation) ends as the static
+  // run with the ball there, when both linearize at their solution. Without the updates the path
+  // keeps the first step's linearization and misses it by far.
+  const Vec3 slide(0.6, 0.0, 0.0);
+  Problem path = brick_on_ball(1e-10);
+  path.loading.steps = 3;
+  path.dirichlet.front().path = {1.0, 1.0, 1.0};
+  path.contact.front().obstacle->displacement = slide;
+  path.contact.front().obstacle->path = {0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 1.0, 0.0, 0.0};
+  Problem there = brick_on_ball(1e-10);
+  there.contact.front().obstacle->displacement = slide;
+  const RunResult a = run(path);
+  const RunResult b = run(there);
+  ASSERT_EQ(a.report.status, RunStatus::Converged) << a.report.message;
+  ASSERT_EQ(b.report.status, RunStatus::Converged) << b.report.message;
+  const VectorXd& la = a.contact->lambda;
+  const VectorXd& lb = b.contact->lambda;
+  ASSERT_EQ(la.size(), lb.size());
+  ASSERT_GT(lb.maxCoeff(), 0.0);
+  EXPECT_LE((la - lb).cwiseAbs().maxCoeff(), 1e-6 * lb.cwiseAbs().maxCoeff());
+  EXPECT_NEAR(a.report.contact->total_normal_force, b.report.contact->total_normal_force,
+              1e-6 * b.report.contact->total_normal_force);
+  path.contact.front().geometry_updates = 0;
+  const RunResult kept = run(path);
+  ASSERT_EQ(kept.report.status, RunStatus::Converged) << kept.report.message;
+  EXPECT_GT(
+      std::abs(kept.report.contact->total_normal_force - b.report.contact->total_normal_force),
+      0.05 * b.report.contact->total_normal_force);
 }
 
 }  // namespace

@@ -340,13 +340,16 @@ void append_surface(ContactSurface& a, const ContactSurface& b, Index pair, Inde
 namespace {
 
 /// Per multiplier row: int_R u_o . d dS [m^3] for the translation u_o of each pair's rigid
-/// obstacle (frame_integrals[p] times it); zero against a body.
-VectorXd obstacle_integrals(const ContactDiscretization& disc) {
+/// obstacle (frame_integrals[p] times it): where disc has it, or `obstacles` (one per pair) when
+/// given; zero against a body.
+VectorXd obstacle_integrals(const ContactDiscretization& disc,
+                            const std::vector<Vec3>* obstacles = nullptr) {
   VectorXd out = VectorXd::Zero(disc.n_dual());
   for (Index p = 0; p < disc.n_patches(); ++p) {
-    const PairInfo& pair = disc.pairs[static_cast<size_t>(disc.patch_pair[static_cast<size_t>(p)])];
-    out.segment<3>(3 * p) =
-        disc.frame_integrals[static_cast<size_t>(p)] * pair.obstacle_displacement;
+    const auto i = static_cast<size_t>(disc.patch_pair[static_cast<size_t>(p)]);
+    if (!disc.pairs[i].obstacle) continue;
+    const Vec3& d = obstacles != nullptr ? obstacles->at(i) : disc.pairs[i].obstacle_displacement;
+    out.segment<3>(3 * p) = disc.frame_integrals[static_cast<size_t>(p)] * d;
   }
   return out;
 }
@@ -400,6 +403,17 @@ void set_prescribed(ContactDiscretization& disc,
   }
   obstacle_node_displacements(disc);
   disc.offset = constraint_offset(disc, prescribed);
+}
+
+VectorXd patch_integrals(const ContactDiscretization& disc, const VectorXd& w,
+                         const Eigen::Matrix<Real, 3, Eigen::Dynamic>& prescribed,
+                         const std::vector<Vec3>& obstacles) {
+  FRICON_CHECK(obstacles.size() == disc.pairs.size(),
+               "patch_integrals: " << obstacles.size() << " obstacle displacements");
+  VectorXd d = disc.B * w - obstacle_integrals(disc, &obstacles);
+  if (prescribed.size() == 0) return d;
+  const Eigen::Map<const VectorXd> up(prescribed.data(), prescribed.size());
+  return d + disc.prescribed_offset * up;
 }
 
 VectorXd patch_integrals(const ContactDiscretization& disc, const VectorXd& w,

@@ -143,6 +143,11 @@ void set_prescribed(ContactDiscretization& disc,
 /// integrals), in the rows' directions d.
 VectorXd patch_integrals(const ContactDiscretization& disc, const VectorXd& w,
                          const Eigen::Matrix<Real, 3, Eigen::Dynamic>& prescribed);
+/// The same with the obstacles at `obstacles` (one displacement per pair [m]) instead of where
+/// disc has them.
+VectorXd patch_integrals(const ContactDiscretization& disc, const VectorXd& w,
+                         const Eigen::Matrix<Real, 3, Eigen::Dynamic>& prescribed,
+                         const std::vector<Vec3>& obstacles);
 
 /// How far the linearized gap of each rigid pair is from the true one at the displacement u of
 /// every mesh node (3 x mesh nodes [m]; theory.md §2.11): per surface node of a rigid obstacle

@@ -30,6 +30,11 @@ struct PathState {
   VectorXd last_lambda;  // multipliers of the last step [Pa]
   VectorXd tangential;   // per multiplier row: the last step's int_R u_t dS [m^3] (normal rows 0)
   VectorXd predicted;    // the accumulated slip plus the last step's increment [m]
+  // The last step's displacement over the free dofs, prescribed values and obstacle positions
+  // (a geometric update forms `tangential` again in its new frames).
+  VectorXd last_w;
+  fe::NodalField last_prescribed;
+  std::vector<Vec3> last_obstacles;
   Real norm_Q = 0.0, norm_Q_scaled = 0.0;
   Real lambda_scale = 0.0;  // the largest ||lambda|| of the steps so far [Pa] (PathStep)
   // Per pair: the largest relative slip of the steps so far [m], and its step.
@@ -181,6 +186,11 @@ void remember_step(const contact::ContactDiscretization& disc, const RunResult& 
   state.last_lambda = f.lambda;
   state.lambda_scale = std::max(state.lambda_scale, f.lambda.norm());
   state.tangential = patch_tangential(disc, r.model, w);
+  state.last_w = w;
+  state.last_prescribed = r.model.prescribed;
+  state.last_obstacles.clear();
+  for (const contact::PairInfo& pair : disc.pairs)
+    state.last_obstacles.push_back(pair.obstacle_displacement);
   const ContactReport& c = *r.report.contact;
   state.norm_Q = c.norm_Q;
   state.norm_Q_scaled = c.norm_Q_scaled;
@@ -217,6 +227,24 @@ VectorXd solve_step(const Problem& step_problem, const contact::ContactDiscretiz
                       state.lambda_scale};
   phase_start(options, "outer loop");
   return adopt(solve_contact(step_problem, m, disc, Q, r.report.times, options, nullptr, &step), r);
+}
+
+// A geometric update of the step (theory.md §2.11): `relinearized` (made at the step's loads)
+// becomes the path's discretization, with the last step's tangential displacement relative to
+// the obstacles in its new frames as the tangential offset.
+void relinearize_step(const contact::ContactDiscretization& relinearized, PathState& state,
+                      const Model& m, contact::ContactDiscretization& disc) {
+  disc = relinearized;
+  if (state.last_w.size() > 0) {
+    state.tangential =
+        contact::patch_integrals(disc, state.last_w, state.last_prescribed, state.last_obstacles);
+    for (Index p = 0; p < disc.n_patches(); ++p)
+      state.tangential(3 * p) = 0.0;
+  } else {
+    state.tangential = VectorXd::Zero(disc.n_dual());
+  }
+  contact::set_prescribed(disc, m.prescribed);
+  disc.offset += state.tangential;
 }
 
 // The contact search along a path (theory.md §2.9): the candidates, carried from step to step
@@ -363,6 +391,7 @@ RunResult run_path(const Problem& problem, const RunOptions& options) {
   // displacement (the path's report gives that step's figures).
   struct {
     Real ratio = 0.0, change = 0.0, scale = 0.0;
+    int updates = 0;
   } worst_linearization;
   if (disc) state.tangential = VectorXd::Zero(disc->n_dual());
   for (int k = 1; k <= problem.loading.steps; ++k) {
@@ -375,21 +404,48 @@ RunResult run_path(const Problem& problem, const RunOptions& options) {
                        disc ? &*disc : nullptr);
     }
     const int steps_left = problem.loading.steps - k + 1;
-    const VectorXd u = !disc    ? solve_elastic_step(u0, r)
-                       : search ? solve_step_with_search(step_problem, *disc, u0, state, steps_left,
-                                                         path_search, options, r)
-                                : solve_step(step_problem, *disc, *Q, u0, state, options, r);
+    const auto solve_the_step = [&] {
+      return !disc    ? solve_elastic_step(u0, r)
+             : search ? solve_step_with_search(step_problem, *disc, u0, state, steps_left,
+                                               path_search, options, r)
+                      : solve_step(step_problem, *disc, *Q, u0, state, options, r);
+    };
+    VectorXd u = solve_the_step();
+    // @sect: the step's geometric updates against curved obstacles (theory.md §2.11); the last
+    // linearization stays for the next steps.
+    if (disc) {
+      const std::vector<Vec3> obstacles = obstacle_displacements(step_problem, k);
+      u = update_geometry(
+          step_problem, *disc, std::move(u), options, r,
+          [&](const contact::ContactDiscretization& relinearized) {
+            relinearize_step(relinearized, state, r.model, *disc);
+            if (search) {
+              path_search.Q.reset();
+              path_search.part.reset();
+              path_search.norm_Q = path_search.norm_Q_scaled = 0.0;
+            } else {
+              phase_start(options, "dual");
+              ScopedPhase phase(rep.times, "dual");
+              dual::DualInput input{r.model.factor,          disc->B,      r.model.f, disc->dofs,
+                                    interrupt_poll(options), &disc->offset};
+              input.expected_recoveries = kOuterIterationsPerStep * steps_left;
+              input.R = &r.model.floating.R;
+              Q = dual::make_dual_operator(problem.solver.dual_operator, input);
+            }
+            return solve_the_step();
+          },
+          &obstacles);
+    }
     if (rep.contact) keep_worst_sliding(k, state, *rep.contact);
-    // A path keeps the reference linearization: the step reports its error (theory.md §2.11).
     if (disc && rep.status == RunStatus::Converged) {
-      (void)measure_linearization(step_problem, *disc, u, 0, r);
       if (rep.contact && rep.contact->geometry_updates >= 0) {
         ContactReport& c = *rep.contact;
         const Real ratio = c.geometry_scale > 0.0 ? c.geometry_change / c.geometry_scale : 0.0;
         if (ratio >= worst_linearization.ratio)
-          worst_linearization = {ratio, c.geometry_change, c.geometry_scale};
+          worst_linearization = {ratio, c.geometry_change, c.geometry_scale, c.geometry_updates};
         c.geometry_change = worst_linearization.change;
         c.geometry_scale = worst_linearization.scale;
+        c.geometry_updates = worst_linearization.updates;
       }
     }
     // The stresses of a step only for whom watches the steps, and for the result.

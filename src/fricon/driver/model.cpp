@@ -420,7 +420,8 @@ contact::ContactSpec pair_spec(const Problem& problem, std::size_t i, const mesh
 
 contact::ContactDiscretization discretize_contact(const Problem& problem, const mesh::TetMesh& mesh,
                                                   const fe::DofMap& dofs,
-                                                  const fe::NodalField* deformation) {
+                                                  const fe::NodalField* deformation,
+                                                  const std::vector<Vec3>* obstacles) {
   FRICON_CHECK(!problem.contact.empty(), "discretize_contact: the problem has no [contact]");
   const Eigen::Matrix<Real, 3, Eigen::Dynamic> prescribed = make_prescribed(problem, mesh);
   std::vector<contact::ContactDiscretization> pairs;
@@ -428,6 +429,10 @@ contact::ContactDiscretization discretize_contact(const Problem& problem, const 
     contact::ContactSpec spec = pair_spec(problem, i, mesh, prescribed);
     if (deformation != nullptr && spec.obstacle && !spec.obstacle->flat())
       spec.deformation = *deformation;
+    if (obstacles != nullptr && spec.obstacle) {
+      spec.obstacle_displacement = obstacles->at(i);
+      spec.linearized_displacement = obstacles->at(i);
+    }
     pairs.push_back(contact::discretize_contact(mesh, dofs, spec));
   }
   return contact::merge_pairs(std::move(pairs));

@@ -121,11 +121,14 @@ Model build_model(const Problem& problem, PhaseTimes& times,
 /// The contact discretization of the problem's [contact] section on the mesh and dofs: the one
 /// function that `solve`, `check`, the benchmarks and the dual dump use to build it. Errors name
 /// the positions of contact.boundary and contact.patches.
-/// With `deformation` (3 x mesh nodes [m]), the gaps and normals of the rigid obstacles are
-/// evaluated at the deformed position (a geometric update, theory.md §2.11).
+/// With `deformation` (3 x mesh nodes [m]), the gaps and normals of the curved rigid obstacles
+/// are evaluated at the deformed position (a geometric update, theory.md §2.11), the obstacles
+/// moved by `obstacles` (one per pair [m]) when given, else by their displacement of a static run
+/// (rest along a path).
 contact::ContactDiscretization discretize_contact(const Problem& problem, const mesh::TetMesh& mesh,
                                                   const fe::DofMap& dofs,
-                                                  const fe::NodalField* deformation = nullptr);
+                                                  const fe::NodalField* deformation = nullptr,
+                                                  const std::vector<Vec3>* obstacles = nullptr);
 
 /// Every step's prescribed displacements (make_prescribed of at_step(problem, k), k = 1 ..
 /// loading.steps; the problem itself without a path): throws InputError when two [[dirichlet]]

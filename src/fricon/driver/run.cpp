@@ -271,13 +271,16 @@ bool measure_linearization(const Problem& problem, const contact::ContactDiscret
 }
 
 VectorXd update_geometry(
-    const Problem& problem, contact::ContactDiscretization disc, VectorXd u,
+    const Problem& problem, const contact::ContactDiscretization& first, VectorXd u,
     const RunOptions& options, RunResult& r,
-    const std::function<VectorXd(const contact::ContactDiscretization&)>& solve_again) {
-  const GeometryUpdates updates = geometry_updates(problem, disc);
+    const std::function<VectorXd(const contact::ContactDiscretization&)>& solve_again,
+    const std::vector<Vec3>* obstacles) {
+  const GeometryUpdates updates = geometry_updates(problem, first);
   if (updates.max < 0 || !r.report.contact || !r.contact) return u;
+  std::optional<contact::ContactDiscretization> relinearized;
   long products = 0, qp_iterations = 0, solves = 0;
   for (int done = 0;; ++done) {
+    const contact::ContactDiscretization& disc = relinearized ? *relinearized : first;
     const bool close = measure_linearization(problem, disc, u, done, r);
     ContactReport& c = *r.report.contact;
     c.n_mult += products;
@@ -293,9 +296,10 @@ VectorXd update_geometry(
       phase_start(options, "contact");
       ScopedPhase phase(r.report.times, "contact");
       const fe::NodalField deformation = r.model.dofs.to_nodal(u) + r.model.prescribed;
-      disc = discretize_contact(problem, r.model.mesh, r.model.dofs, &deformation);
+      relinearized =
+          discretize_contact(problem, r.model.mesh, r.model.dofs, &deformation, obstacles);
     }
-    u = solve_again(disc);
+    u = solve_again(*relinearized);
   }
 }
 
@@ -400,9 +404,10 @@ std::vector<std::string> result_warnings(const RunReport& report) {
     w.push_back(fmt::format(
         "along the loading path the linearized gap against the curved obstacle is off the true "
         "gap at the deformed position by up to {:.3e} m, more than contact.geometry_tolerance = "
-        "{:g} of the normal displacement {:.3e} m: a path keeps the linearization at rest, whose "
-        "error grows as s^2/(2R) with the slide s on a radius R (theory.md §2.11)",
-        c.geometry_change, c.geometry_tolerance, c.geometry_scale));
+        "{:g} of the normal displacement {:.3e} m, after {} geometric update(s) of that step: "
+        "raise contact.geometry_updates, or take smaller steps (the error grows as s^2/(2R) "
+        "with a step's slide s on a radius R, theory.md §2.11)",
+        c.geometry_change, c.geometry_tolerance, c.geometry_scale, c.geometry_updates));
   else if (off)
     w.push_back(fmt::format(
         "the linearized gap against the curved obstacle is off the true gap at the deformed "

@@ -90,13 +90,15 @@ bool measure_linearization(const Problem& problem, const contact::ContactDiscret
 
 /// Against curved rigid obstacles (theory.md §2.11), after the solve u of `disc`: while the
 /// linearized gap is off the true one by more than contact.geometry_tolerance, at most
-/// contact.geometry_updates times, the discretization is made again at the deformed position and
+/// contact.geometry_updates times, the discretization is made again at the deformed position
+/// (the obstacles where `obstacles` puts them, one per pair; null: a static run's) and
 /// `solve_again` solves it (filling r as the first solve did); the report counts the work of
 /// every solve. Returns the last displacement over the free dofs (u itself without such a pair).
 VectorXd update_geometry(
-    const Problem& problem, contact::ContactDiscretization disc, VectorXd u,
+    const Problem& problem, const contact::ContactDiscretization& disc, VectorXd u,
     const RunOptions& options, RunResult& r,
-    const std::function<VectorXd(const contact::ContactDiscretization&)>& solve_again);
+    const std::function<VectorXd(const contact::ContactDiscretization&)>& solve_again,
+    const std::vector<Vec3>* obstacles = nullptr);
 
 /// The model's sizes in the report (nodes, tetrahedra, free dofs).
 void report_sizes(const Model& model, RunReport& report);
