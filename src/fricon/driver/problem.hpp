@@ -181,9 +181,9 @@ struct ContactOptions {
   /// chosen from the mesh (the stars of an independent set of vertices).
   std::optional<Real> patch_size;
   FrictionOptions friction;  ///< [contact.friction]
-  /// [contact.geometry_updates] against a curved rigid obstacle in a static run: at most this many
-  /// times gap and normal are evaluated again at the deformed position and the problem solved
-  /// again (theory.md §2.11), >= 0.
+  /// [contact.geometry_updates] against a curved rigid obstacle: at most this many times (per step
+  /// of a path) gap and normal are evaluated again at the deformed position and the problem
+  /// solved again (theory.md §2.11), >= 0.
   int geometry_updates = kDefaultGeometryUpdates;
   /// [contact.geometry_tolerance] the updates stop when the linearized gap is within this share
   /// of the normal displacement of the true gap at every node in contact, > 0.

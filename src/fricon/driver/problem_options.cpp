@@ -460,10 +460,10 @@ const OptionTable& contact_table() {
     b.table("friction", &ContactOptions::friction, friction_table,
             "the coefficient of friction: see `[contact.friction]`");
     b.number("geometry_updates", &ContactOptions::geometry_updates, integer_at_least(0),
-             "against a curved rigid obstacle in a static run: at most this many times gap and "
+             "against a curved rigid obstacle: at most this many times gap and "
              "normal are evaluated again at the deformed position and the problem solved again, "
              "while the linearized gap differs from the true one by more than geometry_tolerance "
-             "(theory.md §2.11); a loading path keeps the reference linearization");
+             "(theory.md §2.11), in a static run and at every step of a loading path");
     b.number("geometry_tolerance", &ContactOptions::geometry_tolerance, open_interval(0.0, 1.0),
              "the geometric updates stop when the linearized gap of every node in contact is "
              "within this share of the largest normal displacement of the true gap");
