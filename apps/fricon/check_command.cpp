@@ -66,6 +66,10 @@ int check(const std::string& file, const std::vector<std::string>& sets) {
     if (disc->pairs.size() > 1 || !disc->pairs.front().master.empty())
       for (std::size_t i = 0; i < disc->pairs.size(); ++i)
         print_pair(*disc, i);
+    for (const contact::PairInfo& pair : disc->pairs)
+      if (pair.obstacle)
+        fmt::print("  obstacle   {}{}\n", disc->pairs.size() > 1 ? pair.key + ": " : "",
+                   contact::describe(*pair.obstacle, pair.obstacle_displacement));
     if (!disc->partition_note.empty()) fmt::print("  partition  {}\n", disc->partition_note);
     for (std::size_t i = 0; i < problem.contact.size(); ++i) {
       const driver::ContactOptions& c = problem.contact[i];

@@ -78,6 +78,10 @@ void print_summary(const driver::RunResult& result, const std::filesystem::path&
       fmt::print(
           "  contact       '{}': {} patches, n_dual = {}, {} contact nodes, {} friction {}\n",
           c.boundary, c.n_patches, c.n_dual, c.n_contact_nodes, enum_name(c.model), c.friction_law);
+    for (const driver::PairReport& p : c.pairs)
+      if (p.info.obstacle)
+        fmt::print("  obstacle      {}{}\n", c.pairs.size() > 1 ? p.info.key + ": " : "",
+                   contact::describe(*p.info.obstacle, p.info.obstacle_displacement));
     if (c.search_rounds > 0)
       fmt::print(
           "  search        {} of {} patches in the QP, {} left out (none penetrates), {} {}\n",

@@ -54,6 +54,10 @@ inline Proximity closest_moved(const Obstacle& obstacle, const Vec3& x, const Ve
   return obstacle.closest(x - d);
 }
 
+/// One line for summaries: the kind and its parameters at rest ("sphere: center (0, 0, 0.01),
+/// radius 0.01"), then "; moved by (dx, dy, dz) m" when `displacement` is not zero.
+std::string describe(const Obstacle& obstacle, const Vec3& displacement);
+
 /// The half-space below the plane through `point` [m] with unit outward normal `normal` (pointing
 /// towards the body; normalized here, non-zero).
 ObstaclePtr make_plane(const Vec3& point, const Vec3& normal);
