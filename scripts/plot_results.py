@@ -787,13 +787,23 @@ def step_converged(steps):
 
 def path_abscissa(steps):
     """(x, label) for the figures along the path: the component with the largest range of the
-    mean displacement of the first load with one (displacement.KEY_x, _y, _z), else the step."""
+    mean displacement of the first load with one (displacement.KEY_x, _y, _z), else of a moving
+    rigid obstacle's displacement, else the step."""
     for key in path_loads(steps):
         names = [f"displacement.{key}_{c}" for c in "xyz"]
         if all(n in steps for n in names):
             d = np.column_stack([steps[n] for n in names])
             c = int(np.argmax(np.ptp(d, axis=0)))
             return d[:, c], f"mean displacement of {key}, {'xyz'[c]} component [m]"
+    # A rigid obstacle moved along the path (steps.csv's obstacle.KEY_x, _y, _z): its displacement
+    # component with the largest range.
+    for name in steps:
+        if name.startswith("obstacle.") and name.endswith("_x"):
+            key = name[len("obstacle."):-2]
+            d = np.column_stack([steps[f"obstacle.{key}_{c}"] for c in "xyz"])
+            c = int(np.argmax(np.ptp(d, axis=0)))
+            if np.ptp(d[:, c]) > 0.0:
+                return d[:, c], f"displacement of the obstacle ({key}), {'xyz'[c]} component [m]"
     return steps["step"], "step"
 
 
