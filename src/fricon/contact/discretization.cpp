@@ -327,6 +327,7 @@ void append_surface(ContactSurface& a, const ContactSurface& b, Index pair, Inde
   a.master_prescribed =
       stack_columns(a.master_prescribed, node_shift, b.master_prescribed, b.n_nodes());
   a.node_frames = stack(a.node_frames, b.node_frames);
+  a.frames_vary = a.frames_vary || b.frames_vary;
   using Weights = decltype(a.master);
   const Weights none_a = a.master.size() > 0 ? a.master : Weights(node_shift, mesh_nodes);
   const Weights none_b = b.master.size() > 0 ? b.master : Weights(b.n_nodes(), mesh_nodes);

@@ -187,6 +187,48 @@ TEST(ContactSurface, ABallGivesEachNodeItsNormalAndGap) {
   }
 }
 
+TEST(ContactSurface, RowsAgainstABallIntegrateTheTurningFrameExactly) {
+  // Each row of B against a curved obstacle is int_R v_h . d_h dS, v_h and d_h the P1
+  // interpolants of the nodal displacement and of the nodal directions (the patch's frame turned
+  // onto each node's normal). The edge-midpoint rule, exact for quadratics, gives it per
+  // triangle from the node normals alone.
+  Brick b = paper_brick(4);
+  const ObstaclePtr ball = make_sphere(Vec3(1.5, 0.5, -1.0), 1.0);
+  const RigidContact rigid{ball.get()};
+  const ContactSurface s = make_contact_surface(b.mesh, b.dofs, "z0", "test", &rigid);
+  const Patches patches = make_patches(PatchKind::Chessboard, b.mesh, s, 0.0, "test");
+  const Frames frames = patch_frames(b.mesh, s, patches);
+  const std::vector<PatchRowWeights> weights = patch_row_weights(b.mesh, s, patches, frames);
+  Eigen::Matrix<Real, 3, Eigen::Dynamic> v =
+      Eigen::Matrix<Real, 3, Eigen::Dynamic>::Random(3, s.n_nodes());
+  for (Index p = 0; p < patches.size(); ++p) {
+    const Mat3 F = frames.rows(p);
+    Vec3 expected = Vec3::Zero();
+    for (Index k : patches.faces[static_cast<size_t>(p)]) {
+      std::array<Mat3, 3> d;
+      for (int a = 0; a < 3; ++a) {
+        const Vec3 n = s.node_frames.n.col(s.face_nodes(a, k));
+        const Vec3 t1 = (Vec3(F.row(1)) - F.row(1).dot(n) * n).normalized();
+        d[static_cast<size_t>(a)] << n.transpose(), t1.transpose(), t1.cross(n).transpose();
+      }
+      const Real area = mesh::face_area(b.mesh, s.faces[static_cast<size_t>(k)]);
+      for (int a = 0; a < 3; ++a) {
+        const int c = (a + 1) % 3;
+        const Vec3 vm = 0.5 * (v.col(s.face_nodes(a, k)) + v.col(s.face_nodes(c, k)));
+        const Mat3 dm = 0.5 * (d[static_cast<size_t>(a)] + d[static_cast<size_t>(c)]);
+        expected += area / 3.0 * dm * vm;
+      }
+    }
+    const PatchRowWeights& w = weights[static_cast<size_t>(p)];
+    Vec3 got = Vec3::Zero();
+    for (size_t i = 0; i < w.nodes.size(); ++i)
+      got += w.W[i] * v.col(w.nodes[i]);
+    EXPECT_LE((got - expected).norm(), 1e-14 * expected.norm() + 1e-16) << "patch " << p;
+    // The normal row is not the patch's frame times the area: the frame turns inside the patch.
+    EXPECT_GT((w.integral.row(0) - patches.area(p) * F.row(0)).norm(), 1e-6 * patches.area(p));
+  }
+}
+
 TEST(ContactSurface, RejectsMissingAndClampedSurfaces) {
   Brick b = paper_brick(4);
   EXPECT_THROW(make_contact_surface(b.mesh, b.dofs, "bottom", "test"), InputError);
