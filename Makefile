@@ -71,6 +71,7 @@ bench: build
 	@echo "== bench/python_study.py"; PYTHONPATH=$(BUILD)/python /usr/bin/python3 bench/python_study.py \
 	  $(BUILD)/apps/fricon/fricon
 	@echo "== bench/floating_bench.py"; /usr/bin/python3 bench/floating_bench.py $(BUILD)/apps/fricon/fricon
+	@echo "== bench/obstacle_bench.py"; /usr/bin/python3 bench/obstacle_bench.py $(BUILD)/apps/fricon/fricon
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.hpp')

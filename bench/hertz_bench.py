@@ -97,14 +97,15 @@ def program_stamp(fricon):
     return st.st_size, st.st_mtime_ns
 
 
-def solve(fricon, toml, folder, size_factor, threads):
-    """One `fricon solve`; returns its report with the process's peak memory and wall time."""
+def solve(fricon, toml, folder, size_factor, threads, sets=()):
+    """One `fricon solve` (with the overrides `sets`, "KEY=VALUE" each); returns its report with
+    the process's peak memory and wall time."""
     if folder.exists():  # a stale report.json must not pass for this run's
         shutil.rmtree(folder)
     folder.mkdir(parents=True)
     cmd = [fricon] + (["--threads", str(threads)] if threads else []) + [
         "solve", str(toml), "--set", f"mesh.size_factor={float(size_factor)!r}", "-o",
-        str(folder), "-q"]
+        str(folder), "-q"] + [arg for s in sets for arg in ("--set", s)]
     log = folder / "fricon.log"
     start = time.perf_counter()
     with open(log, "w") as out:
