@@ -56,8 +56,8 @@ struct PairInfo {
   std::string key;       ///< "contact" or "contact[i]"
   std::string boundary;  ///< the contact surface's tag (the slave)
   std::string master;    ///< the master surface's tag; empty against a rigid obstacle
-  /// The rigid obstacle (null against a body; the flat surface's own plane when none was given)
-  /// and its displacement at the current load [m].
+  /// The rigid obstacle (null against a body, and for a flat surface's own plane when no
+  /// obstacle was given) and its displacement at the current load [m].
   ObstaclePtr obstacle;
   Vec3 obstacle_displacement = Vec3::Zero();
   Index n_tag_faces = 0;  ///< triangles of the slave tag (against a body: some may be out of reach)
@@ -80,7 +80,9 @@ struct ContactDiscretization {
   VectorXd gap;
   /// c per multiplier row [m^3], the constant part of the constraints (theory.md §2.4): normal
   /// row int_R (gap - u_p.n) dS, tangential rows -int_R u_p.t dS, with u_p the prescribed
-  /// displacement of fixed components; zero for the paper's problem. The dual's h = B K^-1 f - c.
+  /// displacement of fixed components, plus int_R u_o . d dS of a rigid obstacle's displacement
+  /// u_o in every row (theory.md §2.11); zero for the paper's problem. The dual's
+  /// h = B K^-1 f - c.
   VectorXd offset;
   /// The parts of `offset`: offset = gap_offset - prescribed_offset vec(u_p) for the prescribed
   /// displacement u_p of every mesh node (3 x n_nodes, column-major), so that a loading path
