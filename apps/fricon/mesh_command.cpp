@@ -77,6 +77,11 @@ int mesh_info(const MeshFileOptions& o) {
   for (const mesh::NodeSet& set : mesh.node_sets)
     fmt::print("    {:<16} {:>10} node{}, a {} (for [[dirichlet]] only)\n", set.name,
                set.nodes.size(), set.nodes.size() == 1 ? "" : "s", mesh::node_set_kind(set.dim));
+  // Surfaces that no tetrahedron carries: rigid obstacles only (theory.md §2.11).
+  for (const mesh::RigidSurface& surface : mesh.rigid_surfaces)
+    fmt::print(
+        "    {:<16} {:>10} triangles, a rigid surface (for obstacle kind \"surface\" only)\n",
+        surface.name, surface.triangles.cols());
   return kConverged;
 }
 
