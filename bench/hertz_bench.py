@@ -133,6 +133,30 @@ def solve(fricon, toml, folder, size_factor, threads, sets=()):
     return report
 
 
+def results_folder(out, prefix):
+    """(folder, tmp): `out` (a path, made if need be), or with None a temporary folder `tmp`
+    that the caller cleans up."""
+    if out is None:
+        tmp = tempfile.TemporaryDirectory(prefix=prefix)
+        return pathlib.Path(tmp.name), tmp
+    out = out.resolve()
+    out.mkdir(parents=True, exist_ok=True)
+    return out, None
+
+
+def stamped_runner(fricon, threads):
+    """run(toml, folder, size_factor, sets=()): one solve, refused (RunFailed) when the program
+    changed since the runner was made (rebuilt during a study)."""
+    stamp = program_stamp(fricon)
+
+    def run(toml, folder, size_factor, sets=()):
+        rep = solve(fricon, toml, folder, size_factor, threads, sets)
+        if program_stamp(fricon) != stamp:
+            raise RunFailed(f"{fricon} changed during the study (rebuilt?): run it again")
+        return rep
+    return run
+
+
 def fastest(best, new):
     """The report of the faster run, with the larger peak memory of the two."""
     if best is None:
@@ -337,13 +361,7 @@ def main():
         ap.error("--repeat must be >= 1")
     load = os.getloadavg()[0]
 
-    tmp = None
-    if opts.out is None:
-        tmp = tempfile.TemporaryDirectory(prefix="fricon-hertz-bench-")
-        out = pathlib.Path(tmp.name)
-    else:
-        out = opts.out.resolve()
-        out.mkdir(parents=True, exist_ok=True)
+    out, tmp = results_folder(opts.out, "fricon-hertz-bench-")
     fricon = str(pathlib.Path(opts.fricon).resolve()) if os.sep in opts.fricon else opts.fricon
 
     def progress(what, rep):
@@ -351,13 +369,7 @@ def main():
               f"peak {rep['peak_mib']:.0f} MiB", file=sys.stderr, flush=True)
 
     try:
-        stamp = program_stamp(fricon)
-
-        def run(toml, folder, sf):
-            rep = solve(fricon, toml, folder, sf, opts.threads)
-            if program_stamp(fricon) != stamp:
-                raise RunFailed(f"{fricon} changed during the study (rebuilt?): run it again")
-            return rep
+        run = stamped_runner(fricon, opts.threads)
 
         version = subprocess.run([fricon, "--version"], capture_output=True, text=True)
         if version.returncode != 0:

@@ -44,7 +44,6 @@ import os
 import pathlib
 import subprocess
 import sys
-import tempfile
 
 import numpy as np
 
@@ -178,13 +177,7 @@ def main():
     if opts.repeat < 1:
         ap.error("--repeat must be >= 1")
     load = os.getloadavg()[0]
-    tmp = None
-    if opts.out is None:
-        tmp = tempfile.TemporaryDirectory(prefix="fricon-obstacle-bench-")
-        out = pathlib.Path(tmp.name)
-    else:
-        out = opts.out.resolve()
-        out.mkdir(parents=True, exist_ok=True)
+    out, tmp = hb.results_folder(opts.out, "fricon-obstacle-bench-")
     fricon = str(pathlib.Path(opts.fricon).resolve()) if os.sep in opts.fricon else opts.fricon
 
     def progress(what, rep):
@@ -192,13 +185,7 @@ def main():
               f"peak {rep['peak_mib']:.0f} MiB", file=sys.stderr, flush=True)
 
     try:
-        stamp = hb.program_stamp(fricon)
-
-        def run(toml, folder, sf, sets=()):
-            rep = hb.solve(fricon, toml, folder, sf, opts.threads, sets)
-            if hb.program_stamp(fricon) != stamp:
-                raise hb.RunFailed(f"{fricon} changed during the study (rebuilt?): run it again")
-            return rep
+        run = hb.stamped_runner(fricon, opts.threads)
 
         version = subprocess.run([fricon, "--version"], capture_output=True, text=True)
         if version.returncode != 0:
