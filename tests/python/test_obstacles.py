@@ -4,7 +4,8 @@ into a block at several depths; the truths are outside the solver's own output:
   - geometry: a rigid ball presses only where it overlaps the undeformed block, within
     sqrt(2 R delta) of its axis (plus a patch);
   - the report names the obstacle's kind, its parameters and its displacement;
-  - a path written as rows [fx, fy, fz] is the same path written flat."""
+  - a path written as rows [fx, fy, fz] is the same path written flat;
+  - a scratch far beyond the contact radius keeps its normal force only with geometric updates."""
 import math
 
 import numpy as np
@@ -58,3 +59,23 @@ def test_a_path_written_as_rows_is_the_path_written_flat():
     assert a.converged and b.converged
     assert list(a.steps["normal_force"]) == list(b.steps["normal_force"])
     assert list(a.steps["obstacle.contact_x"]) == pytest.approx([0.0, 0.05, 0.1, 0.15])
+
+
+def test_a_scratch_keeps_its_normal_force_only_with_geometric_updates():
+    # The ball slid 0.15 m, beyond its contact radius (about 0.1 m): with the updates each step
+    # is linearized at its own solution and the normal force stays that of the pressed ball
+    # (the patches it slides over make it vary by a few per cent); frozen at the first step's
+    # linearization, the tangent planes left behind lift the block more and more.
+    updated = fricon.solve(fricon.load(SCRATCH), threads=1)
+    frozen_problem = fricon.load(SCRATCH)
+    frozen_problem.set("contact.geometry_updates", 0)
+    frozen = fricon.solve(frozen_problem, threads=1)
+    assert updated.converged and frozen.converged
+    pressed = updated.steps["normal_force"][0]
+    assert frozen.steps["normal_force"][0] == pytest.approx(pressed, rel=1e-9)
+    assert max(abs(updated.steps["normal_force"] / pressed - 1.0)) < 0.06
+    assert frozen.steps["normal_force"][-1] > 1.5 * pressed
+    # Sliding, the friction force is mu times the normal force (Coulomb, mu = 0.3).
+    ratio = updated.steps["tangential_force_x"][1:] / updated.steps["normal_force"][1:]
+    assert ratio == pytest.approx(0.3, rel=2e-2)
+    assert any("linearized gap" in w for w in frozen.report["warnings"])
