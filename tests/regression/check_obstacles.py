@@ -20,6 +20,8 @@ The moduli, the obstacles' radii and displacements are read back from each run's
   - flat-punch: a flat-ended rigid punch of radius a given as a meshed surface (kind "surface"),
     pressed by delta, frictionless, quarter model: the whole force 4 x the quarter's within 3 %
     of Boussinesq's P = 2 a E* delta (a from the rigid surface's bounding box in the report).
+  - obstacle.vtu of ball-block (the ball where it is, for ParaView): every point on the moved
+    sphere, its triangles enclosing the ball's volume outward to 2 %.
   - ball-slide: the rigid ball pressed into a rubber block (nu = 0.48: the normal and tangential
     problems nearly decouple, examples/obstacles/ball-slide.toml) then slid along +x, Coulomb
     friction mu, half model. Every step converged; the tangential force Q (2 x steps.csv's
@@ -129,6 +131,27 @@ def check_ball_block():
     print(f"{name}: a from the second moment = {a_moment:.4e} m: "
           f"{100 * (a_moment / a_hertz - 1):+.2f} %; largest patch pressure "
           f"{100 * (max(p['lambda_n'] for p in on) / p0_hertz - 1):+.2f} % of p0")
+    check_obstacle_picture(name, folder, sphere)
+
+
+def check_obstacle_picture(name, folder, sphere):
+    """obstacle.vtu, the ball where it is for ParaView: every point on the moved sphere, the
+    triangles enclosing (outward) its volume to the tessellation's accuracy."""
+    import meshio  # Debian's python3-meshio (the regression tests' reader)
+    import numpy as np
+    m = meshio.read(folder / "obstacle.vtu")
+    centre = np.array(sphere["center"]) + np.array(sphere["displacement"])
+    radius = sphere["radius"]
+    off = np.abs(np.linalg.norm(m.points - centre, axis=1) - radius).max()
+    t = m.cells[0].data
+    p = m.points - centre
+    volume = np.einsum("ij,ij->i", p[t[:, 0]], np.cross(p[t[:, 1]], p[t[:, 2]])).sum() / 6.0
+    exact = 4.0 / 3.0 * math.pi * radius ** 3
+    print(f"{name}: obstacle.vtu: {len(m.points)} points within {off:.1e} m of the moved ball, "
+          f"volume {volume / exact - 1:+.2%} of the ball's")
+    if not (off <= 1e-12 * radius and 0.0 < volume and abs(volume / exact - 1.0) <= 0.02):
+        failures.add(f"{name}: obstacle.vtu is not the moved ball (off by {off:.1e} m, volume "
+                     f"{volume:.4e} against {exact:.4e} m^3)")
 
 
 def check_cylinder_slab():

@@ -32,6 +32,12 @@ struct ObstacleParameter {
   bool moves = false;       ///< a point, which the obstacle's displacement moves
 };
 
+/// A triangulated picture of an obstacle's surface, for output (ParaView).
+struct ObstacleSurface {
+  Eigen::Matrix<Real, 3, Eigen::Dynamic> points;      ///< [m]
+  Eigen::Matrix<Index, 3, Eigen::Dynamic> triangles;  ///< counter-clockwise seen from outside
+};
+
 class Obstacle {
  public:
   virtual ~Obstacle() = default;
@@ -45,6 +51,10 @@ class Obstacle {
   /// Whether the surface is flat: then its normal is the same everywhere and a patch has one
   /// frame.
   virtual bool flat() const { return false; }
+  /// Its surface at rest as triangles: the whole of a bounded kind, and of an unbounded one (a
+  /// plane, a cylinder) the part within about `extent` [m] of `centre` [m] (the contact
+  /// surface's middle and size).
+  virtual ObstacleSurface picture(const Vec3& centre, Real extent) const = 0;
 };
 
 using ObstaclePtr = std::shared_ptr<const Obstacle>;

@@ -367,8 +367,8 @@ nlohmann::json report_json(const driver::Problem& problem, const driver::RunResu
 namespace {
 // Every file a run may write, by its base name and extension.
 const std::vector<std::pair<std::string, std::string>> kResultFiles{
-    {"solution", ".vtu"}, {"contact", ".vtu"}, {"solution", ".pvd"}, {"contact_nodes", ".csv"},
-    {"patches", ".csv"},  {"report", ".json"}, {"steps", ".csv"}};
+    {"solution", ".vtu"},      {"contact", ".vtu"}, {"obstacle", ".vtu"}, {"solution", ".pvd"},
+    {"contact_nodes", ".csv"}, {"patches", ".csv"}, {"report", ".json"},  {"steps", ".csv"}};
 constexpr const char* kNotConverged = ".not-converged";
 }  // namespace
 
@@ -480,6 +480,51 @@ VtuGrid body_grid(const driver::RunResult& result) {
   return body;
 }
 
+// The rigid obstacles given in the problem as triangles where they are (their pictures moved by
+// their displacements), each pictured around its contact surface (its middle, and 1.5 times its
+// largest distance from it); the cell field "pair". Nothing without such an obstacle.
+std::optional<VtuGrid> obstacle_grid(const mesh::TetMesh& mesh, const driver::ContactFields& c,
+                                     const driver::ContactReport* report) {
+  constexpr Real kMargin = 1.5;  // the picture's extent over the contact surface's
+  if (report == nullptr) return std::nullopt;
+  const contact::ContactSurface& s = c.surface;
+  VtuGrid grid;
+  grid.cells.resize(3, 0);
+  std::vector<Real> pair_of_cell;
+  for (size_t i = 0; i < report->pairs.size(); ++i) {
+    const contact::PairInfo& pair = report->pairs[i].info;
+    if (!pair.obstacle) continue;
+    std::vector<Index> nodes;
+    for (Index k = 0; k < s.n_nodes(); ++k)
+      if (static_cast<size_t>(s.node_pair[static_cast<size_t>(k)]) == i)
+        nodes.push_back(s.nodes[static_cast<size_t>(k)]);
+    Vec3 middle = Vec3::Zero();
+    for (Index a : nodes)
+      middle += mesh.nodes.col(a);
+    middle /= static_cast<Real>(std::max<size_t>(nodes.size(), 1));
+    Real extent = 0.0;
+    for (Index a : nodes)
+      extent = std::max(extent, (mesh.nodes.col(a) - middle).norm());
+    const contact::ObstacleSurface picture =
+        pair.obstacle->picture(middle - pair.obstacle_displacement, kMargin * extent);
+    const Index first = grid.points.cols();
+    grid.points.conservativeResize(3, first + picture.points.cols());
+    grid.points.rightCols(picture.points.cols()) =
+        picture.points.colwise() + pair.obstacle_displacement;
+    const Index cells = grid.cells.cols();
+    grid.cells.conservativeResize(3, cells + picture.triangles.cols());
+    grid.cells.rightCols(picture.triangles.cols()) = picture.triangles.array() + first;
+    pair_of_cell.insert(pair_of_cell.end(), static_cast<size_t>(picture.triangles.cols()),
+                        static_cast<Real>(i));
+  }
+  if (pair_of_cell.empty()) return std::nullopt;
+  grid.cell_data = {
+      {"pair",
+       Eigen::Map<const MatrixXd>(pair_of_cell.data(), 1, static_cast<Index>(pair_of_cell.size())),
+       VtuType::Int32}};
+  return grid;
+}
+
 // Per pair against a rigid obstacle given in the problem: its parameters at rest and its
 // displacement, named "obstacle<i>.<kind>.<parameter>" (the field data of contact.vtu).
 std::vector<VtuField> obstacle_fields(const driver::ContactReport* report) {
@@ -586,7 +631,7 @@ void remove_earlier_files(const std::filesystem::path& folder, Ours ours) {
 }
 
 // Whether `name` is a per-step file of a loading path (step_file), or its temporary file.
-// NAME-DDDD[D...].EXT[.tmp], NAME solution, contact or patches and EXT vtu or csv.
+// NAME-DDDD[D...].EXT[.tmp], NAME solution, contact, obstacle or patches and EXT vtu or csv.
 bool is_step_file(const std::string& name) {
   constexpr std::size_t kMinDigits = 4;  // step_file's width
   std::string_view rest(name);
@@ -595,7 +640,8 @@ bool is_step_file(const std::string& name) {
     rest.remove_prefix(prefix.size());
     return true;
   };
-  if (!take("solution-") && !take("contact-") && !take("patches-")) return false;
+  if (!take("solution-") && !take("contact-") && !take("obstacle-") && !take("patches-"))
+    return false;
   std::size_t digits = 0;
   while (digits < rest.size() && std::isdigit(static_cast<unsigned char>(rest[digits])) != 0)
     ++digits;
@@ -650,6 +696,9 @@ std::vector<PvdEntry> pvd_entries(const std::filesystem::path& dir,
     const std::string surface = step_file("contact", step, ".vtu");
     if (std::filesystem::exists(dir / surface))
       entries.push_back({static_cast<Real>(step), 1, surface});
+    const std::string obstacle = step_file("obstacle", step, ".vtu");
+    if (std::filesystem::exists(dir / obstacle))
+      entries.push_back({static_cast<Real>(step), 2, obstacle});
   }
   if (entries.empty())  // a static run, or a path whose step files were not written
     for (size_t i = 0; i < parts.size(); ++i)
@@ -689,8 +738,9 @@ std::optional<StepFiles> step_files(const driver::RunResult& result) {
   files.step = result.report.steps.back().step;
   files.body = body_grid(result);
   if (result.contact) {
-    files.contact = contact_grid(result.model.mesh, *result.contact,
-                                 result.report.contact ? &*result.report.contact : nullptr);
+    const driver::ContactReport* report = result.report.contact ? &*result.report.contact : nullptr;
+    files.contact = contact_grid(result.model.mesh, *result.contact, report);
+    files.obstacle = obstacle_grid(result.model.mesh, *result.contact, report);
     files.patches = patch_table(*result.contact);
   }
   return files;
@@ -704,6 +754,10 @@ std::vector<std::filesystem::path> write_step_files(const std::filesystem::path&
   if (files.contact) {
     written.push_back(dir / step_file("contact", files.step, ".vtu"));
     write_vtu(written.back(), *files.contact);
+  }
+  if (files.obstacle) {
+    written.push_back(dir / step_file("obstacle", files.step, ".vtu"));
+    write_vtu(written.back(), *files.obstacle);
   }
   if (files.patches) {
     written.push_back(dir / step_file("patches", files.step, ".csv"));
@@ -740,10 +794,14 @@ std::vector<std::filesystem::path> write_results(const std::filesystem::path& di
       write_csv(path("contact_nodes", ".csv"),
                 contact_node_table(result.model.mesh, *result.contact));
       write_csv(path("patches", ".csv"), patch_table(*result.contact));
-      write_vtu(path("contact", ".vtu"),
-                contact_grid(result.model.mesh, *result.contact,
-                             result.report.contact ? &*result.report.contact : nullptr));
+      const driver::ContactReport* report =
+          result.report.contact ? &*result.report.contact : nullptr;
+      write_vtu(path("contact", ".vtu"), contact_grid(result.model.mesh, *result.contact, report));
       parts.push_back(written.back().filename().string());
+      if (const auto obstacle = obstacle_grid(result.model.mesh, *result.contact, report)) {
+        write_vtu(path("obstacle", ".vtu"), *obstacle);
+        parts.push_back(written.back().filename().string());
+      }
     }
     if (!result.report.steps.empty())
       write_csv(path("steps", ".csv"), steps_table(problem, result.report));

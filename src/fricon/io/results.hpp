@@ -95,6 +95,7 @@ struct StepFiles {
   int step = 0;  ///< 1-based
   VtuGrid body;
   std::optional<VtuGrid> contact;
+  std::optional<VtuGrid> obstacle;  ///< the rigid obstacles where they are (obstacle.vtu)
   std::optional<Table> patches;
 };
 

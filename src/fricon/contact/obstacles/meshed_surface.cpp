@@ -264,6 +264,7 @@ class MeshedSurface final : public Obstacle {
     return {sign * distance, Vec3(sign * (x - n.on.point) / distance)};
   }
   std::string_view kind() const override { return "surface"; }
+  ObstacleSurface picture(const Vec3&, Real) const override { return {points_, triangles_}; }
   std::vector<ObstacleParameter> parameters() const override {
     return {
         {"triangles", {static_cast<Real>(triangles_.cols())}, false},

@@ -18,6 +18,18 @@ class Plane final : public Obstacle {
             {"normal", {normal_(0), normal_(1), normal_(2)}, false}};
   }
   bool flat() const override { return true; }
+  ObstacleSurface picture(const Vec3& centre, Real extent) const override {
+    // The square of side 2 extent around centre's projection, in the plane's own tangents.
+    const Vec3 middle = centre - (centre - point_).dot(normal_) * normal_;
+    const Vec3 t1 = normal_.unitOrthogonal(), t2 = normal_.cross(t1);
+    ObstacleSurface s;
+    s.points.resize(3, 4);
+    s.points << middle - extent * (t1 + t2), middle + extent * (t1 - t2),
+        middle + extent * (t1 + t2), middle - extent * (t1 - t2);
+    s.triangles.resize(3, 2);
+    s.triangles << 0, 0, 1, 2, 2, 3;  // counter-clockwise about the normal: t1 x t2 = n
+    return s;
+  }
 
  private:
   Vec3 point_, normal_;
