@@ -127,6 +127,12 @@ void mark_fixed_components(const fe::DofMap& dofs, ContactSurface& s, const std:
                     where, s.tag));
 }
 
+/// A unit vector's component for a message: rounding below 1e-12 shown as 0 (and no "-0").
+Real shown(Real component) {
+  constexpr Real kRounding = 1e-12;
+  return std::abs(component) < kRounding ? 0.0 : component;
+}
+
 /// With an obstacle: some triangle of the surface must face it (its outward normal a positive
 /// component along its nodes' mean n); a surface that faces away (a body's top against a plane
 /// below it) could never touch and would solve silently without contact.
@@ -143,7 +149,7 @@ void require_facing_obstacle(const mesh::TetMesh& mesh, const ContactSurface& s,
       "normal n_f has n_f . n <= 0 for the direction n towards the obstacle, ({:.3g}, {:.3g}, "
       "{:.3g}) on the mean): the body could never touch it; check the tag, and where the "
       "obstacle is (a plane's normal points out of the obstacle towards the body)",
-      where, s.tag, s.n(0) + 0.0, s.n(1) + 0.0, s.n(2) + 0.0));  // + 0.0: no "-0"
+      where, s.tag, shown(s.n(0)), shown(s.n(1)), shown(s.n(2))));
 }
 
 /// The point of surface node k in rigid's configuration, relative to the obstacle at rest:
