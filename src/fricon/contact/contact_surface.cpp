@@ -162,8 +162,9 @@ Vec3 linearization_point(const mesh::TetMesh& mesh, const ContactSurface& s,
   return y;
 }
 
-/// Each node's frame from the obstacle's normal at its nearest point (theory.md §2.11), and the
-/// surface's n: the plane's, or the area-weighted mean of the nodes' against a curved obstacle.
+/// Each node's frame from the obstacle's normal at its nearest point in rigid's configuration
+/// (theory.md §2.11), and the surface's n: the plane's, or against a curved obstacle the
+/// area-weighted mean of the nodes' normals at rest (the obstacle at rest, the body undeformed).
 void obstacle_frames(const mesh::TetMesh& mesh, const RigidContact& rigid, ContactSurface& s) {
   const Obstacle& obstacle = *rigid.obstacle;
   if (obstacle.flat()) {
@@ -183,11 +184,17 @@ void obstacle_frames(const mesh::TetMesh& mesh, const RigidContact& rigid, Conta
     s.node_frames.t1.col(k) = t1;
     s.node_frames.t2.col(k) = t2;
   }
+  // The surface's own frame, in which the patches are laid out, from the obstacle at rest and the
+  // body undeformed: the same partition at every linearization (theory.md §2.11).
+  std::vector<Vec3> at_rest(static_cast<size_t>(s.n_nodes()));
+  for (Index k = 0; k < s.n_nodes(); ++k)
+    at_rest[static_cast<size_t>(k)] =
+        -obstacle.closest(mesh.nodes.col(s.nodes[static_cast<size_t>(k)])).normal;
   Vec3 sum = Vec3::Zero();
   for (size_t f = 0; f < s.faces.size(); ++f)
     for (int v = 0; v < 3; ++v)
       sum += mesh::face_area(mesh, s.faces[f]) *
-             s.node_frames.n.col(s.face_nodes(v, static_cast<Index>(f)));
+             at_rest[static_cast<size_t>(s.face_nodes(v, static_cast<Index>(f)))];
   s.n = sum.normalized();
   std::tie(s.t1, s.t2) = Frames::tangents(s.n);
 }

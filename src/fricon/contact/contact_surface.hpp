@@ -98,7 +98,8 @@ struct ContactSurface {
 
 /// The contact surface of boundary `tag` against a rigid obstacle (`rigid`; null: the plane of
 /// the surface itself), with each node's frame from the obstacle's normal at the node's position
-/// in rigid's configuration and n the area-weighted mean of those normals. Throws InputError
+/// in rigid's configuration and n the area-weighted mean of the normals at rest (so that the
+/// patches, laid out in n's tangents, are the same at every linearization). Throws InputError
 /// naming `where` (the position and name of the pair's boundary key) if the tag does not exist,
 /// the surface is not a manifold (an edge in three or more of its triangles), it is not flat while
 /// no obstacle is given, no triangle of it faces the obstacle (outward normal with a positive

@@ -234,6 +234,10 @@ VectorXd solve_step(const Problem& step_problem, const contact::ContactDiscretiz
 // the obstacles in its new frames as the tangential offset.
 void relinearize_step(const contact::ContactDiscretization& relinearized, PathState& state,
                       const Model& m, contact::ContactDiscretization& disc) {
+  // The step's state (multipliers, candidates) is per patch: the partition must not change.
+  FRICON_CHECK(relinearized.n_patches() == disc.n_patches(),
+               "relinearize_step: " << relinearized.n_patches() << " patches instead of "
+                                    << disc.n_patches());
   disc = relinearized;
   if (state.last_w.size() > 0) {
     state.tangential =
