@@ -163,7 +163,7 @@ inline constexpr Real kDefaultGeometryTolerance = 1e-3;
 /// carries the patches and the multipliers) against a rigid plane or another surface.
 struct ContactOptions {
   std::string boundary = "z0";  ///< [contact.boundary] tag of the contact surface
-  /// [contact.obstacle] the rigid plane or the master surface; absent: the plane of a flat
+  /// [contact.obstacle] a rigid obstacle or the master surface; absent: the plane of a flat
   /// contact surface, at zero gap (the paper's setting).
   std::optional<ObstacleOptions> obstacle;
   /// [contact.search_distance] with obstacle kind body: how far along the slave's normal the

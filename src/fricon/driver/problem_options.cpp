@@ -409,8 +409,9 @@ const OptionTable& contact_table() {
     b.text("boundary", &ContactOptions::boundary, "a non-empty boundary tag",
            "the tag of the contact surface");
     b.table("obstacle", &ContactOptions::obstacle, obstacle_table,
-            "the rigid plane or the master surface: see `[contact.obstacle]`; absent: the plane "
-            "of a flat contact surface, at zero gap (the paper's setting)");
+            "a rigid obstacle (plane, sphere, cylinder, meshed surface; fixed or moving) or the "
+            "master surface: see `[contact.obstacle]`; absent: the plane of a flat contact "
+            "surface, at zero gap (the paper's setting)");
     b.number("search_distance", &ContactOptions::search_distance, positive("m"),
              "how far along the contact surface's normal the master surface is looked for; "
              "parts of the contact surface farther away carry no multipliers. Absent: a tenth "
