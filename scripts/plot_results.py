@@ -84,6 +84,14 @@ STATE_COLORS = {"stick": "C0", "slip": "C3", "separated": "0.82"}
 MAX_STEP_MAPS = 12  # stick_slip_steps draws at most this many steps
 STEPS_LEGEND_HEIGHT = 0.45  # inches below the maps of stick_slip_steps for the legend
 CIRCLES_PAD = 0.02  # friction_circles, unzoomed: the surface padded by this part of its size
+# The cells of a quadratic mesh (docs/theory.md §2.12): meshio's "tetra10" and "triangle6" (VTK's
+# 10- and 6-node cells), whose first nodes are the corners. A 6-node triangle (corners 0-2, then
+# the nodes of its edges 01, 12, 20) is drawn as four linear ones through its edge nodes, each
+# oriented as the triangle is (QUADRATIC_TRIANGLE_SPLIT), so that the maps use every node's
+# value; the deformed body is drawn by the tetrahedra's corners.
+TETRA_TYPES = ("tetra", "tetra10")
+TET_CORNERS = 4
+QUADRATIC_TRIANGLE_SPLIT = np.array([[0, 3, 5], [3, 1, 4], [5, 4, 2], [3, 4, 5]])
 
 
 # ----------------------------------------------------------------------------------------------
@@ -129,6 +137,18 @@ def cell_field(mesh, name):
     return a[:, 0] if a.ndim == 2 and a.shape[1] == 1 else a
 
 
+def linear_triangles(block):
+    """The cells of a contact.vtu cell block as linear triangles (k, 3), and the cell each one
+    belongs to: "triangle" cells as they are, "triangle6" cells split in four
+    (QUADRATIC_TRIANGLE_SPLIT)."""
+    data = np.asarray(block.data)
+    if block.type == "triangle6":
+        pieces = len(QUADRATIC_TRIANGLE_SPLIT)
+        return (data[:, QUADRATIC_TRIANGLE_SPLIT].reshape(-1, 3),
+                np.repeat(np.arange(len(data)), pieces))
+    return data, np.arange(len(data))
+
+
 def point_field(mesh, name):
     """Point data `name`, as a 1D array (scalars) or 2D (vectors)."""
     a = np.asarray(mesh.point_data[name])
@@ -166,14 +186,15 @@ def load_contact(results, report, pair=None):
     if not path.is_file():
         return None
     mesh = meshio.read(path)
-    triangles = np.asarray(mesh.cells[0].data)
+    # Quadratic triangles as four linear ones each, every piece with its cell's values.
+    triangles, cell = linear_triangles(mesh.cells[0])
     # With `pair`: that pair's triangles only, each per-triangle field cut alike.
-    mine = (cell_field(mesh, "pair").astype(int) == pair if pair is not None
+    mine = (cell_field(mesh, "pair").astype(int)[cell] == pair if pair is not None
             else np.ones(len(triangles), dtype=bool))
     triangles = triangles[mine]
 
     def cells(name):
-        return cell_field(mesh, name)[mine]
+        return cell_field(mesh, name)[cell][mine]
 
     tangents, axes = plane_basis(report, pair)
     uv = np.asarray(mesh.points) @ tangents.T
@@ -1046,8 +1067,8 @@ def plot_deformed(report, results):
     mesh = meshio.read(result_file(results, "solution.vtu"))
     pts = np.asarray(mesh.points)
     u = point_field(mesh, "displacement")
-    tets = next(c.data for c in mesh.cells if c.type == "tetra")
-    faces, owner = boundary_faces(np.asarray(tets))
+    tets = next(c.data for c in mesh.cells if c.type in TETRA_TYPES)
+    faces, owner = boundary_faces(np.asarray(tets)[:, :TET_CORNERS])
     lo, hi = pts.min(axis=0), pts.max(axis=0)
     size = float((hi - lo).max())
     umax = float(np.linalg.norm(u, axis=1).max())

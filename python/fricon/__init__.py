@@ -334,22 +334,45 @@ class Problem:
         return f"fricon.Problem({self._source}, {len(self._edits)} edit(s))"
 
 
+# The meshio cell types fricon takes: tetrahedra and triangles, linear or quadratic (theory.md
+# §2.12). meshio lists a 10-node tetrahedron's nodes in VTK's order, whose edge nodes 8 and 9
+# (edges 13 and 23) are Gmsh's, and fricon's, 9 and 8 (edges 32 and 31): _FROM_MESHIO_ORDER puts
+# them back (the swap is its own inverse). meshio's 6-node triangle is in fricon's order.
+_TETRA_TYPES = ("tetra", "tetra10")
+_TRIANGLE_TYPES = ("triangle", "triangle6")
+_FROM_MESHIO_ORDER = {"tetra10": [0, 1, 2, 3, 4, 5, 6, 7, 9, 8]}
+_TRIANGLE_CORNERS = 3
+
+
+def _fricon_order(block):
+    """The node indices of a meshio cell block, in fricon's order of the nodes of a cell."""
+    import numpy as np
+
+    data = np.asarray(block.data)
+    order = _FROM_MESHIO_ORDER.get(block.type)
+    return data[:, order] if order is not None else data
+
+
 def _mesh_from_meshio(mesh):
-    """A fricon.Mesh from a meshio.Mesh: its "tetra" cells, and its cell sets as boundary tags
-    (the sets' triangles) and regions (the sets' tetrahedra), e.g. the physical groups of a Gmsh
-    file read by meshio.read."""
+    """A fricon.Mesh from a meshio.Mesh: its "tetra" (or quadratic "tetra10") cells, and its cell
+    sets as boundary tags (the sets' "triangle" or "triangle6" cells) and regions (the sets'
+    tetrahedra), e.g. the physical groups of a Gmsh file read by meshio.read."""
     import numpy as np
 
     blocks = list(mesh.cells)
-    tet_blocks = [i for i, b in enumerate(blocks) if b.type == "tetra"]
+    tet_blocks = [i for i, b in enumerate(blocks) if b.type in _TETRA_TYPES]
     if not tet_blocks:
-        raise InputError("fricon.Mesh.from_meshio: the mesh has no \"tetra\" cells (fricon needs "
-                         "linear tetrahedra)")
+        raise InputError("fricon.Mesh.from_meshio: the mesh has no \"tetra\" nor \"tetra10\" "
+                         "cells (fricon needs tetrahedra, linear or quadratic)")
+    kinds = sorted({blocks[i].type for i in tet_blocks})
+    if len(kinds) > 1:
+        raise InputError(f"fricon.Mesh.from_meshio: the mesh has cells of the types {kinds}; "
+                         "fricon needs tetrahedra of one order, linear or quadratic")
     offset, start = {}, 0
     for i in tet_blocks:
         offset[i] = start
         start += len(blocks[i].data)
-    tets = np.concatenate([blocks[i].data for i in tet_blocks])
+    tets = np.concatenate([_fricon_order(blocks[i]) for i in tet_blocks])
     boundary, regions = {}, {}
     for name, per_block in mesh.cell_sets.items():
         if name.startswith("gmsh:"):
@@ -358,10 +381,12 @@ def _mesh_from_meshio(mesh):
         for i, idx in enumerate(per_block):
             if idx is None or len(idx) == 0:
                 continue
-            if blocks[i].type == "triangle":
-                triangles.append(blocks[i].data[idx])
-            elif blocks[i].type == "tetra":
+            if blocks[i].type in _TRIANGLE_TYPES:
+                triangles.append(_fricon_order(blocks[i])[idx])
+            elif blocks[i].type in _TETRA_TYPES:
                 members.append(offset[i] + np.asarray(idx))
+        if len({t.shape[1] for t in triangles}) > 1:  # 3- and 6-node triangles: their corners
+            triangles = [t[:, :_TRIANGLE_CORNERS] for t in triangles]
         if triangles:
             boundary[name] = np.concatenate(triangles)
         if members:

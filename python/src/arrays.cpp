@@ -1,6 +1,8 @@
 // Meshes from and to numpy arrays (the Mesh class of the module).
 
+#include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <map>
 #include <string>
 #include <vector>
@@ -18,18 +20,28 @@ namespace fricon::python {
 
 namespace {
 
+constexpr py::ssize_t kDimension = 3;  // coordinates per point
+
 using IndexArray = py::array_t<Index, py::array::c_style | py::array::forcecast>;
 using RealArray = py::array_t<Real, py::array::c_style | py::array::forcecast>;
 
+/// The entries of `a`, an array of shape (k, w) for a width w of `widths`, in C order (a row per
+/// entity); `width` (if not null) gets w. Throws InputError naming the array and its shape.
 template <typename T>
 std::vector<T> flat(const py::array_t<T, py::array::c_style | py::array::forcecast>& a,
-                    py::ssize_t columns, const std::string& what) {
-  if (a.ndim() != 2 || a.shape(1) != columns)
+                    std::initializer_list<py::ssize_t> widths, const std::string& what,
+                    Index* width = nullptr) {
+  if (a.ndim() != 2 || std::find(widths.begin(), widths.end(), a.shape(1)) == widths.end()) {
+    std::string shapes;
+    for (const py::ssize_t w : widths)
+      shapes += fmt::format("{}(k, {})", shapes.empty() ? "" : " or ", w);
     throw InputError(fmt::format(
-        "fricon.Mesh: {}: expected an array of shape (k, {}), got {} "
+        "fricon.Mesh: {}: expected an array of shape {}, got {} "
         "dimension(s){}",
-        what, columns, a.ndim(),
+        what, shapes, a.ndim(),
         a.ndim() == 2 ? fmt::format(" of shape ({}, {})", a.shape(0), a.shape(1)) : ""));
+  }
+  if (width != nullptr) *width = static_cast<Index>(a.shape(1));
   return std::vector<T>(a.data(), a.data() + a.size());
 }
 
@@ -78,11 +90,17 @@ PyMesh make_mesh(const RealArray& points, const py::array& tets,
                  const std::map<std::string, py::array>& boundary,
                  const std::optional<std::map<std::string, py::array>>& regions) {
   mesh::MeshArrays arrays;
-  arrays.points = flat<Real>(points, 3, "points");
-  arrays.tets = flat<Index>(indices_of(tets, "tets"), 4, "tets");
+  arrays.points = flat<Real>(points, {kDimension}, "points");
+  // Linear or quadratic tetrahedra (theory.md §2.12); on quadratic ones triangles of 3 nodes or 6.
+  arrays.tets =
+      flat<Index>(indices_of(tets, "tets"), {mesh::kLinearTetNodes, mesh::kQuadraticTetNodes},
+                  "tets", &arrays.nodes_per_tet);
   for (const auto& [name, triangles] : boundary) {
     const std::string what = fmt::format("boundary['{}']", name);
-    arrays.boundary[name] = flat<Index>(indices_of(triangles, what), 3, what);
+    mesh::TriangleArray& rows = arrays.boundary[name];
+    rows.nodes =
+        flat<Index>(indices_of(triangles, what),
+                    {mesh::kLinearTriangleNodes, mesh::kQuadraticTriangleNodes}, what, &rows.width);
   }
   if (regions)
     for (const auto& [name, members] : *regions)
@@ -91,15 +109,18 @@ PyMesh make_mesh(const RealArray& points, const py::array& tets,
       std::make_shared<const mesh::TetMesh>(mesh::mesh_from_arrays(arrays, "fricon.Mesh"))};
 }
 
+// Each tag's triangles with all their nodes (the corners, then the edge nodes of a quadratic
+// mesh: TetMesh::face_node), as Mesh() takes them.
 py::dict boundary_of(const mesh::TetMesh& mesh) {
   py::dict out;
+  const int width = mesh.nodes_per_face();
   for (std::size_t tag = 0; tag < mesh.tag_names.size(); ++tag) {
     const std::vector<Index> faces = mesh.faces_with_tag(mesh.tag_names[tag]);
-    py::array_t<Index> tri({static_cast<py::ssize_t>(faces.size()), py::ssize_t{3}});
+    py::array_t<Index> tri({static_cast<py::ssize_t>(faces.size()), py::ssize_t{width}});
     auto r = tri.mutable_unchecked<2>();
     for (std::size_t k = 0; k < faces.size(); ++k)
-      for (int v = 0; v < 3; ++v)
-        r(static_cast<py::ssize_t>(k), v) = mesh.faces(v, faces[k]);
+      for (int v = 0; v < width; ++v)
+        r(static_cast<py::ssize_t>(k), v) = mesh.face_node(faces[k], v);
     out[py::str(mesh.tag_names[tag])] = tri;
   }
   return out;
@@ -121,20 +142,36 @@ py::dict regions_of(const mesh::TetMesh& mesh) {
 
 }  // namespace
 
+py::array tet_rows(const mesh::TetMesh& mesh, py::handle owner) {
+  if (mesh.order() == 1) return rows_view(mesh.tets, owner);
+  py::array_t<Index> rows(
+      {static_cast<py::ssize_t>(mesh.n_tets()), static_cast<py::ssize_t>(mesh.nodes_per_tet())});
+  auto r = rows.mutable_unchecked<2>();
+  for (Index t = 0; t < mesh.n_tets(); ++t)
+    for (int a = 0; a < mesh.nodes_per_tet(); ++a)
+      r(t, a) = mesh.tet_node(t, a);
+  py::detail::array_proxy(rows.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+  return rows;
+}
+
 void bind_mesh(py::module_& m) {
   py::class_<PyMesh>(m, "Mesh", R"(A tetrahedral mesh from arrays, checked as a mesh file is.
 
 Mesh(points, tets, boundary, regions=None)
   points    (n, 3) float: node coordinates [m]
   tets      (m, 4) int: 0-based node indices of linear tetrahedra, positively oriented (a
-            float array only of whole numbers)
+            float array only of whole numbers); or (m, 10): quadratic tetrahedra, the corners
+            (positively oriented), then the nodes of the edges 01, 12, 20, 30, 32, 31 (Gmsh's
+            order; meshio's "tetra10" has the last two swapped, Mesh.from_meshio swaps them back)
   boundary  {name: (k, 3) int}: tagged boundary triangles (faces of the tetrahedra, any
-            orientation), the names [[dirichlet]], [[traction]] and [contact] refer to
+            orientation), the names [[dirichlet]], [[traction]] and [contact] refer to; on
+            quadratic tetrahedra (k, 3) (the corners: the edge nodes are the tetrahedra's) or
+            (k, 6) (the corners, then the edges 01, 12, 20; checked against the tetrahedra's)
   regions   {name: 1-D int}: the tetrahedra of each region ([[material]] region = name);
             None: one region "body"
 Raises fricon.InputError for inverted or degenerate tetrahedra, indices out of range, unused
-nodes, triangles that are no face of a tetrahedron, fractional indices, a tag without
-triangles, ...)")
+nodes, triangles that are no face of a tetrahedron, quadratic tetrahedra that do not conform
+(two nodes on one edge), fractional indices, a tag without triangles, ...)")
       .def(py::init(&make_mesh), py::arg("points"), py::arg("tets"),
            py::arg("boundary") = std::map<std::string, py::array>{},
            py::arg("regions") = py::none())
@@ -154,19 +191,25 @@ triangles, ...)")
           [](py::object self) { return rows_view(self.cast<PyMesh&>().mesh->nodes, self); },
           "(n, 3) node coordinates [m] (read-only view)")
       .def_property_readonly(
-          "tets", [](py::object self) { return rows_view(self.cast<PyMesh&>().mesh->tets, self); },
-          "(m, 4) node indices (read-only view)")
+          "tets", [](py::object self) { return tet_rows(*self.cast<PyMesh&>().mesh, self); },
+          "(m, 4) node indices (read-only view), or (m, 10) of a quadratic mesh (corners, then "
+          "edges 01, 12, 20, 30, 32, 31; a read-only copy)")
       .def_property_readonly(
           "boundary", [](const PyMesh& p) { return boundary_of(*p.mesh); },
-          "{name: (k, 3) triangles}, oriented outward")
+          "{name: (k, 3) triangles}, oriented outward; (k, 6) of a quadratic mesh (corners, then "
+          "edges 01, 12, 20)")
+      .def_property_readonly(
+          "order", [](const PyMesh& p) { return p.mesh->order(); },
+          "1: linear (4-node) tetrahedra; 2: quadratic (10-node)")
       .def_property_readonly(
           "regions", [](const PyMesh& p) { return regions_of(*p.mesh); },
           "{name: tetrahedron indices}")
       .def_property_readonly("n_nodes", [](const PyMesh& p) { return p.mesh->n_nodes(); })
       .def_property_readonly("n_tets", [](const PyMesh& p) { return p.mesh->n_tets(); })
       .def("__repr__", [](const PyMesh& p) {
-        return fmt::format("fricon.Mesh({} nodes, {} tetrahedra, boundary: {})", p.mesh->n_nodes(),
-                           p.mesh->n_tets(), p.mesh->tag_list());
+        return fmt::format("fricon.Mesh({} nodes, {} {}tetrahedra, boundary: {})",
+                           p.mesh->n_nodes(), p.mesh->n_tets(),
+                           p.mesh->order() > 1 ? "quadratic " : "", p.mesh->tag_list());
       });
 }
 

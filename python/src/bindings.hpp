@@ -55,6 +55,11 @@ inline py::array vector_view(const VectorXd& v, py::handle owner) {
   return a;
 }
 
+/// The tetrahedra of `mesh` as an (m, nodes per tetrahedron) array: every node, the corners then
+/// the edge nodes of a quadratic mesh (TetMesh::tet_node; theory.md §2.12). Read-only: a view
+/// of mesh.tets kept alive by `owner` for a linear mesh, a copy for a quadratic one.
+py::array tet_rows(const mesh::TetMesh& mesh, py::handle owner);
+
 void bind_mesh(py::module_& m);
 void bind_solve(py::module_& m);
 

@@ -259,10 +259,9 @@ void bind_solve(py::module_& m) {
           "(n, 3) node coordinates [m]")
       .def_property_readonly(
           "tets",
-          [](py::object self) {
-            return rows_view(self.cast<PyResult&>().run->model.mesh.tets, self);
-          },
-          "(m, 4) node indices")
+          [](py::object self) { return tet_rows(self.cast<PyResult&>().run->model.mesh, self); },
+          "(m, 4) node indices, or (m, 10) of a quadratic mesh (corners, then edges 01, 12, 20, "
+          "30, 32, 31)")
       .def_property_readonly(
           "displacement",
           [](py::object self) { return rows_view(self.cast<PyResult&>().run->displacement, self); },

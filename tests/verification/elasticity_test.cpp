@@ -1,8 +1,10 @@
-// Verification of the P1 elasticity core against independent truth:
-//  - a manufactured solution on a brick, whose observed convergence orders must be 2 in L2 and
-//    1 in the H1 seminorm over three meshes;
+// Verification of the elasticity core at orders 1 and 2 against independent truth:
+//  - a manufactured solution on a brick, whose observed convergence orders must be p + 1 in L2
+//    and p in the H1 seminorm over three meshes (2 and 1 for linear, 3 and 2 for quadratic
+//    tetrahedra);
 //  - a cantilever under an end shear load, whose tip deflection must approach Timoshenko beam
-//    theory as the mesh is refined.
+//    theory as the mesh is refined (linear), and be within 1 % of it with 4 quadratic elements
+//    through the height (theory.md §2.12), linear on the same mesh reported beside it.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,7 +12,7 @@
 
 #include "common/fixtures.hpp"
 #include "fricon/fe/assembly.hpp"
-#include "fricon/fe/p1_element.hpp"
+#include "fricon/fe/element.hpp"
 #include "fricon/fe/quadrature.hpp"
 #include "fricon/linalg/cholesky.hpp"
 #include "fricon/mesh/brick.hpp"
@@ -71,30 +73,44 @@ struct Errors {
   Real l2 = 0, h1 = 0;
 };
 
-Errors solve_and_measure(const Manufactured& ms, Index n) {
-  const mesh::TetMesh m = mesh::make_brick({ms.L, {3 * n / 2, n, n}});
+// The brick (0, Lx) x (0, Ly) x (0, Lz) with n cells across, at `order`.
+mesh::TetMesh brick(const Vec3& size, std::array<Index, 3> cells, int order) {
+  mesh::TetMesh m = mesh::make_brick({size, cells});
+  if (order == 2) mesh::add_edge_midpoints(m);
+  return m;
+}
+
+Errors solve_and_measure(const Manufactured& ms, Index n, int order) {
+  const mesh::TetMesh m = brick(ms.L, {3 * n / 2, n, n}, order);
   std::vector<bool> fixed(static_cast<size_t>(3 * m.n_nodes()), false);
   for (Index f = 0; f < m.n_faces(); ++f)
-    for (int v = 0; v < 3; ++v)
+    for (int v = 0; v < m.nodes_per_face(); ++v)
       for (int c = 0; c < 3; ++c)
-        fixed[static_cast<size_t>(3 * m.faces(v, f) + c)] = true;
+        fixed[static_cast<size_t>(3 * m.face_node(f, v) + c)] = true;
   const DofMap dofs(fixed);
   const Material mat = isotropic(2e11, 0.3);
+  const Element& element = elements_of(m).cell;
 
-  // Load: the body force integrated with a rule of high order (not the P1 interpolant), so that
-  // the observed errors are those of the discretization alone.
-  const QuadratureRule rule = tet_rule(4);
+  // Load: the body force integrated with a rule of high order (not an interpolant), so that the
+  // observed errors are those of the discretization alone; the errors likewise.
+  const QuadratureRule rule = tet_rule(5);
+  std::vector<ShapeValues> N;
+  std::vector<ShapeDerivatives> dN;
+  for (Index q = 0; q < rule.weights.size(); ++q) {
+    N.push_back(element.values(rule.points.col(q)));
+    dN.push_back(element.derivatives(rule.points.col(q)));
+  }
   VectorXd f = VectorXd::Zero(dofs.n_free());
   for (Index t = 0; t < m.n_tets(); ++t) {
-    const auto x = tet_vertices(m, t);
-    const Real volume = mesh::tet_volume(m, t);
+    const ElementNodes x = tet_points(m, t);
     for (Index q = 0; q < rule.weights.size(); ++q) {
-      const Vec3 xq = x * rule.points.col(q);
+      const Vec3 xq = x * N[static_cast<size_t>(q)];
+      const Real w = rule.weights(q) / 6.0 * map_cell(x, dN[static_cast<size_t>(q)]).det;
       const Vec3 b = ms.body_force(xq);
-      for (int a = 0; a < 4; ++a)
+      for (int a = 0; a < element.n_nodes(); ++a)
         for (int c = 0; c < 3; ++c) {
-          const Index k = dofs.dof(m.tets(a, t), c);
-          if (k >= 0) f(k) += volume * rule.weights(q) * rule.points(a, q) * b(c);
+          const Index k = dofs.dof(m.tet_node(t, a), c);
+          if (k >= 0) f(k) += w * N[static_cast<size_t>(q)](a) * b(c);
         }
     }
   }
@@ -104,16 +120,16 @@ Errors solve_and_measure(const Manufactured& ms, Index n) {
 
   Errors e;
   for (Index t = 0; t < m.n_tets(); ++t) {
-    const auto x = tet_vertices(m, t);
-    const P1Gradients g = p1_gradients(x);
-    Eigen::Matrix<Real, 3, 4> ue;
-    for (int a = 0; a < 4; ++a)
-      ue.col(a) = uh.col(m.tets(a, t));
-    const Mat3 grad_uh = ue * g.grad.transpose();
+    const ElementNodes x = tet_points(m, t);
+    MatrixXd ue(3, element.n_nodes());
+    for (int a = 0; a < element.n_nodes(); ++a)
+      ue.col(a) = uh.col(m.tet_node(t, a));
     for (Index q = 0; q < rule.weights.size(); ++q) {
-      const Vec3 xq = x * rule.points.col(q);
-      const Real w = g.volume * rule.weights(q);
-      e.l2 += w * (ms.u(xq) - ue * rule.points.col(q)).squaredNorm();
+      const CellMap map = map_cell(x, dN[static_cast<size_t>(q)]);
+      const Vec3 xq = x * N[static_cast<size_t>(q)];
+      const Real w = rule.weights(q) / 6.0 * map.det;
+      const Mat3 grad_uh = ue * map.grad;
+      e.l2 += w * (ms.u(xq) - ue * N[static_cast<size_t>(q)]).squaredNorm();
       e.h1 += w * (ms.grad_u(xq) - grad_uh).squaredNorm();
     }
   }
@@ -122,30 +138,53 @@ Errors solve_and_measure(const Manufactured& ms, Index n) {
   return e;
 }
 
-}  // namespace
-
-TEST(Verification, ManufacturedSolutionConvergesWithOrdersTwoAndOne) {
+// Observed orders between successive meshes, printed; checked against p + 1 (L2) and p (H1).
+void expect_orders(const std::vector<Index>& meshes, int order, Real first_tolerance,
+                   Real tolerance) {
   Manufactured ms;
   const auto [lambda, mu] = lame(2e11, 0.3);
   ms.lambda = lambda;
   ms.mu = mu;
-  const std::vector<Index> meshes{4, 8, 16};
   std::vector<Errors> errors;
   for (Index n : meshes)
-    errors.push_back(solve_and_measure(ms, n));
+    errors.push_back(solve_and_measure(ms, n, order));
   for (size_t i = 1; i < meshes.size(); ++i) {
-    const Real order_l2 = std::log2(errors[i - 1].l2 / errors[i].l2);
-    const Real order_h1 = std::log2(errors[i - 1].h1 / errors[i].h1);
-    RecordProperty("order_l2_" + std::to_string(meshes[i]), std::to_string(order_l2));
+    const Real ratio = static_cast<Real>(meshes[i]) / static_cast<Real>(meshes[i - 1]);
+    const Real order_l2 = std::log(errors[i - 1].l2 / errors[i].l2) / std::log(ratio);
+    const Real order_h1 = std::log(errors[i - 1].h1 / errors[i].h1) / std::log(ratio);
     std::printf(
-        "n = %2ld -> %2ld: L2 error %.3e -> %.3e (order %.3f), H1 error %.3e -> %.3e (order "
-        "%.3f)\n",
-        static_cast<long>(meshes[i - 1]), static_cast<long>(meshes[i]), errors[i - 1].l2,
+        "order %d, n = %2ld -> %2ld: L2 error %.3e -> %.3e (order %.3f), H1 error %.3e -> %.3e "
+        "(order %.3f)\n",
+        order, static_cast<long>(meshes[i - 1]), static_cast<long>(meshes[i]), errors[i - 1].l2,
         errors[i].l2, order_l2, errors[i - 1].h1, errors[i].h1, order_h1);
-    // Asymptotic orders 2 and 1; the first pair of meshes is slightly pre-asymptotic.
-    EXPECT_NEAR(order_l2, 2.0, i == 1 ? 0.1 : 0.05);
-    EXPECT_NEAR(order_h1, 1.0, i == 1 ? 0.1 : 0.05);
+    // The first pair of meshes is slightly pre-asymptotic.
+    EXPECT_NEAR(order_l2, order + 1.0, i == 1 ? first_tolerance : tolerance);
+    EXPECT_NEAR(order_h1, order, i == 1 ? first_tolerance : tolerance);
   }
+}
+
+// Tip deflection [m] of the cantilever (0,L)x(0,b)x(0,h) clamped at x = 0 under the shear
+// traction P/(b h) in -z on x = L, with `through` cells through the height: the mean of -u_z
+// over the end face, f . u / P with f the consistent load of the traction.
+Real cantilever_tip(Real L, Real b, Real h, Real E, Real nu, Real P, Index through, int order) {
+  const mesh::TetMesh m = brick(
+      Vec3(L, b, h), {static_cast<Index>(std::lround(L / h)) * through, through, through}, order);
+  const DofMap dofs = test::clamped_dofs(m);
+  VectorXd f = VectorXd::Zero(dofs.n_free());
+  add_traction(m, dofs, m.faces_with_tag("x1"), Vec3(0, 0, -P / (b * h)), f);
+  linalg::CholeskyFactor chol;
+  chol.factorize(assemble_stiffness(m, isotropic(E, nu), dofs));
+  return f.dot(chol.solve(f)) / P;
+}
+
+}  // namespace
+
+TEST(Verification, ManufacturedSolutionConvergesWithOrdersTwoAndOne) {
+  expect_orders({4, 8, 16}, 1, 0.1, 0.05);
+}
+
+TEST(Verification, QuadraticManufacturedSolutionConvergesWithOrdersThreeAndTwo) {
+  expect_orders({2, 4, 8}, 2, 0.25, 0.1);
 }
 
 TEST(Verification, CantileverTipDeflectionApproachesBeamTheory) {
@@ -178,4 +217,23 @@ TEST(Verification, CantileverTipDeflectionApproachesBeamTheory) {
   EXPECT_GT(rel_error[1], rel_error[2]);
   EXPECT_GT(rel_error[0] / rel_error[1], 2.5);
   EXPECT_LT(rel_error[2], 0.05);
+}
+
+TEST(Verification, QuadraticCantileverIsWithinOnePercentOfTimoshenko) {
+  // The cantilever: length 10, height and width 1, 4 cells through the height. P1 locks
+  // in bending on this mesh; 10-node tetrahedra must be within 1 % of Timoshenko's deflection.
+  const Real L = 10.0, b = 1.0, h = 1.0, E = 2e11, nu = 0.3, P = 1e6;
+  const Real I = b * h * h * h / 12.0, G = E / (2 * (1 + nu)), A = b * h;
+  const Real delta = P * L * L * L / (3 * E * I) + P * L / (5.0 / 6.0 * G * A);
+  const Index through = 4;
+  const Real linear = cantilever_tip(L, b, h, E, nu, P, through, 1);
+  const Real quadratic = cantilever_tip(L, b, h, E, nu, P, through, 2);
+  std::printf(
+      "cantilever L = 10, 4 cells through the height: Timoshenko %.6e m, order 1 %.6e m (%+.2f "
+      "%%), order 2 %.6e m (%+.2f %%)\n",
+      delta, linear, 100 * (linear / delta - 1), quadratic, 100 * (quadratic / delta - 1));
+  RecordProperty("order1_error_percent", std::to_string(100 * (linear / delta - 1)));
+  RecordProperty("order2_error_percent", std::to_string(100 * (quadratic / delta - 1)));
+  EXPECT_NEAR(quadratic / delta, 1.0, 0.01);
+  EXPECT_LT(linear / delta, 0.95);  // P1 locks: more than 5 % too stiff on this mesh
 }

@@ -11,6 +11,7 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/SparseCholesky>
 
+#include "fricon/contact/surface_integrals.hpp"
 #include "fricon/core/error.hpp"
 
 namespace fricon::contact {
@@ -30,7 +31,7 @@ Frames patch_frames(const mesh::TetMesh& mesh, const ContactSurface& surface,
     for (Index k : patches.faces[static_cast<size_t>(p)]) {
       const Index face = surface.faces[static_cast<size_t>(k)];
       Vec3 nodal = Vec3::Zero();
-      for (int v = 0; v < 3; ++v)
+      for (int v = 0; v < 3; ++v)  // the corners' normals
         nodal += surface.node_frames.n.col(surface.face_nodes(v, k));
       sum += mesh::face_area(mesh, face) * nodal;
     }
@@ -70,12 +71,14 @@ std::vector<PatchRowWeights> patch_row_weights(const mesh::TetMesh& mesh,
     PatchRowWeights& w = out[static_cast<size_t>(p)];
     const Mat3 F = frames.rows(p);
     for (Index k : patches.faces[static_cast<size_t>(p)]) {
-      const Index f = surface.faces[static_cast<size_t>(k)];
-      const Real area = mesh::face_area(mesh, f);
-      std::array<Mat3, 3> d;
-      for (int v = 0; v < 3; ++v)
+      // int_T phi_a d dS with d = sum_b phi_b d_b: the face mass matrix applied to the nodes'
+      // directions; with one frame, (int_T phi_a dS) F.
+      const FaceIntegrals integrals = face_integrals(mesh, surface, k);
+      const Index n = surface.face_nodes.rows();
+      std::vector<Mat3> d(static_cast<size_t>(n));
+      for (Index v = 0; v < n; ++v)
         d[static_cast<size_t>(v)] = node_directions(surface, F, surface.face_nodes(v, k));
-      for (int a = 0; a < 3; ++a) {
+      for (Index a = 0; a < n; ++a) {
         const Index node = surface.face_nodes(a, k);
         Index& s = slot[static_cast<size_t>(node)];
         if (s < 0) {
@@ -83,14 +86,13 @@ std::vector<PatchRowWeights> patch_row_weights(const mesh::TetMesh& mesh,
           w.nodes.push_back(node);
           w.W.push_back(Mat3::Zero());
         }
-        // int_T phi_a phi_b dS = |T| (1 + delta_ab) / 12; with one frame, |T|/3 F.
         Mat3& W = w.W[static_cast<size_t>(s)];
         if (!surface.frames_vary) {
-          W += area / 3.0 * F;
+          W += integrals.shape(a) * F;
           continue;
         }
-        for (int b = 0; b < 3; ++b)
-          W += area * (a == b ? 2.0 : 1.0) / 12.0 * d[static_cast<size_t>(b)];
+        for (Index b = 0; b < n; ++b)
+          W += integrals.mass(a, b) * d[static_cast<size_t>(b)];
       }
     }
     for (size_t i = 0; i < w.nodes.size(); ++i) {

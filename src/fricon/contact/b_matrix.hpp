@@ -22,8 +22,9 @@ Frames patch_frames(const mesh::TetMesh& mesh, const ContactSurface& surface,
 /// (B v)_p = sum_a W_a v_a [m^2] over the nodes a of the patch (v_a the displacement of surface
 /// node a); each row is int_R phi_a d dS for the row's direction d. With one frame per patch
 /// (a plane, a body) d is the patch's and W_a = (int_R phi_a dS) F_p; against a curved obstacle
-/// (ContactSurface::frames_vary, theory.md §2.11) d varies inside the patch: the P1 interpolant
-/// of the patch's frame turned onto each node's normal, integrated exactly.
+/// (ContactSurface::frames_vary, theory.md §2.11) d varies inside the patch: the interpolant (by
+/// the face element) of the patch's frame turned onto each node's normal. Integrated by the face
+/// element's quadrature (surface_integrals.hpp), exact on straight triangles.
 struct PatchRowWeights {
   std::vector<Index> nodes;      ///< surface nodes of the patch
   std::vector<Mat3> W;           ///< per node [m^2]
@@ -37,10 +38,10 @@ std::vector<PatchRowWeights> patch_row_weights(const mesh::TetMesh& mesh,
 
 /// B over the free dofs: n_dual = 3 n_patches rows ordered (n, t1, t2) per patch, in the patch's
 /// frame (frames, one per patch), (B v)_{n,p} = int_{R_p} v.n dS and likewise for t1, t2
-/// [m^2] (patch_row_weights), exact for the P1 traces; fixed dofs have no column. With `mortar`
-/// (against a body: n_patches x mesh nodes, mortar(p, a) = int_{R_p} of master node a's shape
-/// function at the projection, theory.md §2.8), the master's displacement is subtracted: (B
-/// v)_{n,p} = int_{R_p} (v - v_master).n_p dS.
+/// [m^2] (patch_row_weights), exact for the element's traces on straight triangles; fixed dofs have
+/// no column. With `mortar` (against a body: n_patches x mesh nodes, mortar(p, a) = int_{R_p} of
+/// master node a's shape function at the projection, theory.md §2.8), the master's displacement is
+/// subtracted: (B v)_{n,p} = int_{R_p} (v - v_master).n_p dS.
 SparseMatrix assemble_b(const mesh::TetMesh& mesh, const fe::DofMap& dofs,
                         const ContactSurface& surface, const Patches& patches, const Frames& frames,
                         const SparseMatrix* mortar = nullptr);

@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include "fricon/contact/surface_integrals.hpp"
 #include "fricon/core/error.hpp"
 
 namespace fricon::contact {
@@ -60,10 +61,10 @@ ContactSurface surface_of_tag(const mesh::TetMesh& mesh, const std::string& tag,
   std::map<Index, Index> position;
   for (size_t k = 0; k < s.nodes.size(); ++k)
     position[s.nodes[k]] = static_cast<Index>(k);
-  s.face_nodes.resize(3, static_cast<Index>(s.faces.size()));
+  s.face_nodes.resize(mesh.nodes_per_face(), static_cast<Index>(s.faces.size()));
   for (size_t k = 0; k < s.faces.size(); ++k) {
-    for (int v = 0; v < 3; ++v)
-      s.face_nodes(v, static_cast<Index>(k)) = position[mesh.faces(v, s.faces[k])];
+    for (int v = 0; v < mesh.nodes_per_face(); ++v)
+      s.face_nodes(v, static_cast<Index>(k)) = position[mesh.face_node(s.faces[k], v)];
     s.area += mesh::face_area(mesh, s.faces[k]);
   }
   return s;
@@ -236,17 +237,17 @@ ContactSurface surface_of_faces(const mesh::TetMesh& mesh, const fe::DofMap& dof
   s.faces = faces;
   std::map<Index, Index> position;
   for (Index f : faces)
-    for (int v = 0; v < 3; ++v)
-      position.emplace(mesh.faces(v, f), 0);
+    for (int v = 0; v < mesh.nodes_per_face(); ++v)
+      position.emplace(mesh.face_node(f, v), 0);
   for (auto& [node, k] : position) {
     k = static_cast<Index>(s.nodes.size());
     s.nodes.push_back(node);
   }
-  s.face_nodes.resize(3, static_cast<Index>(faces.size()));
+  s.face_nodes.resize(mesh.nodes_per_face(), static_cast<Index>(faces.size()));
   Vec3 normal_sum = Vec3::Zero();
   for (size_t k = 0; k < faces.size(); ++k) {
-    for (int v = 0; v < 3; ++v)
-      s.face_nodes(v, static_cast<Index>(k)) = position[mesh.faces(v, faces[k])];
+    for (int v = 0; v < mesh.nodes_per_face(); ++v)
+      s.face_nodes(v, static_cast<Index>(k)) = position[mesh.face_node(faces[k], v)];
     s.area += mesh::face_area(mesh, faces[k]);
     normal_sum += mesh::face_area(mesh, faces[k]) * mesh::face_normal(mesh, faces[k]);
   }
@@ -264,7 +265,7 @@ Frames nodal_frames(const mesh::TetMesh& mesh, const ContactSurface& s) {
       Eigen::Matrix<Real, 3, Eigen::Dynamic>::Zero(3, s.n_nodes());
   for (size_t k = 0; k < s.faces.size(); ++k) {
     const Vec3 weighted = mesh::face_area(mesh, s.faces[k]) * mesh::face_normal(mesh, s.faces[k]);
-    for (int v = 0; v < 3; ++v)
+    for (Index v = 0; v < s.face_nodes.rows(); ++v)
       sum.col(s.face_nodes(v, static_cast<Index>(k))) += weighted;
   }
   Frames f;
@@ -358,15 +359,9 @@ Vec3 master_displacement(const ContactSurface& s, const fe::DofMap& dofs, const 
 
 Real surface_l2_norm(const mesh::TetMesh& mesh, const ContactSurface& surface, const VectorXd& v) {
   Real sum = 0.0;
-  for (size_t k = 0; k < surface.faces.size(); ++k) {
-    const Real area = mesh::face_area(mesh, surface.faces[k]);
-    Real s = 0.0, sq = 0.0;
-    for (int a = 0; a < 3; ++a) {
-      const Real va = v(surface.face_nodes(a, static_cast<Index>(k)));
-      s += va;
-      sq += va * va;
-    }
-    sum += area / 12.0 * (sq + s * s);  // v^T M v with M = |T|/12 (1 + delta_ab)
+  for (Index k = 0; k < static_cast<Index>(surface.faces.size()); ++k) {
+    const VectorXd vk = v(surface.face_nodes.col(k));
+    sum += vk.dot(face_integrals(mesh, surface, k).mass * vk);  // v^T M v
   }
   return std::sqrt(sum);
 }

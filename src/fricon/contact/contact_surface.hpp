@@ -59,8 +59,9 @@ struct ContactSurface {
   /// free component has a non-zero share of n). A node whose normal motion is fixed cannot reach
   /// the obstacle; its free tangential components still carry friction.
   std::vector<bool> contact_node;
-  /// Per surface node: position in `nodes` of each vertex of each face (3 x faces.size()).
-  Eigen::Matrix<Index, 3, Eigen::Dynamic> face_nodes;
+  /// Per face: position in `nodes` of each of its nodes, corners first (mesh nodes_per_face x
+  /// faces.size(): 3, or 6 on a quadratic mesh).
+  Eigen::Matrix<Index, Eigen::Dynamic, Eigen::Dynamic> face_nodes;
   /// Unit normal of the contact: -(the obstacle's normal); without an obstacle the outward normal
   /// of the (flat) surface; against a body the mean outward normal (the frame in which the
   /// patches are laid out).
@@ -153,7 +154,8 @@ ContactSurface surface_of_faces(const mesh::TetMesh& mesh, const fe::DofMap& dof
 /// Per surface node: the frame of its area-weighted mean outward normal (Frames::tangents).
 Frames nodal_frames(const mesh::TetMesh& mesh, const ContactSurface& surface);
 
-/// Exact L2 norm over the surface of the P1 function with nodal values v (per surface node).
+/// L2 norm over the surface of the function with nodal values v (per surface node),
+/// interpolated by the face element (exact on straight triangles).
 Real surface_l2_norm(const mesh::TetMesh& mesh, const ContactSurface& surface, const VectorXd& v);
 
 }  // namespace fricon::contact

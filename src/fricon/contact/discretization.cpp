@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "fricon/contact/radii.hpp"
+#include "fricon/contact/surface_integrals.hpp"
 #include "fricon/core/error.hpp"
 
 namespace fricon::contact {
@@ -24,22 +25,19 @@ Eigen::Matrix<Real, 3, Eigen::Dynamic> prescribed_on_surface(
   return p;
 }
 
-/// The gap part G of ContactDiscretization::offset: per patch int_R gap dS in its normal row,
-/// the P1 integral (exact: |T|/3 times the sum of the vertex values on each triangle).
+/// The gap part G of ContactDiscretization::offset: per patch int_R gap dS in its normal row, the
+/// gap interpolated by the face element: sum_a g_a int_T phi_a dS (surface_integrals.hpp).
 VectorXd gap_offset(const mesh::TetMesh& mesh, const ContactSurface& s, const Patches& patches,
                     const VectorXd& gap) {
   VectorXd c = VectorXd::Zero(3 * patches.size());
   for (Index p = 0; p < patches.size(); ++p)
-    for (Index k : patches.faces[static_cast<size_t>(p)]) {
-      const Real third = mesh::face_area(mesh, s.faces[static_cast<size_t>(k)]) / 3.0;
-      for (int v = 0; v < 3; ++v)
-        c(3 * p) += third * gap(s.face_nodes(v, k));
-    }
+    for (Index k : patches.faces[static_cast<size_t>(p)])
+      c(3 * p) += face_integrals(mesh, s, k).shape.dot(gap(s.face_nodes.col(k)));
   return c;
 }
 
 /// The prescribed part P of ContactDiscretization::offset: the patch integrals of the prescribed
-/// displacement in the rows' directions (slave, P1 exactly: patch_row_weights), minus the
+/// displacement in the rows' directions (slave: patch_row_weights), minus the
 /// master's through the mortar integrals against a body (theory.md §2.8); c = G - P vec(u_p).
 SparseMatrix prescribed_offset(const mesh::TetMesh& mesh, const ContactSurface& s,
                                const Patches& patches, const Frames& frames,

@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "fricon/contact/surface_integrals.hpp"
 #include "fricon/core/error.hpp"
 
 namespace fricon::contact {
@@ -57,28 +58,29 @@ VectorXd exact_radii(const mesh::TetMesh& mesh, const ContactSurface& surface,
   VectorXd rho = VectorXd::Zero(patches.size());
   for (Index p = 0; p < patches.size(); ++p) {
     Real integral = 0.0;
-    for (Index k : patches.faces[static_cast<size_t>(p)]) {
-      std::vector<PolyVertex> tri(3);
-      Real lo = INFINITY, hi = -INFINITY;
-      for (int v = 0; v < 3; ++v) {
-        const Index s = surface.face_nodes(v, k);
-        tri[v] = {mesh.nodes.col(surface.nodes[static_cast<size_t>(s)]), phi(s), g(s)};
-        lo = std::min(lo, phi(s));
-        hi = std::max(hi, phi(s));
+    for (Index k : patches.faces[static_cast<size_t>(p)])
+      for (const std::array<Index, 3>& nodes : linear_pieces(mesh, surface, k)) {
+        std::vector<PolyVertex> tri(3);
+        Real lo = INFINITY, hi = -INFINITY;
+        for (int v = 0; v < 3; ++v) {
+          const Index s = nodes[static_cast<size_t>(v)];
+          tri[v] = {mesh.nodes.col(surface.nodes[static_cast<size_t>(s)]), phi(s), g(s)};
+          lo = std::min(lo, phi(s));
+          hi = std::max(hi, phi(s));
+        }
+        // Slabs between consecutive kinks that cut the triangle.
+        std::vector<Real> cuts{lo};
+        for (Real t : kinks)
+          if (t > lo && t < hi) cuts.push_back(t);
+        cuts.push_back(hi);
+        for (size_t c = 0; c + 1 < cuts.size(); ++c) {
+          std::vector<PolyVertex> piece = tri;
+          if (c > 0) piece = clip(piece, cuts[c], true);
+          if (c + 2 < cuts.size()) piece = clip(piece, cuts[c + 1], false);
+          for (size_t i = 1; i + 1 < piece.size(); ++i)
+            integral += integrate_piece(piece[0], piece[i], piece[i + 1], F);
+        }
       }
-      // Slabs between consecutive kinks that cut the triangle.
-      std::vector<Real> cuts{lo};
-      for (Real t : kinks)
-        if (t > lo && t < hi) cuts.push_back(t);
-      cuts.push_back(hi);
-      for (size_t c = 0; c + 1 < cuts.size(); ++c) {
-        std::vector<PolyVertex> piece = tri;
-        if (c > 0) piece = clip(piece, cuts[c], true);
-        if (c + 2 < cuts.size()) piece = clip(piece, cuts[c + 1], false);
-        for (size_t i = 1; i + 1 < piece.size(); ++i)
-          integral += integrate_piece(piece[0], piece[i], piece[i + 1], F);
-      }
-    }
     rho(p) = integral / patches.area(p);
   }
   return rho;
@@ -158,32 +160,32 @@ Reduction level_line_reduction(const mesh::TetMesh& mesh, const ContactSurface& 
   Reduction r;
   r.length.assign(static_cast<size_t>(patches.size()), 0.0);
   for (Index p = 0; p < patches.size(); ++p) {
-    for (Index k : patches.faces[static_cast<size_t>(p)]) {
-      std::array<Index, 3> v{};
-      std::array<Vec3, 3> x;
-      for (int i = 0; i < 3; ++i) {
-        v[i] = surface.face_nodes(i, k);
-        x[i] = mesh.nodes.col(surface.nodes[static_cast<size_t>(v[i])]);
+    for (Index k : patches.faces[static_cast<size_t>(p)])
+      for (const std::array<Index, 3>& nodes : linear_pieces(mesh, surface, k)) {
+        std::array<Index, 3> v = nodes;
+        std::array<Vec3, 3> x;
+        for (int i = 0; i < 3; ++i) {
+          x[i] = mesh.nodes.col(surface.nodes[static_cast<size_t>(v[i])]);
+        }
+        const Real A = 0.5 * (x[1] - x[0]).cross(x[2] - x[0]).norm();
+        std::sort(v.begin(), v.end(), [&](Index a, Index b) { return phi(a) < phi(b); });
+        const Real s0 = phi(v[0]), s1 = phi(v[1]), s2 = phi(v[2]);
+        const Real g0 = g(v[0]), g1 = g(v[1]), g2 = g(v[2]);
+        if (s2 - s0 <= kFlatRelative * std::max(std::abs(s0), std::abs(s2))) {
+          r.flat_s.push_back(0.5 * (s0 + s2));
+          r.flat_weight.push_back(A * (g0 + g1 + g2) / 3.0);
+          r.flat_patch.push_back(p);
+          continue;
+        }
+        r.length[static_cast<size_t>(p)] += s2 - s0;
+        const Real d1 = s1 - s0, e1 = s2 - s1, d = s2 - s0;
+        if (d1 > 0.0)  // lower part, u = s - s0 in [0, d1]
+          push_pieces(p, s0, 1.0, 2.0 * A * g0 / (d1 * d),
+                      A * ((g1 - g0) / d1 + (g2 - g0) / d) / (d1 * d), d1, kinks, r.intervals);
+        if (e1 > 0.0)  // upper part, u = s2 - s in [0, e1]
+          push_pieces(p, s2, -1.0, 2.0 * A * g2 / (e1 * d),
+                      A * ((g1 - g2) / e1 + (g0 - g2) / d) / (e1 * d), e1, kinks, r.intervals);
       }
-      const Real A = 0.5 * (x[1] - x[0]).cross(x[2] - x[0]).norm();
-      std::sort(v.begin(), v.end(), [&](Index a, Index b) { return phi(a) < phi(b); });
-      const Real s0 = phi(v[0]), s1 = phi(v[1]), s2 = phi(v[2]);
-      const Real g0 = g(v[0]), g1 = g(v[1]), g2 = g(v[2]);
-      if (s2 - s0 <= kFlatRelative * std::max(std::abs(s0), std::abs(s2))) {
-        r.flat_s.push_back(0.5 * (s0 + s2));
-        r.flat_weight.push_back(A * (g0 + g1 + g2) / 3.0);
-        r.flat_patch.push_back(p);
-        continue;
-      }
-      r.length[static_cast<size_t>(p)] += s2 - s0;
-      const Real d1 = s1 - s0, e1 = s2 - s1, d = s2 - s0;
-      if (d1 > 0.0)  // lower part, u = s - s0 in [0, d1]
-        push_pieces(p, s0, 1.0, 2.0 * A * g0 / (d1 * d),
-                    A * ((g1 - g0) / d1 + (g2 - g0) / d) / (d1 * d), d1, kinks, r.intervals);
-      if (e1 > 0.0)  // upper part, u = s2 - s in [0, e1]
-        push_pieces(p, s2, -1.0, 2.0 * A * g2 / (e1 * d),
-                    A * ((g1 - g2) / e1 + (g0 - g2) / d) / (e1 * d), e1, kinks, r.intervals);
-    }
   }
   return r;
 }

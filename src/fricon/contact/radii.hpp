@@ -1,7 +1,10 @@
 #pragma once
 // contact: the slip bounds of the patches, rho_p = (1/|R_p|) int_{R_p} F(phi_h) g_h dS [Pa]
 // (theory.md §2.6), integrated exactly when F is piecewise linear, else by adaptive
-// Gauss-Kronrod quadrature on the level-line reduction to F's quadrature_rtol().
+// Gauss-Kronrod quadrature on the level-line reduction to F's quadrature_rtol(). phi_h and g_h
+// are the piecewise-linear interpolants on the triangles' linear pieces (surface_integrals.hpp:
+// the triangles themselves at order 1, their four corner-and-midpoint triangles at order 2,
+// theory.md §2.12).
 
 #include <string>
 

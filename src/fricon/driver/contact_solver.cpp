@@ -10,6 +10,7 @@
 #include "fricon/contact/dual_scaling.hpp"
 #include "fricon/contact/master_penetration.hpp"
 #include "fricon/contact/radii.hpp"
+#include "fricon/contact/surface_integrals.hpp"
 #include "fricon/core/error.hpp"
 #include "fricon/driver/floating_bodies.hpp"
 #include "fricon/driver/tresca_map.hpp"
@@ -323,7 +324,8 @@ WholeResult cover_left_out(const Problem& problem, const Model& m, const PatchSe
 
 // The part of sum lambda_n |R| that acts on free components of the contact surface (theory.md
 // §6.1): per patch, lambda_n times int_R sum_a psi_a (n_R . n_R restricted to the free
-// components of node a) dS, the hat functions integrated exactly (|T|/3 per vertex of T).
+// components of node a) dS, the shape functions integrated by the face element
+// (contact/surface_integrals.hpp).
 Real transmitted_normal_force(const mesh::TetMesh& mesh, const contact::ContactDiscretization& disc,
                               const VectorXd& lambda) {
   const contact::ContactSurface& s = disc.surface;
@@ -332,11 +334,11 @@ Real transmitted_normal_force(const mesh::TetMesh& mesh, const contact::ContactD
     const Vec3 n = disc.patch_frames.n.col(p);
     Real free_area = 0.0;  // [m^2]
     for (Index face : disc.patches.faces[static_cast<size_t>(p)]) {
-      const Real third = mesh::face_area(mesh, s.faces[static_cast<size_t>(face)]) / 3.0;
-      for (int v = 0; v < 3; ++v) {
+      const VectorXd shape = contact::face_integrals(mesh, s, face).shape;
+      for (Index v = 0; v < s.face_nodes.rows(); ++v) {
         const auto& fixed = s.fixed[static_cast<size_t>(s.face_nodes(v, face))];
         for (int c = 0; c < 3; ++c)
-          if (!fixed[static_cast<size_t>(c)]) free_area += third * n(c) * n(c);
+          if (!fixed[static_cast<size_t>(c)]) free_area += shape(v) * n(c) * n(c);
       }
     }
     force += lambda(3 * p) * free_area;
@@ -435,7 +437,7 @@ void report_pairs(const Problem& problem, const Model& m,
     if (f.state[static_cast<size_t>(p)] == PatchState::Separated) continue;
     PairReport& r = pairs[static_cast<size_t>(disc.patch_pair[static_cast<size_t>(p)])];
     for (Index face : disc.patches.faces[static_cast<size_t>(p)])
-      for (int v = 0; v < 3; ++v) {
+      for (Index v = 0; v < disc.surface.face_nodes.rows(); ++v) {
         const Index k = disc.surface.face_nodes(v, face);
         r.max_slip = std::max(r.max_slip, std::hypot(f.wt1(k), f.wt2(k)));
       }

@@ -9,6 +9,7 @@
 #include "fricon/driver/floating_bodies.hpp"
 #include "fricon/driver/obstacle.hpp"
 #include "fricon/driver/option_table.hpp"
+#include "fricon/fe/element.hpp"
 #include "fricon/fe/rigid_motions.hpp"
 #include "fricon/mesh/brick.hpp"
 #include "fricon/mesh/gmsh_file.hpp"
@@ -233,6 +234,7 @@ mesh::TetMesh make_brick_mesh(const Problem& problem) {
   spec.size = Vec3(problem.mesh.size[0], problem.mesh.size[1], problem.mesh.size[2]);
   spec.cells = problem.mesh.cells;
   mesh::TetMesh m = mesh::make_brick(spec);
+  if (problem.mesh.order == kQuadraticOrder) mesh::add_edge_midpoints(m);  // straight edges
   // A brick's elements can only be degenerate through its sizes and cell counts.
   mesh::check_mesh(m, fmt::format("{}: mesh.size = [{}, {}, {}], mesh.cells = [{}, {}, {}]",
                                   problem.where("mesh"), spec.size(0), spec.size(1), spec.size(2),
@@ -240,12 +242,15 @@ mesh::TetMesh make_brick_mesh(const Problem& problem) {
   return m;
 }
 
-/// The Gmsh file's mesh; its errors (which name the mesh file and element) are prefixed with the
-/// position of mesh.file.
+/// The Gmsh file's mesh, at the order of mesh.order (read_gmsh: a .geo file meshed at it, a linear
+/// .msh file raised to it, a quadratic one refused at order 1); its errors (which name the mesh
+/// file and element) are prefixed with the position of mesh.file.
 mesh::TetMesh read_gmsh_mesh(const Problem& problem) {
   try {
-    mesh::TetMesh mesh = mesh::read_gmsh(problem.mesh.file, problem.mesh.size_factor);
+    mesh::TetMesh mesh =
+        mesh::read_gmsh(problem.mesh.file, problem.mesh.size_factor, problem.mesh.order);
     mesh::scale_lengths(mesh, metres_per(problem.mesh.unit));  // uniform: keeps every check
+    fe::check_jacobians(mesh, problem.mesh.file.string());    // curved elements that fold
     return mesh;
   } catch (const InputError& e) {
     throw InputError(fmt::format("{}: mesh.file: {}", problem.where("mesh.file"), e.what()));
@@ -261,7 +266,9 @@ mesh::TetMesh make_mesh(const Problem& problem) {
     case MeshKind::Gmsh:
       return read_gmsh_mesh(problem);
     case MeshKind::Arrays:
-      return *problem.mesh.given;  // checked when it was built (mesh::mesh_from_arrays)
+      // Checked when it was built (mesh::mesh_from_arrays), but for curved elements that fold.
+      fe::check_jacobians(*problem.mesh.given, "the mesh given by code");
+      return *problem.mesh.given;
   }
   FRICON_CHECK(false, "make_mesh: invalid mesh kind");
   return {};

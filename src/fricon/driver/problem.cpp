@@ -7,8 +7,8 @@
 namespace fricon::driver {
 
 std::span<const std::string_view> mesh_parameters(MeshKind kind) {
-  static constexpr std::string_view kBrick[] = {"size", "cells"};
-  static constexpr std::string_view kGmsh[] = {"file", "size_factor", "unit"};
+  static constexpr std::string_view kBrick[] = {"size", "cells", "order"};
+  static constexpr std::string_view kGmsh[] = {"file", "size_factor", "unit", "order"};
   switch (kind) {
     case MeshKind::Brick:
       return kBrick;

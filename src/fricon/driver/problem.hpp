@@ -53,6 +53,11 @@ enum class LengthUnit {
 /// Metres per unit: 1, 0.01, 0.001.
 Real metres_per(LengthUnit unit);
 
+/// The orders of the elements ([mesh] order, theory.md §2.12): linear (4-node tetrahedra) and
+/// quadratic (10-node).
+inline constexpr int kLinearOrder = 1;
+inline constexpr int kQuadraticOrder = 2;
+
 /// The keys of [mesh] that `kind` uses (besides kind).
 std::span<const std::string_view> mesh_parameters(MeshKind kind);
 
@@ -70,6 +75,11 @@ struct MeshOptions {
   /// [mesh.unit] the unit of the file's coordinates (gmsh): they are multiplied by
   /// metres_per(unit) on reading. Default metres.
   LengthUnit unit = LengthUnit::Metre;
+  /// [mesh.order] the order of the elements, kLinearOrder or kQuadraticOrder (brick, gmsh): a
+  /// .geo file is meshed at it by Gmsh (curved edges on curved surfaces at 2); at 2 the brick and
+  /// a linear .msh file get straight edge midpoints (mesh::add_edge_midpoints); a quadratic .msh
+  /// file needs 2. Default linear.
+  int order = kLinearOrder;
   /// The mesh itself (arrays): built and checked by code (mesh::mesh_from_arrays), shared, never
   /// modified; required for kind = arrays, unused otherwise.
   std::shared_ptr<const mesh::TetMesh> given;

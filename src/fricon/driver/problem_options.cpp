@@ -319,6 +319,11 @@ const OptionTable& mesh_table() {
              "otherwise; a model drawn in millimetres needs `unit = \"mm\"` (its coordinates are "
              "multiplied by 0.001 on reading). Every other length of the problem file is in "
              "metres");
+    b.number("order", &MeshOptions::order, integer_in(kLinearOrder, kQuadraticOrder),
+             "the order of the elements: 1, linear 4-node tetrahedra, or 2, quadratic 10-node "
+             "ones (theory.md §2.12). A `.geo` file is meshed at this order (at 2, edges on "
+             "curved surfaces are curved); at 2 the brick and a linear `.msh` file get straight "
+             "edge midpoints; a quadratic `.msh` file needs 2");
     b.check(check_mesh);
     return b.build();
   }();

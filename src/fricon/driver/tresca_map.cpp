@@ -46,7 +46,7 @@ std::vector<bool> nodes_in_contact(const contact::ContactDiscretization& disc,
   for (Index p = 0; p < disc.n_patches(); ++p) {
     if (!(lambda(3 * p) > threshold)) continue;
     for (Index face : disc.patches.faces[static_cast<size_t>(p)])
-      for (int v = 0; v < 3; ++v)
+      for (Index v = 0; v < disc.surface.face_nodes.rows(); ++v)
         in_contact[static_cast<size_t>(disc.surface.face_nodes(v, face))] = true;
   }
   return in_contact;

@@ -3,24 +3,18 @@
 #include <algorithm>
 
 #include "fricon/core/error.hpp"
-#include "fricon/fe/p1_element.hpp"
+#include "fricon/fe/element.hpp"
+#include "fricon/fe/stiffness.hpp"
 
 namespace fricon::fe {
-
-Eigen::Matrix<Real, 3, 4> tet_vertices(const mesh::TetMesh& mesh, Index t) {
-  Eigen::Matrix<Real, 3, 4> x;
-  for (int a = 0; a < 4; ++a)
-    x.col(a) = mesh.nodes.col(mesh.tets(a, t));
-  return x;
-}
 
 NodeGraph node_graph(const mesh::TetMesh& mesh) {
   const Index n = mesh.n_nodes();
   std::vector<std::vector<Index>> lists(static_cast<size_t>(n));
   for (Index t = 0; t < mesh.n_tets(); ++t)
-    for (int a = 0; a < 4; ++a)
-      for (int b = 0; b < 4; ++b)
-        lists[mesh.tets(a, t)].push_back(mesh.tets(b, t));
+    for (int a = 0; a < mesh.nodes_per_tet(); ++a)
+      for (int b = 0; b < mesh.nodes_per_tet(); ++b)
+        lists[mesh.tet_node(t, a)].push_back(mesh.tet_node(t, b));
   NodeGraph g;
   g.start.assign(static_cast<size_t>(n + 1), 0);
   for (Index i = 0; i < n; ++i) {
@@ -76,19 +70,21 @@ SparseMatrix assemble_stiffness(const mesh::TetMesh& mesh, Materials materials,
   // Values: add each element matrix into the pattern, locating rows by binary search.
   const SparseIndex* rows = K.innerIndexPtr();
   Real* values = K.valuePtr();
+  const Element& element = elements_of(mesh).cell;
+  const int n_dofs = 3 * element.n_nodes();
   for (Index t = 0; t < mesh.n_tets(); ++t) {
     const ElementMatrix Ke =
-        element_stiffness(tet_vertices(mesh, t), material_of(materials, mesh, t));
-    Index local_dof[12];
-    for (int a = 0; a < 4; ++a)
+        element_stiffness(element, tet_points(mesh, t), material_of(materials, mesh, t));
+    Index local_dof[kMaxElementDofs];
+    for (int a = 0; a < element.n_nodes(); ++a)
       for (int c = 0; c < 3; ++c)
-        local_dof[3 * a + c] = dofs.dof(mesh.tets(a, t), c);
-    for (int j = 0; j < 12; ++j) {
+        local_dof[3 * a + c] = dofs.dof(mesh.tet_node(t, a), c);
+    for (int j = 0; j < n_dofs; ++j) {
       const Index col = local_dof[j];
       if (col < 0) continue;
       const SparseIndex* begin = rows + col_start[col];
       const SparseIndex* end = rows + col_start[col + 1];
-      for (int i = 0; i < 12; ++i) {
+      for (int i = 0; i < n_dofs; ++i) {
         const Index row = local_dof[i];
         if (row < 0) continue;
         const SparseIndex* it = std::lower_bound(begin, end, static_cast<SparseIndex>(row));
@@ -112,52 +108,75 @@ void check_load_vector(const DofMap& dofs, const VectorXd& f) {
   FRICON_CHECK(f.size() == dofs.n_free(),
                "load vector of size " << f.size() << ", expected " << dofs.n_free());
 }
+
+// The integrals int_T phi_a dS of the face element (with_field false) or sum_b int_T phi_a phi_b
+// p_b dS of a nodal field p (true) over triangle f, added to f at its nodes. Likewise
+// add_cell_load over tetrahedron t.
+void add_face_load(const mesh::TetMesh& mesh, const DofMap& dofs, Index face, const Vec3& p,
+                   const NodalField* field, VectorXd& f) {
+  const Element& element = elements_of(mesh).face;
+  const Tabulation& points = element.mass_points();
+  const ElementNodes x = face_points(mesh, face);
+  for (Index q = 0; q < points.size(); ++q) {
+    const ShapeValues& N = points.values[static_cast<size_t>(q)];
+    const Real dS =
+        points.weight(q) * map_face(x, points.derivatives[static_cast<size_t>(q)]).area_element;
+    Vec3 value = p;
+    if (field != nullptr) {
+      value.setZero();
+      for (int b = 0; b < element.n_nodes(); ++b)
+        value += N(b) * field->col(mesh.face_node(face, b));
+    }
+    for (int a = 0; a < element.n_nodes(); ++a)
+      add_nodal(dofs, mesh.face_node(face, a), dS * N(a) * value, f);
+  }
+}
+
+void add_cell_load(const mesh::TetMesh& mesh, const DofMap& dofs, Index t, const Vec3& b,
+                   const NodalField* field, VectorXd& f) {
+  const Element& element = elements_of(mesh).cell;
+  const Tabulation& points = element.mass_points();
+  const ElementNodes x = tet_points(mesh, t);
+  for (Index q = 0; q < points.size(); ++q) {
+    const ShapeValues& N = points.values[static_cast<size_t>(q)];
+    const Real dV = points.weight(q) * map_cell(x, points.derivatives[static_cast<size_t>(q)]).det;
+    Vec3 value = b;
+    if (field != nullptr) {
+      value.setZero();
+      for (int c = 0; c < element.n_nodes(); ++c)
+        value += N(c) * field->col(mesh.tet_node(t, c));
+    }
+    for (int a = 0; a < element.n_nodes(); ++a)
+      add_nodal(dofs, mesh.tet_node(t, a), dV * N(a) * value, f);
+  }
+}
 }  // namespace
 
 void add_traction(const mesh::TetMesh& mesh, const DofMap& dofs, const std::vector<Index>& faces,
                   const Vec3& p, VectorXd& f) {
   check_load_vector(dofs, f);
-  for (Index face : faces) {
-    const Vec3 share = mesh::face_area(mesh, face) / 3.0 * p;
-    for (int v = 0; v < 3; ++v)
-      add_nodal(dofs, mesh.faces(v, face), share, f);
-  }
+  for (Index face : faces)
+    add_face_load(mesh, dofs, face, p, nullptr, f);
 }
 
-void add_traction_p1(const mesh::TetMesh& mesh, const DofMap& dofs, const std::vector<Index>& faces,
-                     const NodalField& p, VectorXd& f) {
+void add_traction_field(const mesh::TetMesh& mesh, const DofMap& dofs,
+                        const std::vector<Index>& faces, const NodalField& p, VectorXd& f) {
   check_load_vector(dofs, f);
-  for (Index face : faces) {
-    const Real area = mesh::face_area(mesh, face);
-    Vec3 sum = Vec3::Zero();
-    for (int v = 0; v < 3; ++v)
-      sum += p.col(mesh.faces(v, face));
-    // Row a of the mass matrix |T|/12 (1 + delta_ab) applied to p: |T|/12 (p_a + sum).
-    for (int v = 0; v < 3; ++v)
-      add_nodal(dofs, mesh.faces(v, face), area / 12.0 * (p.col(mesh.faces(v, face)) + sum), f);
-  }
+  for (Index face : faces)
+    add_face_load(mesh, dofs, face, Vec3::Zero(), &p, f);
 }
 
 void add_volume_force(const mesh::TetMesh& mesh, const DofMap& dofs, const Vec3& b, VectorXd& f) {
   check_load_vector(dofs, f);
-  for (Index t = 0; t < mesh.n_tets(); ++t) {
-    const Vec3 share = std::abs(mesh::tet_volume(mesh, t)) / 4.0 * b;
-    for (int a = 0; a < 4; ++a)
-      add_nodal(dofs, mesh.tets(a, t), share, f);
-  }
+  for (Index t = 0; t < mesh.n_tets(); ++t)
+    add_cell_load(mesh, dofs, t, b, nullptr, f);
 }
 
-void add_volume_force_p1(const mesh::TetMesh& mesh, const DofMap& dofs, const NodalField& b,
-                         VectorXd& f) {
+void add_volume_force_field(const mesh::TetMesh& mesh, const DofMap& dofs, const NodalField& b,
+                            VectorXd& f) {
   check_load_vector(dofs, f);
-  for (Index t = 0; t < mesh.n_tets(); ++t) {
-    const Real volume = std::abs(mesh::tet_volume(mesh, t));
-    Vec3 sum = Vec3::Zero();
-    for (int a = 0; a < 4; ++a)
-      sum += b.col(mesh.tets(a, t));
-    for (int a = 0; a < 4; ++a)
-      add_nodal(dofs, mesh.tets(a, t), volume / 20.0 * (b.col(mesh.tets(a, t)) + sum), f);
-  }
+  for (Index t = 0; t < mesh.n_tets(); ++t)
+    add_cell_load(mesh, dofs, t, Vec3::Zero(), &b, f);
 }
 
 namespace {
@@ -165,13 +184,14 @@ namespace {
 // Adds K_T u_T of tetrahedron t to the nodal forces r.
 void add_internal_force(const mesh::TetMesh& mesh, Materials materials, const NodalField& u,
                         Index t, NodalField& r) {
-  Eigen::Matrix<Real, 12, 1> ue;
-  for (int a = 0; a < 4; ++a)
-    ue.segment<3>(3 * a) = u.col(mesh.tets(a, t));
-  const Eigen::Matrix<Real, 12, 1> re =
-      element_stiffness(tet_vertices(mesh, t), material_of(materials, mesh, t)) * ue;
-  for (int a = 0; a < 4; ++a)
-    r.col(mesh.tets(a, t)) += re.segment<3>(3 * a);
+  const Element& element = elements_of(mesh).cell;
+  ElementVector ue(3 * element.n_nodes());
+  for (int a = 0; a < element.n_nodes(); ++a)
+    ue.segment<3>(3 * a) = u.col(mesh.tet_node(t, a));
+  const ElementVector re =
+      element_stiffness(element, tet_points(mesh, t), material_of(materials, mesh, t)) * ue;
+  for (int a = 0; a < element.n_nodes(); ++a)
+    r.col(mesh.tet_node(t, a)) += re.segment<3>(3 * a);
 }
 
 }  // namespace

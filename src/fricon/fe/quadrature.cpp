@@ -62,4 +62,50 @@ QuadratureRule tet_rule(int n) {
   return rule;
 }
 
+QuadratureRule triangle_rule(int n) {
+  const QuadratureRule g = gauss_legendre(n);
+  QuadratureRule rule;
+  rule.points.resize(3, n * n);
+  rule.weights.resize(n * n);
+  int q = 0;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      // Collapsed coordinates: xi1 = u, xi2 = v (1 - u); Jacobian (1 - u), reference area 1/2.
+      const Real u = g.points(1, i), v = g.points(1, j);
+      rule.points(0, q) = 1.0 - u - v * (1.0 - u);
+      rule.points(1, q) = u;
+      rule.points(2, q) = v * (1.0 - u);
+      rule.weights(q) = 2.0 * (1.0 - u) * g.weights(i) * g.weights(j);
+      ++q;
+    }
+  return rule;
+}
+
+QuadratureRule tet_centroid_rule() {
+  QuadratureRule rule;
+  rule.points = MatrixXd::Constant(4, 1, 0.25);
+  rule.weights = VectorXd::Ones(1);
+  return rule;
+}
+
+QuadratureRule tet_degree2_rule() {
+  // Points (a, b, b, b) and permutations with b = (5 - sqrt 5) / 20, a = 1 - 3 b; weights 1/4.
+  const Real b = (5.0 - std::sqrt(5.0)) / 20.0;
+  const Real a = 1.0 - 3.0 * b;
+  QuadratureRule rule;
+  rule.points = MatrixXd::Constant(4, 4, b);
+  rule.points.diagonal().setConstant(a);
+  rule.weights = VectorXd::Constant(4, 0.25);
+  return rule;
+}
+
+QuadratureRule triangle_degree2_rule() {
+  constexpr Real kNear = 2.0 / 3.0, kFar = 1.0 / 6.0;
+  QuadratureRule rule;
+  rule.points = MatrixXd::Constant(3, 3, kFar);
+  rule.points.diagonal().setConstant(kNear);
+  rule.weights = VectorXd::Constant(3, 1.0 / 3.0);
+  return rule;
+}
+
 }  // namespace fricon::fe

@@ -1,7 +1,7 @@
 #pragma once
-// fe: quadrature rules for integrals that are not polynomial (manufactured loads, error norms).
-// Gauss-Legendre on [0,1] and conical-product (collapsed-coordinate) rules on the tetrahedron,
-// exact for polynomials up to degree 2 n_points - 1 in each direction.
+// fe: quadrature rules on the simplices: the small symmetric rules of the elements' stiffness
+// and mass (fe/element.hpp), and Gauss-Legendre and conical-product (collapsed-coordinate) rules
+// for higher degrees and integrals that are not polynomial (manufactured loads, error norms).
 
 #include <vector>
 
@@ -22,5 +22,16 @@ QuadratureRule gauss_legendre(int n);
 /// Collapsed Gauss rule on the tetrahedron with n points per direction (n^3 points); exact for
 /// polynomials of total degree <= 2n - 3 at least.
 QuadratureRule tet_rule(int n);
+
+/// Collapsed Gauss rule on the triangle with n points per direction (n^2 points); exact for
+/// polynomials of total degree <= 2n - 2.
+QuadratureRule triangle_rule(int n);
+
+/// The centroid of the tetrahedron (degree 1).
+QuadratureRule tet_centroid_rule();
+/// The symmetric 4-point rule on the tetrahedron (degree 2).
+QuadratureRule tet_degree2_rule();
+/// The 3-point rule on the triangle at the points (2/3, 1/6, 1/6) and permutations (degree 2).
+QuadratureRule triangle_degree2_rule();
 
 }  // namespace fricon::fe

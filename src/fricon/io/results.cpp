@@ -459,13 +459,24 @@ std::filesystem::path result_path(const std::filesystem::path& dir, const std::s
 
 namespace {
 
-// The body: displacement per node, stress, von Mises and region index (report.json "regions"
-// names them) per tetrahedron.
+// Every node of each tetrahedron, one column per tetrahedron in fricon's order (corners, then the
+// edge nodes of a quadratic mesh: TetMesh::tet_node, theory.md §2.12); write_vtu writes them in
+// VTK's.
+Eigen::Matrix<Index, Eigen::Dynamic, Eigen::Dynamic> tet_cells(const mesh::TetMesh& mesh) {
+  Eigen::Matrix<Index, Eigen::Dynamic, Eigen::Dynamic> cells(mesh.nodes_per_tet(), mesh.n_tets());
+  for (Index t = 0; t < mesh.n_tets(); ++t)
+    for (int a = 0; a < mesh.nodes_per_tet(); ++a)
+      cells(a, t) = mesh.tet_node(t, a);
+  return cells;
+}
+
+// The body: displacement per node (every node, the edge nodes of a quadratic mesh too), stress,
+// von Mises and region index (report.json "regions" names them) per tetrahedron.
 VtuGrid body_grid(const driver::RunResult& result) {
   const mesh::TetMesh& mesh = result.model.mesh;
   VtuGrid body;
   body.points = mesh.nodes;
-  body.cells = mesh.tets;
+  body.cells = tet_cells(mesh);
   body.point_data.push_back({"displacement", result.displacement});
   body.cell_data.push_back({"stress", result.stress});
   body.cell_data.push_back({"von_mises", result.von_mises.transpose()});
@@ -542,8 +553,9 @@ std::vector<VtuField> obstacle_fields(const driver::ContactReport* report) {
   return fields;
 }
 
-// The contact surface as triangles: nodal initial gap, w and slip, per-triangle multipliers of
-// its patch; the rigid obstacles as field data.
+// The contact surface as triangles (as the surface has them, face_nodes: 3 nodes each, or 6 on a
+// quadratic mesh, whose edge nodes are surface nodes too): nodal initial gap, w and slip,
+// per-triangle multipliers of its patch; the rigid obstacles as field data.
 VtuGrid contact_grid(const mesh::TetMesh& mesh, const driver::ContactFields& c,
                      const driver::ContactReport* report) {
   const auto& s = c.surface;

@@ -1,5 +1,7 @@
 #include "fricon/io/vtu.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -11,6 +13,26 @@
 namespace fricon::io {
 
 namespace {
+
+// VTK's cell types (vtkCellType.h).
+constexpr int kVtkTriangle = 5;
+constexpr int kVtkTetra = 10;
+constexpr int kVtkQuadraticTriangle = 22;
+constexpr int kVtkQuadraticTetra = 24;
+
+// The cells fricon writes, each known by its number of nodes (theory.md §2.12). VTK numbers the
+// corners and the triangle's edges 01, 12, 20 as Gmsh does, and the tetrahedron's edges 01, 12,
+// 20, 30, 31, 32, where Gmsh (fricon) has 01, 12, 20, 30, 32, 31: VTK's nodes 8 and 9 are
+// fricon's 9 and 8.
+const std::array<CellLayout, 4>& cell_layouts() {
+  static const std::array<CellLayout, 4> layouts{{
+      {kVtkTriangle, {0, 1, 2}},
+      {kVtkTetra, {0, 1, 2, 3}},
+      {kVtkQuadraticTriangle, {0, 1, 2, 3, 4, 5}},
+      {kVtkQuadraticTetra, {0, 1, 2, 3, 4, 5, 6, 7, 9, 8}},
+  }};
+  return layouts;
+}
 
 void write_data_array(std::ostream& out, const VtuField& field, Index n_entities) {
   FRICON_CHECK(field.values.cols() == n_entities, "field " << field.name << " has "
@@ -36,12 +58,22 @@ void write_data_array(std::ostream& out, const VtuField& field, Index n_entities
 
 }  // namespace
 
+const CellLayout& cell_layout(Index nodes_per_cell) {
+  const auto& layouts = cell_layouts();
+  const auto it = std::find_if(layouts.begin(), layouts.end(), [&](const CellLayout& layout) {
+    return static_cast<Index>(layout.order.size()) == nodes_per_cell;
+  });
+  FRICON_CHECK(it != layouts.end(), "cells with " << nodes_per_cell
+                                                  << " nodes (fricon writes triangles of 3 or 6 "
+                                                     "and tetrahedra of 4 or 10)");
+  return *it;
+}
+
 void write_vtu(const std::filesystem::path& path, const VtuGrid& grid) {
   const Index n_points = grid.points.cols();
   const Index n_cells = grid.cells.cols();
   const Index nv = grid.cells.rows();
-  FRICON_CHECK(nv == 3 || nv == 4, "cells with " << nv << " vertices");
-  const int vtk_type = nv == 4 ? 10 : 5;  // VTK_TETRA, VTK_TRIANGLE
+  const CellLayout& layout = cell_layout(nv);
   write_atomically(path, [&](std::ostream& out) {
     out << "<?xml version=\"1.0\"?>\n"
            "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
@@ -68,7 +100,7 @@ void write_vtu(const std::filesystem::path& path, const VtuGrid& grid) {
            "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
     for (Index c = 0; c < n_cells; ++c) {
       out << "         ";
-      for (Index v = 0; v < nv; ++v)
+      for (const int v : layout.order)
         fmt::print(out, " {}", grid.cells(v, c));
       out << '\n';
     }
@@ -79,7 +111,7 @@ void write_vtu(const std::filesystem::path& path, const VtuGrid& grid) {
     out << "        </DataArray>\n        <DataArray type=\"UInt8\" Name=\"types\" "
            "format=\"ascii\">\n";
     for (Index c = 0; c < n_cells; ++c)
-      fmt::print(out, "{}\n", vtk_type);
+      fmt::print(out, "{}\n", layout.vtk_type);
     out << "        </DataArray>\n      </Cells>\n      <PointData>\n";
     for (const auto& f : grid.point_data)
       write_data_array(out, f, n_points);

@@ -1,6 +1,8 @@
 #pragma once
 // io: VTK XML unstructured grids (.vtu) that ParaView and meshio open, for the body (tetrahedra)
-// and for surfaces (triangles). Values are written in ASCII with round-trip precision.
+// and for surfaces (triangles), linear or quadratic (theory.md §2.12: 10-node tetrahedra and
+// 6-node triangles, which ParaView draws curved). Values are written in ASCII with round-trip
+// precision.
 
 #include <filesystem>
 #include <string>
@@ -20,9 +22,27 @@ struct VtuField {
   VtuType type = VtuType::Float64;
 };
 
+/// How a cell of fricon's is written as a VTK cell: its VTK cell type, and for each VTK node in
+/// turn the position of that node in fricon's cell. fricon's cells list the corners, then the
+/// edge nodes in Gmsh's order (mesh::kTetEdge, mesh::kTriangleEdge: TetMesh::tet_node and
+/// face_node); VTK's 10-node tetrahedron has the edges 13 and 23 as its nodes 8 and 9, where Gmsh
+/// has the edges 32 and 31, so its order swaps fricon's nodes 8 and 9 (theory.md §2.12). Every
+/// writer of cells takes the layout from here (write_vtu does).
+struct CellLayout {
+  int vtk_type = 0;        ///< VTK_TETRA, VTK_QUADRATIC_TETRA, VTK_TRIANGLE, ...
+  std::vector<int> order;  ///< VTK node k is node order[k] of fricon's cell
+};
+
+/// The layout of a cell of `nodes_per_cell` nodes: 4 a linear tetrahedron (VTK_TETRA), 10 a
+/// quadratic one (VTK_QUADRATIC_TETRA), 3 a linear triangle (VTK_TRIANGLE), 6 a quadratic one
+/// (VTK_QUADRATIC_TRIANGLE). Throws fricon::Error for another number.
+const CellLayout& cell_layout(Index nodes_per_cell);
+
 struct VtuGrid {
   Eigen::Matrix<Real, 3, Eigen::Dynamic> points;
-  /// Cell connectivity, one column per cell: 4 rows for tetrahedra, 3 for triangles.
+  /// Cell connectivity, one column per cell, in fricon's node order (corners, then edge nodes:
+  /// TetMesh::tet_node, face_node): 4 or 10 rows for tetrahedra, 3 or 6 for triangles
+  /// (cell_layout gives their VTK type and order).
   Eigen::Matrix<Index, Eigen::Dynamic, Eigen::Dynamic> cells;
   std::vector<VtuField> point_data;
   std::vector<VtuField> cell_data;

@@ -27,31 +27,34 @@ namespace {
 // @sect: the library and its C functions.
 
 // Every C function of gmshc.h that is called below, by name.
-#define FRICON_GMSH_C_FUNCTIONS(X)        \
-  X(gmshFree)                             \
-  X(gmshInitialize)                       \
-  X(gmshFinalize)                         \
-  X(gmshOpen)                             \
-  X(gmshWrite)                            \
-  X(gmshOptionSetNumber)                  \
-  X(gmshLoggerStart)                      \
-  X(gmshLoggerStop)                       \
-  X(gmshLoggerGet)                        \
-  X(gmshLoggerGetLastError)               \
-  X(gmshModelAdd)                         \
-  X(gmshModelAddDiscreteEntity)           \
-  X(gmshModelAddPhysicalGroup)            \
-  X(gmshModelGetEntities)                 \
-  X(gmshModelGetEntitiesForPhysicalGroup) \
-  X(gmshModelGetPhysicalGroups)           \
-  X(gmshModelGetPhysicalName)             \
-  X(gmshModelSetPhysicalName)             \
-  X(gmshModelMeshGenerate)                \
-  X(gmshModelMeshGetNodes)                \
-  X(gmshModelMeshAddNodes)                \
-  X(gmshModelMeshGetElementTypes)         \
-  X(gmshModelMeshGetElementProperties)    \
-  X(gmshModelMeshGetElementsByType)       \
+#define FRICON_GMSH_C_FUNCTIONS(X)          \
+  X(gmshFree)                               \
+  X(gmshInitialize)                         \
+  X(gmshFinalize)                           \
+  X(gmshOpen)                               \
+  X(gmshWrite)                              \
+  X(gmshOptionSetNumber)                    \
+  X(gmshLoggerStart)                        \
+  X(gmshLoggerStop)                         \
+  X(gmshLoggerGet)                          \
+  X(gmshLoggerGetLastError)                 \
+  X(gmshModelAdd)                           \
+  X(gmshModelAddDiscreteEntity)             \
+  X(gmshModelAddPhysicalGroup)              \
+  X(gmshModelGetEntities)                   \
+  X(gmshModelGetEntitiesForPhysicalGroup)   \
+  X(gmshModelGetPhysicalGroups)             \
+  X(gmshModelGetPhysicalName)               \
+  X(gmshModelSetPhysicalName)               \
+  X(gmshModelMeshGenerate)                  \
+  X(gmshModelMeshSetOrder)                  \
+  X(gmshModelMeshGetNodes)                  \
+  X(gmshModelMeshAddNodes)                  \
+  X(gmshModelMeshGetElementTypes)           \
+  X(gmshModelMeshGetElementProperties)      \
+  X(gmshModelMeshGetElements)               \
+  X(gmshModelMeshGetElementsByType)         \
+  X(gmshModelMeshPreallocateElementsByType) \
   X(gmshModelMeshAddElementsByType)
 
 // One pointer per C function, named as the function and of the type gmshc.h declares for it.
@@ -178,6 +181,32 @@ struct GmshStrings {
     for (std::size_t i = 0; data && i < size; ++i)
       strings.emplace_back(data[i] ? data[i] : "");
     return strings;
+  }
+};
+
+// An array of arrays Gmsh allocated (one per element type), with their sizes: each array, the
+// array of them and the array of sizes released with gmshFree.
+template <class T>
+struct GmshArrays {
+  T** data = nullptr;
+  std::size_t* sizes = nullptr;
+  std::size_t size = 0;
+
+  GmshArrays() = default;
+  GmshArrays(const GmshArrays&) = delete;
+  GmshArrays& operator=(const GmshArrays&) = delete;
+  ~GmshArrays() {
+    const Functions& f = shared_library().functions;
+    for (std::size_t i = 0; data && i < size; ++i)
+      f.gmshFree(data[i]);
+    if (data) f.gmshFree(data);
+    if (sizes) f.gmshFree(sizes);
+  }
+  std::vector<std::vector<T>> vectors() const {
+    std::vector<std::vector<T>> arrays(size);
+    for (std::size_t i = 0; data && sizes && i < size; ++i)
+      if (data[i]) arrays[i].assign(data[i], data[i] + sizes[i]);
+    return arrays;
   }
 };
 
@@ -328,6 +357,10 @@ void model::mesh::generate(int dim) {
   FRICON_GMSH_CALL(gmshModelMeshGenerate, dim);
 }
 
+void model::mesh::setOrder(int order) {
+  FRICON_GMSH_CALL(gmshModelMeshSetOrder, order);
+}
+
 void model::mesh::getNodes(std::vector<std::size_t>& nodeTags, std::vector<double>& coord,
                            std::vector<double>& parametricCoord, int dim, int tag,
                            bool includeBoundary, bool returnParametricCoord) {
@@ -362,6 +395,29 @@ void model::mesh::getElementProperties(int elementType, std::string& elementName
                    &numNodes, &local.data, &local.size, &numPrimaryNodes);
   elementName = string_of(name);
   localNodeCoord = local.vector();
+}
+
+void model::mesh::getElements(std::vector<int>& elementTypes,
+                              std::vector<std::vector<std::size_t>>& elementTags,
+                              std::vector<std::vector<std::size_t>>& nodeTags, int dim, int tag) {
+  GmshArray<int> types;
+  GmshArrays<std::size_t> elements, nodes;
+  FRICON_GMSH_CALL(gmshModelMeshGetElements, &types.data, &types.size, &elements.data,
+                   &elements.sizes, &elements.size, &nodes.data, &nodes.sizes, &nodes.size, dim,
+                   tag);
+  elementTypes = types.vector();
+  elementTags = elements.vectors();
+  nodeTags = nodes.vectors();
+}
+
+void model::mesh::preallocateElementsByType(int elementType, bool elementTag, bool nodeTag,
+                                            std::vector<std::size_t>& elementTags,
+                                            std::vector<std::size_t>& nodeTags, int tag) {
+  GmshArray<std::size_t> elements, nodes;
+  FRICON_GMSH_CALL(gmshModelMeshPreallocateElementsByType, elementType, elementTag ? 1 : 0,
+                   nodeTag ? 1 : 0, &elements.data, &elements.size, &nodes.data, &nodes.size, tag);
+  elementTags = elements.vector();
+  nodeTags = nodes.vector();
 }
 
 void model::mesh::getElementsByType(int elementType, std::vector<std::size_t>& elementTags,

@@ -79,6 +79,7 @@ void setPhysicalName(int dim, int tag, const std::string& name);
 
 namespace mesh {
 void generate(int dim = 3);
+void setOrder(int order);
 void getNodes(std::vector<std::size_t>& nodeTags, std::vector<double>& coord,
               std::vector<double>& parametricCoord, int dim = -1, int tag = -1,
               bool includeBoundary = false, bool returnParametricCoord = true);
@@ -87,8 +88,13 @@ void addNodes(int dim, int tag, const std::vector<std::size_t>& nodeTags,
 void getElementTypes(std::vector<int>& elementTypes, int dim = -1, int tag = -1);
 void getElementProperties(int elementType, std::string& elementName, int& dim, int& order,
                           int& numNodes, std::vector<double>& localNodeCoord, int& numPrimaryNodes);
+void getElements(std::vector<int>& elementTypes, std::vector<std::vector<std::size_t>>& elementTags,
+                 std::vector<std::vector<std::size_t>>& nodeTags, int dim = -1, int tag = -1);
 void getElementsByType(int elementType, std::vector<std::size_t>& elementTags,
                        std::vector<std::size_t>& nodeTags, int tag = -1);
+void preallocateElementsByType(int elementType, bool elementTag, bool nodeTag,
+                               std::vector<std::size_t>& elementTags,
+                               std::vector<std::size_t>& nodeTags, int tag = -1);
 void addElementsByType(int tag, int elementType, const std::vector<std::size_t>& elementTags,
                        const std::vector<std::size_t>& nodeTags);
 }  // namespace mesh

@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <functional>
+#include <initializer_list>
 #include <map>
 #include <mutex>
 #include <set>
@@ -30,11 +31,42 @@ namespace fs = std::filesystem;
 // Gmsh's C++ API.
 namespace gmsh = gmsh_api;
 
-// Gmsh element types (Gmsh reference manual, "MSH file format": elm-type).
+// Gmsh element types (Gmsh reference manual, "MSH file format": elm-type): the linear line,
+// triangle and tetrahedron, and the quadratic ones (second order: the corners, then the edge
+// midpoints in the order of kTriangleEdge and kTetEdge, tet_mesh.hpp; theory.md §2.12).
+constexpr int kGmshLine = 1;
 constexpr int kGmshTriangle = 2;
 constexpr int kGmshTetrahedron = 4;
+constexpr int kGmshLine3 = 8;
+constexpr int kGmshTriangle6 = 9;
+constexpr int kGmshTetrahedron10 = 11;
+// The corners of a triangle and of a tetrahedron (the first nodes of an element of either order).
 constexpr int kNodesPerTriangle = 3;
 constexpr int kNodesPerTet = 4;
+// The polynomial orders of the elements (TetMesh::order).
+constexpr int kLinearOrder = 1;
+constexpr int kQuadraticOrder = 2;
+
+// The Gmsh element types of the tetrahedra and boundary triangles of one order, with their node
+// counts.
+struct OrderTypes {
+  int tet = kGmshTetrahedron;
+  int triangle = kGmshTriangle;
+  int tet_nodes = kNodesPerTet;
+  int triangle_nodes = kNodesPerTriangle;
+};
+
+OrderTypes order_types(int order) {
+  if (order == kQuadraticOrder)
+    return {kGmshTetrahedron10, kGmshTriangle6, kNodesPerTet + kTetEdges,
+            kNodesPerTriangle + kTriangleEdges};
+  return {};
+}
+
+// The nodes of a triangle of Gmsh type `type` (kGmshTriangle or kGmshTriangle6).
+int triangle_nodes(int type) {
+  return type == kGmshTriangle6 ? kNodesPerTriangle + kTriangleEdges : kNodesPerTriangle;
+}
 // A tetrahedron is degenerate when its volume is below this times its longest edge cubed (as in
 // check_mesh).
 constexpr Real kDegenerateVolume = 1e-12;
@@ -162,10 +194,18 @@ bool is_geo(const fs::path& file) {
   return file.extension() == ".geo";
 }
 
-void load_model(GmshSession& gmsh_session, const fs::path& file, std::optional<Real> size_factor) {
+// Opens the file; a .geo file is meshed in 3D, then, when `order` is given, brought to that order
+// (whatever its own Mesh.ElementOrder): Gmsh places the edge nodes of order 2 on the geometry, so
+// that the edges on a curved surface are curved.
+void load_model(GmshSession& gmsh_session, const fs::path& file, std::optional<Real> size_factor,
+                std::optional<int> order) {
   if (size_factor) gmsh::option::setNumber("Mesh.MeshSizeFactor", *size_factor);
   gmsh_session.run("Gmsh cannot read it", [&] { gmsh::open(file.string()); });
-  if (is_geo(file)) gmsh_session.run("meshing failed", [] { gmsh::model::mesh::generate(3); });
+  if (!is_geo(file)) return;
+  gmsh_session.run("meshing failed", [] { gmsh::model::mesh::generate(3); });
+  if (order)
+    gmsh_session.run(fmt::format("meshing at order {} failed", *order),
+                     [&] { gmsh::model::mesh::setOrder(*order); });
 }
 
 // All nodes of the model, numbered in the order of their Gmsh tags.
@@ -191,25 +231,73 @@ GmshNodes read_nodes(TetMesh& mesh) {
   return nodes;
 }
 
-// Refuses any element of dimension `dim` on the entity `entity_tag` (-1: all) that is not of
-// type `wanted`.
-void require_element_type(const std::string& source, int dim, int entity_tag, int wanted,
-                          const std::string& how) {
+// Refuses an element type of dimension `dim` that is not one of `wanted`.
+void require_wanted_type(const std::string& source, int dim, int type,
+                         std::initializer_list<int> wanted, const std::string& how) {
+  if (std::find(wanted.begin(), wanted.end(), type) == wanted.end())
+    throw InputError(
+        fmt::format("{}: has elements of type '{}' (Gmsh type {}) in dimension {}; fricon needs {}",
+                    source, element_type_name(type), type, dim, how));
+}
+
+// The element types of dimension `dim` on the entity `entity_tag` (-1: all), each one of
+// `wanted`: any other type is refused. (Gmsh gives the type of the first element of each kind
+// of an entity: elements_of_entity sees the others.)
+std::vector<int> require_element_types(const std::string& source, int dim, int entity_tag,
+                                       std::initializer_list<int> wanted, const std::string& how) {
   std::vector<int> types;
   gmsh::model::mesh::getElementTypes(types, dim, entity_tag);
   for (int type : types)
-    if (type != wanted)
-      throw InputError(fmt::format(
-          "{}: has elements of type '{}' (Gmsh type {}) in dimension {}; fricon needs {}", source,
-          element_type_name(type), type, dim, how));
+    require_wanted_type(source, dim, type, wanted, how);
+  return types;
 }
 
-const char* const kHowToGetLinearTets =
-    "linear tetrahedra: mesh with 'Mesh.ElementOrder = 1;' and no 'Recombine' nor "
-    "'Mesh.RecombineAll'/'Mesh.Recombine3DAll' (or run 'gmsh -3 -order 1')";
-const char* const kHowToGetLinearTriangles =
-    "3-node triangles on the tagged surfaces: mesh with 'Mesh.ElementOrder = 1;' and no "
-    "'Recombine' nor 'Mesh.RecombineAll' (or run 'gmsh -3 -order 1')";
+// The elements of one dimension on one elementary entity, by Gmsh type.
+struct EntityElements {
+  std::vector<int> types;
+  std::vector<std::vector<std::size_t>> element_tags;  // per type
+  std::vector<std::vector<std::size_t>> node_tags;     // per type, each element's nodes in turn
+};
+
+// The elements of dimension `dim` on the elementary entity `entity`, each of a type of `wanted`
+// (any other type is refused; `how` says what fricon needs). Gmsh keeps the elements of an
+// entity in one list per kind (its tetrahedra, its triangles, its lines) and takes the type of
+// its first element for the whole list: a list that mixes orders (4-node and 10-node
+// tetrahedra) is refused too, as its elements of the other order would be left out here (and
+// misread by getElementsByType, which sizes its output by the first element's type).
+EntityElements elements_of_entity(const std::string& source, int dim, int entity,
+                                  std::initializer_list<int> wanted, const std::string& how) {
+  EntityElements elements;
+  gmsh::model::mesh::getElements(elements.types, elements.element_tags, elements.node_tags, dim,
+                                 entity);
+  for (size_t k = 0; k < elements.types.size(); ++k) {
+    const int type = elements.types[k];
+    require_wanted_type(source, dim, type, wanted, how);
+    std::vector<std::size_t> of_kind, unused;
+    gmsh::model::mesh::preallocateElementsByType(type, /*elementTag=*/true, /*nodeTag=*/false,
+                                                 of_kind, unused, entity);
+    if (of_kind.size() != elements.element_tags[k].size())
+      throw InputError(fmt::format(
+          "{}: the elementary entity {} of dimension {} has {} elements of type '{}' (Gmsh type "
+          "{}) among {} of their kind, the others of another order; fricon needs {}",
+          source, entity, dim, elements.element_tags[k].size(), element_type_name(type), type,
+          of_kind.size(), how));
+  }
+  return elements;
+}
+
+const char* const kHowToGetTets =
+    "linear or quadratic tetrahedra (4-node or 10-node, all of one order): mesh with "
+    "'Mesh.ElementOrder = 1;' or 'Mesh.ElementOrder = 2;' and no 'Recombine' nor "
+    "'Mesh.RecombineAll'/'Mesh.Recombine3DAll' (or run 'gmsh -3 -order 1' or 'gmsh -3 -order 2')";
+const char* const kHowToGetTriangles =
+    "triangles on the tagged surfaces, of the tetrahedra's order (3-node with 4-node "
+    "tetrahedra, 6-node with 10-node): mesh with 'Mesh.ElementOrder = 1;' or "
+    "'Mesh.ElementOrder = 2;' and no 'Recombine' nor 'Mesh.RecombineAll' (or run 'gmsh -3 "
+    "-order 1' or 'gmsh -3 -order 2')";
+const char* const kHowToGetLines =
+    "lines on the physical curves, 2-node or 3-node: mesh with 'Mesh.ElementOrder = 1;' or "
+    "'Mesh.ElementOrder = 2;' (or run 'gmsh -3 -order 1' or 'gmsh -3 -order 2')";
 
 // The names of the physical groups of dimension `dim`, in the order of their tags.
 std::vector<std::pair<int, std::string>> physical_groups(int dim) {
@@ -276,29 +364,68 @@ void require_valid_volume(const std::string& source, const TetMesh& mesh, Index 
                     source, t, element_tag, volume, edge));
 }
 
-// The 4-node tetrahedra of all volumes, with their regions.
+// The order of the tetrahedra: linear when the volume elements are 4-node tetrahedra, quadratic
+// when they are 10-node ones. Any other volume element, and both kinds in one mesh, are refused.
+int tet_order(const std::string& source) {
+  const std::vector<int> types =
+      require_element_types(source, 3, -1, {kGmshTetrahedron, kGmshTetrahedron10}, kHowToGetTets);
+  if (types.size() > 1)
+    throw InputError(fmt::format(
+        "{}: has elements of type '{}' (Gmsh type {}) and '{}' (Gmsh type {}) in dimension 3: "
+        "fricon needs {}",
+        source, element_type_name(kGmshTetrahedron), kGmshTetrahedron,
+        element_type_name(kGmshTetrahedron10), kGmshTetrahedron10, kHowToGetTets));
+  return !types.empty() && types.front() == kGmshTetrahedron10 ? kQuadraticOrder : kLinearOrder;
+}
+
+// Refuses a tetrahedron that names one node twice among its nodes (corners and edge nodes).
+void require_distinct_nodes(const std::string& source, const TetMesh& mesh, Index t,
+                            std::size_t element_tag) {
+  for (int a = 0; a < mesh.nodes_per_tet(); ++a)
+    for (int b = a + 1; b < mesh.nodes_per_tet(); ++b)
+      if (mesh.tet_node(t, a) == mesh.tet_node(t, b))
+        throw InputError(fmt::format(
+            "{}: tetrahedron {} (Gmsh element {}) has node {} twice (its nodes {} and {})", source,
+            t, element_tag, mesh.tet_node(t, a), a, b));
+}
+
+// The tetrahedra of all volumes (4-node, or 10-node: their edge nodes in tet_extra), with their
+// regions.
 GmshTets read_tets(const std::string& source, const GmshNodes& nodes, TetMesh& mesh) {
-  require_element_type(source, 3, -1, kGmshTetrahedron, kHowToGetLinearTets);
+  const OrderTypes types = order_types(tet_order(source));
   const std::map<int, int> region_of = region_of_volume(mesh);
   gmsh::vectorpair volumes;
   gmsh::model::getEntities(volumes, 3);
   std::vector<std::size_t> all_nodes;
   GmshTets tets;
   for (const auto& [dim, entity] : volumes) {
-    std::vector<std::size_t> element_tags, node_tags;
-    gmsh::model::mesh::getElementsByType(kGmshTetrahedron, element_tags, node_tags, entity);
-    tets.element_tag.insert(tets.element_tag.end(), element_tags.begin(), element_tags.end());
-    all_nodes.insert(all_nodes.end(), node_tags.begin(), node_tags.end());
-    if (!region_of.empty())
-      mesh.tet_region.insert(mesh.tet_region.end(), element_tags.size(), region_of.at(entity));
+    // The tetrahedra of the entity, all of the type of the others (tet_order).
+    const EntityElements elements =
+        elements_of_entity(source, dim, entity, {types.tet}, kHowToGetTets);
+    for (size_t k = 0; k < elements.types.size(); ++k) {
+      const auto& element_tags = elements.element_tags[k];
+      tets.element_tag.insert(tets.element_tag.end(), element_tags.begin(), element_tags.end());
+      all_nodes.insert(all_nodes.end(), elements.node_tags[k].begin(), elements.node_tags[k].end());
+      if (!region_of.empty())
+        mesh.tet_region.insert(mesh.tet_region.end(), element_tags.size(), region_of.at(entity));
+    }
   }
   if (tets.element_tag.empty())
-    throw InputError(fmt::format("{}: the mesh has no volume element (fricon needs {})", source,
-                                 kHowToGetLinearTets));
-  mesh.tets.resize(kNodesPerTet, static_cast<Index>(tets.element_tag.size()));
-  for (Index t = 0; t < mesh.n_tets(); ++t) {
-    for (int v = 0; v < kNodesPerTet; ++v)
-      mesh.tets(v, t) = nodes.index_of.at(all_nodes[static_cast<size_t>(kNodesPerTet * t + v)]);
+    throw InputError(
+        fmt::format("{}: the mesh has no volume element (fricon needs {})", source, kHowToGetTets));
+  const auto n_tets = static_cast<Index>(tets.element_tag.size());
+  mesh.tets.resize(kNodesPerTet, n_tets);
+  if (types.tet_nodes > kNodesPerTet) mesh.tet_extra.resize(types.tet_nodes - kNodesPerTet, n_tets);
+  for (Index t = 0; t < n_tets; ++t) {
+    // Gmsh's node order is ours (tet_mesh.hpp): the corners, then the edge nodes.
+    for (int v = 0; v < types.tet_nodes; ++v) {
+      const Index node = nodes.index_of.at(all_nodes[static_cast<size_t>(types.tet_nodes * t + v)]);
+      if (v < kNodesPerTet)
+        mesh.tets(v, t) = node;
+      else
+        mesh.tet_extra(v - kNodesPerTet, t) = node;
+    }
+    require_distinct_nodes(source, mesh, t, tets.element_tag[static_cast<size_t>(t)]);
     require_valid_volume(source, mesh, t, tets.element_tag[static_cast<size_t>(t)]);
   }
   return tets;
@@ -347,25 +474,31 @@ void require_conforming(const std::string& source, const std::vector<TetFaceRef>
           tets.element_tag[static_cast<size_t>(faces[i + 2].tet)]));
 }
 
-// Whether the triangle with the sorted vertex set `key` is a face of a tetrahedron.
-bool is_tet_face(const std::vector<TetFaceRef>& faces, const std::array<Index, 3>& key) {
+// The tetrahedron of which the triangle with the sorted vertex set `key` is a face (the first
+// one), or -1 when it is no face of a tetrahedron.
+Index tet_of_face(const std::vector<TetFaceRef>& faces, const std::array<Index, 3>& key) {
   const auto it = std::lower_bound(
       faces.begin(), faces.end(), key,
       [](const TetFaceRef& f, const std::array<Index, 3>& k) { return f.key < k; });
-  return it != faces.end() && it->key == key;
+  return it != faces.end() && it->key == key ? it->tet : -1;
 }
 
 // A 2D physical group none of whose triangles is a face of a tetrahedron: its triangles as in the
-// file (node indices of the whole model), before its points are copied out.
+// file by their corners (node indices of the whole model), before its points are copied out, and
+// the edge nodes of its 6-node triangles, which the rigid surface leaves out (gmsh_file.hpp).
 struct RigidGroup {
   std::string name;
   std::vector<std::array<Index, 3>> triangles;
+  std::vector<Index> edge_nodes;
 };
 
 // The triangles of a 2D physical group: each distinct triangle once (MSH 2.2 repeats an element
-// once per physical group it is in), with its Gmsh element and entity.
+// once per physical group it is in), with its Gmsh element type (3-node or 6-node), element and
+// entity, and the edge nodes of a 6-node triangle (kTriangleEdge's order; -1 for a 3-node one).
 struct GroupTriangles {
   std::vector<std::array<Index, 3>> corners;
+  std::vector<std::array<Index, kTriangleEdges>> edge_nodes;
+  std::vector<int> type;
   std::vector<std::size_t> element;
   std::vector<int> entity;
 };
@@ -374,26 +507,76 @@ GroupTriangles triangles_of_group(const std::string& source, const GmshNodes& no
   GroupTriangles triangles;
   std::set<std::array<Index, 3>> seen;
   for (int entity : entities_of_group(2, group)) {
-    require_element_type(source, 2, entity, kGmshTriangle, kHowToGetLinearTriangles);
-    std::vector<std::size_t> element_tags, node_tags;
-    gmsh::model::mesh::getElementsByType(kGmshTriangle, element_tags, node_tags, entity);
-    for (size_t e = 0; e < element_tags.size(); ++e) {
-      std::array<Index, 3> triangle{};
-      for (size_t v = 0; v < kNodesPerTriangle; ++v)
-        triangle[v] = nodes.index_of.at(node_tags[kNodesPerTriangle * e + v]);
-      if (!seen.insert(sorted_key(triangle[0], triangle[1], triangle[2])).second) continue;
-      triangles.corners.push_back(triangle);
-      triangles.element.push_back(element_tags[e]);
-      triangles.entity.push_back(entity);
+    const EntityElements elements =
+        elements_of_entity(source, 2, entity, {kGmshTriangle, kGmshTriangle6}, kHowToGetTriangles);
+    for (size_t kind = 0; kind < elements.types.size(); ++kind) {
+      const int type = elements.types[kind];
+      const auto n_nodes = static_cast<size_t>(triangle_nodes(type));
+      const auto& element_tags = elements.element_tags[kind];
+      const auto& node_tags = elements.node_tags[kind];
+      for (size_t e = 0; e < element_tags.size(); ++e) {
+        std::array<Index, 3> triangle{};
+        std::array<Index, kTriangleEdges> edges{-1, -1, -1};
+        for (size_t v = 0; v < n_nodes; ++v) {
+          const Index node = nodes.index_of.at(node_tags[n_nodes * e + v]);
+          if (v < kNodesPerTriangle)
+            triangle[v] = node;
+          else
+            edges[v - kNodesPerTriangle] = node;
+        }
+        if (!seen.insert(sorted_key(triangle[0], triangle[1], triangle[2])).second) continue;
+        triangles.corners.push_back(triangle);
+        triangles.edge_nodes.push_back(edges);
+        triangles.type.push_back(type);
+        triangles.element.push_back(element_tags[e]);
+        triangles.entity.push_back(entity);
+      }
     }
   }
   return triangles;
 }
 
-// The 3-node triangles of every 2D physical group. A group whose triangles are all faces of the
-// tetrahedra (or that has none) is a boundary tag: one face per triangle and group (not yet
-// oriented). A group none of whose triangles is a face of a tetrahedron is a rigid surface,
-// returned. A group with some triangles on the tetrahedra and some not is refused.
+// Refuses triangle k of the boundary tag `name` unless it is of the tetrahedra's order, and, if
+// it has edge nodes, unless they are those of the tetrahedron `t` it bounds on the same edges.
+void require_triangle_of_tet(const std::string& source, const std::string& name,
+                             const GroupTriangles& triangles, size_t k, const GmshNodes& nodes,
+                             const TetMesh& mesh, Index t) {
+  const OrderTypes types = order_types(mesh.order());
+  const int tet_type = types.tet;
+  if (triangles.type[k] != types.triangle)
+    throw InputError(fmt::format(
+        "{}: the triangle (Gmsh element {}) of physical group '{}' is of type '{}' (Gmsh type "
+        "{}), the tetrahedra of type '{}' (Gmsh type {}): fricon needs {}",
+        source, triangles.element[k], name, element_type_name(triangles.type[k]), triangles.type[k],
+        element_type_name(tet_type), tet_type, kHowToGetTriangles));
+  if (mesh.order() == kLinearOrder) return;
+  const auto& corners = triangles.corners[k];
+  for (int e = 0; e < kTriangleEdges; ++e) {
+    const Index a = corners[static_cast<size_t>(kTriangleEdge[e][0])];
+    const Index b = corners[static_cast<size_t>(kTriangleEdge[e][1])];
+    Index expected = -1;
+    for (int te = 0; te < kTetEdges; ++te) {
+      const Index p = mesh.tets(kTetEdge[te][0], t), q = mesh.tets(kTetEdge[te][1], t);
+      if ((p == a && q == b) || (p == b && q == a)) expected = mesh.tet_extra(te, t);
+    }
+    const Index given = triangles.edge_nodes[k][static_cast<size_t>(e)];
+    if (given != expected)
+      throw InputError(fmt::format(
+          "{}: the triangle (Gmsh element {}) of physical group '{}' has Gmsh node {} on its "
+          "edge between Gmsh nodes {} and {}, where the tetrahedron it bounds has Gmsh node {}: "
+          "the surface mesh does not conform to the volume mesh",
+          source, triangles.element[k], name, nodes.tag_of[static_cast<size_t>(given)],
+          nodes.tag_of[static_cast<size_t>(a)], nodes.tag_of[static_cast<size_t>(b)],
+          nodes.tag_of[static_cast<size_t>(expected)]));
+  }
+}
+
+// The triangles of every 2D physical group, 3-node or 6-node, by their corners (the edge nodes
+// of the faces are the tetrahedra's, TetMesh::face_extra, filled by orient_faces). A group whose
+// triangles are all faces of the tetrahedra (or that has none) is a boundary tag: one face per
+// triangle and group (not yet oriented), each triangle of the tetrahedra's order
+// (require_triangle_of_tet). A group none of whose triangles is a face of a tetrahedron is a
+// rigid surface, returned. A group with some triangles on the tetrahedra and some not is refused.
 std::vector<RigidGroup> read_tagged_faces(const std::string& source, const GmshNodes& nodes,
                                           const std::vector<TetFaceRef>& tet_face_refs,
                                           TetMesh& mesh) {
@@ -401,15 +584,21 @@ std::vector<RigidGroup> read_tagged_faces(const std::string& source, const GmshN
   std::vector<std::array<Index, 3>> corners;
   for (const auto& [group, name] : physical_groups(2)) {
     GroupTriangles triangles = triangles_of_group(source, nodes, group);
+    std::vector<Index> tet_of(triangles.corners.size());
     std::vector<bool> on_tets(triangles.corners.size());
     size_t n_on = 0;
     for (size_t k = 0; k < on_tets.size(); ++k) {
       const auto& c = triangles.corners[k];
-      on_tets[k] = is_tet_face(tet_face_refs, sorted_key(c[0], c[1], c[2]));
+      tet_of[k] = tet_of_face(tet_face_refs, sorted_key(c[0], c[1], c[2]));
+      on_tets[k] = tet_of[k] >= 0;
       n_on += on_tets[k] ? 1 : 0;
     }
     if (n_on == 0 && !triangles.corners.empty()) {
-      rigid.push_back({name, std::move(triangles.corners)});
+      RigidGroup surface{name, std::move(triangles.corners), {}};
+      for (const auto& edges : triangles.edge_nodes)
+        for (Index node : edges)
+          if (node >= 0) surface.edge_nodes.push_back(node);
+      rigid.push_back(std::move(surface));
       continue;
     }
     if (n_on < on_tets.size()) {
@@ -421,6 +610,8 @@ std::vector<RigidGroup> read_tagged_faces(const std::string& source, const GmshN
           "tetrahedra or, none of its triangles on them, a rigid surface (a rigid obstacle's)",
           source, triangles.element[k], name, n_on, on_tets.size()));
     }
+    for (size_t k = 0; k < triangles.corners.size(); ++k)
+      require_triangle_of_tet(source, name, triangles, k, nodes, mesh, tet_of[k]);
     const int tag = static_cast<int>(mesh.tag_names.size());
     mesh.tag_names.push_back(name);
     corners.insert(corners.end(), triangles.corners.begin(), triangles.corners.end());
@@ -435,19 +626,22 @@ std::vector<RigidGroup> read_tagged_faces(const std::string& source, const GmshN
   return rigid;
 }
 
-// The rigid surfaces of `groups`, each with a copy of its points (in the order of their Gmsh
-// tags); then the nodes of no tetrahedron taken out of the mesh (tetrahedra, faces and
-// nodes.index_of renumbered; a dropped node's index becomes -1). A node of no tetrahedron and no
-// rigid surface is refused.
+// The rigid surfaces of `groups`, each with a copy of its points (the corners of its triangles,
+// in the order of their Gmsh tags); then the nodes of no tetrahedron taken out of the mesh
+// (tetrahedra, faces, their edge nodes and nodes.index_of renumbered; a dropped node's index
+// becomes -1). A node of no tetrahedron and no rigid surface (a corner or an edge node of one of
+// its triangles) is refused.
 void split_off_rigid_surfaces(const std::string& source, const std::vector<RigidGroup>& groups,
                               GmshNodes& nodes, TetMesh& mesh) {
   const size_t n_nodes = static_cast<size_t>(mesh.n_nodes());
   std::vector<bool> on_tets(n_nodes, false), on_rigid(n_nodes, false);
   for (Index t = 0; t < mesh.n_tets(); ++t)
-    for (int v = 0; v < kNodesPerTet; ++v)
-      on_tets[static_cast<size_t>(mesh.tets(v, t))] = true;
+    for (int v = 0; v < mesh.nodes_per_tet(); ++v)
+      on_tets[static_cast<size_t>(mesh.tet_node(t, v))] = true;
   std::vector<Index> local(n_nodes, -1);
   for (const RigidGroup& group : groups) {
+    for (Index node : group.edge_nodes)
+      on_rigid[static_cast<size_t>(node)] = true;
     std::vector<Index> used;
     for (const auto& triangle : group.triangles)
       used.insert(used.end(), triangle.begin(), triangle.end());
@@ -482,8 +676,7 @@ void split_off_rigid_surfaces(const std::string& source, const std::vector<Rigid
   if (kept.size() == n_nodes) return;
   const auto renumber = [&renumbered](Index v) { return renumbered[static_cast<size_t>(v)]; };
   mesh.nodes = mesh.nodes(Eigen::all, kept).eval();
-  mesh.tets = mesh.tets.unaryExpr(renumber).eval();
-  mesh.faces = mesh.faces.unaryExpr(renumber).eval();
+  renumber_nodes(mesh, renumber);
   std::vector<std::size_t> tag_of;
   for (Index n : kept)
     tag_of.push_back(nodes.tag_of[static_cast<size_t>(n)]);
@@ -492,15 +685,20 @@ void split_off_rigid_surfaces(const std::string& source, const std::vector<Rigid
   nodes.tag_of = std::move(tag_of);
 }
 
-// Orients every boundary face outward (each one is a face of a tetrahedron: read_tagged_faces).
+// Orients every boundary face outward (each one is a face of a tetrahedron: read_tagged_faces)
+// and gives it the edge nodes of its tetrahedron in a quadratic mesh (orient_faces_outward),
+// after checking first that the tetrahedra agree on the edge node of every edge (fill_face_extra
+// refuses them naming the file).
 void orient_faces(const std::string& source, TetMesh& mesh) {
+  fill_face_extra(mesh, source);
   if (const Index f = orient_faces_outward(mesh); f >= 0)
     throw Error(fmt::format("{}: boundary face {} is no face of any tetrahedron (internal error)",
                             source, f));
 }
 
 // The physical groups of dimension 1 (curves) and 0 (points), each the node set of all nodes of
-// its entities (a curve's end points included). A name of a 2D physical group too is refused:
+// its entities and of their elements (a curve's end points included, and the midpoints of its
+// 3-node lines in a quadratic mesh). A name of a 2D physical group too is refused:
 // the boundary would mean two things.
 void read_node_sets(const std::string& source, const GmshNodes& nodes, TetMesh& mesh) {
   for (int dim : {kCurveDimension, kPointDimension})
@@ -516,6 +714,13 @@ void read_node_sets(const std::string& source, const GmshNodes& nodes, TetMesh& 
         std::vector<double> coords, parametric;
         gmsh::model::mesh::getNodes(tags, coords, parametric, dim, entity,
                                     /*includeBoundary=*/true, /*returnParametricCoord=*/false);
+        // And the nodes of a curve's lines: a 3-node line's midpoint is a node of the curve
+        // even where the file does not say on which entity it lies (MSH 2.2).
+        if (dim == kCurveDimension)
+          for (const auto& node_tags :
+               elements_of_entity(source, dim, entity, {kGmshLine, kGmshLine3}, kHowToGetLines)
+                   .node_tags)
+            tags.insert(tags.end(), node_tags.begin(), node_tags.end());
         for (std::size_t tag : tags) {
           const Index index = nodes.index_of.at(tag);
           if (index < 0)
@@ -605,8 +810,10 @@ std::vector<std::size_t> consecutive_tags(std::size_t first, std::size_t count) 
   return tags;
 }
 
-// Volumes: one discrete volume and one 3D physical group per region; all nodes on the first.
+// Volumes: one discrete volume and one 3D physical group per region; all nodes on the first. The
+// tetrahedra are of the mesh's order (10-node ones with their edge nodes: Gmsh's order is ours).
 void add_volumes(const TetMesh& mesh) {
+  const OrderTypes types = order_types(mesh.order());
   const int n_regions = mesh.n_regions();
   std::vector<std::vector<Index>> tets_of(static_cast<size_t>(n_regions));
   for (Index t = 0; t < mesh.n_tets(); ++t)
@@ -620,8 +827,8 @@ void add_volumes(const TetMesh& mesh) {
   for (int r = 0; r < n_regions; ++r) {
     const auto& tets = tets_of[static_cast<size_t>(r)];
     gmsh::model::mesh::addElementsByType(
-        r + 1, kGmshTetrahedron, consecutive_tags(next_element, tets.size()),
-        gmsh_node_tags(tets, kNodesPerTet, [&](int v, Index t) { return mesh.tets(v, t); }));
+        r + 1, types.tet, consecutive_tags(next_element, tets.size()),
+        gmsh_node_tags(tets, types.tet_nodes, [&](int v, Index t) { return mesh.tet_node(t, v); }));
     next_element += tets.size();
     const int group = gmsh::model::addPhysicalGroup(3, {r + 1}, r + 1);
     gmsh::model::setPhysicalName(
@@ -636,8 +843,9 @@ struct NextTags {
 };
 
 // Surfaces: the planned discrete surfaces, and one 2D physical group per tag with faces (tag i is
-// physical group i + 1).
+// physical group i + 1). The triangles are of the mesh's order (6-node ones with face_extra).
 NextTags add_surfaces(const TetMesh& mesh) {
+  const OrderTypes types = order_types(mesh.order());
   const SurfacePlan plan = plan_surfaces(mesh);
   std::size_t next_element = static_cast<std::size_t>(mesh.n_tets()) + 1;
   std::vector<std::vector<int>> surfaces_of_tag(mesh.tag_names.size());
@@ -646,9 +854,9 @@ NextTags add_surfaces(const TetMesh& mesh) {
     max_entity = std::max(max_entity, s.gmsh_tag);
     gmsh::model::addDiscreteEntity(2, s.gmsh_tag);
     gmsh::model::mesh::addElementsByType(
-        s.gmsh_tag, kGmshTriangle, consecutive_tags(next_element, s.faces.size()),
-        gmsh_node_tags(s.faces, kNodesPerTriangle,
-                       [&](int v, Index f) { return mesh.faces(v, f); }));
+        s.gmsh_tag, types.triangle, consecutive_tags(next_element, s.faces.size()),
+        gmsh_node_tags(s.faces, types.triangle_nodes,
+                       [&](int v, Index f) { return mesh.face_node(f, v); }));
     next_element += s.faces.size();
     for (int tag : s.tags)
       surfaces_of_tag[static_cast<size_t>(tag)].push_back(s.gmsh_tag);
@@ -690,6 +898,22 @@ void add_rigid_surfaces(const TetMesh& mesh, NextTags next) {
   }
 }
 
+// Brings the mesh of a file to `order` (a .geo file's already is, load_model): a linear mesh is
+// made quadratic with straight edges (add_edge_midpoints); a quadratic one is refused, as its
+// edge nodes would be dropped.
+void bring_to_order(const std::string& source, int order, TetMesh& mesh) {
+  if (order == mesh.order()) return;
+  if (order == kQuadraticOrder) {
+    add_edge_midpoints(mesh);
+    return;
+  }
+  throw InputError(fmt::format(
+      "{}: the mesh has 10-node (quadratic) tetrahedra, but order {} (linear tetrahedra) was asked "
+      "for: ask for order {} to solve with them ([mesh] order = {}), or save the mesh at order {} "
+      "('Mesh.ElementOrder = 1;', or run 'gmsh -3 -order 1')",
+      source, order, kQuadraticOrder, kQuadraticOrder, kLinearOrder));
+}
+
 // A file beside `file`, with the same extension (Gmsh chooses the format by it).
 fs::path temporary_beside(const fs::path& file) {
   return file.parent_path() /
@@ -698,7 +922,8 @@ fs::path temporary_beside(const fs::path& file) {
 
 }  // namespace
 
-TetMesh read_gmsh(const std::filesystem::path& file, std::optional<Real> size_factor) {
+TetMesh read_gmsh(const std::filesystem::path& file, std::optional<Real> size_factor,
+                  std::optional<int> order) {
   const std::string source = file.string();
   require_readable(file);
   if (size_factor && !is_geo(file))
@@ -708,22 +933,29 @@ TetMesh read_gmsh(const std::filesystem::path& file, std::optional<Real> size_fa
   if (size_factor && !(*size_factor > 0.0 && std::isfinite(*size_factor)))
     throw InputError(
         fmt::format("{}: the mesh size factor {} must be a positive number", source, *size_factor));
+  if (order && *order != kLinearOrder && *order != kQuadraticOrder)
+    throw InputError(
+        fmt::format("{}: the element order {} is neither {} (linear tetrahedra) nor {} (quadratic)",
+                    source, *order, kLinearOrder, kQuadraticOrder));
   require_gmsh_library<InputError>(source);
-  GmshSession session(source);
-  load_model(session, file, size_factor);
   TetMesh mesh;
-  GmshNodes nodes;
-  GmshTets tets;
-  session.run("reading the mesh", [&] {
-    nodes = read_nodes(mesh);
-    tets = read_tets(source, nodes, mesh);
-    const std::vector<TetFaceRef> faces = tet_faces(mesh);
-    require_conforming(source, faces, tets);
-    const std::vector<RigidGroup> rigid = read_tagged_faces(source, nodes, faces, mesh);
-    split_off_rigid_surfaces(source, rigid, nodes, mesh);
-    orient_faces(source, mesh);
-    read_node_sets(source, nodes, mesh);
-  });
+  {
+    GmshSession session(source);
+    load_model(session, file, size_factor, order);
+    GmshNodes nodes;
+    GmshTets tets;
+    session.run("reading the mesh", [&] {
+      nodes = read_nodes(mesh);
+      tets = read_tets(source, nodes, mesh);
+      const std::vector<TetFaceRef> faces = tet_faces(mesh);
+      require_conforming(source, faces, tets);
+      const std::vector<RigidGroup> rigid = read_tagged_faces(source, nodes, faces, mesh);
+      split_off_rigid_surfaces(source, rigid, nodes, mesh);
+      orient_faces(source, mesh);
+      read_node_sets(source, nodes, mesh);
+    });
+  }
+  if (order) bring_to_order(source, *order, mesh);
   check_mesh(mesh, source);
   return mesh;
 }

@@ -56,8 +56,8 @@ std::vector<Index> TetMesh::nodes_with_tag(const std::string& name) const {
     return set ? set->nodes : result;
   }
   for (Index f : faces_with_tag(name))
-    for (int v = 0; v < 3; ++v)
-      result.push_back(faces(v, f));
+    for (int v = 0; v < nodes_per_face(); ++v)
+      result.push_back(face_node(f, v));
   std::sort(result.begin(), result.end());
   result.erase(std::unique(result.begin(), result.end()), result.end());
   return result;
@@ -93,8 +93,8 @@ std::string TetMesh::no_surface(const std::string& name) const {
 std::optional<Index> first_unused_node(const TetMesh& mesh) {
   std::vector<bool> used(static_cast<std::size_t>(mesh.n_nodes()), false);
   for (Index t = 0; t < mesh.n_tets(); ++t)
-    for (Index v = 0; v < 4; ++v)
-      used[static_cast<std::size_t>(mesh.tets(v, t))] = true;
+    for (int v = 0; v < mesh.nodes_per_tet(); ++v)
+      used[static_cast<std::size_t>(mesh.tet_node(t, v))] = true;
   for (std::size_t n = 0; n < used.size(); ++n)
     if (!used[n]) return static_cast<Index>(n);
   return std::nullopt;
@@ -157,6 +157,33 @@ void check_rigid_surfaces(const TetMesh& mesh, const std::string& source) {
   }
 }
 
+// The extra nodes: none (linear) or a quadratic tetrahedron's and triangle's edge nodes, one
+// column per element, each a valid node index.
+void check_extra_nodes(const TetMesh& mesh, const std::string& source) {
+  const bool linear = mesh.tet_extra.rows() == 0 && mesh.face_extra.rows() == 0;
+  const bool quadratic =
+      mesh.tet_extra.rows() == kTetEdges && mesh.tet_extra.cols() == mesh.n_tets() &&
+      mesh.face_extra.rows() == kTriangleEdges && mesh.face_extra.cols() == mesh.n_faces();
+  if (!linear && !quadratic)
+    throw InputError(fmt::format(
+        "{}: the elements have {} nodes per tetrahedron and {} per boundary triangle; fricon "
+        "takes 4 and 3 (linear) or 10 and 6 (quadratic)",
+        source, 4 + mesh.tet_extra.rows(), 3 + mesh.face_extra.rows()));
+  const Index n = mesh.n_nodes();
+  for (Index t = 0; t < mesh.tet_extra.cols(); ++t)
+    for (Index r = 0; r < mesh.tet_extra.rows(); ++r)
+      if (mesh.tet_extra(r, t) < 0 || mesh.tet_extra(r, t) >= n)
+        throw InputError(
+            fmt::format("{}: tetrahedron {} refers to node {}, but the mesh has {} nodes", source,
+                        t, mesh.tet_extra(r, t), n));
+  for (Index f = 0; f < mesh.face_extra.cols(); ++f)
+    for (Index r = 0; r < mesh.face_extra.rows(); ++r)
+      if (mesh.face_extra(r, f) < 0 || mesh.face_extra(r, f) >= n)
+        throw InputError(
+            fmt::format("{}: boundary face {} refers to node {}, but the mesh has {} nodes", source,
+                        f, mesh.face_extra(r, f), n));
+}
+
 // tet_region is empty or gives each tetrahedron a valid index into region_names.
 void check_regions(const TetMesh& mesh, const std::string& source) {
   if (mesh.tet_region.empty()) return;
@@ -204,6 +231,7 @@ void check_mesh(const TetMesh& mesh, const std::string& source, Real relative_to
                                  mesh.n_faces(), mesh.face_entity.size()));
   check_regions(mesh, source);
   check_rigid_surfaces(mesh, source);
+  check_extra_nodes(mesh, source);
   for (Index f = 0; f < mesh.n_faces(); ++f) {
     for (int v = 0; v < 3; ++v)
       if (mesh.faces(v, f) < 0 || mesh.faces(v, f) >= n)
@@ -339,8 +367,8 @@ TetMesh submesh(const TetMesh& mesh, const std::vector<Index>& tets, std::vector
   // The nodes of the tetrahedra, ascending, and each one's index in the part.
   std::vector<Index> local(static_cast<size_t>(mesh.n_nodes()), -1);
   for (Index t : tets)
-    for (int a = 0; a < 4; ++a)
-      local[static_cast<size_t>(mesh.tets(a, t))] = 0;
+    for (int a = 0; a < mesh.nodes_per_tet(); ++a)
+      local[static_cast<size_t>(mesh.tet_node(t, a))] = 0;
   std::vector<Index> global;
   for (Index v = 0; v < mesh.n_nodes(); ++v)
     if (local[static_cast<size_t>(v)] == 0) {
@@ -355,6 +383,10 @@ TetMesh submesh(const TetMesh& mesh, const std::vector<Index>& tets, std::vector
   for (size_t k = 0; k < tets.size(); ++k)
     for (int a = 0; a < 4; ++a)
       part.tets(a, static_cast<Index>(k)) = local_of(mesh.tets(a, tets[k]));
+  part.tet_extra.resize(mesh.tet_extra.rows(), static_cast<Index>(tets.size()));
+  for (size_t k = 0; k < tets.size(); ++k)
+    for (Index r = 0; r < mesh.tet_extra.rows(); ++r)
+      part.tet_extra(r, static_cast<Index>(k)) = local_of(mesh.tet_extra(r, tets[k]));
   if (!mesh.tet_region.empty())
     for (Index t : tets)
       part.tet_region.push_back(mesh.region(t));
@@ -365,10 +397,13 @@ TetMesh submesh(const TetMesh& mesh, const std::vector<Index>& tets, std::vector
   for (Index f = 0; f < mesh.n_faces(); ++f)
     if (mine[static_cast<size_t>(f)]) faces.push_back(f);
   part.faces.resize(3, static_cast<Index>(faces.size()));
+  part.face_extra.resize(mesh.face_extra.rows(), static_cast<Index>(faces.size()));
   for (size_t k = 0; k < faces.size(); ++k) {
     const Index f = faces[k];
     for (int a = 0; a < 3; ++a)
       part.faces(a, static_cast<Index>(k)) = local_of(mesh.faces(a, f));
+    for (Index r = 0; r < mesh.face_extra.rows(); ++r)
+      part.face_extra(r, static_cast<Index>(k)) = local_of(mesh.face_extra(r, f));
     part.face_tag.push_back(mesh.face_tag[static_cast<size_t>(f)]);
     if (!mesh.face_entity.empty())
       part.face_entity.push_back(mesh.face_entity[static_cast<size_t>(f)]);
@@ -410,7 +445,90 @@ Index orient_faces_outward(TetMesh& mesh) {
     for (int v = 0; v < 3; ++v)
       mesh.faces(v, f) = it->oriented[static_cast<size_t>(v)];
   }
+  // The edge nodes follow the corners' new order (every edge is a tetrahedron's).
+  fill_face_extra(mesh, "the mesh");
   return -1;
+}
+
+namespace {
+using EdgeKey = std::pair<Index, Index>;
+EdgeKey edge_key(Index a, Index b) {
+  return a < b ? EdgeKey{a, b} : EdgeKey{b, a};
+}
+// The edge node of every edge of the tetrahedra of a quadratic mesh, sorted by edge.
+std::vector<std::pair<EdgeKey, Index>> edge_nodes(const TetMesh& mesh, const std::string& source) {
+  std::vector<std::pair<EdgeKey, Index>> edges;
+  edges.reserve(static_cast<size_t>(kTetEdges * mesh.n_tets()));
+  for (Index t = 0; t < mesh.n_tets(); ++t)
+    for (int e = 0; e < kTetEdges; ++e)
+      edges.emplace_back(edge_key(mesh.tets(kTetEdge[e][0], t), mesh.tets(kTetEdge[e][1], t)),
+                         mesh.tet_extra(e, t));
+  std::sort(edges.begin(), edges.end());
+  for (size_t k = 1; k < edges.size(); ++k)
+    if (edges[k].first == edges[k - 1].first && edges[k].second != edges[k - 1].second)
+      throw InputError(fmt::format(
+          "{}: the edge between nodes {} and {} has two midpoint nodes, {} and {}: the quadratic "
+          "tetrahedra around it do not conform",
+          source, edges[k].first.first, edges[k].first.second, edges[k - 1].second,
+          edges[k].second));
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  return edges;
+}
+}  // namespace
+
+void fill_face_extra(TetMesh& mesh, const std::string& source) {
+  if (mesh.order() == 1) return;
+  const auto edges = edge_nodes(mesh, source);
+  mesh.face_extra.resize(kTriangleEdges, mesh.n_faces());
+  for (Index f = 0; f < mesh.n_faces(); ++f)
+    for (int e = 0; e < kTriangleEdges; ++e) {
+      const EdgeKey key =
+          edge_key(mesh.faces(kTriangleEdge[e][0], f), mesh.faces(kTriangleEdge[e][1], f));
+      const auto it = std::lower_bound(edges.begin(), edges.end(), std::make_pair(key, Index{-1}));
+      if (it == edges.end() || it->first != key)
+        throw InputError(
+            fmt::format("{}: boundary face {} has the edge {}-{}, which is no tetrahedron's",
+                        source, f, key.first, key.second));
+      mesh.face_extra(e, f) = it->second;
+    }
+}
+
+void add_edge_midpoints(TetMesh& mesh) {
+  FRICON_CHECK(mesh.order() == 1, "add_edge_midpoints: the mesh is already quadratic");
+  std::vector<std::pair<EdgeKey, Index>> edges;
+  edges.reserve(static_cast<size_t>(kTetEdges * mesh.n_tets()));
+  for (Index t = 0; t < mesh.n_tets(); ++t)
+    for (int e = 0; e < kTetEdges; ++e)
+      edges.emplace_back(edge_key(mesh.tets(kTetEdge[e][0], t), mesh.tets(kTetEdge[e][1], t)), -1);
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  const Index first = mesh.n_nodes();
+  mesh.nodes.conservativeResize(3, first + static_cast<Index>(edges.size()));
+  for (size_t k = 0; k < edges.size(); ++k) {
+    const auto [a, b] = edges[k].first;
+    edges[k].second = first + static_cast<Index>(k);
+    mesh.nodes.col(edges[k].second) = 0.5 * (mesh.nodes.col(a) + mesh.nodes.col(b));
+  }
+  const auto node_of = [&edges](Index a, Index b) {
+    const EdgeKey key = edge_key(a, b);
+    return std::lower_bound(edges.begin(), edges.end(), std::make_pair(key, Index{-1}))->second;
+  };
+  mesh.tet_extra.resize(kTetEdges, mesh.n_tets());
+  for (Index t = 0; t < mesh.n_tets(); ++t)
+    for (int e = 0; e < kTetEdges; ++e)
+      mesh.tet_extra(e, t) = node_of(mesh.tets(kTetEdge[e][0], t), mesh.tets(kTetEdge[e][1], t));
+  fill_face_extra(mesh, "the mesh");
+  // A curve's edges are the tetrahedra's edges between two of its nodes.
+  for (NodeSet& set : mesh.node_sets) {
+    if (set.dim != kCurveDimension) continue;
+    std::vector<Index> nodes = set.nodes;
+    for (const auto& [key, node] : edges)
+      if (std::binary_search(set.nodes.begin(), set.nodes.end(), key.first) &&
+          std::binary_search(set.nodes.begin(), set.nodes.end(), key.second))
+        nodes.push_back(node);
+    std::sort(nodes.begin(), nodes.end());
+    set.nodes = std::move(nodes);
+  }
 }
 
 }  // namespace fricon::mesh

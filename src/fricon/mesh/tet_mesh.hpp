@@ -52,6 +52,16 @@ struct TetMesh {
   /// Boundary triangles as three node indices per column, ordered counter-clockwise seen from
   /// outside (the right-hand normal points out of the body).
   Eigen::Matrix<Index, 3, Eigen::Dynamic> faces;
+  /// The higher-order nodes beside the corners (theory.md §2.12): per tetrahedron the nodes of
+  /// its element after the four corners, one column per tetrahedron; no rows in a linear mesh.
+  /// In a quadratic mesh (10-node tetrahedra) the midpoints of the edges 01, 12, 20, 30, 32, 31,
+  /// Gmsh's order. The corners in `tets` are what bodies, face search and partitions read; the
+  /// finite element reads all nodes (tet_node).
+  Eigen::Matrix<Index, Eigen::Dynamic, Eigen::Dynamic> tet_extra;
+  /// Likewise per boundary triangle after its three corners: in a quadratic mesh (6-node
+  /// triangles) the midpoints of the edges 01, 12, 20 (Gmsh's order), consistent with
+  /// tet_extra (fill_face_extra).
+  Eigen::Matrix<Index, Eigen::Dynamic, Eigen::Dynamic> face_extra;
   /// Tag of each boundary triangle: an index into tag_names.
   std::vector<int> face_tag;
   /// Names of the boundary tags.
@@ -73,6 +83,15 @@ struct TetMesh {
   Index n_nodes() const { return nodes.cols(); }
   Index n_tets() const { return tets.cols(); }
   Index n_faces() const { return faces.cols(); }
+  /// The polynomial order of the elements: 1 (4-node tetrahedra) or 2 (10-node).
+  int order() const { return tet_extra.rows() == 0 ? 1 : 2; }
+  /// Nodes per tetrahedron (4 or 10) and per boundary triangle (3 or 6).
+  int nodes_per_tet() const { return 4 + static_cast<int>(tet_extra.rows()); }
+  int nodes_per_face() const { return 3 + static_cast<int>(face_extra.rows()); }
+  /// Node a (0 <= a < nodes_per_tet(): corners first) of tetrahedron t.
+  Index tet_node(Index t, int a) const { return a < 4 ? tets(a, t) : tet_extra(a - 4, t); }
+  /// Node a (0 <= a < nodes_per_face(): corners first) of boundary triangle f.
+  Index face_node(Index f, int a) const { return a < 3 ? faces(a, f) : face_extra(a - 3, f); }
 
   /// Index of the tag called `name` in tag_names, or -1 if the mesh has no such tag.
   int find_tag(const std::string& name) const;
@@ -100,6 +119,26 @@ struct TetMesh {
   /// Index of the region called `name`, or -1.
   int find_region(const std::string& name) const;
 };
+
+/// The number of edge nodes of a quadratic tetrahedron and triangle, and the corners of each edge
+/// in Gmsh's order: tetrahedron edge e joins corners kTetEdge[e] (node 4 + e), triangle edge e
+/// joins kTriangleEdge[e] (node 3 + e).
+inline constexpr int kTetEdges = 6;
+inline constexpr int kTriangleEdges = 3;
+inline constexpr int kTetEdge[kTetEdges][2] = {{0, 1}, {1, 2}, {2, 0}, {3, 0}, {3, 2}, {3, 1}};
+inline constexpr int kTriangleEdge[kTriangleEdges][2] = {{0, 1}, {1, 2}, {2, 0}};
+
+/// Gives every boundary triangle of a quadratic mesh its edge nodes, from the tetrahedra's
+/// (face_extra from tet_extra, in the order of the triangle's corners); does nothing in a linear
+/// mesh. Throws InputError naming `source` when two tetrahedra give one edge different midpoint
+/// nodes (a non-conforming quadratic mesh) or a triangle's edge is no tetrahedron's.
+void fill_face_extra(TetMesh& mesh, const std::string& source);
+
+/// Makes a linear mesh quadratic with straight edges: a new node at the midpoint of every edge
+/// of the tetrahedra (appended after the existing nodes), tet_extra and face_extra. Node sets
+/// of dimension 1 (curves) gain the midpoints of the edges between their nodes. Requires
+/// order() == 1.
+void add_edge_midpoints(TetMesh& mesh);
 
 /// The first node of no tetrahedron, or nothing when every node belongs to one (a reader
 /// refuses such nodes: they would be free dofs that nothing holds).
@@ -130,6 +169,16 @@ Vec3 face_normal(const TetMesh& mesh, Index f);
 /// Throws InputError naming the first offending entity and `source` (a file name or "brick
 /// generator").
 void check_mesh(const TetMesh& mesh, const std::string& source, Real relative_tolerance = 1e-12);
+
+/// Applies a map of node indices (node i becomes renumber(i)) to the corners and extra nodes of
+/// the tetrahedra and boundary triangles (not to the node sets). For readers that compact nodes.
+template <class Renumber>
+void renumber_nodes(TetMesh& mesh, Renumber renumber) {
+  mesh.tets = mesh.tets.unaryExpr(renumber).eval();
+  mesh.faces = mesh.faces.unaryExpr(renumber).eval();
+  mesh.tet_extra = mesh.tet_extra.unaryExpr(renumber).eval();
+  mesh.face_extra = mesh.face_extra.unaryExpr(renumber).eval();
+}
 
 /// Counts of how the triangular faces of the tetrahedra are shared.
 struct FaceSharing {

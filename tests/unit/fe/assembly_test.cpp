@@ -118,7 +118,7 @@ TEST(Assembly, LoadTotalsAreExact) {
   EXPECT_NEAR(total(2), 2e7 - 9e7 - 3 * 7.8e4, 1e-6);
 }
 
-TEST(Assembly, P1LoadsIntegrateLinearDataExactly) {
+TEST(Assembly, FieldLoadsIntegrateLinearDataExactly) {
   // Total force of a linear traction p(x) = (x, 0, 0) on z1 of the unit cube is (1/2, 0, 0);
   // first moment: int x * x dS = 1/3 (the test function x is in P1, so exact).
   const mesh::TetMesh m = mesh::make_brick({Vec3(1, 1, 1), {3, 3, 3}});
@@ -126,12 +126,12 @@ TEST(Assembly, P1LoadsIntegrateLinearDataExactly) {
   NodalField p = NodalField::Zero(3, m.n_nodes());
   p.row(0) = m.nodes.row(0);
   VectorXd f = VectorXd::Zero(all.n_free());
-  add_traction_p1(m, all, m.faces_with_tag("z1"), p, f);
+  add_traction_field(m, all, m.faces_with_tag("z1"), p, f);
   const NodalField F = all.to_nodal(f);
   EXPECT_NEAR(F.row(0).sum(), 0.5, 1e-14);
   EXPECT_NEAR(F.row(0).dot(m.nodes.row(0)), 1.0 / 3.0, 1e-14);
   VectorXd fv = VectorXd::Zero(all.n_free());
-  add_volume_force_p1(m, all, p, fv);
+  add_volume_force_field(m, all, p, fv);
   const NodalField Fv = all.to_nodal(fv);
   EXPECT_NEAR(Fv.row(0).sum(), 0.5, 1e-14);
   EXPECT_NEAR(Fv.row(0).dot(m.nodes.row(0)), 1.0 / 3.0, 1e-14);

@@ -365,16 +365,6 @@ Mesh.MeshSizeMax = 0.5;
 
 // @sect: refused meshes.
 
-TEST_F(GmshFile, RefusesSecondOrder) {
-  const fs::path geo = write_file("order2.geo", R"(SetFactory("OpenCASCADE");
-Box(1) = {0,0,0, 1,1,1};
-Mesh.MeshSizeMax = 1;
-Mesh.ElementOrder = 2;
-)");
-  expect_input_error([&] { read_gmsh(geo); },
-                     {"order2.geo", "Tetrahedron 10", "Mesh.ElementOrder = 1"});
-}
-
 const char* const kHexMsh = R"($MeshFormat
 2.2 0 8
 $EndMeshFormat
