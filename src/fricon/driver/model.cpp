@@ -250,7 +250,7 @@ mesh::TetMesh read_gmsh_mesh(const Problem& problem) {
     mesh::TetMesh mesh =
         mesh::read_gmsh(problem.mesh.file, problem.mesh.size_factor, problem.mesh.order);
     mesh::scale_lengths(mesh, metres_per(problem.mesh.unit));  // uniform: keeps every check
-    fe::check_jacobians(mesh, problem.mesh.file.string());    // curved elements that fold
+    fe::check_jacobians(mesh, problem.mesh.file);  // curved elements that fold
     return mesh;
   } catch (const InputError& e) {
     throw InputError(fmt::format("{}: mesh.file: {}", problem.where("mesh.file"), e.what()));
