@@ -72,6 +72,27 @@ TEST(FloatingBodies, AFreeBlockOnTheFrictionlessPlaneIsInUniaxialCompression) {
     EXPECT_LE(std::abs(r.report.bodies[0].amplitudes[j]), 1e-12 * scale);
 }
 
+TEST(FloatingBodies, AQuadraticFreeBlockOnTheFrictionlessPlaneIsInUniaxialCompression) {
+  // With 10-node tetrahedra the corners of each 6-node contact triangle carry no share of a
+  // uniform pressure (int phi_corner dS = 0); the multipliers are patch integrals, so every
+  // patch still carries exactly p (theory.md §2.12).
+  Problem p = free_block();
+  p.mesh.order = kQuadraticOrder;
+  const RunResult r = run(p);
+  ASSERT_EQ(r.report.status, RunStatus::Converged) << r.report.message;
+  ASSERT_EQ(r.model.mesh.order(), 2);
+  const VectorXd& lambda = r.contact->lambda;
+  constexpr Real kQuadraticExact = 1e-10;  // the bound
+  for (Index p = 0; p < lambda.size() / 3; ++p) {
+    EXPECT_NEAR(lambda(3 * p), kPressure, kQuadraticExact * kPressure) << "patch " << p;
+    EXPECT_NEAR(lambda.segment<2>(3 * p + 1).norm(), 0.0, kQuadraticExact * kPressure);
+  }
+  Eigen::Matrix<Real, 6, 1> exact;
+  exact << 0.0, 0.0, -kPressure, 0.0, 0.0, 0.0;
+  for (Index t = 0; t < r.stress.cols(); ++t)
+    ASSERT_LE((r.stress.col(t) - exact).cwiseAbs().maxCoeff(), kExact * kPressure) << t;
+}
+
 Problem with_coulomb_shear(Real mu, Real tau) {
   Problem p = free_block();
   p.contact.front().model = contact::FrictionModel::Coulomb;

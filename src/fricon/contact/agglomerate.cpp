@@ -126,6 +126,8 @@ std::vector<Index> choose_seeds(const mesh::TetMesh& mesh, const ContactSurface&
   std::vector<Index> seeds;
   for (Index v : seed_order(mesh, surface, topology)) {
     const Vec3 x = mesh.nodes.col(surface.nodes[static_cast<size_t>(v)]);
+    // Only corners have a star (an edge node of a 6-node triangle is no vertex of the surface).
+    if (topology.vertex_faces[static_cast<size_t>(v)].empty()) continue;
     if (blocked[static_cast<size_t>(v)] || !grid.far_from_all(x)) continue;
     seeds.push_back(v);
     grid.add(x);

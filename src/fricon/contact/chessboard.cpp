@@ -13,12 +13,13 @@ namespace fricon::contact {
 
 Patches chessboard_patches(const mesh::TetMesh& mesh, const ContactSurface& surface,
                            const std::string& where) {
-  // Tangential coordinates of the surface nodes, and the grid they lie on.
+  // Tangential coordinates of the triangles' corners, and the grid they lie on.
   std::vector<Real> c1, c2;
-  for (Index a : surface.nodes) {
-    c1.push_back(surface.t1.dot(mesh.nodes.col(a)));
-    c2.push_back(surface.t2.dot(mesh.nodes.col(a)));
-  }
+  for (Index f : surface.faces)
+    for (int v = 0; v < 3; ++v) {
+      c1.push_back(surface.t1.dot(mesh.nodes.col(mesh.faces(v, f))));
+      c2.push_back(surface.t2.dot(mesh.nodes.col(mesh.faces(v, f))));
+    }
   auto grid_lines = [](std::vector<Real> c) {
     std::sort(c.begin(), c.end());
     const Real tol = 1e-9 * (c.back() - c.front());

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "fricon/core/error.hpp"
+#include "fricon/fe/element.hpp"
 
 namespace fricon::contact {
 
@@ -111,7 +112,7 @@ std::vector<Index> faces_in_reach(const ContactSurface& whole, const std::vector
   std::vector<Index> kept;
   for (size_t k = 0; k < whole.faces.size(); ++k) {
     bool all = true;
-    for (int v = 0; v < 3; ++v)
+    for (Index v = 0; v < whole.face_nodes.rows(); ++v)
       all = all && hits[static_cast<size_t>(whole.face_nodes(v, static_cast<Index>(k)))].found;
     if (all) kept.push_back(whole.faces[k]);
   }
@@ -203,12 +204,16 @@ SlaveSurface make_slave_surface(const mesh::TetMesh& mesh, const fe::DofMap& dof
 
   // @sect: the gaps and the master's interpolation at each node's projection.
   out.gap = gaps_of(mesh, s, hits, whole_position, slave_diameter, slave, where);
+  // The master's face element at the hit's barycentric point on the flat triangle through its
+  // corners (theory.md §2.12).
+  const fe::Element& face_element = fe::elements_of(mesh).face;
   std::vector<Eigen::Triplet<Real, SparseIndex>> weights;
   for (Index k = 0; k < s.n_nodes(); ++k) {
     const NodeHit& h = hits[static_cast<size_t>(
         whole_position[static_cast<size_t>(s.nodes[static_cast<size_t>(k)])])];
-    for (int v = 0; v < 3; ++v)
-      weights.emplace_back(k, mesh.faces(v, h.face), h.weights[static_cast<size_t>(v)]);
+    const fe::ShapeValues N = face_element.values(Vec3(h.weights[0], h.weights[1], h.weights[2]));
+    for (int v = 0; v < face_element.n_nodes(); ++v)
+      if (N(v) != 0.0) weights.emplace_back(k, mesh.face_node(h.face, v), N(v));
   }
   s.master.resize(s.n_nodes(), mesh.n_nodes());
   s.master.setFromTriplets(weights.begin(), weights.end());
@@ -220,6 +225,7 @@ SlaveSurface make_slave_surface(const mesh::TetMesh& mesh, const fe::DofMap& dof
 SparseMatrix mortar_matrix(const mesh::TetMesh& mesh, const ContactSurface& surface,
                            const Patches& patches, const Frames& frames,
                            const SurfaceLocator& master, Real search_distance, Real& coverage) {
+  const fe::Element& face_element = fe::elements_of(mesh).face;
   std::vector<Eigen::Triplet<Real, SparseIndex>> entries;
   Real covered = 0.0;
   for (Index p = 0; p < patches.size(); ++p)
@@ -232,9 +238,14 @@ SparseMatrix mortar_matrix(const mesh::TetMesh& mesh, const ContactSurface& surf
         // Only the master triangles that face the slave (a thin master's far side does not).
         if (mesh::face_normal(mesh, o.master_face).dot(frames.n.col(p)) >= -kFacingCosine) continue;
         covered += o.area;
-        for (int j = 0; j < 3; ++j)
-          entries.emplace_back(p, mesh.faces(j, o.master_face),
-                               o.master_integrals[static_cast<size_t>(j)]);
+        // int over the overlap of each master node's shape function (the face element at the
+        // master barycentric point of each quadrature point; theory.md §2.12).
+        for (const MortarOverlap::Point& q : o.points) {
+          const fe::ShapeValues N =
+              face_element.values(Vec3(q.master[0], q.master[1], q.master[2]));
+          for (int j = 0; j < face_element.n_nodes(); ++j)
+            entries.emplace_back(p, mesh.face_node(o.master_face, j), q.weight * N(j));
+        }
       }
     }
   coverage = covered / surface.area;

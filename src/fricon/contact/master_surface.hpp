@@ -7,7 +7,7 @@
 //      search distance d (SurfaceLocator::ray_hit); the hit gives the node's gap (the distance
 //      along the normal) and the master's displacement at the projection (P1 weights of the
 //      master triangle's vertices);
-//   2. the contact surface is the slave triangles whose three vertices found a master triangle
+//   2. the contact surface is the slave triangles all of whose nodes found a master triangle
 //      facing them: the rest is out of reach and carries no multipliers;
 //   3. once the patches are built, mortar_matrix integrates the master's shape functions over
 //      each patch, on the intersections of the slave triangles with the master triangles

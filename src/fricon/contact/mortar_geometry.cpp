@@ -194,7 +194,11 @@ Vec3 unit_normal(const Triangle3& x) {
 struct FanPiece {
   Real area;
   Vec2 centroid;
+  std::array<Vec2, 3> corners;
 };
+
+// The weights of the corners at a point of the 3-point triangle rule of degree 2.
+constexpr Real kNearWeight = 2.0 / 3.0, kFarWeight = 1.0 / 6.0;
 
 std::vector<FanPiece> fan(const std::vector<Vec2>& polygon) {
   std::vector<FanPiece> pieces;
@@ -202,7 +206,7 @@ std::vector<FanPiece> fan(const std::vector<Vec2>& polygon) {
     const Vec2& a = polygon[0];
     const Vec2& b = polygon[k];
     const Vec2& c = polygon[k + 1];
-    pieces.push_back({0.5 * cross2(b - a, c - a), (a + b + c) / 3.0});
+    pieces.push_back({0.5 * cross2(b - a, c - a), (a + b + c) / 3.0, {a, b, c}});
   }
   return pieces;
 }
@@ -514,6 +518,14 @@ std::vector<MortarOverlap> mortar_overlaps(const Triangle3& slave, const Vec3& n
       for (size_t i = 0; i < 3; ++i) {
         result.slave_integrals[i] += area * ls[i];
         result.master_integrals[i] += area * lm[i];
+      }
+      // The 3-point rule of degree 2 on the sub-triangle, at (2/3, 1/6, 1/6) and its
+      // permutations, weights a third of the area.
+      for (size_t i = 0; i < 3; ++i) {
+        const Vec2 point = kNearWeight * piece.corners[i] +
+                           kFarWeight * (piece.corners[(i + 1) % 3] + piece.corners[(i + 2) % 3]);
+        result.points.push_back(
+            {area / 3.0, barycentric_2d(slave_2d, point), barycentric_2d(master_2d, point)});
       }
     }
     overlaps.push_back(result);

@@ -127,6 +127,16 @@ struct MortarOverlap {
   /// shape function j (vertex order of SurfaceLocator::triangle(master_face)), evaluated at the
   /// point of the master triangle on the line through the slave point along the normal.
   std::array<Real, 3> master_integrals = {0.0, 0.0, 0.0};
+  /// A quadrature of the overlap exact for polynomials of degree 2 in the projected coordinates
+  /// (three points per sub-triangle of its fan): per point its weight [m^2] (measured on the
+  /// slave triangle) and its barycentric coordinates on the slave and on the master triangle.
+  /// The integrals of higher-order shape functions (6-node triangles) use it (theory.md §2.12).
+  struct Point {
+    Real weight = 0.0;
+    std::array<Real, 3> slave = {0.0, 0.0, 0.0};
+    std::array<Real, 3> master = {0.0, 0.0, 0.0};
+  };
+  std::vector<Point> points;
 };
 
 /// The mortar overlaps of triangle `slave` with the master surface `master`, projected along the
@@ -135,7 +145,8 @@ struct MortarOverlap {
 /// the box of the slave swept along n over [-max_distance, max_distance] [m]) are projected on
 /// the plane orthogonal to n and intersected (clip_convex); all integrals are exact (the shape
 /// functions of both triangles are affine on the plane: a fan of sub-triangles, each its area
-/// times the value at its centroid). Skipped: master triangles nearly parallel to n
+/// times the value at its centroid; `points` a degree-2 rule on each). Skipped: master triangles
+/// nearly parallel to n
 /// (|n . normal| < 1e-3), degenerate overlaps, and master triangles whose distance along n from
 /// the slave, (master point - slave point) . n at the overlap's centroid [m], lies outside
 /// [-max_distance, max_distance]. Empty when the slave itself is nearly parallel to n. No master

@@ -250,7 +250,7 @@ mesh::TetMesh read_gmsh_mesh(const Problem& problem) {
     mesh::TetMesh mesh =
         mesh::read_gmsh(problem.mesh.file, problem.mesh.size_factor, problem.mesh.order);
     mesh::scale_lengths(mesh, metres_per(problem.mesh.unit));  // uniform: keeps every check
-    fe::check_jacobians(mesh, problem.mesh.file);  // curved elements that fold
+    fe::check_jacobians(mesh, problem.mesh.file);              // curved elements that fold
     return mesh;
   } catch (const InputError& e) {
     throw InputError(fmt::format("{}: mesh.file: {}", problem.where("mesh.file"), e.what()));
@@ -530,9 +530,9 @@ fe::NodalField reaction_forces(const Model& model, const Problem& problem,
   std::vector<Index> tets;
   for (Index t = 0; t < model.mesh.n_tets(); ++t) {
     bool fixed = false;
-    for (int a = 0; a < 4 && !fixed; ++a)
+    for (int a = 0; a < model.mesh.nodes_per_tet() && !fixed; ++a)
       for (int c = 0; c < 3 && !fixed; ++c)
-        fixed = model.dofs.is_fixed(model.mesh.tets(a, t), c);
+        fixed = model.dofs.is_fixed(model.mesh.tet_node(t, a), c);
     if (fixed) tets.push_back(t);
   }
   const fe::NodalField internal = fe::internal_forces(model.mesh, model.materials, u, tets);

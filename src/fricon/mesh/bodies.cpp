@@ -62,8 +62,8 @@ Bodies find_bodies(const TetMesh& mesh) {
     bodies.tet_body[static_cast<size_t>(t)] = b;
     bodies.tets[static_cast<size_t>(b)].push_back(t);
     bodies.regions[static_cast<size_t>(b)].push_back(mesh.region(t));
-    for (int v = 0; v < 4; ++v)
-      bodies.node_body[static_cast<size_t>(mesh.tets(v, t))] = b;
+    for (int v = 0; v < mesh.nodes_per_tet(); ++v)  // the extra nodes too
+      bodies.node_body[static_cast<size_t>(mesh.tet_node(t, v))] = b;
   }
   bodies.nodes.resize(bodies.tets.size());
   for (Index a = 0; a < n_nodes; ++a) {
@@ -119,6 +119,14 @@ TetMesh disjoint_union(const std::vector<TetMesh>& parts,
   whole.nodes.resize(3, n_nodes);
   whole.tets.resize(4, n_tets);
   whole.faces.resize(3, n_faces);
+  // The parts are of one order (checked): their extra nodes are carried like the corners.
+  const Index tet_extra = parts.empty() ? 0 : parts.front().tet_extra.rows();
+  const Index face_extra = parts.empty() ? 0 : parts.front().face_extra.rows();
+  for (const TetMesh& part : parts)
+    FRICON_CHECK(part.tet_extra.rows() == tet_extra && part.face_extra.rows() == face_extra,
+                 "disjoint_union: parts of different element orders");
+  whole.tet_extra.resize(tet_extra, n_tets);
+  whole.face_extra.resize(face_extra, n_faces);
   // Index of `name` in `names`, appended if absent.
   const auto index_of = [](std::vector<std::string>& names, const std::string& name) {
     const auto it = std::find(names.begin(), names.end(), name);
@@ -132,6 +140,7 @@ TetMesh disjoint_union(const std::vector<TetMesh>& parts,
     const TetMesh& part = parts[i];
     whole.nodes.middleCols(node0, part.n_nodes()) = part.nodes;
     whole.tets.middleCols(tet0, part.n_tets()) = part.tets.array() + node0;
+    whole.tet_extra.middleCols(tet0, part.n_tets()) = part.tet_extra.array() + node0;
     for (Index t = 0; t < part.n_tets(); ++t) {
       const std::string region = part.region_names.empty()
                                      ? "body"
@@ -139,6 +148,7 @@ TetMesh disjoint_union(const std::vector<TetMesh>& parts,
       whole.tet_region.push_back(index_of(whole.region_names, prefixes[i] + region));
     }
     whole.faces.middleCols(face0, part.n_faces()) = part.faces.array() + node0;
+    whole.face_extra.middleCols(face0, part.n_faces()) = part.face_extra.array() + node0;
     for (const RigidSurface& surface : part.rigid_surfaces) {
       whole.rigid_surfaces.push_back(surface);
       whole.rigid_surfaces.back().name = prefixes[i] + surface.name;

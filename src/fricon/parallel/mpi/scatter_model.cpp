@@ -35,6 +35,12 @@ class Writer {
   void put_matrix(const Matrix& m) {  // the rows are known (3 or 4): the columns and the data
     put(m.data(), static_cast<std::size_t>(m.size()));
   }
+  template <class Matrix>
+  void put_rows_and_matrix(const Matrix& m) {  // a matrix of run-time rows (the extra nodes)
+    const std::size_t rows = static_cast<std::size_t>(m.rows());
+    put_raw(&rows, sizeof rows);
+    put(m.data(), static_cast<std::size_t>(m.size()));
+  }
   void put(const std::vector<std::string>& names) {
     const std::size_t n = names.size();
     put_raw(&n, sizeof n);
@@ -59,6 +65,16 @@ class Reader {
     std::vector<T> v(n);
     get_raw(v.data(), n * sizeof(T));
     return v;
+  }
+  template <class Matrix>
+  void get_rows_and_matrix(Matrix& m) {
+    std::size_t rows = 0;
+    get_raw(&rows, sizeof rows);
+    const std::size_t n = count();
+    FRICON_CHECK(rows == 0 ? n == 0 : n % rows == 0,
+                 "a part of the model: " << n << " entries in " << rows << " rows");
+    m.resize(static_cast<Index>(rows), rows == 0 ? 0 : static_cast<Index>(n / rows));
+    get_raw(m.data(), n * sizeof(typename Matrix::Scalar));
   }
   template <class Matrix>
   void get_matrix(Matrix& m) {
@@ -104,6 +120,8 @@ std::vector<char> pack(const driver::ModelPart& part) {
   w.put_matrix(m.nodes);
   w.put_matrix(m.tets);
   w.put_matrix(m.faces);
+  w.put_rows_and_matrix(m.tet_extra);
+  w.put_rows_and_matrix(m.face_extra);
   w.put(m.face_tag);
   w.put(m.tag_names);
   w.put(m.face_entity);
@@ -122,6 +140,8 @@ driver::ModelPart unpack(const std::vector<char>& bytes) {
   r.get_matrix(m.nodes);
   r.get_matrix(m.tets);
   r.get_matrix(m.faces);
+  r.get_rows_and_matrix(m.tet_extra);
+  r.get_rows_and_matrix(m.face_extra);
   m.face_tag = r.get<int>();
   m.tag_names = r.get_names();
   m.face_entity = r.get<int>();
