@@ -72,6 +72,7 @@ bench: build
 	  $(BUILD)/apps/fricon/fricon
 	@echo "== bench/floating_bench.py"; /usr/bin/python3 bench/floating_bench.py $(BUILD)/apps/fricon/fricon
 	@echo "== bench/obstacle_bench.py"; /usr/bin/python3 bench/obstacle_bench.py $(BUILD)/apps/fricon/fricon
+	@echo "== bench/quadratic_bench.py"; /usr/bin/python3 bench/quadratic_bench.py $(BUILD)/apps/fricon/fricon
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.hpp')
