@@ -78,8 +78,9 @@ struct MeshOptions {
   /// [mesh.order] the order of the elements, kLinearOrder or kQuadraticOrder (brick, gmsh): a
   /// .geo file is meshed at it by Gmsh (curved edges on curved surfaces at 2); at 2 the brick and
   /// a linear .msh file get straight edge midpoints (mesh::add_edge_midpoints); a quadratic .msh
-  /// file needs 2. Default linear.
-  int order = kLinearOrder;
+  /// file is refused at 1. Unset: the file's own order (a .msh file's elements, a .geo file's
+  /// Mesh.ElementOrder), linear for the brick.
+  std::optional<int> order;
   /// The mesh itself (arrays): built and checked by code (mesh::mesh_from_arrays), shared, never
   /// modified; required for kind = arrays, unused otherwise.
   std::shared_ptr<const mesh::TetMesh> given;

@@ -323,7 +323,8 @@ const OptionTable& mesh_table() {
              "the order of the elements: 1, linear 4-node tetrahedra, or 2, quadratic 10-node "
              "ones (theory.md §2.12). A `.geo` file is meshed at this order (at 2, edges on "
              "curved surfaces are curved); at 2 the brick and a linear `.msh` file get straight "
-             "edge midpoints; a quadratic `.msh` file needs 2");
+             "edge midpoints; a quadratic `.msh` file is refused at 1. Unset: the file's own "
+             "order (its elements, or a `.geo` file's `Mesh.ElementOrder`), 1 for the brick");
     b.check(check_mesh);
     return b.build();
   }();

@@ -375,6 +375,8 @@ void compute_stresses(RunResult& r) {
   fe::StressField s = fe::compute_stresses(r.model.mesh, r.model.materials, r.displacement);
   r.stress = std::move(s.stress);
   r.von_mises = std::move(s.von_mises);
+  r.nodal_stress = std::move(s.nodal_stress);
+  r.nodal_von_mises = std::move(s.nodal_von_mises);
 }
 
 void finish_run(const Problem& problem, const VectorXd& u, RunResult& r, bool with_stresses) {

@@ -95,7 +95,11 @@ struct RunResult {
   fe::NodalField displacement;  ///< 3 x n_nodes [m], zero at fixed components
   /// Per tetrahedron: stress (Voigt order 11,22,33,23,13,12) [Pa], 6 x n_tets.
   Eigen::Matrix<Real, 6, Eigen::Dynamic> stress;
-  VectorXd von_mises;                         ///< per tetrahedron [Pa]
+  VectorXd von_mises;  ///< per tetrahedron [Pa]
+  /// Per node: the stress recovered at the nodes (fe::StressField::nodal_stress: the mean of the
+  /// elements' stresses there), 6 x n_nodes [Pa], and its von Mises equivalent.
+  Eigen::Matrix<Real, 6, Eigen::Dynamic> nodal_stress;
+  VectorXd nodal_von_mises;
   std::optional<ContactFields> contact;       ///< fields on the contact surface
   std::optional<qp::DualProblem> first_dual;  ///< if RunOptions::keep_first_dual and contact
 };

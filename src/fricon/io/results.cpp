@@ -470,14 +470,19 @@ Eigen::Matrix<Index, Eigen::Dynamic, Eigen::Dynamic> tet_cells(const mesh::TetMe
   return cells;
 }
 
-// The body: displacement per node (every node, the edge nodes of a quadratic mesh too), stress,
-// von Mises and region index (report.json "regions" names them) per tetrahedron.
+// The body: displacement and the stress recovered at the nodes with its von Mises equivalent per
+// node (every node, the edge nodes of a quadratic mesh too), stress, von Mises and region index
+// (report.json "regions" names them) per tetrahedron.
 VtuGrid body_grid(const driver::RunResult& result) {
   const mesh::TetMesh& mesh = result.model.mesh;
   VtuGrid body;
   body.points = mesh.nodes;
   body.cells = tet_cells(mesh);
   body.point_data.push_back({"displacement", result.displacement});
+  if (result.nodal_stress.cols() == mesh.n_nodes()) {  // recovered at the nodes (fe/stress.hpp)
+    body.point_data.push_back({"nodal_stress", result.nodal_stress});
+    body.point_data.push_back({"nodal_von_mises", result.nodal_von_mises.transpose()});
+  }
   body.cell_data.push_back({"stress", result.stress});
   body.cell_data.push_back({"von_mises", result.von_mises.transpose()});
   MatrixXd region(1, mesh.n_tets());
