@@ -317,7 +317,8 @@ void append_surface(ContactSurface& a, const ContactSurface& b, Index pair, Inde
   a.nodes.insert(a.nodes.end(), b.nodes.begin(), b.nodes.end());
   a.fixed.insert(a.fixed.end(), b.fixed.begin(), b.fixed.end());
   a.contact_node.insert(a.contact_node.end(), b.contact_node.begin(), b.contact_node.end());
-  Eigen::Matrix<Index, 3, Eigen::Dynamic> faces(3, a.face_nodes.cols() + b.face_nodes.cols());
+  Eigen::Matrix<Index, Eigen::Dynamic, Eigen::Dynamic> faces(
+      a.face_nodes.rows(), a.face_nodes.cols() + b.face_nodes.cols());
   faces << a.face_nodes, (b.face_nodes.array() + node_shift).matrix();
   a.face_nodes = std::move(faces);
   a.area += b.area;
