@@ -65,7 +65,7 @@ ContactSurface surface_of_tag(const mesh::TetMesh& mesh, const std::string& tag,
   for (size_t k = 0; k < s.faces.size(); ++k) {
     for (int v = 0; v < mesh.nodes_per_face(); ++v)
       s.face_nodes(v, static_cast<Index>(k)) = position[mesh.face_node(s.faces[k], v)];
-    s.area += mesh::face_area(mesh, s.faces[k]);
+    s.area += face_integrals(mesh, s, static_cast<Index>(k)).shape.sum();  // curved at order 2
   }
   return s;
 }
@@ -248,7 +248,7 @@ ContactSurface surface_of_faces(const mesh::TetMesh& mesh, const fe::DofMap& dof
   for (size_t k = 0; k < faces.size(); ++k) {
     for (int v = 0; v < mesh.nodes_per_face(); ++v)
       s.face_nodes(v, static_cast<Index>(k)) = position[mesh.face_node(faces[k], v)];
-    s.area += mesh::face_area(mesh, faces[k]);
+    s.area += face_integrals(mesh, s, static_cast<Index>(k)).shape.sum();  // curved at order 2
     normal_sum += mesh::face_area(mesh, faces[k]) * mesh::face_normal(mesh, faces[k]);
   }
   check_manifold(mesh, s, where);

@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "fricon/contact/surface_integrals.hpp"
 #include "fricon/core/error.hpp"
 #include "fricon/fe/element.hpp"
 
@@ -233,18 +234,25 @@ SparseMatrix mortar_matrix(const mesh::TetMesh& mesh, const ContactSurface& surf
       const Index f = surface.faces[static_cast<size_t>(k)];
       const Triangle3 slave{mesh.nodes.col(mesh.faces(0, f)), mesh.nodes.col(mesh.faces(1, f)),
                             mesh.nodes.col(mesh.faces(2, f))};
+      // The overlaps are measured on the flat triangle through the slave's corners; the slave's
+      // rows on its own (curved) triangle (theory.md §2.12). Scaled by the ratio of the two
+      // areas, the master's integrals over a covered triangle add up to the slave's: the forces
+      // on the two bodies cancel. 1 up to rounding on straight triangles.
+      const Real curved_per_flat =
+          face_integrals(mesh, surface, k).shape.sum() / mesh::face_area(mesh, f);
       for (const MortarOverlap& o :
            mortar_overlaps(slave, frames.n.col(p), master, search_distance)) {
         // Only the master triangles that face the slave (a thin master's far side does not).
         if (mesh::face_normal(mesh, o.master_face).dot(frames.n.col(p)) >= -kFacingCosine) continue;
-        covered += o.area;
+        covered += curved_per_flat * o.area;
         // int over the overlap of each master node's shape function (the face element at the
         // master barycentric point of each quadrature point; theory.md §2.12).
         for (const MortarOverlap::Point& q : o.points) {
           const fe::ShapeValues N =
               face_element.values(Vec3(q.master[0], q.master[1], q.master[2]));
           for (int j = 0; j < face_element.n_nodes(); ++j)
-            entries.emplace_back(p, mesh.face_node(o.master_face, j), q.weight * N(j));
+            entries.emplace_back(p, mesh.face_node(o.master_face, j),
+                                 curved_per_flat * q.weight * N(j));
         }
       }
     }

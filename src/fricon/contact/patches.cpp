@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "fricon/contact/surface_integrals.hpp"
 #include "fricon/core/error.hpp"
 
 namespace fricon::contact {
@@ -39,7 +40,8 @@ Patches finish_patches(const mesh::TetMesh& mesh, const ContactSurface& surface,
     FRICON_CHECK(!p.faces[static_cast<size_t>(q)].empty(), "patch " << q << " has no triangle");
     for (Index k : p.faces[static_cast<size_t>(q)]) {
       const Index f = surface.faces[static_cast<size_t>(k)];
-      const Real area = mesh::face_area(mesh, f);
+      // The triangle's area as B's rows integrate it (curved at order 2, theory.md §2.12).
+      const Real area = face_integrals(mesh, surface, k).shape.sum();
       p.area(q) += area;
       p.centroid.col(q) += area * face_centroid(mesh, f);
     }
