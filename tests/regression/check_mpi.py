@@ -9,6 +9,7 @@ factorization (CHOLMOD's supernodal Cholesky of K against MUMPS's multifrontal L
 augmented matrix) and a different dual operator:
   ranks1, ranks2, ranks3  the paper's brick on 1, 2 and 3 ranks
   gmsh2                   the Hertz hemisphere (a Gmsh mesh, a prescribed displacement) on 2 ranks
+  quadratic2              the paper's brick with 10-node tetrahedra on 2 ranks
   implicit2               the brick with dual_operator = "implicit" (a distributed solve per
                           product with Q) on 2 ranks
   elastic2                the brick without contact, with gravity, on 2 ranks
@@ -338,6 +339,10 @@ def main():
         # at qp_rtol = 1e-12 two correct operators differ by 1e-8 in lambda; tighter here.
         serial_and_distributed(fricon, mpi, examples / "geometry" / "hertz-hemisphere.toml", out, 2,
                                ["--set", "solver.qp_rtol=1e-14"])
+    elif case == "quadratic2":
+        # 10-node tetrahedra: each rank assembles its part of K and of the loads with the same
+        # element (docs/theory.md §2.12), the mesh's edge nodes scattered with its corners.
+        serial_and_distributed(fricon, mpi, examples / "paper-brick-quadratic.toml", out, 2)
     elif case == "implicit2":
         serial_and_distributed(fricon, mpi, brick, out, 2,
                                ["--set", "solver.dual_operator=implicit"])
