@@ -50,8 +50,11 @@ int check(const std::string& file, const std::vector<std::string>& sets) {
   const mesh::TetMesh& mesh = model.mesh;
   const fe::DofMap& dofs = model.dofs;
   fmt::print("{}: valid\n", file);
-  fmt::print("  mesh       {} nodes, {} tetrahedra, {} regions, {} boundary triangles (tags: {})\n",
-             mesh.n_nodes(), mesh.n_tets(), mesh.n_regions(), mesh.n_faces(), mesh.tag_list());
+  fmt::print(
+      "  mesh       {} nodes, {} {}-node tetrahedra, {} regions, {} boundary triangles (tags: "
+      "{})\n",
+      mesh.n_nodes(), mesh.n_tets(), mesh.nodes_per_tet(), mesh.n_regions(), mesh.n_faces(),
+      mesh.tag_list());
   fmt::print("  unknowns   n_primal = {}\n", dofs.n_free());
   if (!model.floating.empty() || model.bodies.n_bodies() > 1)
     for (const driver::BodyReport& body : driver::describe_bodies(model))

@@ -44,8 +44,8 @@ int mesh_info(const MeshFileOptions& o) {
   mesh::TetMesh mesh =
       o.size_factor > 0 ? mesh::read_gmsh(o.file, o.size_factor) : mesh::read_gmsh(o.file);
   mesh::scale_lengths(mesh, driver::metres_per(unit));  // as the problem reader scales it
-  fmt::print("{}: {} nodes, {} tetrahedra, {} boundary triangles\n", o.file, mesh.n_nodes(),
-             mesh.n_tets(), mesh.n_faces());
+  fmt::print("{}: {} nodes, {} {}-node tetrahedra, {} boundary triangles\n", o.file, mesh.n_nodes(),
+             mesh.n_tets(), mesh.nodes_per_tet(), mesh.n_faces());
   const Vec3 extent = mesh.nodes.rowwise().maxCoeff() - mesh.nodes.rowwise().minCoeff();
   fmt::print("  coordinates  read in {} (as [mesh] unit = \"{}\"{}), in metres below\n", o.unit,
              o.unit, unit == driver::LengthUnit::Metre ? "; --unit mm for a millimetre mesh" : "");

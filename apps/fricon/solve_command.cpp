@@ -57,7 +57,8 @@ void print_warnings(const driver::RunReport& r, std::FILE* to, const char* prefi
 void print_summary(const driver::RunResult& result, const std::filesystem::path& dir) {
   const auto& r = result.report;
   fmt::print("fricon {}: {}\n", FRICON_VERSION, enum_name(r.status));
-  fmt::print("  mesh          {} nodes, {} tetrahedra\n", r.n_nodes, r.n_tets);
+  fmt::print("  mesh          {} nodes, {} {}-node tetrahedra\n", r.n_nodes, r.n_tets,
+             r.nodes_per_tet);
   fmt::print("  unknowns      n_primal = {}\n", r.n_primal);
   fmt::print("  factor        nnz(L) = {:.0f}, ordering {}\n", r.factor.nnz_L, r.factor.ordering);
   if (r.parallel) {

@@ -30,7 +30,7 @@ for version, binary in (("41", False), ("41", True), ("22", False)):
     run(["mesh", "brick", "--size", "3,1,0.5", "--cells", f"{nx},{ny},{nz}", "--out", str(msh),
          "--msh-version", version] + (["--binary"] if binary else []))
     info = run(["mesh", "info", str(msh)])
-    head = re.search(r"(\d+) nodes, (\d+) tetrahedra, (\d+) boundary triangles", info)
+    head = re.search(r"(\d+) nodes, (\d+) (?:\d+-node )?tetrahedra, (\d+) boundary triangles", info)
     if not head:
         failures.add(f"{msh}: no size line in\n{info}")
         continue

@@ -364,6 +364,7 @@ std::optional<contact::ContactDiscretization> build_factored_model(const Problem
 void report_sizes(const Model& model, RunReport& report) {
   report.n_nodes = model.mesh.n_nodes();
   report.n_tets = model.mesh.n_tets();
+  report.nodes_per_tet = model.mesh.nodes_per_tet();
   report.n_primal = model.dofs.n_free();
 }
 

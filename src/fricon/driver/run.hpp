@@ -52,12 +52,13 @@ struct RunReport {
   RunStatus status = RunStatus::Converged;
   std::string message;
   Index n_nodes = 0, n_tets = 0;
-  Index n_primal = 0;                  ///< free displacement dofs (the paper's n_p)
-  linalg::CholeskyInfo factor;         ///< size, fill and ordering of the Cholesky factor of K
-  PhaseTimes times;                    ///< wall time per phase [s]
-  double time_s = 0.0;                 ///< total wall time of the run [s]
-  Real max_displacement = 0.0;         ///< max over nodes of |u| [m]
-  Vec3 applied_force = Vec3::Zero();   ///< sum of applied loads [N]
+  int nodes_per_tet = 4;              ///< 4 (linear) or 10 (quadratic tetrahedra, theory.md §2.12)
+  Index n_primal = 0;                 ///< free displacement dofs (the paper's n_p)
+  linalg::CholeskyInfo factor;        ///< size, fill and ordering of the Cholesky factor of K
+  PhaseTimes times;                   ///< wall time per phase [s]
+  double time_s = 0.0;                ///< total wall time of the run [s]
+  Real max_displacement = 0.0;        ///< max over nodes of |u| [m]
+  Vec3 applied_force = Vec3::Zero();  ///< sum of applied loads [N]
   Vec3 reaction_force = Vec3::Zero();  ///< sum of reactions at fixed dofs [N]
   Vec3 contact_force =
       Vec3::Zero();  ///< sum of contact forces on the body [N] (zero without contact)

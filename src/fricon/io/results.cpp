@@ -320,6 +320,7 @@ nlohmann::json report_json(const driver::Problem& problem, const driver::RunResu
   j["command_line"] = context.command_line;
   j["n_nodes"] = r.n_nodes;
   j["n_tets"] = r.n_tets;
+  j["nodes_per_tet"] = r.nodes_per_tet;
   j["n_primal"] = r.n_primal;
   j["factor"] = {{"n", r.factor.n},
                  {"nnz_K", r.factor.nnz_K},
