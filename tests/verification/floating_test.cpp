@@ -83,9 +83,9 @@ TEST(FloatingBodies, AQuadraticFreeBlockOnTheFrictionlessPlaneIsInUniaxialCompre
   ASSERT_EQ(r.model.mesh.order(), 2);
   const VectorXd& lambda = r.contact->lambda;
   constexpr Real kQuadraticExact = 1e-10;  // the bound
-  for (Index p = 0; p < lambda.size() / 3; ++p) {
-    EXPECT_NEAR(lambda(3 * p), kPressure, kQuadraticExact * kPressure) << "patch " << p;
-    EXPECT_NEAR(lambda.segment<2>(3 * p + 1).norm(), 0.0, kQuadraticExact * kPressure);
+  for (Index k = 0; k < lambda.size() / 3; ++k) {
+    EXPECT_NEAR(lambda(3 * k), kPressure, kQuadraticExact * kPressure) << "patch " << k;
+    EXPECT_NEAR(lambda.segment<2>(3 * k + 1).norm(), 0.0, kQuadraticExact * kPressure);
   }
   Eigen::Matrix<Real, 6, 1> exact;
   exact << 0.0, 0.0, -kPressure, 0.0, 0.0, 0.0;
