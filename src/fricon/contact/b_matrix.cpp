@@ -143,6 +143,28 @@ SparseMatrix assemble_b(const mesh::TetMesh& mesh, const fe::DofMap& dofs,
   return assemble_b(mesh, dofs, surface, patches, patch_frames(mesh, surface, patches));
 }
 
+void require_active_patches(const ContactSurface& surface, const Patches& patches,
+                            const SparseMatrix& B, const std::string& where) {
+  // A row's entries [m^2] summed in magnitude; it vanishes below rounding of the patch's area
+  // (quadrature gives the corners' zero integrals to rounding).
+  constexpr Real kVanishingRow = 1e-12;
+  VectorXd row_sum = VectorXd::Zero(B.rows());
+  for (Index c = 0; c < B.outerSize(); ++c)
+    for (SparseMatrix::InnerIterator it(B, c); it; ++it)
+      row_sum(it.row()) += std::abs(it.value());
+  for (Index p = 0; p < patches.size(); ++p) {
+    if (row_sum(3 * p) > kVanishingRow * patches.area(p)) continue;
+    for (Index k : patches.faces[static_cast<size_t>(p)])
+      for (Index v = 0; v < surface.face_nodes.rows(); ++v)
+        if (surface.contact_node[static_cast<size_t>(surface.face_nodes(v, k))])
+          throw NumericalError(fmt::format(
+              "{}: patch {} has contact nodes free along its normal, but its row of B vanishes "
+              "(condition (5.1) fails for it: the nodes that carry its integral are held by "
+              "Dirichlet conditions); make the patches larger or hold the surface differently",
+              where, p));
+  }
+}
+
 namespace {
 // Iterations of the power and inverse iterations of the sparse stability estimate: enough to
 // separate a full-rank B (ratios of 1e-1..1e-3 on patch partitions) from a rank-deficient one

@@ -49,6 +49,13 @@ SparseMatrix assemble_b(const mesh::TetMesh& mesh, const fe::DofMap& dofs,
 SparseMatrix assemble_b(const mesh::TetMesh& mesh, const fe::DofMap& dofs,
                         const ContactSurface& surface, const Patches& patches);
 
+/// Condition (5.1) per patch: a patch with a contact node (free along its normal) must have a
+/// normal row of B with entries. With 6-node triangles the corners' functions integrate to zero
+/// over a straight triangle (theory.md §2.12): a patch whose edge nodes are all held while a
+/// corner is free would constrain nothing. Throws NumericalError naming `where` and the patch.
+void require_active_patches(const ContactSurface& surface, const Patches& patches,
+                            const SparseMatrix& B, const std::string& where);
+
 /// How the stability of B was checked.
 struct StabilityReport {
   Real ratio = 0.0;        ///< sigma_min / sigma_max of B

@@ -183,6 +183,7 @@ Partition partition_stably(const mesh::TetMesh& mesh, const fe::DofMap& dofs,
       p.stability = check_stability(p.B, spec.where_patches, kMinStabilityRatio);
       break;
   }
+  require_active_patches(d.surface, p.patches, p.B, spec.where_patches);
   return p;
 }
 

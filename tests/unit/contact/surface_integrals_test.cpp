@@ -8,6 +8,7 @@
 #include "fricon/contact/b_matrix.hpp"
 #include "fricon/contact/patches.hpp"
 #include "fricon/contact/surface_integrals.hpp"
+#include "fricon/core/error.hpp"
 #include "fricon/fe/assembly.hpp"
 #include "fricon/fe/dof_map.hpp"
 #include "fricon/mesh/brick.hpp"
@@ -108,4 +109,27 @@ TEST(SurfaceIntegrals, RowsOfBIntegrateAQuadraticFieldExactly) {
     else
       EXPECT_GT(worst, 1e-6);  // the P1 trace cannot hold the quadratic: the test can fail
   }
+}
+
+TEST(SurfaceIntegrals, APatchWhoseEdgeNodesAreAllHeldIsRefused) {
+  // Every edge node of the bottom held along z, the corners free: each patch's normal row
+  // integrates only the corners' functions, zero on straight 6-node triangles. Its contact nodes
+  // would be unconstrained: condition (5.1) fails per patch and the partition is refused.
+  mesh::TetMesh m = mesh::make_brick({Vec3(1.3, 0.7, 0.5), {4, 2, 1}});
+  mesh::add_edge_midpoints(m);
+  std::vector<bool> fixed(static_cast<size_t>(3 * m.n_nodes()), false);
+  for (Index f : m.faces_with_tag("z0"))
+    for (int e = 3; e < m.nodes_per_face(); ++e)
+      fixed[static_cast<size_t>(3 * m.face_node(f, e) + 2)] = true;
+  const fe::DofMap dofs(fixed);
+  const ContactSurface surface = make_contact_surface(m, dofs, "z0", "test");
+  const Patches patches = chessboard_patches(m, surface, "test");
+  const SparseMatrix B = assemble_b(m, dofs, surface, patches);
+  EXPECT_THROW(require_active_patches(surface, patches, B, "test"), NumericalError);
+  // With the edge nodes free every patch is active.
+  const Surface free = bottom(2);
+  const Patches free_patches = chessboard_patches(free.mesh, free.surface, "test");
+  EXPECT_NO_THROW(
+      require_active_patches(free.surface, free_patches,
+                             assemble_b(free.mesh, free.dofs, free.surface, free_patches), "test"));
 }
