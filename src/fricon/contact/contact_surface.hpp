@@ -81,9 +81,9 @@ struct ContactSurface {
   /// theory.md §2.11) instead of the patch's one frame (a plane, a body).
   bool frames_vary = false;
   /// Against a body: the master's displacement at each node's projection, as weights of the mesh
-  /// nodes (n_nodes x mesh nodes, three per row: the P1 shape functions of the master triangle
-  /// the node's normal meets); empty against a plane. The relative displacement of surface node
-  /// k is u(nodes[k]) - sum_a master(k, a) u(a).
+  /// nodes (n_nodes x mesh nodes, one entry per node of the master triangle the node's normal
+  /// meets: its face element's shape functions there, theory.md §2.12); empty against a plane. The
+  /// relative displacement of surface node k is u(nodes[k]) - sum_a master(k, a) u(a).
   Eigen::SparseMatrix<Real, Eigen::RowMajor, SparseIndex> master;
   /// Against a body: sum_a master(k, a) u_p(a) per surface node, the master's prescribed
   /// displacement at the projection [m]; against a rigid obstacle that moves, its displacement

@@ -5,8 +5,9 @@
 //
 //   1. each node of the slave tag looks for the master along its mean outward normal, within the
 //      search distance d (SurfaceLocator::ray_hit); the hit gives the node's gap (the distance
-//      along the normal) and the master's displacement at the projection (P1 weights of the
-//      master triangle's vertices);
+//      along the normal) and the master's displacement at the projection (the face element's
+//      shape functions of the master triangle at the hit on its flat corner triangle: theory.md
+//      §2.12);
 //   2. the contact surface is the slave triangles all of whose nodes found a master triangle
 //      facing them: the rest is out of reach and carries no multipliers;
 //   3. once the patches are built, mortar_matrix integrates the master's shape functions over

@@ -129,7 +129,8 @@ struct ContactReport {
   std::vector<Real> err_history;
   std::vector<IterationReport> history;
   // The paper's measures of the last iterate (theory.md §6.4), with w_n = w.n on the surface:
-  /// ||max(0, w_n - gap)|| in L2(surface), P1 interpolant [m^2] (the penetration; w_n at zero gap)
+  /// ||max(0, w_n - gap)|| in L2(surface), the face element's interpolant [m^2] (the penetration;
+  /// w_n at zero gap)
   Real wn_pos_l2 = 0.0;
   Real wn_pos_inf = 0.0;    ///< max over surface nodes of max(0, w_n - gap) [m]
   Real max_neg_wn = 0.0;    ///< max of gap - w_n (the largest opening) [m]

@@ -1,5 +1,6 @@
 #pragma once
-// fe: the P1 vector space's degrees of freedom. Each node carries three displacement components;
+// fe: the finite element space's degrees of freedom. Each node (corners and, on a quadratic
+// mesh, edge nodes alike) carries three displacement components;
 // components fixed by homogeneous Dirichlet conditions are eliminated, the others are numbered
 // in node-major order (node 0 x, y, z, node 1 x, ...), so K has only free dofs.
 
