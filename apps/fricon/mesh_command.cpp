@@ -21,18 +21,20 @@ struct MeshFileOptions {
   std::string out, file;
   int msh_version = mesh::kMsh41;
   bool binary = false;
-  double size_factor = 0.0;  // 0: not given
-  std::string unit = "m";    // mesh info: the unit of the file's coordinates ([mesh] unit)
+  double size_factor = 0.0;          // 0: not given
+  int order = driver::kLinearOrder;  // mesh brick: the elements' order ([mesh] order)
+  std::string unit = "m";            // mesh info: the unit of the file's coordinates ([mesh] unit)
 };
 
 // `fricon mesh brick`: the structured brick of the paper (theory.md §7.2) as a Gmsh file.
 int mesh_brick(const MeshFileOptions& o) {
   const mesh::BrickSpec spec{Vec3(o.size[0], o.size[1], o.size[2]),
                              {o.cells[0], o.cells[1], o.cells[2]}};
-  const mesh::TetMesh mesh = mesh::make_brick(spec);
+  mesh::TetMesh mesh = mesh::make_brick(spec);
+  if (o.order == driver::kQuadraticOrder) mesh::add_edge_midpoints(mesh);  // as [mesh] order = 2
   mesh::write_gmsh(o.out, mesh, o.msh_version, o.binary);
-  fmt::print("{}: {} nodes, {} tetrahedra, {} boundary triangles (MSH {} {})\n", o.out,
-             mesh.n_nodes(), mesh.n_tets(), mesh.n_faces(),
+  fmt::print("{}: {} nodes, {} {}-node tetrahedra, {} boundary triangles (MSH {} {})\n", o.out,
+             mesh.n_nodes(), mesh.n_tets(), mesh.nodes_per_tet(), mesh.n_faces(),
              o.msh_version == mesh::kMsh41 ? "4.1" : "2.2", o.binary ? "binary" : "ASCII");
   return kConverged;
 }
@@ -107,6 +109,11 @@ std::vector<Command> define_mesh(CLI::App& app) {
   brick->add_option("--msh-version", o->msh_version, "MSH format version: 41 or 22")
       ->check(CLI::IsMember({mesh::kMsh41, mesh::kMsh22}));
   brick->add_flag("--binary", o->binary, "Write a binary MSH file");
+  brick
+      ->add_option("--order", o->order,
+                   "Element order: 1 (4-node tetrahedra) or 2 (10-node, straight edge midpoints;\n"
+                   "Gmsh types 11 and 9)")
+      ->check(CLI::IsMember({driver::kLinearOrder, driver::kQuadraticOrder}));
   CLI::App* info = mesh->add_subcommand(
       "info",
       "Read a Gmsh file (.msh, or .geo meshed on the fly) as fricon does and print its nodes,\n"

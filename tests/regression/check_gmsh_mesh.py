@@ -2,7 +2,9 @@
 
 The counts printed by `mesh info` must be those of the brick: (nx+1)(ny+1)(nz+1) nodes,
 5 nx ny nz tetrahedra, 2 triangles per boundary square, and per side one entity per 2 x 2 block;
-and a .geo file's physical curves and points are listed with their nodes.
+a .geo file's physical curves and points are listed with their nodes; and `--order 2` writes
+10-node tetrahedra (a node at the midpoint of every edge: vertices + edges nodes, the edges from
+Euler's formula) that `mesh info` reads back at order 2.
 
 Usage: check_gmsh_mesh.py FRICON UNUSED OUTDIR
 """
@@ -49,6 +51,20 @@ for version, binary in (("41", False), ("41", True), ("22", False)):
             if not m or (int(m.group(1)), int(m.group(3))) != (expected[0], expected[2]) or abs(
                     float(m.group(2)) - expected[1]) > 1e-12:
                 failures.add(f"{msh}: tag {axis}{side} expected {expected} in\n{info}")
+
+# Order 2: every edge of the tetrahedra gets one node, so nodes = vertices + edges, the edges
+# from Euler's formula for the tetrahedra filling the box (a ball): V - E + F - T = 1.
+msh = out / "brick-quadratic.msh"
+run(["mesh", "brick", "--size", "3,1,0.5", "--cells", f"{nx},{ny},{nz}", "--out", str(msh),
+     "--order", "2"])
+info = run(["mesh", "info", str(msh)])
+head = re.search(r"(\d+) nodes, (\d+) 10-node tetrahedra, (\d+) boundary triangles", info)
+vertices, tets = (nx + 1) * (ny + 1) * (nz + 1), 5 * nx * ny * nz
+boundary = 4 * sum(squares.values())
+faces = (4 * tets + boundary) // 2  # each inner face in two tetrahedra, each boundary one in one
+edges = vertices + faces - tets - 1
+if not head or tuple(map(int, head.groups())) != (vertices + edges, tets, boundary):
+    failures.add(f"{msh}: expected {vertices + edges} nodes, {tets} 10-node tetrahedra in\n{info}")
 
 r = common.run([exe, "mesh", "info", out / "missing.msh"])
 if r.returncode != 1 or "missing.msh: no such file" not in r.stderr:
