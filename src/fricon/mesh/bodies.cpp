@@ -140,7 +140,8 @@ TetMesh disjoint_union(const std::vector<TetMesh>& parts,
     const TetMesh& part = parts[i];
     whole.nodes.middleCols(node0, part.n_nodes()) = part.nodes;
     whole.tets.middleCols(tet0, part.n_tets()) = part.tets.array() + node0;
-    whole.tet_extra.middleCols(tet0, part.n_tets()) = part.tet_extra.array() + node0;
+    if (tet_extra > 0)  // a linear part's tet_extra may have no columns at all
+      whole.tet_extra.middleCols(tet0, part.n_tets()) = part.tet_extra.array() + node0;
     for (Index t = 0; t < part.n_tets(); ++t) {
       const std::string region = part.region_names.empty()
                                      ? "body"
@@ -148,7 +149,8 @@ TetMesh disjoint_union(const std::vector<TetMesh>& parts,
       whole.tet_region.push_back(index_of(whole.region_names, prefixes[i] + region));
     }
     whole.faces.middleCols(face0, part.n_faces()) = part.faces.array() + node0;
-    whole.face_extra.middleCols(face0, part.n_faces()) = part.face_extra.array() + node0;
+    if (face_extra > 0)
+      whole.face_extra.middleCols(face0, part.n_faces()) = part.face_extra.array() + node0;
     for (const RigidSurface& surface : part.rigid_surfaces) {
       whole.rigid_surfaces.push_back(surface);
       whole.rigid_surfaces.back().name = prefixes[i] + surface.name;
