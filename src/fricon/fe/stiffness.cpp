@@ -33,8 +33,7 @@ ElementMatrix element_stiffness(const Element& element, const ElementNodes& x,
   for (Index q = 0; q < points.size(); ++q) {
     const CellMap map = map_cell(x, points.derivatives[static_cast<size_t>(q)]);
     if (!(map.det > 0.0))
-      throw NumericalError(
-          fmt::format("inverted or degenerate element (det J = {:.3e})", map.det));
+      throw NumericalError(fmt::format("inverted or degenerate element (det J = {:.3e})", map.det));
     const StrainMatrix B = strain_matrix(map.grad);
     K.noalias() += (points.weight(q) * map.det) * (B.transpose() * material.D * B);
   }

@@ -2,6 +2,7 @@
 // lambda_a, constant gradients (theory.md §2.1).
 
 #include "fricon/fe/elements/lagrange.hpp"
+#include "fricon/fe/elements/simplex_shapes.hpp"
 
 namespace fricon::fe {
 
@@ -23,11 +24,7 @@ class TetP1 final : public Element {
   MatrixXd node_points() const override { return MatrixXd::Identity(kNodes, kNodes); }
   ShapeValues values(const VectorXd& bary) const override { return bary; }
   ShapeDerivatives derivatives(const VectorXd&) const override {
-    // lambda_0 = 1 - xi1 - xi2 - xi3, lambda_i = xi_i.
-    ShapeDerivatives d = ShapeDerivatives::Zero(kNodes, kDim);
-    d.row(0).setConstant(-1.0);
-    d.bottomRows(kDim).setIdentity();
-    return d;
+    return simplex::linear_derivatives(kDim);
   }
   const Tabulation& stiffness_points() const override { return stiffness_; }
   const Tabulation& mass_points() const override { return mass_; }

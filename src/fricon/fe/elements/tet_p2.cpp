@@ -3,6 +3,7 @@
 // 4 lambda_a lambda_b, the edges in Gmsh's order (mesh::kTetEdge: nodes 4..9).
 
 #include "fricon/fe/elements/lagrange.hpp"
+#include "fricon/fe/elements/simplex_shapes.hpp"
 
 namespace fricon::fe {
 
@@ -25,36 +26,13 @@ class TetP2 final : public Element {
   int order() const override { return 2; }
   int n_nodes() const override { return kNodes; }
   MatrixXd node_points() const override {
-    MatrixXd p = MatrixXd::Zero(kCorners, kNodes);
-    p.leftCols(kCorners).setIdentity();
-    for (int e = 0; e < mesh::kTetEdges; ++e) {
-      p(mesh::kTetEdge[e][0], kCorners + e) = 0.5;
-      p(mesh::kTetEdge[e][1], kCorners + e) = 0.5;
-    }
-    return p;
+    return simplex::quadratic_node_points(kCorners, mesh::kTetEdge);
   }
   ShapeValues values(const VectorXd& l) const override {
-    ShapeValues N(kNodes);
-    for (int a = 0; a < kCorners; ++a)
-      N(a) = l(a) * (2.0 * l(a) - 1.0);
-    for (int e = 0; e < mesh::kTetEdges; ++e)
-      N(kCorners + e) = 4.0 * l(mesh::kTetEdge[e][0]) * l(mesh::kTetEdge[e][1]);
-    return N;
+    return simplex::quadratic_values(l, mesh::kTetEdge);
   }
   ShapeDerivatives derivatives(const VectorXd& l) const override {
-    // d/dxi_i = d/dlambda_i - d/dlambda_0 (lambda_0 = 1 - xi1 - xi2 - xi3).
-    Eigen::Matrix<Real, kNodes, kCorners> dl = Eigen::Matrix<Real, kNodes, kCorners>::Zero();
-    for (int a = 0; a < kCorners; ++a)
-      dl(a, a) = 4.0 * l(a) - 1.0;
-    for (int e = 0; e < mesh::kTetEdges; ++e) {
-      const int a = mesh::kTetEdge[e][0], b = mesh::kTetEdge[e][1];
-      dl(kCorners + e, a) = 4.0 * l(b);
-      dl(kCorners + e, b) = 4.0 * l(a);
-    }
-    ShapeDerivatives d(kNodes, kDim);
-    for (int i = 0; i < kDim; ++i)
-      d.col(i) = dl.col(i + 1) - dl.col(0);
-    return d;
+    return simplex::quadratic_derivatives(l, mesh::kTetEdge);
   }
   const Tabulation& stiffness_points() const override { return stiffness_; }
   const Tabulation& mass_points() const override { return mass_; }

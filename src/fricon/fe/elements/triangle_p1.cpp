@@ -1,6 +1,7 @@
 // fe/elements: the 3-node (P1) triangle, the trace of the 4-node tetrahedron on a face.
 
 #include "fricon/fe/elements/lagrange.hpp"
+#include "fricon/fe/elements/simplex_shapes.hpp"
 
 namespace fricon::fe {
 
@@ -20,10 +21,7 @@ class TriangleP1 final : public Element {
   MatrixXd node_points() const override { return MatrixXd::Identity(kNodes, kNodes); }
   ShapeValues values(const VectorXd& bary) const override { return bary; }
   ShapeDerivatives derivatives(const VectorXd&) const override {
-    ShapeDerivatives d = ShapeDerivatives::Zero(kNodes, kDim);
-    d.row(0).setConstant(-1.0);
-    d.bottomRows(kDim).setIdentity();
-    return d;
+    return simplex::linear_derivatives(kDim);
   }
   // A triangle has no stiffness of its own; its mass points serve every surface integral.
   const Tabulation& stiffness_points() const override { return mass_; }

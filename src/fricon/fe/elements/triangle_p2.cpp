@@ -4,6 +4,7 @@
 // functions integrate to zero over a straight triangle, the edge functions to |T|/3.
 
 #include "fricon/fe/elements/lagrange.hpp"
+#include "fricon/fe/elements/simplex_shapes.hpp"
 
 namespace fricon::fe {
 
@@ -25,35 +26,13 @@ class TriangleP2 final : public Element {
   int order() const override { return 2; }
   int n_nodes() const override { return kNodes; }
   MatrixXd node_points() const override {
-    MatrixXd p = MatrixXd::Zero(kCorners, kNodes);
-    p.leftCols(kCorners).setIdentity();
-    for (int e = 0; e < mesh::kTriangleEdges; ++e) {
-      p(mesh::kTriangleEdge[e][0], kCorners + e) = 0.5;
-      p(mesh::kTriangleEdge[e][1], kCorners + e) = 0.5;
-    }
-    return p;
+    return simplex::quadratic_node_points(kCorners, mesh::kTriangleEdge);
   }
   ShapeValues values(const VectorXd& l) const override {
-    ShapeValues N(kNodes);
-    for (int a = 0; a < kCorners; ++a)
-      N(a) = l(a) * (2.0 * l(a) - 1.0);
-    for (int e = 0; e < mesh::kTriangleEdges; ++e)
-      N(kCorners + e) = 4.0 * l(mesh::kTriangleEdge[e][0]) * l(mesh::kTriangleEdge[e][1]);
-    return N;
+    return simplex::quadratic_values(l, mesh::kTriangleEdge);
   }
   ShapeDerivatives derivatives(const VectorXd& l) const override {
-    Eigen::Matrix<Real, kNodes, kCorners> dl = Eigen::Matrix<Real, kNodes, kCorners>::Zero();
-    for (int a = 0; a < kCorners; ++a)
-      dl(a, a) = 4.0 * l(a) - 1.0;
-    for (int e = 0; e < mesh::kTriangleEdges; ++e) {
-      const int a = mesh::kTriangleEdge[e][0], b = mesh::kTriangleEdge[e][1];
-      dl(kCorners + e, a) = 4.0 * l(b);
-      dl(kCorners + e, b) = 4.0 * l(a);
-    }
-    ShapeDerivatives d(kNodes, kDim);
-    for (int i = 0; i < kDim; ++i)
-      d.col(i) = dl.col(i + 1) - dl.col(0);
-    return d;
+    return simplex::quadratic_derivatives(l, mesh::kTriangleEdge);
   }
   // A triangle has no stiffness of its own; its mass points serve every surface integral.
   const Tabulation& stiffness_points() const override { return mass_; }
