@@ -81,6 +81,23 @@ endif()
 fricon_optional("Siconos numerics" "${SICONOS_NUMERICS_FOUND_ALL}" libsiconos-numerics-dev
                 "the comparisons with Siconos (bench, verification)")
 
+# METIS 5 (Debian: libmetis-dev): the partition of the bodies into the subdomains of the Total
+# FETI backend ([solver] backend = "tfeti", src/fricon/feti/partition.cpp). Debian ships no CMake
+# config for it: found by hand, as the IMPORTED target fricon_metis. Optional: without it fricon
+# still builds, gives each body one subdomain, and says how to get METIS when more are asked for.
+find_path(METIS_INCLUDE_DIR metis.h)
+find_library(METIS_LIBRARY metis)
+set(_metis_found FALSE)
+if(METIS_INCLUDE_DIR AND METIS_LIBRARY)
+  set(_metis_found TRUE)
+  message(STATUS "METIS found (${METIS_LIBRARY})")
+  add_library(fricon_metis UNKNOWN IMPORTED)
+  set_target_properties(fricon_metis PROPERTIES IMPORTED_LOCATION ${METIS_LIBRARY}
+                        INTERFACE_INCLUDE_DIRECTORIES ${METIS_INCLUDE_DIR})
+endif()
+fricon_optional("METIS" "${_metis_found}" libmetis-dev
+                "the subdomain partition of backend \"tfeti\" beyond one subdomain per body")
+
 # PETSc 3.18 with MPI (OpenMPI) and MUMPS (Debian: petsc-dev): the distributed backend
 # ([solver] backend = "petsc", docs/parallel.md). Optional: without it (or with
 # FRICON_WITH_PETSC=OFF) fricon runs on one process and says how to get the backend when asked.

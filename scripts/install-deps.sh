@@ -20,6 +20,8 @@ packages=(
   pybind11-dev python3-dev python3-pytest
   # runs on many MPI ranks: PETSc 3.18 with OpenMPI, MUMPS, hypre, PT-Scotch
   petsc-dev
+  # graph partitions of the bodies into subdomains (backend "tfeti")
+  libmetis-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
   # reading results back (tests) and plots: Debian's Python packages for /usr/bin/python3

@@ -119,6 +119,16 @@ qp::BlockScaling dual_scaling(const Problem& problem, const Model& m,
   return qp::BlockScaling::per_block(layout, per_block);
 }
 
+qp::BlockScaling with_equality_multipliers(const qp::BlockScaling& contact,
+                                           const dual::DualOperator& Q) {
+  if (Q.n_equality() == 0) return contact;
+  VectorXd d = VectorXd::Ones(Q.size());
+  d.head(contact.size()) = contact.d();
+  qp::SeparableConstraints layout;
+  layout.append_free(Q.size());
+  return qp::BlockScaling::per_block(layout, d);
+}
+
 qp::MpgpOptions qp_options(const SolverOptions& so, Real norm_Q, const RunOptions& options) {
   qp::MpgpOptions o = so.qp;
   o.norm_A = norm_Q;
@@ -133,6 +143,10 @@ qp::MpgpOptions qp_options(const SolverOptions& so, Real norm_Q, const RunOption
 qp::DualProblem first_dual_problem(const Problem& problem,
                                    const contact::ContactDiscretization& disc,
                                    const dual::DualOperator& Q, const TrescaMap& map) {
+  if (Q.n_equality() > 0)
+    throw InputError(
+        "the dual QP of backend \"tfeti\" carries the subdomains' gluing multipliers: dump "
+        "the contact QP with solver.backend = \"cholmod\"");
   qp::DualProblem d;
   d.Q = Q.to_dense();
   d.h = Q.h();
@@ -226,9 +240,10 @@ Real coulomb_pairs_residual(const contact::SlipBounds& bounds, const VectorXd& l
 Real coulomb_residual_now(const TrescaMap& map, const VectorXd& state, const dual::DualOperator& Q,
                           const contact::SlipBounds& bounds, const ContactReport& rep) {
   VectorXd g;
-  Q.apply(map.lambda(), g);
+  Q.apply(map.all_lambda(), g);
   g -= Q.h();
   if (Q.n_motions() > 0) g -= Q.G().transpose() * map.alpha();
+  g.conservativeResize(Q.n_contact());
   return coulomb_pairs_residual(bounds, map.lambda(), g, bounds.mean_coefficients(map.slips(state)),
                                 1.0 / rep.norm_Q, rep.lambda_scale);
 }
@@ -269,17 +284,23 @@ void remove_undetermined_motions(const dual::DualOperator& Q, const SparseMatrix
 }
 
 VectorXd certify(const contact::ContactDiscretization& disc, const dual::DualOperator& Q,
-                 const SparseMatrix& R, const TrescaMap& map, ContactReport& rep, VectorXd& g) {
-  VectorXd w = Q.displacement(map.lambda());
+                 const SparseMatrix& R, const TrescaMap& map, const qp::BlockScaling& scaling,
+                 ContactReport& rep, VectorXd& g) {
+  VectorXd w = Q.displacement(map.all_lambda());
   if (Q.n_motions() > 0) {
-    // The rigid motions that contact fixes, and the balance of the floating bodies.
+    // The rigid motions that contact fixes (with Total FETI those of every subdomain), and the
+    // balance of the floating bodies (of the subdomains).
     w += Q.rigid_displacement(map.alpha());
-    const VectorXd Gl = Q.G() * map.lambda();
+    const VectorXd Gl = Q.G() * map.all_lambda();
     const Real scale = std::max(Q.e().norm(), Gl.norm());
     rep.equality_residual = scale > 0.0 ? (Gl - Q.e()).norm() / scale : 0.0;
-    rep.rigid_amplitudes = map.alpha();
-    rep.undetermined_motions = map.last_smalse().undetermined;
+    if (Q.n_equality() == 0) {
+      rep.rigid_amplitudes = map.alpha();
+      rep.undetermined_motions = map.last_smalse().undetermined;
+    }
   }
+  // Total FETI: the copies of every node agree and the Dirichlet values hold (theory.md §7.6).
+  if (Q.n_equality() > 0) rep.gluing_residual = Q.gluing_residual(map.all_lambda(), map.alpha());
   const VectorXd& w_c = map.w();
   const Real tolerance = kRecoveryTolerance * w.lpNorm<Eigen::Infinity>();
   for (Index dof : disc.dofs)
@@ -288,9 +309,12 @@ VectorXd certify(const contact::ContactDiscretization& disc, const dual::DualOpe
                      << dof << ": " << w_c(dof) << ") disagrees with the full solve (" << w(dof)
                      << ")");
   if (Q.n_motions() > 0) remove_undetermined_motions(Q, R, rep.undetermined_motions, w);
-  g = disc.B * (Q.u0() - w) - Q.h();
-  rep.kkt = qp::scaled_kkt_residuals(map.lambda(), g, Q.h(), map.constraints(), map.scaling(),
-                                     qp::StopReference::Resisted);
+  const VectorXd h = Q.h().head(Q.n_contact());
+  g = disc.B * (Q.u0() - w) - h;
+  qp::SeparableConstraints contact = qp::SeparableConstraints::contact_layout(disc.n_patches());
+  contact.set_disc_radii(map.radius());
+  rep.kkt =
+      qp::scaled_kkt_residuals(map.lambda(), g, h, contact, scaling, qp::StopReference::Resisted);
   return w;
 }
 
@@ -480,6 +504,14 @@ void conclude(const outer::OuterReport& loop, ContactOutcome& out) {
         "the relative residual {:.3e}, more than {:.1e}",
         rep.equality_residual, rep.equality_bound);
   }
+  if (out.converged && !(rep.gluing_residual <= rep.kkt_bound)) {
+    rep.termination = outer::OuterTermination::CertificateFailed;
+    out.converged = false;
+    out.message = fmt::format(
+        "the certificate of the final QP failed: the subdomains' copies of a node (or a "
+        "Dirichlet value) differ by {:.3e} of the largest displacement, more than {:.1e}",
+        rep.gluing_residual, rep.kkt_bound);
+  }
   if (out.converged && !(rep.kkt.max() <= rep.kkt_bound)) {
     rep.termination = outer::OuterTermination::CertificateFailed;
     out.converged = false;
@@ -522,6 +554,9 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m,
   // Coulomb residual), then the map Psi on the state.
   const qp::BlockScaling scaling =
       dual_scaling(problem, m, disc, qp::SeparableConstraints::contact_layout(disc.n_patches()));
+  // Over every multiplier of Q: the equality multipliers of an operator that has them (Total
+  // FETI's, whose rows are scaled already, theory.md §7.5) keep the factor 1.
+  const qp::BlockScaling qp_scaling = with_equality_multipliers(scaling, Q);
   if (step && step->norm_Q > 0.0) {
     rep.norm_Q = step->norm_Q;
     rep.norm_Q_scaled = step->norm_Q_scaled;
@@ -530,10 +565,10 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m,
     rep.norm_Q = estimate_norm_Q(Q, qp::BlockScaling::identity(Q.size()), options);
     rep.norm_Q_scaled = problem.solver.dual_scaling == contact::DualScaling::None
                             ? rep.norm_Q
-                            : estimate_norm_Q(Q, scaling, options);
+                            : estimate_norm_Q(Q, qp_scaling, options);
   }
   const auto bounds = make_slip_bounds(problem, m.mesh, disc);
-  TrescaMap map(m.dofs, disc, Q, *bounds, scaling,
+  TrescaMap map(m.dofs, disc, Q, *bounds, qp_scaling,
                 qp_options(problem.solver, rep.norm_Q_scaled, options), problem.solver.warm_start,
                 times);
   if (options.keep_first_dual) out.first_dual = first_dual_problem(problem, disc, Q, map);
@@ -559,7 +594,7 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m,
   VectorXd g;
   {
     ScopedPhase phase(times, "recovery");
-    out.w = certify(disc, Q, m.floating.R, map, rep, g);
+    out.w = certify(disc, Q, m.floating.R, map, scaling, rep, g);
   }
   const contact::ContactDiscretization& whole = selection ? selection->whole : disc;
   WholeResult result{map.lambda(), map.radius(), std::move(g)};

@@ -171,6 +171,9 @@ struct ContactReport {
   Real equality_residual = 0.0;
   Real equality_bound = 0.0;
   long smalse_outer_iterations = 0;
+  /// Backend "tfeti" (theory.md §7.6): the largest violation of the gluing and Dirichlet rows by
+  /// the result, relative to the largest displacement; certified against kkt_bound. 0 otherwise.
+  Real gluing_residual = 0.0;
   /// Against a curved rigid obstacle (theory.md §2.11): the geometric updates made (solves
   /// again at the deformed position) and, at the result, the largest difference between the
   /// linearized and the true gap of a node in contact [m], the largest normal displacement there

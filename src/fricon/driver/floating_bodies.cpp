@@ -100,7 +100,7 @@ void check_balance(const Problem& problem, const Model& model,
   c.set_disc_radii(
       bounds->radii(1, VectorXd::Zero(disc.surface.n_nodes()), VectorXd::Zero(disc.n_patches())));
   const SparseMatrix& R = model.floating.R;
-  const qp::EqualityConstraint balance{MatrixXd(SparseMatrix(R.transpose() * disc.B.transpose())),
+  const qp::EqualityConstraint balance{SparseMatrix(R.transpose() * disc.B.transpose()),
                                        R.transpose() * model.f};
   if (auto certificate = qp::balance_certificate(balance, c, problem.solver.qp.rel_tolerance))
     refuse_unbalanced_load(problem, model, *certificate);

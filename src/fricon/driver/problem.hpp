@@ -26,6 +26,7 @@
 #include "fricon/driver/positions.hpp"
 #include "fricon/dual/dual_operator_kind.hpp"
 #include "fricon/fe/material.hpp"
+#include "fricon/feti/feti_options.hpp"
 #include "fricon/outer/outer_loop.hpp"
 #include "fricon/parallel/backend.hpp"
 #include "fricon/qp/mpgp.hpp"
@@ -220,6 +221,11 @@ struct SolverOptions {
   parallel::Backend backend = parallel::Backend::Cholmod;  ///< [solver.backend]
   parallel::PartitionKind partition = parallel::PartitionKind::Graph;  ///< [solver.partition]
   std::optional<Real> memory_per_rank;  ///< [solver.memory_per_rank] [MiB]; absent: no limit
+  /// [solver.subdomains] backend "tfeti": the number of subdomains over all bodies; absent: from
+  /// subdomain_size.
+  std::optional<int> subdomains;
+  int subdomain_size = static_cast<int>(feti::kDefaultSubdomainSize);  ///< [solver.subdomain_size]
+  feti::RowScaling tfeti_scaling = feti::RowScaling::Stiffness;        ///< [solver.tfeti_scaling]
 };
 
 /// The number of load steps of a path ([loading] steps).

@@ -168,6 +168,11 @@ void check_solver(const Problem& p, const std::string& path, const SolverOptions
          "\"petsc\": this fricon was built without PETSc; install Debian's petsc-dev (`make deps` "
          "or scripts/install-deps.sh does) and rebuild (`make build`: CMake finds it), then run "
          "`mpirun -n P fricon solve ...` (docs/parallel.md)");
+  if (s.backend == parallel::Backend::Tfeti && !feti::metis_available())
+    fail(p, join_key(path, "backend"),
+         "\"tfeti\": this fricon was built without METIS, which cuts the bodies into subdomains; "
+         "install Debian's libmetis-dev (`make deps` or scripts/install-deps.sh does) and rebuild "
+         "(`make build`)");
   if (s.backend == parallel::Backend::Petsc && s.dual_operator == dual::DualOperatorKind::Forward)
     fail(p, join_key(path, "dual_operator"),
          "\"forward\" sweeps a CHOLMOD factor; with backend = \"petsc\" use \"auto\", \"schur\" "
@@ -654,7 +659,9 @@ const OptionTable& solver_table() {
              "rank assembles its own tetrahedra and MUMPS factors across them). With "
              "`\"petsc\"`, `dual_operator` may be `\"auto\"`, `\"schur\"` or `\"implicit\"`, not "
              "`\"forward\"`. A fricon built without PETSc refuses `\"petsc\"` and says how to "
-             "get it. docs/parallel.md");
+             "get it. `\"tfeti\"`: Total FETI, each body cut into subdomains that are factored "
+             "on their own (on the machine's threads) and glued by multipliers in the same dual "
+             "QP as the contact ones, for meshes past one factorization; docs/theory.md §7");
     b.choice("partition", &SolverOptions::partition,
              "with `backend = \"petsc\"`: how the tetrahedra are split among the ranks for "
              "assembly: `\"graph\"` (PT-Scotch through PETSc, on the mesh's dual graph) or "
@@ -672,6 +679,35 @@ const OptionTable& solver_table() {
                  enum_name(s.backend));
            },
            "with `backend = \"petsc\"`");
+    // The keys of backend "tfeti" are used only with it.
+    const auto tfeti_only = [&b] {
+      b.when([](const SolverOptions& s) { return s.backend == parallel::Backend::Tfeti; },
+             [](const SolverOptions& s) {
+               return fmt::format(
+                   "sets up the subdomains of backend = \"tfeti\" (backend is \"{}\")",
+                   enum_name(s.backend));
+             },
+             "with `backend = \"tfeti\"`");
+    };
+    b.number("subdomains", &SolverOptions::subdomains, integer_at_least(1),
+             "with `backend = \"tfeti\"`: the number of subdomains over all bodies (each body "
+             "gets a share in proportion to its tetrahedra, at least one), cut by METIS on the "
+             "bodies' dual graphs; a part that METIS leaves disconnected becomes one subdomain "
+             "per connected piece. Absent: from `subdomain_size`; theory.md §7.1")
+        .show_default("from subdomain_size");
+    tfeti_only();
+    b.number("subdomain_size", &SolverOptions::subdomain_size,
+             integer_at_least(feti::kMinSubdomainSize),
+             "with `backend = \"tfeti\"` and no `subdomains`: the target number of nodes per "
+             "subdomain (the default was measured the fastest on the paper's brick, "
+             "docs/benchmarks.md)");
+    tfeti_only();
+    b.choice("tfeti_scaling", &SolverOptions::tfeti_scaling,
+             "with `backend = \"tfeti\"`: how the gluing and Dirichlet rows of B are scaled: "
+             "`\"stiffness\"` (each by the lumped stiffness of its dofs, so that its diagonal "
+             "entry of F is about 1, as the scaled contact rows'; a diagonal preconditioner of "
+             "the equality multipliers) or `\"uniform\"` (one factor for all); theory.md §7.5");
+    tfeti_only();
     b.check(check_solver);
     return b.build();
   }();

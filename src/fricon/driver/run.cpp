@@ -6,7 +6,9 @@
 #include <fmt/format.h>
 #include "fricon/core/error.hpp"
 #include "fricon/driver/run_steps.hpp"
+#include "fricon/driver/tfeti_solve.hpp"
 #include "fricon/fe/stress.hpp"
+#include "fricon/linalg/blas.hpp"
 
 namespace fricon::driver {
 
@@ -64,6 +66,8 @@ bool frictionless(const Problem& problem) {
 
 bool search_applies(const Problem& problem, const Model&) {
   if (problem.solver.contact_search == contact::ContactSearch::Off) return false;
+  // Total FETI has no free displacement K^-1 f to choose candidates from: every patch.
+  if (problem.solver.backend == parallel::Backend::Tfeti) return false;
   // A positive Tresca bound g F acts without pressure: every patch of such a pair resists
   // sliding, so none may be left out (theory.md §2.7).
   const bool tresca_with_friction =
@@ -203,6 +207,13 @@ namespace {
 VectorXd solve_with_contact(const Problem& problem, const contact::ContactDiscretization& disc,
                             const RunOptions& options, RunResult& r) {
   const Model& m = r.model;
+  if (problem.solver.backend == parallel::Backend::Tfeti) {
+    phase_start(options, "factorize");
+    const std::unique_ptr<feti::FetiOperator> F = make_feti_operator(problem, m, &disc, r.report);
+    VectorXd u = solve_with_operator(problem, disc, *F, options, r);
+    record_feti_counts(*F, r.report);
+    return u;
+  }
   phase_start(options, "dual");
   std::unique_ptr<dual::DualOperator> Q;
   {
@@ -343,7 +354,10 @@ std::optional<contact::ContactDiscretization> build_factored_model(const Problem
                                                                    const RunOptions& options,
                                                                    RunResult& r) {
   RunReport& rep = r.report;
-  r.model = assemble_model(problem, rep.times, options.on_phase_start);
+  // Total FETI factors the subdomains instead (driver/tfeti_solve.hpp): no K of the whole.
+  const bool tfeti = problem.solver.backend == parallel::Backend::Tfeti;
+  r.model = tfeti ? assemble_loads(problem, rep.times, options.on_phase_start)
+                  : assemble_model(problem, rep.times, options.on_phase_start);
   std::optional<contact::ContactDiscretization> disc;
   if (problem.contact.empty()) {
     (void)check_model(problem, r.model);
@@ -352,11 +366,12 @@ std::optional<contact::ContactDiscretization> build_factored_model(const Problem
     ScopedPhase phase(rep.times, "contact");
     disc = check_model(problem, r.model);
   }
+  report_sizes(r.model, rep);
+  if (tfeti) return disc;
   const dual::FactorizationRequest request =
       disc ? dual::factorization_request(problem.solver.dual_operator, disc->dofs)
            : dual::FactorizationRequest{};
   factorize_model(r.model, request, rep.times, options.on_phase_start, &problem);
-  report_sizes(r.model, rep);
   rep.factor = r.model.factor.info();
   return disc;
 }
@@ -445,11 +460,12 @@ RunResult run(const Problem& problem, const RunOptions& options) {
   if (problem.loading.steps > 1) return run_path(problem, options);
   const Stopwatch total;
   validate(problem);
-  if (problem.solver.backend != parallel::Backend::Cholmod)
+  if (problem.solver.backend == parallel::Backend::Petsc)
     throw InputError(fmt::format(
-        "{}: solver.backend: driver::run factors K on one process (\"cholmod\"); fricon::solve "
-        "(fricon/solve.hpp) runs backend \"{}\"",
+        "{}: solver.backend: driver::run runs on one process (\"cholmod\" or \"tfeti\"); "
+        "fricon::solve (fricon/solve.hpp) runs backend \"{}\"",
         problem.where("solver.backend"), enum_name(problem.solver.backend)));
+  const linalg::KeepThreads blas_threads;  // Total FETI runs the BLAS on one thread
   RunResult r;
   RunReport& rep = r.report;
 
@@ -459,7 +475,10 @@ RunResult run(const Problem& problem, const RunOptions& options) {
   if (options.stop_was_requested()) throw Interrupted("interrupted before the solve");
 
   // @sect: the displacement: one solve, or the outer loop of dual QPs.
-  VectorXd u = disc ? solve_contact_problem(problem, *disc, options, r) : solve_elastic(r);
+  const bool tfeti = problem.solver.backend == parallel::Backend::Tfeti;
+  VectorXd u = disc    ? solve_contact_problem(problem, *disc, options, r)
+               : tfeti ? solve_elastic_tfeti(problem, options, r)
+                       : solve_elastic(r);
   if (disc)
     u = update_geometry(problem, *disc, std::move(u), options, r,
                         [&](const contact::ContactDiscretization& relinearized) {

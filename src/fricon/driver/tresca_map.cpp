@@ -66,12 +66,21 @@ TrescaMap::TrescaMap(const fe::DofMap& dofs, const contact::ContactDiscretizatio
       times_(times),
       apply_Q_(Q.as_qp_operator()),
       constraints_(qp::SeparableConstraints::contact_layout(discretization.n_patches())),
-      lambda_(VectorXd::Zero(discretization.n_dual())) {}
+      lambda_(VectorXd::Zero(discretization.n_dual())),
+      all_lambda_(VectorXd::Zero(Q.size())) {
+  // The operator's equality multipliers (Total FETI's gluing and Dirichlet rows) follow the
+  // contact ones, free of any bound (theory.md §7.3).
+  FRICON_CHECK(Q.n_contact() == discretization.n_dual() && scaling.size() == Q.size(),
+               "an operator of " << Q.n_contact() << " contact multipliers and a scaling of "
+                                 << scaling.size() << " for " << discretization.n_dual());
+  constraints_.append_free(Q.n_equality());
+}
 
 void TrescaMap::set_lambda(const VectorXd& lambda) {
   FRICON_CHECK(lambda.size() == lambda_.size(),
                "lambda of " << lambda.size() << " for " << lambda_.size() << " multipliers");
   lambda_ = lambda;
+  all_lambda_.head(lambda_.size()) = lambda_;
 }
 
 std::vector<outer::StateBlock> TrescaMap::layout() const {
@@ -99,7 +108,7 @@ void TrescaMap::solve_with_equality(int k) {
   options.equality_tolerance = kEqualityShare * qp_.rel_tolerance;
   if (!warm_start_) mu_.resize(0);
   last_smalse_ = qp::solve_smalse_scaled(apply_Q_, Q_.h(), constraints_, scaling_, {Q_.G(), Q_.e()},
-                                         options, qp_, lambda_, mu_);
+                                         options, qp_, all_lambda_, mu_);
   alpha_ = -mu_;
   if (last_smalse_.infeasible && on_infeasible_) on_infeasible_(last_smalse_.infeasibility);
   last_qp_ = last_smalse_.last_inner;
@@ -113,19 +122,20 @@ outer::MapStep TrescaMap::apply(int k, const VectorXd& state, VectorXd& image) {
   // @sect: the Tresca problem with the slip bounds frozen at the state, in its dual form.
   radius_ = radii(k, state);
   constraints_.set_disc_radii(radius_);
-  if (!warm_start_) lambda_.setZero();
+  if (!warm_start_) all_lambda_.setZero();
   {
     ScopedPhase phase(times_, "qp");
     if (Q_.n_motions() == 0)
-      last_qp_ = qp::solve_mpgp_scaled(apply_Q_, Q_.h(), constraints_, scaling_, qp_, lambda_);
+      last_qp_ = qp::solve_mpgp_scaled(apply_Q_, Q_.h(), constraints_, scaling_, qp_, all_lambda_);
     else
       solve_with_equality(k);
+    lambda_ = all_lambda_.head(lambda_.size());
   }
   // @sect: the displacement on the contact surface (with the floating bodies' rigid motions),
   // and its tangential slip.
   {
     ScopedPhase phase(times_, "recovery");
-    Q_.contact_displacement(lambda_, w_);
+    Q_.contact_displacement(all_lambda_, w_);
     if (Q_.n_motions() > 0) w_ += Q_.rigid_displacement(alpha_);
   }
   // @sect: the new state: the slips, and for Coulomb the new pressures.

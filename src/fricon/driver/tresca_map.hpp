@@ -60,7 +60,8 @@ std::vector<bool> nodes_in_contact(const contact::ContactDiscretization& disc,
 class TrescaMap final : public outer::FixedPointMap {
  public:
   /// Every reference must outlive the map. Each QP is solved in the variables scaled by
-  /// `scaling` (theory.md §4.5; qp::BlockScaling::identity for none); `qp` carries the QP's
+  /// `scaling` (theory.md §4.5; qp::BlockScaling::identity for none), over every multiplier of
+  /// Q (Q.size(): the contact ones, then Q's equality multipliers); `qp` carries the QP's
   /// tolerance, limit, variant, ||D Q D|| and monitor; `warm_start` false starts every QP from
   /// zero. Phases "qp" and "recovery" are timed into `times`.
   TrescaMap(const fe::DofMap& dofs, const contact::ContactDiscretization& discretization,
@@ -80,6 +81,9 @@ class TrescaMap final : public outer::FixedPointMap {
 
   // The state after the last application.
   const VectorXd& lambda() const { return lambda_; }  ///< multipliers [Pa], (n, t1, t2) per patch
+  /// Every multiplier of the QP: lambda() and after it the operator's equality multipliers
+  /// (dual::DualOperator::n_equality; none but Total FETI's).
+  const VectorXd& all_lambda() const { return all_lambda_; }
   const VectorXd& radius() const { return radius_; }  ///< radii of the last QP [Pa]
   /// Displacement of the last QP, exact on the contact dofs only [m].
   const VectorXd& w() const { return w_; }
@@ -96,9 +100,11 @@ class TrescaMap final : public outer::FixedPointMap {
   void set_infeasibility_handler(std::function<void(const qp::Infeasibility&)> handler) {
     on_infeasible_ = std::move(handler);
   }
+  /// The feasible set of the QP over all_lambda() (the equality multipliers free).
   const qp::SeparableConstraints& constraints() const { return constraints_; }
   const qp::BlockScaling& scaling() const { return scaling_; }
-  /// Starts the next QP from these multipliers [Pa] (a warm start from another solve).
+  /// Starts the next QP from these contact multipliers [Pa] (a warm start from another solve);
+  /// the equality multipliers keep their values.
   void set_lambda(const VectorXd& lambda);
   /// The relative tolerance of the QPs from now on (MpgpOptions::rel_tolerance), > 0.
   void set_qp_tolerance(Real rel_tolerance) { qp_.rel_tolerance = rel_tolerance; }
@@ -129,7 +135,7 @@ class TrescaMap final : public outer::FixedPointMap {
   PhaseTimes& times_;
   qp::Operator apply_Q_;
   qp::SeparableConstraints constraints_;
-  VectorXd lambda_, radius_, w_;
+  VectorXd lambda_, all_lambda_, radius_, w_;
   qp::MpgpReport last_qp_;
   qp::SmalseReport last_smalse_;
   VectorXd mu_, alpha_;

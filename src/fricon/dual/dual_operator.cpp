@@ -40,7 +40,7 @@ void DualOperator::set_equality(const SparseMatrix* R, const SparseMatrix& B, co
   FRICON_CHECK(R->rows() == B.cols() && R->rows() == f.size(),
                "set_equality: R of " << R->rows() << " rows for " << B.cols() << " free dofs");
   R_ = R;
-  if (G_.rows() != R->cols()) G_ = MatrixXd(SparseMatrix(R->transpose() * B.transpose()));
+  if (G_.rows() != R->cols()) G_ = SparseMatrix(R->transpose() * B.transpose());
   e_ = R->transpose() * f;
 }
 

@@ -99,11 +99,27 @@ class DualOperator {
   /// m, the number of free rigid motions.
   Index n_motions() const { return G_.rows(); }
   /// G = R^T B^T [m^2 per unit amplitude], m x n_dual.
-  const MatrixXd& G() const { return G_; }
+  const SparseMatrix& G() const { return G_; }
   /// e = R^T f [N per unit amplitude: N of a translation, N m of a rotation].
   const VectorXd& e() const { return e_; }
   /// R alpha over the free dofs [m]: the rigid displacement of amplitudes alpha (m entries).
-  VectorXd rigid_displacement(const VectorXd& alpha) const;
+  virtual VectorXd rigid_displacement(const VectorXd& alpha) const;
+
+  // Equality multipliers (Total FETI, theory.md §7): an operator may append, after the
+  // n_dual - n_equality() contact multipliers, multipliers of equality rows of its own B (the
+  // gluing and Dirichlet rows of the subdomains), free of any bound. h, Q and G cover them; the
+  // contact discretization knows only the contact ones.
+  /// The number of equality multipliers (0: none, every multiplier is a contact one).
+  virtual Index n_equality() const { return 0; }
+  /// The contact multipliers, size() - n_equality().
+  Index n_contact() const { return size() - n_equality(); }
+  /// The largest violation of the equality rows by the displacement of multipliers lambda and
+  /// rigid amplitudes alpha, relative to the largest displacement (0 without equality rows).
+  virtual Real gluing_residual(const VectorXd& lambda, const VectorXd& alpha) const {
+    (void)lambda;
+    (void)alpha;
+    return 0.0;
+  }
 
  protected:
   DualOperator() = default;
@@ -112,7 +128,7 @@ class DualOperator {
   /// Stores G = R^T B^T (once) and e = R^T f (R null or empty: none).
   void set_equality(const SparseMatrix* R, const SparseMatrix& B, const VectorXd& f);
   VectorXd h_, u0_;
-  MatrixXd G_;
+  SparseMatrix G_;
   VectorXd e_;
   const SparseMatrix* R_ = nullptr;
   mutable long n_kinv_ = 0;

@@ -55,6 +55,19 @@ class RunThreads {
   bool chose_ = false;
 };
 
+/// The BLAS threads as they were at construction, set again at destruction (a run that changes
+/// them for its own phases gives them back).
+class KeepThreads {
+ public:
+  KeepThreads() : count_(threads()) {}
+  ~KeepThreads() { set_threads(count_); }
+  KeepThreads(const KeepThreads&) = delete;
+  KeepThreads& operator=(const KeepThreads&) = delete;
+
+ private:
+  int count_;
+};
+
 /// X <- L^-1 X, or L^-T X when `transpose`. L is square and lower triangular (its strict upper
 /// part is not read), X has L.rows() rows.
 void solve_lower(ConstBlockRef L, BlockRef X, bool transpose = false);

@@ -19,6 +19,10 @@ enum class Backend {
   /// matrix [[K, B^T], [B, 0]] across the ranks and returns Q as its Schur complement on rank 0
   /// (docs/theory.md §3.3).
   Petsc,
+  /// Total FETI (docs/theory.md §7): each body cut into subdomains, each factored on its own
+  /// (threads on one process); the subdomains glued by equality multipliers that join the
+  /// contact multipliers in one dual QP.
+  Tfeti,
 };
 
 /// How the tetrahedra are split among the ranks of a distributed run ([solver] partition).
@@ -35,7 +39,8 @@ bool petsc_available();
 }  // namespace fricon::parallel
 
 FRICON_ENUM_NAMES(fricon::parallel::Backend, "solver.backend",
-                  {parallel::Backend::Cholmod, "cholmod"}, {parallel::Backend::Petsc, "petsc"});
+                  {parallel::Backend::Cholmod, "cholmod"}, {parallel::Backend::Petsc, "petsc"},
+                  {parallel::Backend::Tfeti, "tfeti"});
 FRICON_ENUM_NAMES(fricon::parallel::PartitionKind, "solver.partition",
                   {parallel::PartitionKind::Graph, "graph"},
                   {parallel::PartitionKind::Blocks, "blocks"});

@@ -10,7 +10,15 @@
 namespace fricon::qp {
 
 std::string to_string(BlockKind kind) {
-  return kind == BlockKind::Bound ? "bound" : "disc";
+  switch (kind) {
+    case BlockKind::Bound:
+      return "bound";
+    case BlockKind::Disc:
+      return "disc";
+    case BlockKind::Free:
+      return "free";
+  }
+  return "unknown";
 }
 
 Index SeparableConstraints::size() const {
@@ -45,6 +53,13 @@ void SeparableConstraints::validate() const {
   Index extent = 0;
   for (Index k = 0; k < n_blocks; ++k) {
     const Block& blk = blocks[static_cast<std::size_t>(k)];
+    // A kind that is no enumerator (a cast integer) has block_size 0 and would cover nothing.
+    if (block_size(blk.kind) == 0) {
+      throw InputError(
+          fmt::format("SeparableConstraints: block {} (offset {}) has kind {}, "
+                      "expected bound, disc or free",
+                      k, blk.offset, static_cast<int>(blk.kind)));
+    }
     if (blk.offset < 0) {
       throw InputError(fmt::format("SeparableConstraints: {} block {} has negative offset {}",
                                    to_string(blk.kind), k, blk.offset));
@@ -83,6 +98,7 @@ void SeparableConstraints::project(Eigen::VectorXd& x) const {
                "vector of size " << x.size() << " for " << size() << " unknowns");
   for (std::size_t k = 0; k < blocks.size(); ++k) {
     const Index o = blocks[k].offset;
+    if (blocks[k].kind == BlockKind::Free) continue;  // Omega_k = R: P is the identity
     if (blocks[k].kind == BlockKind::Bound) {
       x(o) = std::max(x(o), 0.0);
     } else {
@@ -124,6 +140,29 @@ SeparableConstraints SeparableConstraints::contact_layout(Index n_patches) {
   }
   c.radius = Eigen::VectorXd::Zero(2 * n_patches);
   return c;
+}
+
+void SeparableConstraints::append_free(Index n) {
+  if (n < 0) {
+    throw InputError(fmt::format("SeparableConstraints::append_free: n = {} must be >= 0", n));
+  }
+  const Index n_blocks = static_cast<Index>(blocks.size());
+  if (radius.size() != n_blocks) {
+    throw InputError(fmt::format(
+        "SeparableConstraints::append_free: radius has {} entries for {} blocks; expected one "
+        "per block",
+        radius.size(), n_blocks));
+  }
+  // One past the last covered unknown (not size(), which a gap in the layout would shorten): the
+  // new unknowns must not overlap any existing block.
+  Index first = 0;
+  for (const Block& blk : blocks)
+    first = std::max(first, blk.offset + block_size(blk.kind));
+  blocks.reserve(blocks.size() + static_cast<std::size_t>(n));
+  for (Index i = 0; i < n; ++i)
+    blocks.push_back({BlockKind::Free, first + i});
+  radius.conservativeResize(n_blocks + n);
+  radius.tail(n).setZero();
 }
 
 }  // namespace fricon::qp

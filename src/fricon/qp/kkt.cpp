@@ -37,6 +37,12 @@ KktResiduals kkt_residuals(const Eigen::VectorXd& x, const Eigen::VectorXd& g,
   double feas = 0.0, stat = 0.0, comp = 0.0;
   for (std::size_t k = 0; k < c.blocks.size(); ++k) {
     const Index o = c.blocks[k].offset;
+    if (c.blocks[k].kind == BlockKind::Free) {
+      // Always feasible; the normal cone of R is {0}, so g_i itself is the violation, and there
+      // is no multiplier to complement.
+      stat = std::max(stat, std::abs(g(o)));
+      continue;
+    }
     if (c.blocks[k].kind == BlockKind::Bound) {
       feas = std::max(feas, -x(o));
       stat = std::max(stat, -g(o));

@@ -15,6 +15,10 @@
 //                      g_i = -s eta with s >= 0); ||g_i|| if x_i = 0 and rho > 0 (the normal
 //                      cone of an interior point is {0}); 0 if rho = 0 (the block is pinned)
 //     complementarity  s |rho - ||x_i|||  with s = max(0, -g_i . eta)   (0 if x_i = 0 or rho = 0)
+//   Free (x_i in R):
+//     feasibility      0
+//     stationarity     |g_i|                    (an optimum needs g_i = 0: no constraint)
+//     complementarity  0
 //
 // Like the Bound test, the Disc stationarity test does not ask whether x_i is on the circle: a
 // normal force at an interior point shows up in the complementarity residual instead, so a point

@@ -97,7 +97,9 @@ Eigen::VectorXd resisted_part(const Eigen::VectorXd& b, const SeparableConstrain
   Eigen::VectorXd r(b.size());
   for (std::size_t k = 0; k < c.blocks.size(); ++k) {
     const Index o = c.blocks[k].offset;
-    if (c.blocks[k].kind == BlockKind::Bound) {
+    if (c.blocks[k].kind == BlockKind::Free) {
+      r(o) = b(o);  // unconstrained: x_i = 0 is optimal only for b_i = 0, so all of b_i counts
+    } else if (c.blocks[k].kind == BlockKind::Bound) {
       r(o) = std::max(b(o), 0.0);
     } else {
       const bool pinned = c.radius(static_cast<Index>(k)) == 0.0;
@@ -624,8 +626,8 @@ void check_inputs(const Operator& A, const Eigen::VectorXd& b, const SeparableCo
 }
 
 // b_R = 0 (b = 0 in particular): q(x) = x^T A x / 2 - b^T x >= 0 = q(0) on Omega, since there
-// b^T x <= 0 (b_i <= 0 on the bounds, x_i >= 0; b = 0 on the discs that are not pinned), and 0 is
-// feasible, so x = 0, checked by one product.
+// b^T x <= 0 (b_i <= 0 on the bounds, x_i >= 0; b = 0 on the discs that are not pinned and on the
+// Free blocks), and 0 is feasible, so x = 0, checked by one product.
 void solve_zero_rhs(const Operator& A, const Eigen::VectorXd& b, const SeparableConstraints& c,
                     Eigen::VectorXd& x, MpgpReport& rep) {
   x.setZero();
@@ -641,8 +643,8 @@ void solve_zero_rhs(const Operator& A, const Eigen::VectorXd& b, const Separable
     return;
   }
   g -= b;
-  // At x = 0 a bound is active with g_i = -b_i >= 0 and a disc is pinned or has g_i = 0, so
-  // g^P = b_R = 0.
+  // At x = 0 a bound is active with g_i = -b_i >= 0, a disc is pinned or has g_i = 0, and so has
+  // a Free block: g^P = b_R = 0.
   rep.norm_gp = resisted_part(b, c).norm();
   rep.rel_gp = rep.norm_gp;
   rep.objective = 0.0;

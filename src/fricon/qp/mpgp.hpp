@@ -117,15 +117,16 @@ enum class StopReference {
   /// r = b, the paper's test [HL09, §6].
   Whole,
   /// r = b_R, the part of b that the constraints resist (resisted_part below): b on the discs of
-  /// positive radius, max(b_i, 0) on the bounds. A bound with b_i <= 0 is satisfied at x = 0 by
-  /// itself (a patch with a gap the free displacement does not close), so however large such
-  /// entries are they do not loosen the test. Where every b_i of the bounds is positive (the
-  /// paper's brick) it is the paper's test. Default.
+  /// positive radius and on the unconstrained (Free) unknowns, max(b_i, 0) on the bounds. A bound
+  /// with b_i <= 0 is satisfied at x = 0 by itself (a patch with a gap the free displacement does
+  /// not close), so however large such entries are they do not loosen the test. Where every b_i
+  /// of the bounds is positive (the paper's brick) it is the paper's test. Default.
   Resisted,
 };
 
-/// b_R of StopReference::Resisted: per block, b itself on a disc of positive radius, 0 on a
-/// pinned disc, max(b_i, 0) on a bound. x = 0 solves the QP when b_R = 0.
+/// b_R of StopReference::Resisted: per block, b itself on a disc of positive radius and on a Free
+/// (unconstrained) unknown, 0 on a pinned disc, max(b_i, 0) on a bound. x = 0 solves the QP when
+/// b_R = 0.
 Eigen::VectorXd resisted_part(const Eigen::VectorXd& b, const SeparableConstraints& c);
 
 }  // namespace fricon::qp

@@ -12,6 +12,16 @@ Split Kernels::split(const Eigen::VectorXd& x, const Eigen::VectorXd& g, Eigen::
   const double abar = alpha_bar_;
   for (std::size_t k = 0; k < c_.blocks.size(); ++k) {
     const Index o = c_.blocks[k].offset;
+    if (c_.blocks[k].kind == BlockKind::Free) {
+      // Never active: the whole gradient is free, and (x - P(x - abar g)) / abar = g.
+      const double gi = g(o);
+      phi(o) = gi;
+      beta(o) = 0.0;
+      s.gp2 += gi * gi;
+      s.phi2 += gi * gi;
+      s.phit_phi += gi * gi;
+      continue;
+    }
     if (c_.blocks[k].kind == BlockKind::Bound) {
       const double xi = x(o);
       const double gi = g(o);
@@ -75,6 +85,10 @@ void Kernels::reduced_free_gradient(const Eigen::VectorXd& x, const Eigen::Vecto
   const double abar = alpha_bar_;
   for (std::size_t k = 0; k < c_.blocks.size(); ++k) {
     const Index o = c_.blocks[k].offset;
+    if (c_.blocks[k].kind == BlockKind::Free) {  // P is the identity: (x - (x - abar g)) / abar
+      gr(o) = g(o);
+      continue;
+    }
     if (c_.blocks[k].kind == BlockKind::Bound) {
       const double xi = x(o);
       const double gi = g(o);
@@ -106,7 +120,7 @@ double Kernels::rounding_scale(const Eigen::VectorXd& x, const Eigen::VectorXd& 
   double sum = 0.0;
   for (const Block& blk : c_.blocks) {
     const Index o = blk.offset;
-    if (blk.kind == BlockKind::Bound) {
+    if (blk.kind == BlockKind::Bound || blk.kind == BlockKind::Free) {
       sum += std::abs(g(o) * x(o));
     } else {
       sum += norm2(g(o), g(o + 1)) * norm2(x(o), x(o + 1));
@@ -119,6 +133,7 @@ double Kernels::max_feasible_step(const Eigen::VectorXd& x, const Eigen::VectorX
   double a = std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < c_.blocks.size(); ++k) {
     const Index o = c_.blocks[k].offset;
+    if (c_.blocks[k].kind == BlockKind::Free) continue;  // no constraint: no limit
     if (c_.blocks[k].kind == BlockKind::Bound) {
       if (p(o) > 0.0) a = std::min(a, std::max(x(o), 0.0) / p(o));
       continue;

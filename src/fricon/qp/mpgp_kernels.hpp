@@ -35,7 +35,7 @@ class Kernels {
 
   /// Fills phi (free gradient) and beta (chopped gradient) for g at x and returns the norms.
   /// Active: Bound x_i <= tol_bound; Disc ||x_i|| >= (1 - tol_disc) rho_i (always for rho_i = 0,
-  /// whose gradient parts are all 0).
+  /// whose gradient parts are all 0); Free never (phi_i = g_i).
   Split split(const Eigen::VectorXd& x, const Eigen::VectorXd& g, Eigen::VectorXd& phi,
               Eigen::VectorXd& beta) const;
 
@@ -49,8 +49,8 @@ class Kernels {
   /// projected direction d (each d_i is exact only to about eps ||x_i||).
   double rounding_scale(const Eigen::VectorXd& x, const Eigen::VectorXd& g) const;
 
-  /// Largest t >= 0 with x - t p in Omega (+inf if no block restricts); x must be feasible up to
-  /// rounding.
+  /// Largest t >= 0 with x - t p in Omega (+inf if no block restricts; Free blocks never do); x
+  /// must be feasible up to rounding.
   double max_feasible_step(const Eigen::VectorXd& x, const Eigen::VectorXd& p) const;
 
  private:

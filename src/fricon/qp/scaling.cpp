@@ -64,7 +64,7 @@ SmalseReport solve_smalse_scaled(const Operator& A, const Eigen::VectorXd& b,
                                  Eigen::VectorXd& mu) {
   FRICON_CHECK(x.size() == D.size() && b.size() == D.size(),
                "x has " << x.size() << " and b " << b.size() << " entries for " << D.size());
-  const EqualityConstraint eq_scaled{eq.G * D.d().asDiagonal(), eq.e};
+  const EqualityConstraint eq_scaled{SparseMatrix(eq.G * D.d().asDiagonal()), eq.e};
   Eigen::VectorXd y = D.to_scaled(x);
   SmalseReport rep =
       solve_smalse(D.scaled(A), D.dual_to_scaled(b), D.scaled(c), eq_scaled, opt, inner, y, mu);

@@ -4,12 +4,12 @@
 //   x = D y,  D = diag(d), d > 0 and equal on the unknowns of one block,
 //
 // so that min 1/2 x^T A x - b^T x over Omega becomes min 1/2 y^T (D A D) y - (D b)^T y over
-// D^-1 Omega: a bound stays the bound y_i >= 0 and a disc of radius rho becomes the disc of radius
-// rho / d_i. The gradient of the scaled problem is D g. MPGP's rate depends on the condition number
-// of the matrix it sees; with one factor per contact patch, chosen so that every patch's diagonal
-// block of D A D is about 1, the patches of a graded mesh (areas a hundred times apart) no longer
-// spread the spectrum. x and its solution are the same points: only the iteration and the meaning
-// of its relative tolerance change.
+// D^-1 Omega: a bound stays the bound y_i >= 0, a Free unknown stays free and a disc of radius rho
+// becomes the disc of radius rho / d_i. The gradient of the scaled problem is D g. MPGP's rate
+// depends on the condition number of the matrix it sees; with one factor per contact patch, chosen
+// so that every patch's diagonal block of D A D is about 1, the patches of a graded mesh (areas a
+// hundred times apart) no longer spread the spectrum. x and its solution are the same points: only
+// the iteration and the meaning of its relative tolerance change.
 
 #include <Eigen/Core>
 

@@ -6,19 +6,16 @@
 #include <optional>
 
 #include <fmt/format.h>
-#include <Eigen/Eigenvalues>
 
 #include "fricon/core/error.hpp"
 #include "fricon/core/range.hpp"
 #include "fricon/core/timer.hpp"
+#include "fricon/qp/coarse_space.hpp"
 
 namespace fricon::qp {
 
 namespace {
 
-// A row direction of G whose squared length is below this share of the largest acts on no
-// multiplier that is free to move (theory.md §4.6).
-constexpr double kRankTolerance = 1e-12;
 // The phase-one problem is solved when the residual ||G x - e|| has decreased by less than this
 // factor in kStagnantSteps consecutive outer steps (a feasible equality is met at a linear rate).
 constexpr double kStagnation = 0.9;
@@ -34,39 +31,20 @@ constexpr double kInfeasibleShare = 1e-6;
 constexpr double kRowExcess = 1e-9;
 
 // G with the columns of the discs pinned to zero (radius 0) cleared: those multipliers stay 0.
-Eigen::MatrixXd active_columns(const Eigen::MatrixXd& G, const SeparableConstraints& c) {
-  Eigen::MatrixXd Ga = G;
+SparseMatrix active_columns(const SparseMatrix& G, const SeparableConstraints& c) {
+  Eigen::VectorXd keep = Eigen::VectorXd::Ones(c.size());
+  bool any_pinned = false;
   for (std::size_t k = 0; k < c.blocks.size(); ++k) {
     const Block& block = c.blocks[k];
-    if (block.kind == BlockKind::Disc && c.radius(static_cast<Index>(k)) == 0.0)
-      Ga.middleCols(block.offset, 2).setZero();
+    if (block.kind == BlockKind::Disc && c.radius(static_cast<Index>(k)) == 0.0) {
+      keep.segment<2>(block.offset).setZero();
+      any_pinned = true;
+    }
   }
+  if (!any_pinned) return G;
+  SparseMatrix Ga = G * keep.asDiagonal();
+  Ga.prune(0.0);
   return Ga;
-}
-
-// The rows of G made orthonormal: W (m x r) with W^T G_a G_a^T W = I over the range of G_a G_a^T,
-// and the rest of the row space (m x (m - r)), orthonormal, on which G_a vanishes.
-struct Whitening {
-  Eigen::MatrixXd W, null;
-};
-
-Whitening whiten(const Eigen::MatrixXd& Ga) {
-  const Eigen::MatrixXd S = Ga * Ga.transpose();
-  Whitening w;
-  if (S.rows() == 0) return w;
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(S);
-  const double largest = std::max(eig.eigenvalues().maxCoeff(), 0.0);
-  std::vector<Index> range, null;
-  for (Index i = 0; i < S.rows(); ++i)
-    (largest > 0.0 && eig.eigenvalues()(i) > kRankTolerance * largest ? range : null).push_back(i);
-  w.W.resize(S.rows(), static_cast<Index>(range.size()));
-  w.null.resize(S.rows(), static_cast<Index>(null.size()));
-  for (std::size_t j = 0; j < range.size(); ++j)
-    w.W.col(static_cast<Index>(j)) =
-        eig.eigenvectors().col(range[j]) / std::sqrt(eig.eigenvalues()(range[j]));
-  for (std::size_t j = 0; j < null.size(); ++j)
-    w.null.col(static_cast<Index>(j)) = eig.eigenvectors().col(null[j]);
-  return w;
 }
 
 double relative_equality_residual(const EqualityConstraint& eq, const Eigen::VectorXd& x) {
@@ -75,15 +53,15 @@ double relative_equality_residual(const EqualityConstraint& eq, const Eigen::Vec
   return scale > 0.0 ? (Gx - eq.e).norm() / scale : 0.0;
 }
 
-// Phase one (theory.md §4.6): the point x1 of Omega whose image G x1 is nearest to e, for the
-// orthonormal G and e of the solver; its residual d = e - G x1 certifies infeasibility when it is
-// not small: for every x in Omega, d^T G x <= d^T G x1 < d^T e. Costs products with G only.
-// Returns d (empty if the phase-one solve failed).
-Eigen::VectorXd phase_one(const Eigen::MatrixXd& Gh, const Eigen::VectorXd& eh,
+// Phase one (theory.md §4.6): the point x1 of Omega whose image G x1 is nearest to e in the
+// metric of the orthonormal rows (r^T S^+ r); its residual r = e - G x1 certifies infeasibility
+// when it is not small: for every x in Omega, d^T G x <= d^T G x1 < d^T e with d = S^+ r. Costs
+// products with G and coarse solves only. Returns r (empty if the phase-one solve failed).
+Eigen::VectorXd phase_one(const CoarseSpace& rows, const Eigen::VectorXd& e,
                           const SeparableConstraints& c, const MpgpOptions& inner,
                           Eigen::VectorXd& x1) {
   const Operator GtG = [&](const Eigen::VectorXd& v, Eigen::VectorXd& y) {
-    y = Gh.transpose() * (Gh * v) + kPhaseOneRegularization * v;
+    y = rows.onto_rows(v) + kPhaseOneRegularization * v;
   };
   MpgpOptions o;
   o.variant = inner.variant;
@@ -91,48 +69,52 @@ Eigen::VectorXd phase_one(const Eigen::MatrixXd& Gh, const Eigen::VectorXd& eh,
   o.reference = StopReference::Whole;
   o.norm_A = 1.0 + kPhaseOneRegularization;
   o.max_iterations = inner.max_iterations;
-  const MpgpReport r = solve_mpgp(GtG, Gh.transpose() * eh, c, o, x1);
+  const MpgpReport r = solve_mpgp(GtG, rows.G().transpose() * rows.solve(e), c, o, x1);
   if (r.termination != QpTermination::Converged) return {};
-  return eh - Gh * x1;
+  return e - rows.G() * x1;
 }
 
-// A load along a row direction that acts on no free multiplier (w.null): the first such
+// A load along a row direction that acts on no free multiplier (rows.null()): the first such
 // direction, signed so that the load along it is positive, as a certificate; none if every such
 // load is below `tolerance` ||e||.
-std::optional<Infeasibility> unresisted_load(const Whitening& w, const Eigen::VectorXd& e,
+std::optional<Infeasibility> unresisted_load(const CoarseSpace& rows, const Eigen::VectorXd& e,
                                              double tolerance) {
-  for (Index j = 0; j < w.null.cols(); ++j) {
-    const double load = w.null.col(j).dot(e);
+  const Eigen::MatrixXd& null = rows.null();
+  for (Index j = 0; j < null.cols(); ++j) {
+    const double load = null.col(j).dot(e);
     if (std::abs(load) > tolerance * e.norm())
-      return Infeasibility{
-          load > 0 ? Eigen::VectorXd(w.null.col(j)) : Eigen::VectorXd(-w.null.col(j)),
-          std::abs(load), 0.0};
+      return Infeasibility{load > 0 ? Eigen::VectorXd(null.col(j)) : Eigen::VectorXd(-null.col(j)),
+                           std::abs(load), 0.0};
   }
   return std::nullopt;
 }
 
-// The certificate of phase one when its shortest residual exceeds `tolerance` ||eh||, mapped back
-// to the rows of G by W.
-std::optional<Infeasibility> phase_one_certificate(const Whitening& w, const Eigen::MatrixXd& Gh,
-                                                   const Eigen::VectorXd& eh,
+// The certificate of phase one when its shortest residual exceeds `tolerance` times the length
+// of e (both in the metric of the orthonormal rows), as a direction d of the rows of G.
+std::optional<Infeasibility> phase_one_certificate(const CoarseSpace& rows,
+                                                   const Eigen::VectorXd& e,
                                                    const SeparableConstraints& c,
                                                    const MpgpOptions& inner, Eigen::VectorXd x1,
                                                    double tolerance) {
-  const Eigen::VectorXd d = phase_one(Gh, eh, c, inner, x1);
-  if (d.size() == 0 || !(d.norm() > tolerance * eh.norm())) return std::nullopt;
-  // d^T e - d^T G x1 = ||d||^2 > 0, and d^T G x1 is the most Omega gives along d.
-  return Infeasibility{w.W * d, d.dot(eh), d.dot(Gh * x1)};
+  const Eigen::VectorXd r = phase_one(rows, e, c, inner, x1);
+  if (r.size() == 0) return std::nullopt;
+  const Eigen::VectorXd d = rows.solve(r);
+  const double length = std::sqrt(std::max(r.dot(d), 0.0));
+  if (!(length > tolerance * std::sqrt(std::max(rows.norm2(e), 0.0)))) return std::nullopt;
+  // d^T e - d^T G x1 = r^T S^+ r > 0, and d^T G x1 is the most Omega gives along d.
+  return Infeasibility{d, d.dot(e), d.dot(rows.G() * x1)};
 }
 
 // sup { g^T x : x in Omega }: per disc its radius times ||g_i||, per bound 0 when g_i <= 0,
-// infinity when g_i > 0 (a bound's multiplier grows without limit).
+// infinity when g_i > 0 (a bound's multiplier grows without limit), and infinity for a free
+// unknown with g_i != 0.
 double support(const Eigen::VectorXd& g, const SeparableConstraints& c) {
   double s = 0.0;
   for (std::size_t k = 0; k < c.blocks.size(); ++k) {
     const Block& block = c.blocks[k];
     if (block.kind == BlockKind::Disc)
       s += c.radius(static_cast<Index>(k)) * g.segment<2>(block.offset).norm();
-    else if (g(block.offset) > 0.0)
+    else if (block.kind == BlockKind::Bound ? g(block.offset) > 0.0 : g(block.offset) != 0.0)
       return std::numeric_limits<double>::infinity();
   }
   return s;
@@ -142,14 +124,15 @@ double support(const Eigen::VectorXd& g, const SeparableConstraints& c) {
 // phase one's direction, whose metric is that of the orthonormal rows: the row whose load most
 // exceeds what Omega gives along it, if one does (then the figures are those of that motion
 // alone, e.g. a push against mu N); else `found` as it is.
-Infeasibility along_one_row(const Eigen::MatrixXd& Ga, const Eigen::VectorXd& e,
+Infeasibility along_one_row(const SparseMatrix& Ga, const Eigen::VectorXd& e,
                             const SeparableConstraints& c, Infeasibility found) {
+  const SparseMatrix Gt = Ga.transpose();
   double best = 0.0;
   for (Index j = 0; j < Ga.rows(); ++j) {
     if (e(j) == 0.0) continue;
     const double sign = e(j) > 0.0 ? 1.0 : -1.0;
     const double applied = std::abs(e(j));
-    const double carried = support(sign * Ga.row(j).transpose(), c);
+    const double carried = support(sign * Eigen::VectorXd(Gt.col(j)), c);
     const double excess = (applied - carried) / applied;
     if (excess > kRowExcess && excess > best) {
       best = excess;
@@ -172,16 +155,13 @@ std::optional<Infeasibility> balance_certificate(const EqualityConstraint& eq,
   FRICON_CHECK(eq.G.cols() == c.size() && eq.e.size() == eq.G.rows(),
                "balance_certificate: G is " << eq.G.rows() << " x " << eq.G.cols() << " for "
                                             << c.size() << " unknowns");
-  const Eigen::MatrixXd Ga = active_columns(eq.G, c);
-  const Whitening w = whiten(Ga);
-  if (auto certificate = unresisted_load(w, eq.e, tolerance)) return certificate;
-  const Eigen::MatrixXd Gh = w.W.transpose() * Ga;
-  const Eigen::VectorXd eh = w.W.transpose() * eq.e;
+  const CoarseSpace rows(active_columns(eq.G, c));
+  if (auto certificate = unresisted_load(rows, eq.e, tolerance)) return certificate;
   const auto certificate =
-      phase_one_certificate(w, Gh, eh, c, MpgpOptions{}, Eigen::VectorXd::Zero(c.size()),
+      phase_one_certificate(rows, eq.e, c, MpgpOptions{}, Eigen::VectorXd::Zero(c.size()),
                             std::max(kInfeasibleShare, tolerance));
   if (!certificate) return std::nullopt;
-  return along_one_row(Ga, eq.e, c, *certificate);
+  return along_one_row(rows.G(), eq.e, c, *certificate);
 }
 
 void SmalseOptions::validate() const {
@@ -208,32 +188,39 @@ SmalseReport solve_smalse(const Operator& A, const Eigen::VectorXd& b,
   if (mu.size() == 0) mu = Eigen::VectorXd::Zero(m);
   SmalseReport rep;
 
-  // @sect: the rows of G over the multipliers free to move, made orthonormal; a row direction on
-  // none of them must carry no load.
-  const Eigen::MatrixXd Ga = active_columns(eq.G, c);
-  const Whitening w = whiten(Ga);
-  rep.undetermined = w.null;
+  // @sect: the rows of G over the multipliers free to move and their coarse problem S = G G^T;
+  // a row direction on none of them must carry no load.
+  const CoarseSpace rows(active_columns(eq.G, c));
+  const SparseMatrix& Ga = rows.G();
+  const Eigen::MatrixXd& null = rows.null();
+  rep.undetermined = null;
+  const auto finish = [&] {
+    rep.n_coarse_solves = rows.n_solves();
+    rep.seconds = watch.seconds();
+  };
   if (!opt.drop_unresisted_load)
-    if (auto certificate = unresisted_load(w, eq.e, opt.equality_tolerance)) {
+    if (auto certificate = unresisted_load(rows, eq.e, opt.equality_tolerance)) {
       rep.infeasible = true;
       rep.infeasibility = std::move(*certificate);
       rep.termination = QpTermination::NumericalFailure;
       rep.message =
           "the equality constraint cannot be met: a load acts on a motion no multiplier "
           "resists";
-      rep.seconds = watch.seconds();
+      finish();
       return rep;
     }
   // The equality as it is solved: without the dropped load, if it is dropped.
-  const EqualityConstraint kept{
-      Ga, opt.drop_unresisted_load ? Eigen::VectorXd(eq.e - w.null * (w.null.transpose() * eq.e))
-                                   : eq.e};
-  const Eigen::MatrixXd Gh = w.W.transpose() * Ga;  // r x n, orthonormal rows
-  const Eigen::VectorXd eh = w.W.transpose() * eq.e;
-  // mu = W mu_h (the null directions keep no multiplier: least norm).
-  Eigen::VectorXd mu_h = w.W.rows() > 0
-                             ? Eigen::VectorXd(w.W.completeOrthogonalDecomposition().solve(mu))
-                             : Eigen::VectorXd();
+  const Eigen::VectorXd e =
+      opt.drop_unresisted_load ? Eigen::VectorXd(eq.e - null * (null.transpose() * eq.e)) : eq.e;
+  const EqualityConstraint kept{Ga, e};
+  // With the rows made orthonormal, Gh = W^T G_a and eh = W^T e for some W with W W^T = S^+;
+  // every quantity below is written through G_a and S^+ (mu = W mu_h, the null directions of
+  // the rows keeping no multiplier: least norm).
+  mu -= null * (null.transpose() * mu);
+  const auto residual2 = [&](const Eigen::VectorXd& v) {  // ||Gh v - eh||^2
+    return std::max(rows.norm2(Ga * v - e), 0.0);
+  };
+  const double eh2 = std::max(rows.norm2(e), 0.0);  // ||eh||^2
 
   // @sect: the penalty, the inner precision and the augmented Hessian A + rho Gh^T Gh.
   const double norm_A = inner.norm_A > 0.0
@@ -243,29 +230,29 @@ SmalseReport solve_smalse(const Operator& A, const Eigen::VectorXd& b,
     throw NumericalError(fmt::format("solve_smalse: ||A|| = {}", norm_A));
   rep.rho = opt.rho_factor * norm_A;
   const double rho = rep.rho;
-  // On the affine set Gh x = eh, with P = I - Gh^T Gh and x_e = Gh^T eh, P x = x - x_e and
+  // On the affine set G_a x = e, with P = I - G_a^T S^+ G_a and x_e = G_a^T S^+ e, P x = x - x_e
+  // and
   //   q(x) = 1/2 x^T (P A P) x - x^T P (b - A x_e) + const,
   // so the QP may take the projected Hessian P A P (TFETI's natural coarse space, theory.md
-  // §4.6): the part of A along the rows, which the generalized inverse leaves arbitrary, drops
-  // out, and P A P + rho Gh^T Gh has the norm of A for rho = ||A||. The discs stay centred (x
-  // itself is not shifted). The multiplier of the original problem is then
-  // mu_h - Gh (A x - b) at the solution.
-  const auto project = [&](Eigen::VectorXd& v) { v.noalias() -= Gh.transpose() * (Gh * v); };
+  // §4.6, §7.3): the part of A along the rows, which the generalized inverse leaves arbitrary,
+  // drops out, and P A P + rho (I - P) has the norm of A for rho = ||A||. The discs stay centred
+  // (x itself is not shifted). The multiplier of the original problem is then
+  // mu - S^+ G_a (A x - b) at the solution.
   Eigen::VectorXd Pv;
   const Operator A_aug = [&](const Eigen::VectorXd& v, Eigen::VectorXd& y) {
+    const Eigen::VectorXd along_rows = rows.onto_rows(v);
     if (opt.projector) {
-      Pv = v;
-      project(Pv);
+      Pv = v - along_rows;
       A(Pv, y);
-      project(y);
+      rows.project(y);
     } else {
       A(v, y);
     }
-    y.noalias() += rho * (Gh.transpose() * (Gh * v));
+    y.noalias() += rho * along_rows;
   };
   // A cold start begins at the least-norm solution of the equality, x_e, projected onto Omega
   // (feasible for a load that pressure alone balances).
-  const Eigen::VectorXd x_e = Gh.transpose() * eh;
+  const Eigen::VectorXd x_e = Ga.transpose() * rows.solve(e);
   const bool cold = x.isZero(0.0);
   if (cold) {
     x = x_e;
@@ -276,18 +263,18 @@ SmalseReport solve_smalse(const Operator& A, const Eigen::VectorXd& b,
     Eigen::VectorXd Ax(n);
     A(x_e, Ax);
     b_base -= Ax;
-    project(b_base);
+    rows.project(b_base);
     ++rep.n_products;
     // The warm start's multiplier in the projected problem.
     if (!cold) {
       A(x, Ax);
-      mu_h += Gh * (Ax - b);
+      mu += rows.solve(Ga * (Ax - b));
       ++rep.n_products;
     }
   }
   // The gradient test is relative to the data of the problem (b_R and the load rho e) or, when
   // larger, to the projected linear term's (b_base_R below: the rounding level of its gradient).
-  const double reference = std::max(resisted_part(b, c).norm(), rho * eh.norm());
+  const double reference = std::max(resisted_part(b, c).norm(), rho * std::sqrt(eh2));
   const double eta = opt.eta_factor * reference;
   double M = opt.M_factor * norm_A;
   MpgpOptions io = inner;
@@ -295,7 +282,7 @@ SmalseReport solve_smalse(const Operator& A, const Eigen::VectorXd& b,
   // ||Gh^T Gh|| = 1; with the projector the two terms act on orthogonal subspaces.
   io.norm_A = opt.projector ? std::max(norm_A, rho) : norm_A + rho;
   io.adaptive_tolerance = [&](const Eigen::VectorXd& v) {
-    return std::min(M * (Gh * v - eh).norm(), eta);
+    return std::min(M * std::sqrt(residual2(v)), eta);
   };
 
   // @sect: the outer steps.
@@ -303,7 +290,7 @@ SmalseReport solve_smalse(const Operator& A, const Eigen::VectorXd& b,
   int stagnant = 0;
   for (int k = 0; k < opt.max_outer; ++k) {
     rep.outer_iterations = k + 1;
-    const Eigen::VectorXd b_aug = b_base - Gh.transpose() * mu_h + rho * (Gh.transpose() * eh);
+    const Eigen::VectorXd b_aug = b_base - Ga.transpose() * mu + rho * x_e;
     rep.reference_norm = std::max(reference, resisted_part(b_base, c).norm());
     const double eps_g = std::max(inner.rel_tolerance * rep.reference_norm, inner.abs_tolerance);
     io.abs_tolerance = eps_g;
@@ -316,7 +303,9 @@ SmalseReport solve_smalse(const Operator& A, const Eigen::VectorXd& b,
       rep.message = fmt::format("inner solve {}: {}", k + 1, r.message);
       break;
     }
-    const Eigen::VectorXd res = Gh * x - eh;
+    const Eigen::VectorXd res = Ga * x - e;
+    const Eigen::VectorXd S_res = rows.solve(res);
+    const double res2 = std::max(res.dot(S_res), 0.0);  // ||Gh x - eh||^2
     if (r.norm_gp <= eps_g && rep.equality_residual <= opt.equality_tolerance) {
       rep.termination = QpTermination::Converged;
       rep.message = fmt::format(
@@ -326,12 +315,13 @@ SmalseReport solve_smalse(const Operator& A, const Eigen::VectorXd& b,
       break;
     }
     // Once the residual has stopped decreasing: is the equality feasible at all (phase one)?
-    stagnant = res.norm() > kStagnation * residual_prev ? stagnant + 1 : 0;
-    residual_prev = res.norm();
+    const double res_norm = std::sqrt(res2);
+    stagnant = res_norm > kStagnation * residual_prev ? stagnant + 1 : 0;
+    residual_prev = res_norm;
     if (stagnant >= kStagnantSteps) {
       stagnant = 0;
       if (auto certificate = phase_one_certificate(
-              w, Gh, eh, c, inner, x, std::max(kInfeasibleShare, opt.equality_tolerance))) {
+              rows, e, c, inner, x, std::max(kInfeasibleShare, opt.equality_tolerance))) {
         rep.infeasible = true;
         rep.infeasibility = along_one_row(Ga, eq.e, c, std::move(*certificate));
         rep.termination = QpTermination::NumericalFailure;
@@ -343,10 +333,9 @@ SmalseReport solve_smalse(const Operator& A, const Eigen::VectorXd& b,
       }
     }
     // Lagrange multipliers, then the semi-monotonic update of M.
-    const double L = r.objective - mu_h.dot(eh) + 0.5 * rho * eh.squaredNorm() +
-                     rho * res.squaredNorm();  // L(x_k, mu_{k+1}, rho)
-    mu_h += rho * res;
-    if (k > 0 && L < L_prev + 0.5 * rho * res.squaredNorm()) M /= opt.beta;
+    const double L = r.objective - mu.dot(e) + 0.5 * rho * eh2 + rho * res2;  // L(x_k, mu_k+1)
+    mu += rho * S_res;
+    if (k > 0 && L < L_prev + 0.5 * rho * res2) M /= opt.beta;
     L_prev = L;
     if (k + 1 == opt.max_outer) {
       rep.termination = QpTermination::MaxIterations;
@@ -355,14 +344,13 @@ SmalseReport solve_smalse(const Operator& A, const Eigen::VectorXd& b,
                       opt.max_outer, rep.equality_residual, opt.equality_tolerance);
     }
   }
-  if (opt.projector && w.W.cols() > 0) {
+  if (opt.projector && rows.rank() > 0) {
     Eigen::VectorXd Ax(n);
     A(x, Ax);
     ++rep.n_products;
-    mu_h -= Gh * (Ax - b);
+    mu -= rows.solve(Ga * (Ax - b));
   }
-  mu = w.W.cols() > 0 ? Eigen::VectorXd(w.W * mu_h) : Eigen::VectorXd::Zero(m);
-  rep.seconds = watch.seconds();
+  finish();
   return rep;
 }
 

@@ -5,7 +5,8 @@
 //
 //   min q(x) = 1/2 x^T A x - b^T x   subject to x in Omega (qp/constraints.hpp) and G x = e,
 //
-// G with few rows (the free rigid motions of floating bodies). Each outer step minimizes the
+// G the free rigid motions of floating bodies, or of every subdomain of Total FETI (theory.md
+// §7.3). Each outer step minimizes the
 // augmented Lagrangian
 //
 //   L(x, mu, rho) = q(x) + mu^T (G x - e) + rho/2 ||G x - e||^2
@@ -14,7 +15,9 @@
 // then updates mu += rho (G x - e), and divides M by beta when L did not increase by at least
 // rho/2 ||G x - e||^2. The rows of G are first made orthonormal (over the multipliers that are
 // not pinned to zero), so that G^T G is the orthogonal projector Q = I - P onto their span and
-// A + rho Q stays as well conditioned as A for rho ~ ||A||.
+// A + rho Q stays as well conditioned as A for rho ~ ||A||. The orthonormal rows are never
+// formed: every product goes through G and S^+ = (G G^T)^+ (qp/coarse_space.hpp), so that G may
+// be large and sparse.
 //
 // When no x in Omega satisfies G x = e (a load that contact cannot carry), the residual G x - e
 // stops decreasing; the solver then solves the phase-one problem min ||G x - e|| over Omega
@@ -33,9 +36,10 @@
 
 namespace fricon::qp {
 
-/// G x = e: m rows over the n unknowns of the QP.
+/// G x = e: m rows over the n unknowns of the QP; G sparse (a few dense rows for floating bodies,
+/// 6 sparse rows per subdomain for Total FETI, theory.md §7.3).
 struct EqualityConstraint {
-  Eigen::MatrixXd G;  ///< m x n
+  SparseMatrix G;     ///< m x n
   Eigen::VectorXd e;  ///< m
 };
 
@@ -95,6 +99,7 @@ struct SmalseReport {
   /// their amplitude is not determined by the QP; the solution has none of it (least norm).
   Eigen::MatrixXd undetermined;
   MpgpReport last_inner;  ///< the report of the last inner MPGP solve
+  long n_coarse_solves = 0;  ///< solves with the coarse problem G G^T (qp/coarse_space.hpp)
   double seconds = 0.0;
 };
 

@@ -87,6 +87,115 @@ TEST(SeparableConstraints, ValidateRejectsBadLayouts) {
   EXPECT_NO_THROW(single_disc(0.0).validate());
 }
 
+TEST(SeparableConstraints, FreeBlockKindBasics) {
+  static_assert(block_size(BlockKind::Free) == 1);
+  static_assert(block_size(BlockKind::Bound) == 1);
+  static_assert(block_size(BlockKind::Disc) == 2);
+  EXPECT_EQ(to_string(BlockKind::Free), "free");
+  EXPECT_EQ(to_string(BlockKind::Bound), "bound");
+  EXPECT_EQ(to_string(BlockKind::Disc), "disc");
+}
+
+// The equality multipliers of TFETI follow the contact ones: contact_layout(2) covers 0 ... 5, so
+// three Free blocks take 6, 7, 8, and the disc radii already set stay where they are.
+TEST(SeparableConstraints, AppendFreeFollowsTheContactLayout) {
+  auto c = SeparableConstraints::contact_layout(2);
+  c.set_disc_radii(Eigen::Vector2d(0.5, 2.0));
+  c.append_free(3);
+  ASSERT_EQ(c.blocks.size(), 7u);
+  ASSERT_EQ(c.radius.size(), 7);
+  for (Index i = 0; i < 3; ++i) {
+    const Block& blk = c.blocks[static_cast<std::size_t>(4 + i)];
+    EXPECT_EQ(blk.kind, BlockKind::Free);
+    EXPECT_EQ(blk.offset, 6 + i);
+    EXPECT_EQ(c.radius(4 + i), 0.0);
+  }
+  EXPECT_EQ(c.radius(1), 0.5);
+  EXPECT_EQ(c.radius(3), 2.0);
+  EXPECT_EQ(c.size(), 9);
+  EXPECT_EQ(c.n_discs(), 2);
+  EXPECT_EQ(c.max_radius(), 2.0);
+  EXPECT_NO_THROW(c.validate());
+  // Radii set after the append still go to the discs only.
+  c.set_disc_radii(Eigen::Vector2d(3.0, 4.0));
+  EXPECT_EQ(c.radius, (Eigen::VectorXd(7) << 0, 3, 0, 4, 0, 0, 0).finished());
+
+  c.append_free(0);
+  EXPECT_EQ(c.blocks.size(), 7u);
+  EXPECT_EQ(c.radius.size(), 7);
+}
+
+TEST(SeparableConstraints, AppendFreeStartsAfterTheLastCoveredUnknown) {
+  SeparableConstraints empty;
+  empty.append_free(2);
+  ASSERT_EQ(empty.blocks.size(), 2u);
+  EXPECT_EQ(empty.blocks[0].offset, 0);
+  EXPECT_EQ(empty.blocks[1].offset, 1);
+  EXPECT_EQ(empty.radius, Eigen::Vector2d::Zero());
+  EXPECT_NO_THROW(empty.validate());
+
+  // Blocks out of order: the last covered unknown is 3 (the disc at 2), not that of the last
+  // block in the list.
+  SeparableConstraints unordered;
+  unordered.blocks = {{BlockKind::Disc, 2}, {BlockKind::Bound, 1}, {BlockKind::Bound, 0}};
+  unordered.radius = Eigen::Vector3d(1.0, 0.0, 0.0);
+  unordered.append_free(1);
+  ASSERT_EQ(unordered.blocks.size(), 4u);
+  EXPECT_EQ(unordered.blocks[3].kind, BlockKind::Free);
+  EXPECT_EQ(unordered.blocks[3].offset, 4);
+  EXPECT_EQ(unordered.size(), 5);
+  EXPECT_NO_THROW(unordered.validate());
+}
+
+TEST(SeparableConstraints, AppendFreeRejectsBadInput) {
+  auto c = SeparableConstraints::contact_layout(1);
+  EXPECT_THROW(c.append_free(-1), InputError);
+  auto inconsistent = SeparableConstraints::contact_layout(1);
+  inconsistent.radius = Eigen::VectorXd::Zero(1);  // 2 blocks
+  EXPECT_THROW(inconsistent.append_free(1), InputError);
+  EXPECT_EQ(inconsistent.blocks.size(), 2u);  // unchanged
+}
+
+TEST(SeparableConstraints, ValidateAcceptsFreeBlocksAndChecksTheirPlace) {
+  SeparableConstraints c;
+  c.blocks = {{BlockKind::Free, 0}, {BlockKind::Disc, 1}, {BlockKind::Free, 3}};
+  c.radius = Eigen::Vector3d(-7.0 /* ignored for a free block */, 1.0, NAN /* ignored */);
+  EXPECT_EQ(c.size(), 4);
+  EXPECT_EQ(c.n_discs(), 1);
+  EXPECT_EQ(c.max_radius(), 1.0);
+  EXPECT_NO_THROW(c.validate());
+
+  SeparableConstraints overlap;
+  overlap.blocks = {{BlockKind::Disc, 0}, {BlockKind::Free, 1}};
+  overlap.radius = Eigen::Vector2d(1.0, 0.0);
+  EXPECT_THROW(overlap.validate(), InputError);
+
+  SeparableConstraints gap;
+  gap.blocks = {{BlockKind::Free, 0}, {BlockKind::Free, 2}};
+  gap.radius = Eigen::Vector2d::Zero();
+  EXPECT_THROW(gap.validate(), InputError);
+
+  constexpr int kNotAKind = 7;
+  SeparableConstraints cast;
+  cast.blocks = {{static_cast<BlockKind>(kNotAKind), 0}};
+  cast.radius = Eigen::VectorXd::Zero(1);
+  EXPECT_THROW(cast.validate(), InputError);
+}
+
+TEST(SeparableConstraints, ProjectionLeavesFreeUnknownsUnchanged) {
+  auto c = SeparableConstraints::contact_layout(2);
+  c.set_disc_radii(Eigen::Vector2d(1.0, 0.0));
+  c.append_free(3);
+  Eigen::VectorXd x(9);
+  x << -2.0, 3.0, -4.0, 5.0, 1.0, 1.0,  // bound clipped, disc scaled, bound kept, disc pinned
+      -1e6, 0.0, 2.5;                   // free: any value, negative included
+  c.project(x);
+  Eigen::VectorXd expected(9);
+  expected << 0.0, 0.6, -0.8, 5.0, 0.0, 0.0, -1e6, 0.0, 2.5;
+  EXPECT_LE((x - expected).lpNorm<Eigen::Infinity>(), 1e-15) << x.transpose();
+  EXPECT_EQ(x.tail<3>(), expected.tail<3>());  // bit for bit
+}
+
 TEST(SeparableConstraints, BoundProjectionClipsNegativesOnly) {
   SeparableConstraints c;
   c.blocks = {{BlockKind::Bound, 0}, {BlockKind::Bound, 1}, {BlockKind::Bound, 2}};

@@ -25,6 +25,17 @@ SeparableConstraints one_disc(double rho) {
   return c;
 }
 
+SeparableConstraints one_free() {
+  SeparableConstraints c;
+  c.append_free(1);
+  return c;
+}
+
+KktResiduals free_unknown(double x, double g) {
+  return kkt_residuals(Eigen::VectorXd::Constant(1, x), Eigen::VectorXd::Constant(1, g), one_free(),
+                       1.0, 1.0);
+}
+
 KktResiduals bound(double x, double g) {
   return kkt_residuals(Eigen::VectorXd::Constant(1, x), Eigen::VectorXd::Constant(1, g),
                        one_bound(), 1.0, 1.0);
@@ -64,6 +75,34 @@ TEST(KktResiduals, DiscBlockHandValues) {
   expect_kkt(disc(5, 6, 8, -0.6, -0.8), 5, 0, 5);
   // Pinned disc: any gradient is balanced by the constraint.
   expect_kkt(disc(0, 0, 0, 3, -7), 0, 0, 0);
+}
+
+TEST(KktResiduals, FreeBlockHandValues) {
+  // No constraint: every x is feasible, the optimum needs g = 0 whatever the sign of x, and there
+  // is no multiplier for a complementarity residual.
+  expect_kkt(free_unknown(-3.0, 0.0), 0, 0, 0);
+  expect_kkt(free_unknown(2.0, 0.0), 0, 0, 0);
+  expect_kkt(free_unknown(-3.0, 0.5), 0, 0.5, 0);  // a bound would see x < 0 and x g != 0
+  expect_kkt(free_unknown(2.0, -1.5), 0, 1.5, 0);
+  expect_kkt(free_unknown(0.0, 4.0), 0, 4, 0);  // a bound at 0 with g > 0 would be optimal
+}
+
+// A contact patch followed by two Free blocks: the free stationarity enters the maximum, the free
+// unknowns neither feasibility nor complementarity.
+TEST(KktResiduals, FreeBlocksAmongContactBlocks) {
+  auto c = SeparableConstraints::contact_layout(1);
+  c.set_disc_radii(Eigen::VectorXd::Constant(1, 1.0));
+  c.append_free(2);
+  Eigen::VectorXd x(5), g(5);
+  x << 1.0, 0.0, 0.0, -50.0, 7.0;  // bound inactive, disc centre, free anything
+  g << 0.0, 0.0, 0.0, 0.25, -3.0;
+  const auto r = kkt_residuals(x, g, c, 2.0, 10.0);
+  EXPECT_EQ(r.feasibility, 0.0);
+  EXPECT_NEAR(r.stationarity, 3.0 / 10.0, 1e-15);
+  EXPECT_EQ(r.complementarity, 0.0);
+  // At g = 0 on the free unknowns the point is optimal.
+  g.tail<2>().setZero();
+  EXPECT_EQ(kkt_residuals(x, g, c, 2.0, 10.0).max(), 0.0);
 }
 
 TEST(KktResiduals, MaximaAreScaled) {

@@ -402,6 +402,38 @@ TEST(Mpgp, OptimalAndProjectedCgExpansionsMatchHandComputation) {
   EXPECT_LE((x - Eigen::Vector2d(2.0 / 3.0 + 0.65, 0.0)).norm(), 1e-15) << x.transpose();
 }
 
+// The hand computation above with the second unknown a Free block: A = I, b = (-1, -1.25),
+// x0 = (0.5, 0.25): g = p = (1.5, 1.5), a_cg = 1 and a_f = 1/3 from the bound alone (the free
+// unknown sets no limit, though it decreases), so the first step is an expansion. At x_b = (0,
+// -0.25), g_b = (1, 1): the bound is active (beta = 0), the free unknown is not, gr = (0, 1).
+// Optimal: a = 1 and x_b - gr = (0, -1.25) is feasible; ProjectedCG: P(x0 - p) = P(-1, -1.25) =
+// (0, -1.25), the free unknown kept negative. Both land on the solution (0, -1.25) in one step.
+TEST(Mpgp, ExpansionsMoveFreeUnknownsAsHandComputed) {
+  const Eigen::MatrixXd M = Eigen::Matrix2d::Identity();
+  const Eigen::Vector2d b(-1.0, -1.25);
+  SeparableConstraints c = all_bounds(1);
+  c.append_free(1);
+  for (const auto variant : kVariants) {
+    for (const auto expansion : {MpgpExpansion::Optimal, MpgpExpansion::ProjectedCG}) {
+      auto opt = tight();
+      opt.variant = variant;
+      opt.expansion = expansion;
+      opt.norm_A = 1.0;
+      opt.record_history = true;
+      Eigen::VectorXd x = Eigen::Vector2d(0.5, 0.25);
+      const auto rep = solve_mpgp(dense_operator(M), b, c, opt, x);
+      const std::string where = std::string(enum_name(expansion)) + "\n" + rep.full();
+      ASSERT_EQ(rep.termination, QpTermination::Converged) << where;
+      ASSERT_EQ(rep.iterations, 1) << where;
+      EXPECT_EQ(rep.history[1].step, 'e') << where;
+      EXPECT_DOUBLE_EQ(rep.history[1].alpha, expansion == MpgpExpansion::Optimal ? 1.0 / 3.0 : 1.0);
+      EXPECT_EQ(rep.n_expansion_products, 2) << where;
+      EXPECT_LE((x - Eigen::Vector2d(0.0, -1.25)).norm(), 1e-15) << x.transpose();
+      EXPECT_NEAR(rep.objective, 0.5 * 1.25 * 1.25 - 1.25 * 1.25, 1e-15);
+    }
+  }
+}
+
 // A move that would increase q is replaced by the fixed-length one. With the length factor 2
 // (PERMON's default) the Optimal move overshoots by construction, so fallbacks occur, and
 // ProjectedCG's steps past the boundary raise q on these problems too; along every history q still
@@ -619,6 +651,160 @@ TEST_P(MpgpVariants, AllActiveProblemGivesBoundaryValues) {
     EXPECT_EQ(x(3 * i), 0.0);
     EXPECT_NEAR(x.segment<2>(3 * i + 1).norm(), rho(i), 1e-12);
   }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Free blocks: unconstrained unknowns (the equality multipliers of domain decomposition) in one QP
+// with the bounds and discs of contact
+
+// The KKT conditions of x for min 1/2 x^T M x - b^T x over Omega, checked block by block from
+// their definitions (not by kkt_residuals), gradients to tol ||b|| and positions to tol times the
+// scale of x:
+//   Bound  x_i >= 0, g_i >= 0, and x_i = 0 or g_i = 0
+//   Disc   ||x_i|| <= rho; on the circle g_i = -s eta with s >= 0, inside g_i = 0 (rho = 0: any)
+//   Free   g_i = 0
+void expect_kkt_by_definition(const Eigen::MatrixXd& M, const Eigen::VectorXd& b,
+                              const Eigen::VectorXd& x, const SeparableConstraints& c, double tol) {
+  const Eigen::VectorXd g = M * x - b;
+  const double tol_g = tol * b.norm();
+  const double tol_x = tol * std::max(x.lpNorm<Eigen::Infinity>(), c.max_radius());
+  for (std::size_t k = 0; k < c.blocks.size(); ++k) {
+    const Index o = c.blocks[k].offset;
+    switch (c.blocks[k].kind) {
+      case BlockKind::Free:
+        EXPECT_LE(std::abs(g(o)), tol_g) << "free block " << k << " x " << x(o);
+        break;
+      case BlockKind::Bound:
+        EXPECT_GE(x(o), -tol_x) << "bound block " << k;
+        EXPECT_GE(g(o), -tol_g) << "bound block " << k;
+        EXPECT_TRUE(std::abs(x(o)) <= tol_x || std::abs(g(o)) <= tol_g)
+            << "bound block " << k << " x " << x(o) << " g " << g(o);
+        break;
+      case BlockKind::Disc: {
+        const double rho = c.radius(static_cast<Index>(k));
+        const Eigen::Vector2d xi = x.segment<2>(o), gi = g.segment<2>(o);
+        EXPECT_LE(xi.norm(), rho + tol_x) << "disc block " << k;
+        if (rho == 0.0) break;
+        if (xi.norm() >= rho - tol_x) {
+          const Eigen::Vector2d eta = xi.normalized();
+          const double s = -eta.dot(gi);
+          EXPECT_GE(s, -tol_g) << "disc block " << k;
+          EXPECT_LE((gi + s * eta).norm(), tol_g) << "disc block " << k;
+        } else {
+          EXPECT_LE(gi.norm(), tol_g) << "disc block " << k;
+        }
+        break;
+      }
+    }
+  }
+}
+
+// With every bound and disc inactive at the solution, the constraints play no part: x = A^-1 b,
+// computed here by Eigen's LDLT. The free unknowns of x* include large negative values, which a
+// solver treating them as bounds would clip and one leaving them at their start would miss.
+TEST_P(MpgpVariants, InactiveContactWithFreeUnknownsGivesUnconstrainedSolution) {
+  constexpr Index kPatches = 5, kFree = 7;
+  constexpr double kCond = 30.0;
+  std::mt19937 rng(21);
+  const Index n = 3 * kPatches + kFree;
+  const Eigen::MatrixXd M = random_spd(n, kCond, rng);
+  Eigen::VectorXd xs = random_vector(n, rng);
+  Eigen::VectorXd rho(kPatches);
+  for (Index i = 0; i < kPatches; ++i) {
+    xs(3 * i) = 1.0 + std::abs(xs(3 * i));  // normal well inside x >= 0
+    rho(i) = 2.0 * xs.segment<2>(3 * i + 1).norm() + 0.1;
+  }
+  xs.tail(kFree) << -12.0, 3.0, -0.5, 8.0, -4.0, 0.0, 6.5;
+  auto c = SeparableConstraints::contact_layout(kPatches);
+  c.set_disc_radii(rho);
+  c.append_free(kFree);
+  const Eigen::VectorXd b = M * xs;
+  const Eigen::VectorXd truth = M.ldlt().solve(b);
+  auto opt = tight();
+  opt.rel_tolerance = 1e-13;
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
+  const auto rep = solve_mpgp(dense_operator(M), b, c, opt, x);
+  ASSERT_EQ(rep.termination, QpTermination::Converged) << rep.full();
+  EXPECT_LE((x - truth).norm(), 1e-10 * truth.norm()) << (x - truth).transpose();
+  EXPECT_EQ(rep.n_objective_increases, 0) << rep.full();
+}
+
+// Bounds pressed against their limit, discs on their circle and free unknowns of either sign,
+// the Free blocks interleaved with the contact blocks (not only appended): b is built around a
+// chosen optimum x* (b = A x* - g* with g* in the normal cone), which strict convexity makes
+// unique, and the solver's x is checked by the KKT conditions computed here and against x*.
+TEST_P(MpgpVariants, ActiveBoundsAndDiscsWithFreeUnknownsSatisfyKkt) {
+  constexpr Index kGroups = 6;  // per group: a bound, a disc and a free unknown, 4 unknowns
+  constexpr double kCond = 100.0;
+  std::mt19937 rng(22);
+  std::uniform_real_distribution<double> U(0.0, 1.0);
+  const Index n = 4 * kGroups;
+  SeparableConstraints c;
+  for (Index i = 0; i < kGroups; ++i) {
+    c.blocks.push_back({BlockKind::Free, 4 * i});
+    c.blocks.push_back({BlockKind::Bound, 4 * i + 1});
+    c.blocks.push_back({BlockKind::Disc, 4 * i + 2});
+  }
+  c.radius = Eigen::VectorXd::Zero(3 * kGroups);
+  Eigen::VectorXd xs = Eigen::VectorXd::Zero(n), gs = Eigen::VectorXd::Zero(n);
+  Index n_active_bounds = 0;
+  for (Index i = 0; i < kGroups; ++i) {
+    const Index o = 4 * i;
+    xs(o) = (i % 2 == 0 ? -1.0 : 1.0) * (1.0 + 2.0 * U(rng));  // free, g* = 0
+    if (i % 3 != 2) {  // bound active with a positive multiplier
+      gs(o + 1) = 0.2 + U(rng);
+      ++n_active_bounds;
+    } else {
+      xs(o + 1) = 0.5 + U(rng);
+    }
+    const double rho = 0.5 + U(rng);
+    const double phi = 2.0 * std::numbers::pi * U(rng);
+    const Eigen::Vector2d eta(std::cos(phi), std::sin(phi));
+    c.radius(3 * i + 2) = rho;
+    if (i % 2 == 0) {  // on the circle, pushed outward
+      xs.segment<2>(o + 2) = rho * eta;
+      gs.segment<2>(o + 2) = -(0.2 + U(rng)) * eta;
+    } else {
+      xs.segment<2>(o + 2) = 0.5 * rho * eta;
+    }
+  }
+  ASSERT_NO_THROW(c.validate());
+  ASSERT_GE(n_active_bounds, 2);
+  const Eigen::MatrixXd M = random_spd(n, kCond, rng);
+  const Eigen::VectorXd b = M * xs - gs;
+  // The active bounds matter: the unconstrained minimiser is infeasible.
+  const Eigen::VectorXd unconstrained = M.ldlt().solve(b);
+  ASSERT_GT((unconstrained - testing::reference_project(c, unconstrained)).norm(), 1e-3);
+  auto opt = tight();
+  opt.rel_tolerance = 1e-12;
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
+  const auto rep = solve_mpgp(dense_operator(M), b, c, opt, x);
+  ASSERT_EQ(rep.termination, QpTermination::Converged) << rep.full();
+  expect_kkt_by_definition(M, b, x, c, 1e-9);
+  EXPECT_LE((x - xs).norm(), 1e-9 * kCond * xs.norm()) << (x - xs).transpose();
+}
+
+// A load only on the free unknowns: the part of b that the bounds and discs resist is 0, but x = 0
+// is no solution (g = -b on the free unknowns); the stopping test must refer to that load.
+TEST_P(MpgpVariants, LoadOnFreeUnknownsAloneIsSolved) {
+  constexpr Index kPatches = 3, kFree = 4;
+  std::mt19937 rng(23);
+  const Index n = 3 * kPatches + kFree;
+  const Eigen::MatrixXd M = random_spd(n, 10.0, rng);
+  auto c = SeparableConstraints::contact_layout(kPatches);
+  c.set_disc_radii(Eigen::VectorXd::Constant(kPatches, 0.5));
+  c.append_free(kFree);
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(n);
+  // All negative: neither a bound's max(b_i, 0) nor a pinned disc's 0 would see this load.
+  b.tail(kFree) << -1.0, -2.0, -0.5, -3.0;
+  auto opt = tight();
+  opt.rel_tolerance = 1e-12;
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
+  const auto rep = solve_mpgp(dense_operator(M), b, c, opt, x);
+  ASSERT_EQ(rep.termination, QpTermination::Converged) << rep.full();
+  EXPECT_GT(rep.iterations, 0) << rep.full();
+  EXPECT_GT(x.tail(kFree).norm(), 0.0);
+  expect_kkt_by_definition(M, b, x, c, 1e-9);
 }
 
 // ---------------------------------------------------------------------------------------------

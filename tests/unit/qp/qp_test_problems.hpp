@@ -44,6 +44,7 @@ inline double objective(const Eigen::MatrixXd& M, const Eigen::VectorXd& b,
 inline Eigen::VectorXd reference_project(const SeparableConstraints& c, Eigen::VectorXd x) {
   for (std::size_t k = 0; k < c.blocks.size(); ++k) {
     const Index o = c.blocks[k].offset;
+    if (c.blocks[k].kind == BlockKind::Free) continue;  // unconstrained: x_i stays
     if (c.blocks[k].kind == BlockKind::Bound) {
       if (x(o) < 0.0) x(o) = 0.0;
     } else {

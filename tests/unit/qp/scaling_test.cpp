@@ -107,6 +107,16 @@ TEST(ResistedPart, KeepsThePositiveNormalEntriesAndTheDiscsOfPositiveRadius) {
   EXPECT_EQ(resisted_part(b, c), (Eigen::VectorXd(9) << 4, 1, 2, 0, 0, 0, 0, 5, 6).finished());
 }
 
+// On a Free block nothing but the equality multiplier resists b_i: all of it counts, whatever
+// its sign.
+TEST(ResistedPart, KeepsAllOfBOnFreeBlocks) {
+  SeparableConstraints c = SeparableConstraints::contact_layout(1);
+  c.set_disc_radii(Eigen::VectorXd::Constant(1, 1.0));
+  c.append_free(3);
+  const Eigen::VectorXd b = (Eigen::VectorXd(6) << -4, 1, 2, -3, 5, 0).finished();
+  EXPECT_EQ(resisted_part(b, c), (Eigen::VectorXd(6) << 0, 1, 2, -3, 5, 0).finished());
+}
+
 TEST(ResistedPart, FarPatchesDoNotLoosenTheStoppingTest) {
   // A frictionless contact QP plus patches far from the obstacle: b_n hugely negative there (a
   // gap that the free displacement does not close). Relative to ||b|| the test would stop far

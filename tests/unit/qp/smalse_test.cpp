@@ -22,6 +22,13 @@ Eigen::MatrixXd spd(Index n, unsigned seed) {
   return M * M.transpose() + 0.5 * Eigen::MatrixXd::Identity(n, n);
 }
 
+// G x = e with a dense G, written entry by entry in the tests; the solver takes it sparse.
+struct DenseEquality {
+  Eigen::MatrixXd G;
+  Eigen::VectorXd e;
+  operator EqualityConstraint() const { return {G.sparseView(), e}; }
+};
+
 Operator dense(const Eigen::MatrixXd& A) {
   return [&A](const Eigen::VectorXd& x, Eigen::VectorXd& y) { y = A * x; };
 }
@@ -53,7 +60,7 @@ TEST(Smalse, MeetsTheEqualityAndTheKktConditionsOfTheWholeProblem) {
   std::srand(11);
   const Eigen::VectorXd b = Eigen::VectorXd::Random(n);
   // Two rows: the sum of the normal multipliers, and of the first tangential ones; e reachable.
-  EqualityConstraint eq{Eigen::MatrixXd::Zero(2, n), Eigen::VectorXd(2)};
+  DenseEquality eq{Eigen::MatrixXd::Zero(2, n), Eigen::VectorXd(2)};
   for (Index p = 0; p < patches; ++p) {
     eq.G(0, 3 * p) = 1.0;
     eq.G(1, 3 * p + 1) = 1.0 + 0.1 * static_cast<double>(p);
@@ -75,7 +82,7 @@ TEST(Smalse, AnEqualityOmegaCannotMeetIsCertifiedInfeasible) {
   const Eigen::MatrixXd A = spd(n, 3);
   const Eigen::VectorXd b = Eigen::VectorXd::Ones(n);
   // The tangential multipliers can sum to at most 4 (four unit discs); ask for 6.
-  EqualityConstraint eq{Eigen::MatrixXd::Zero(1, n), Eigen::VectorXd::Constant(1, 6.0)};
+  DenseEquality eq{Eigen::MatrixXd::Zero(1, n), Eigen::VectorXd::Constant(1, 6.0)};
   for (Index p = 0; p < patches; ++p)
     eq.G(0, 3 * p + 1) = 1.0;
   Eigen::VectorXd x = Eigen::VectorXd::Zero(n), mu;
@@ -93,7 +100,7 @@ TEST(Smalse, ANegativeResultantOfBoundsIsInfeasible) {
   const SeparableConstraints c = SeparableConstraints::contact_layout(patches);
   const Eigen::MatrixXd A = spd(n, 5);
   const Eigen::VectorXd b = Eigen::VectorXd::Ones(n);
-  EqualityConstraint eq{Eigen::MatrixXd::Zero(1, n), Eigen::VectorXd::Constant(1, -2.0)};
+  DenseEquality eq{Eigen::MatrixXd::Zero(1, n), Eigen::VectorXd::Constant(1, -2.0)};
   for (Index p = 0; p < patches; ++p)
     eq.G(0, 3 * p) = 1.0;  // lambda_n >= 0 sum to -2?
   Eigen::VectorXd x = Eigen::VectorXd::Zero(n), mu;
@@ -108,7 +115,7 @@ TEST(Smalse, ARowOnPinnedDiscsOnlyIsUndeterminedAndMustCarryNoLoad) {
   const SeparableConstraints c = SeparableConstraints::contact_layout(patches);  // radii 0
   const Eigen::MatrixXd A = spd(n, 9);
   const Eigen::VectorXd b = Eigen::VectorXd::Ones(n);
-  EqualityConstraint eq{Eigen::MatrixXd::Zero(2, n), Eigen::VectorXd::Zero(2)};
+  DenseEquality eq{Eigen::MatrixXd::Zero(2, n), Eigen::VectorXd::Zero(2)};
   for (Index p = 0; p < patches; ++p) {
     eq.G(0, 3 * p) = 1.0;      // the normal resultant
     eq.G(1, 3 * p + 1) = 1.0;  // a tangential one, on pinned discs
@@ -144,7 +151,7 @@ TEST(BalanceCertificate, DecidesFeasibilityWithoutTheHessian) {
   SeparableConstraints c = SeparableConstraints::contact_layout(patches);
   c.set_disc_radii(Eigen::VectorXd::Constant(patches, 1.0));
   // Row 0: the tangential resultant (at most 4 in Omega); row 1: the normal one (any >= 0).
-  EqualityConstraint eq{Eigen::MatrixXd::Zero(2, n), Eigen::VectorXd(2)};
+  DenseEquality eq{Eigen::MatrixXd::Zero(2, n), Eigen::VectorXd(2)};
   for (Index p = 0; p < patches; ++p) {
     eq.G(0, 3 * p + 1) = 1.0;
     eq.G(1, 3 * p) = 1.0;

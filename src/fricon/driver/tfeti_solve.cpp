@@ -1,0 +1,94 @@
+#include "fricon/driver/tfeti_solve.hpp"
+
+#include <fmt/format.h>
+
+#include "fricon/core/error.hpp"
+#include "fricon/core/parallel_for.hpp"
+#include "fricon/driver/contact_solver.hpp"
+#include "fricon/driver/run_steps.hpp"
+#include "fricon/feti/tfeti.hpp"
+#include "fricon/linalg/blas.hpp"
+#include "fricon/qp/smalse.hpp"
+
+namespace fricon::driver {
+
+std::unique_ptr<feti::FetiOperator> make_feti_operator(const Problem& problem, const Model& model,
+                                                       const contact::ContactDiscretization* disc,
+                                                       RunReport& report) {
+  ScopedPhase phase(report.times, "factorize");
+  feti::FetiOptions o;
+  o.subdomains = problem.solver.subdomains.value_or(0);
+  o.subdomain_size = problem.solver.subdomain_size;
+  o.scaling = problem.solver.tfeti_scaling;
+  // The subdomains are the parallelism: one BLAS thread inside each of their solves.
+  o.threads = loop_threads(linalg::threads());
+  linalg::set_threads(1);
+  o.key_context = problem.where("solver.subdomains");
+  const fe::NodalField applied = applied_forces(problem, model.mesh);
+  const SparseMatrix no_rows(0, model.dofs.n_free());
+  feti::FetiReport feti_report;
+  auto op = feti::make_tfeti(model.mesh, model.bodies, model.materials, model.dofs,
+                             model.prescribed, applied, disc ? disc->B : no_rows,
+                             disc ? disc->offset : VectorXd(), o, feti_report);
+  report.feti = feti_report;
+  return op;
+}
+
+void record_feti_counts(const feti::FetiOperator& F, RunReport& report) {
+  if (!report.feti) return;
+  report.feti->n_products = F.n_products();
+  report.feti->peak_memory_mib = feti::peak_memory_mib();
+  if (report.contact) {
+    report.feti->qp_iterations = report.contact->qp_iterations;
+    report.feti->smalse_outer_iterations = report.contact->smalse_outer_iterations;
+    report.feti->gluing_residual = report.contact->gluing_residual;
+    report.feti->gluing_bound = report.contact->kkt_bound;
+  }
+}
+
+VectorXd solve_elastic_tfeti(const Problem& problem, const RunOptions& options, RunResult& r) {
+  RunReport& rep = r.report;
+  phase_start(options, "factorize");
+  const std::unique_ptr<feti::FetiOperator> F = make_feti_operator(problem, r.model, nullptr, rep);
+  phase_start(options, "solve");
+  ScopedPhase phase(rep.times, "solve");
+  qp::SeparableConstraints free;
+  free.append_free(F->size());
+  qp::MpgpOptions inner = problem.solver.qp;
+  inner.monitor = [&options](const qp::MpgpIteration&) { return !options.stop_was_requested(); };
+  qp::SmalseOptions outer;
+  outer.equality_tolerance = inner.rel_tolerance;
+  VectorXd lambda = VectorXd::Zero(F->size()), mu;
+  const qp::SmalseReport s = qp::solve_smalse(F->as_qp_operator(), F->h(), free, {F->G(), F->e()},
+                                              outer, inner, lambda, mu);
+  const VectorXd alpha = -mu;
+  const VectorXd u = F->displacement(lambda) + F->rigid_displacement(alpha);
+  rep.linear_residual = elastic_residual(r.model, u);
+  feti::FetiReport& fr = *rep.feti;
+  fr.n_products = F->n_products();
+  fr.n_coarse_solves = s.n_coarse_solves;
+  fr.qp_iterations = s.iterations;
+  fr.smalse_outer_iterations = s.outer_iterations;
+  fr.gluing_residual = F->gluing_residual(lambda, alpha);
+  fr.gluing_bound = kCertificateFactor * inner.rel_tolerance;
+  fr.peak_memory_mib = feti::peak_memory_mib();
+  if (s.termination == qp::QpTermination::UserStopped)
+    throw Interrupted("interrupted during the Total FETI solve");
+  if (s.termination != qp::QpTermination::Converged) {
+    rep.status = RunStatus::NotConverged;
+    rep.message = fmt::format("the Total FETI QP did not converge: {}", s.message);
+  } else if (!(fr.gluing_residual <= fr.gluing_bound)) {
+    rep.status = RunStatus::NotConverged;
+    rep.message = fmt::format(
+        "the certificate failed: the subdomains' copies of a node differ by {:.3e} of the "
+        "largest displacement, more than {:.1e}",
+        fr.gluing_residual, fr.gluing_bound);
+  } else {
+    rep.message =
+        fmt::format("Total FETI on {} subdomains: {} products with F, gluing residual {:.2e}",
+                    fr.n_subdomains, fr.n_products, fr.gluing_residual);
+  }
+  return u;
+}
+
+}  // namespace fricon::driver

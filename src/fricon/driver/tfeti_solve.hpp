@@ -1,0 +1,37 @@
+#pragma once
+// driver: backend "tfeti" (docs/theory.md §7) in the run: the Total FETI operator of a model,
+// built in place of the factor of K, and the elastic solve of a model without contact by the same
+// dual QP (its multipliers all equality ones). With contact the operator goes to the contact
+// solve like any dual::DualOperator.
+
+#include <memory>
+
+#include "fricon/contact/discretization.hpp"
+#include "fricon/driver/model.hpp"
+#include "fricon/driver/problem.hpp"
+#include "fricon/driver/run.hpp"
+#include "fricon/feti/feti_operator.hpp"
+
+namespace fricon::driver {
+
+/// The Total FETI operator of the model (assemble_loads: no K) with the contact rows of `disc`
+/// (null: none), from the problem's [solver] subdomains, subdomain_size and tfeti_scaling, its
+/// subdomain loops on the run's threads (linalg::threads(), the BLAS then on one: the parallelism
+/// is over the subdomains). Fills report.feti; phase "factorize". Throws InputError for a
+/// partition that cannot be made (naming solver.subdomains), NumericalError for a subdomain that
+/// cannot be factored.
+std::unique_ptr<feti::FetiOperator> make_feti_operator(const Problem& problem, const Model& model,
+                                                       const contact::ContactDiscretization* disc,
+                                                       RunReport& report);
+
+/// After a contact solve with `F`: its products with F and coarse solves into report.feti.
+void record_feti_counts(const feti::FetiOperator& F, RunReport& report);
+
+/// The displacement over the free dofs of a model without contact by Total FETI: SMALSE-M on the
+/// gluing and Dirichlet multipliers (free unknowns) with the equality G lambda = e (phase
+/// "solve"). Sets the report's status, message, linear residual and the gluing residual of the
+/// certificate; a QP that did not converge, or whose gluing residual exceeds 100 qp_rtol, leaves
+/// the status NotConverged.
+VectorXd solve_elastic_tfeti(const Problem& problem, const RunOptions& options, RunResult& r);
+
+}  // namespace fricon::driver

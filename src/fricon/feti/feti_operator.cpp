@@ -1,0 +1,184 @@
+#include "fricon/feti/feti_operator.hpp"
+
+#include <algorithm>
+
+#include "fricon/core/error.hpp"
+#include "fricon/core/parallel_for.hpp"
+
+namespace fricon::feti {
+
+namespace {
+
+using Triplet = Eigen::Triplet<Real, SparseIndex>;
+
+// x at the rows of a subdomain.
+VectorXd gather(const VectorXd& x, const std::vector<Index>& rows) {
+  VectorXd local(static_cast<Index>(rows.size()));
+  for (std::size_t k = 0; k < rows.size(); ++k)
+    local(static_cast<Index>(k)) = x(rows[k]);
+  return local;
+}
+
+// y at the rows of a subdomain += local.
+void scatter_add(const VectorXd& local, const std::vector<Index>& rows, VectorXd& y) {
+  for (std::size_t k = 0; k < rows.size(); ++k)
+    y(rows[k]) += local(static_cast<Index>(k));
+}
+
+// G = R^T B^T: six rows per subdomain, over the dual rows it touches.
+SparseMatrix coarse_rows(const std::vector<Subdomain>& subdomains, Index n_dual) {
+  std::vector<Triplet> entries;
+  for (std::size_t i = 0; i < subdomains.size(); ++i) {
+    const Subdomain& s = subdomains[i];
+    const MatrixXd G_s = s.R.transpose() * s.B.transpose();  // 6 x rows
+    for (Index k = 0; k < G_s.cols(); ++k)
+      for (Index j = 0; j < kSubdomainMotions; ++j)
+        if (G_s(j, k) != 0.0)
+          entries.emplace_back(kSubdomainMotions * static_cast<Index>(i) + j,
+                               s.rows[static_cast<size_t>(k)], G_s(j, k));
+  }
+  SparseMatrix G(kSubdomainMotions * static_cast<Index>(subdomains.size()), n_dual);
+  G.setFromTriplets(entries.begin(), entries.end());
+  G.makeCompressed();
+  return G;
+}
+
+}  // namespace
+
+FetiOperator::FetiOperator(std::vector<Subdomain> subdomains, TornRows rows,
+                           const std::vector<Index>& owner_dof, const fe::DofMap& dofs, int threads)
+    : subdomains_(std::move(subdomains)),
+      rows_(std::move(rows)),
+      dofs_(dofs),
+      owner_dof_(owner_dof),
+      threads_(std::max(threads, 1)) {
+  torn_of_free_.assign(static_cast<size_t>(dofs.n_free()), -1);
+  for (Index a = 0; a < dofs.n_nodes(); ++a)
+    for (int c = 0; c < 3; ++c)
+      if (dofs.dof(a, c) >= 0)
+        torn_of_free_[static_cast<size_t>(dofs.dof(a, c))] =
+            owner_dof_[static_cast<size_t>(3 * a + c)];
+  partial_.assign(static_cast<size_t>(threads_), VectorXd());
+  G_ = coarse_rows(subdomains_, rows_.n_rows());
+  compute_load_terms();
+}
+
+void FetiOperator::compute_load_terms() {
+  const Index n = rows_.n_rows();
+  VectorXd u0_torn(rows_.B.cols());
+  e_.resize(kSubdomainMotions * static_cast<Index>(subdomains_.size()));
+  parallel_for(static_cast<Index>(subdomains_.size()), threads_, [&](Index i, int) {
+    const Subdomain& s = subdomains_[static_cast<size_t>(i)];
+    u0_torn.segment(s.first_dof, s.n_dofs()) = s.factor.solve(s.f);
+    e_.segment<kSubdomainMotions>(kSubdomainMotions * i) = s.R.transpose() * s.f;
+  });
+  h_ = VectorXd::Zero(n);
+  for (const Subdomain& s : subdomains_)
+    scatter_add(s.B * u0_torn.segment(s.first_dof, s.n_dofs()), s.rows, h_);
+  h_ -= rows_.c;
+  u0_ = to_free(u0_torn);
+  ++n_kinv_;
+}
+
+void FetiOperator::apply(const VectorXd& x, VectorXd& y) const {
+  const Index n = x.size();
+  for (VectorXd& p : partial_)
+    p.setZero(n);
+  parallel_for(static_cast<Index>(subdomains_.size()), threads_, [&](Index i, int thread) {
+    const Subdomain& s = subdomains_[static_cast<size_t>(i)];
+    const VectorXd local = s.factor.solve(VectorXd(s.B.transpose() * gather(x, s.rows)));
+    scatter_add(s.B * local, s.rows, partial_[static_cast<size_t>(thread)]);
+  });
+  y = partial_[0];
+  for (std::size_t t = 1; t < partial_.size(); ++t)
+    y += partial_[t];
+  ++n_products_;
+  ++n_kinv_;
+}
+
+VectorXd FetiOperator::torn_displacement(const VectorXd& lambda, const VectorXd* alpha) const {
+  FRICON_CHECK(lambda.size() == size(), "lambda of " << lambda.size() << " for " << size());
+  VectorXd u(rows_.B.cols());
+  parallel_for(static_cast<Index>(subdomains_.size()), threads_, [&](Index i, int) {
+    const Subdomain& s = subdomains_[static_cast<size_t>(i)];
+    VectorXd u_s = s.factor.solve(VectorXd(s.f - s.B.transpose() * gather(lambda, s.rows)));
+    if (alpha) u_s += s.R * alpha->segment<kSubdomainMotions>(kSubdomainMotions * i);
+    u.segment(s.first_dof, s.n_dofs()) = u_s;
+  });
+  ++n_kinv_;
+  return u;
+}
+
+VectorXd FetiOperator::to_free(const VectorXd& torn) const {
+  VectorXd u(static_cast<Index>(torn_of_free_.size()));
+  for (std::size_t k = 0; k < torn_of_free_.size(); ++k)
+    u(static_cast<Index>(k)) = torn(torn_of_free_[k]);
+  return u;
+}
+
+void FetiOperator::contact_displacement(const VectorXd& lambda, VectorXd& w) const {
+  w = displacement(lambda);
+}
+
+VectorXd FetiOperator::displacement(const VectorXd& lambda) const {
+  return to_free(torn_displacement(lambda, nullptr));
+}
+
+VectorXd FetiOperator::rigid_displacement(const VectorXd& alpha) const {
+  FRICON_CHECK(alpha.size() == n_motions(),
+               "rigid_displacement: " << alpha.size() << " amplitudes for " << n_motions());
+  VectorXd u(rows_.B.cols());
+  for (std::size_t i = 0; i < subdomains_.size(); ++i) {
+    const Subdomain& s = subdomains_[i];
+    u.segment(s.first_dof, s.n_dofs()) =
+        s.R * alpha.segment<kSubdomainMotions>(kSubdomainMotions * static_cast<Index>(i));
+  }
+  return to_free(u);
+}
+
+Real FetiOperator::gluing_residual(const VectorXd& lambda, const VectorXd& alpha) const {
+  const VectorXd u = torn_displacement(lambda, &alpha);
+  const Index first = rows_.n_contact;
+  const VectorXd r = rows_.B.middleRows(first, rows_.n_equality()) * u -
+                     rows_.c.segment(first, rows_.n_equality());
+  // The rows are scaled by sqrt(k) [sqrt(N/m)]: back to metres, row by row, by the scale of the
+  // row (its largest entry).
+  const SparseMatrix Bt = SparseMatrix(rows_.B.middleRows(first, rows_.n_equality()).transpose());
+  Real worst = 0.0;
+  for (Index k = 0; k < Bt.outerSize(); ++k) {
+    Real scale = 0.0;
+    for (SparseMatrix::InnerIterator it(Bt, k); it; ++it)
+      scale = std::max(scale, std::abs(it.value()));
+    if (scale > 0.0) worst = std::max(worst, std::abs(r(k)) / scale);
+  }
+  const Real u_max = u.size() > 0 ? u.lpNorm<Eigen::Infinity>() : 0.0;
+  return u_max > 0.0 ? worst / u_max : worst;
+}
+
+void FetiOperator::set_step_load(const fe::NodalField& applied, const fe::NodalField& prescribed,
+                                 const VectorXd& contact_offset) {
+  FRICON_CHECK(contact_offset.size() == rows_.n_contact,
+               "an offset of " << contact_offset.size() << " for " << rows_.n_contact);
+  for (Subdomain& s : subdomains_) {
+    s.f.setZero();
+    for (std::size_t a = 0; a < s.nodes.size(); ++a)
+      for (int c = 0; c < 3; ++c) {
+        const Index dof = s.first_dof + 3 * static_cast<Index>(a) + c;
+        if (owner_dof_[static_cast<size_t>(3 * s.nodes[a] + c)] == dof)
+          s.f(3 * static_cast<Index>(a) + c) = applied(c, s.nodes[a]);
+      }
+  }
+  rows_.c.head(rows_.n_contact) = contact_offset;
+  // The Dirichlet rows keep their scale: c = w times the prescribed value.
+  Index row = rows_.n_contact + rows_.n_gluing;
+  for (Index a = 0; a < dofs_.n_nodes(); ++a)
+    for (int c = 0; c < 3; ++c) {
+      if (!dofs_.is_fixed(a, c)) continue;
+      const Index dof = owner_dof_[static_cast<size_t>(3 * a + c)];
+      rows_.c(row) = rows_.B.coeff(row, dof) * prescribed(c, a);
+      ++row;
+    }
+  compute_load_terms();
+}
+
+}  // namespace fricon::feti

@@ -1,0 +1,72 @@
+#pragma once
+// feti: the dual operator of Total FETI (docs/theory.md §7.3): F = B K^+ B^T over the contact
+// multipliers and, after them, the equality multipliers of the gluing and Dirichlet rows
+// (feti/torn_rows.hpp), with K = diag(K_s) over the torn dofs of the subdomains
+// (feti/subdomains.hpp). Every product is a sum over the subdomains,
+//
+//   F x = sum_s B_s K_s^+ B_s^T x,
+//
+// run on a pool of threads. The equality G lambda = e, G = R^T B^T and e = R^T f, carries the
+// rigid motions of every subdomain (6 per subdomain: the natural coarse space), and the
+// displacement is u = K^+ (f - B^T lambda) + R alpha, alpha = -mu of that equality, read at each
+// node's owner copy (the copies agree to the gluing residual, which the certificate checks).
+// To the contact solve it is one more dual::DualOperator: the QP layer sees the equality
+// multipliers as free unknowns (qp::BlockKind::Free) and the equality through qp::CoarseSpace.
+
+#include <memory>
+#include <vector>
+
+#include "fricon/dual/dual_operator.hpp"
+#include "fricon/fe/dof_map.hpp"
+#include "fricon/feti/subdomains.hpp"
+#include "fricon/feti/torn_rows.hpp"
+
+namespace fricon::feti {
+
+class FetiOperator final : public dual::DualOperator {
+ public:
+  /// The operator of the factored `subdomains` (make_subdomains) and the rows `rows`
+  /// (tear_rows, with the same subdomains); `owner_dof` (owner_dofs) and `dofs` (the whole
+  /// model's) map the torn displacement to the model's free dofs. Computes h, G and e (one solve
+  /// per subdomain). Products run on `threads` threads.
+  FetiOperator(std::vector<Subdomain> subdomains, TornRows rows,
+               const std::vector<Index>& owner_dof, const fe::DofMap& dofs, int threads);
+
+  dual::DualOperatorKind kind() const override { return dual::DualOperatorKind::Implicit; }
+  void apply(const VectorXd& x, VectorXd& y) const override;
+  void contact_displacement(const VectorXd& lambda, VectorXd& w) const override;
+  VectorXd displacement(const VectorXd& lambda) const override;
+  VectorXd rigid_displacement(const VectorXd& alpha) const override;
+  Index n_equality() const override { return rows_.n_equality(); }
+  Real gluing_residual(const VectorXd& lambda, const VectorXd& alpha) const override;
+  /// A new load (a step of a loading path): the applied forces (3 x n_nodes [N]) at the owners'
+  /// copies, the prescribed displacements (3 x n_nodes [m]) in the Dirichlet rows and the
+  /// contact rows' offset [m^3]; h and e are recomputed (one solve per subdomain).
+  void set_step_load(const fe::NodalField& applied, const fe::NodalField& prescribed,
+                     const VectorXd& contact_offset);
+
+  const std::vector<Subdomain>& subdomains() const { return subdomains_; }
+  const TornRows& rows() const { return rows_; }
+  /// Products with F (apply) so far; each is one solve with every subdomain's factor.
+  long n_products() const { return n_products_; }
+
+ private:
+  /// The torn displacement K^+ (f - B^T lambda) (+ R alpha when alpha is given).
+  VectorXd torn_displacement(const VectorXd& lambda, const VectorXd* alpha) const;
+  /// A torn field read at the owners' copies, over the model's free dofs.
+  VectorXd to_free(const VectorXd& torn) const;
+  /// h = B K^+ f - c, u0 and e = R^T f from the subdomains' loads.
+  void compute_load_terms();
+
+  std::vector<Subdomain> subdomains_;
+  TornRows rows_;
+  std::vector<Index> torn_of_free_;  ///< the owner's torn dof of each free dof of the model
+  /// Per free dof (node, component) of the model, for set_step_load: its node and component.
+  const fe::DofMap& dofs_;
+  std::vector<Index> owner_dof_;
+  int threads_ = 1;
+  mutable std::vector<VectorXd> partial_;  ///< per thread: its sum of products
+  mutable long n_products_ = 0;
+};
+
+}  // namespace fricon::feti

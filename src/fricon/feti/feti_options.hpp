@@ -1,0 +1,74 @@
+#pragma once
+// feti: what a user chooses of Total FETI ([solver] subdomains, subdomain_size, tfeti_scaling;
+// docs/theory.md §7) and what a run reports of it. Data only: the problem and the run's report
+// hold them without depending on the solver.
+
+#include <string>
+
+#include "fricon/core/enum_names.hpp"
+#include "fricon/core/types.hpp"
+
+namespace fricon::feti {
+
+/// How the equality rows (gluing and Dirichlet) of B are scaled (theory.md §7.5).
+enum class RowScaling {
+  Stiffness,  ///< by the lumped stiffness of the row's dofs (the default)
+  Uniform,    ///< by one factor, the mean stiffness diagonal (for comparison)
+};
+
+/// The smallest subdomain_size a user may ask for [nodes].
+inline constexpr int kMinSubdomainSize = 4;
+
+/// True when this build of fricon has METIS (Debian's libmetis-dev found at configure), which
+/// backend "tfeti" partitions with.
+bool metis_available();
+
+/// The default target size of a subdomain [nodes] (solver.subdomain_size), measured with
+/// bench/tfeti_bench.py (docs/benchmarks.md).
+inline constexpr Index kDefaultSubdomainSize = 3000;
+
+struct FetiOptions {
+  /// The number of subdomains over all bodies (> 0), or 0 to take it from subdomain_size.
+  Index subdomains = 0;
+  Index subdomain_size = kDefaultSubdomainSize;  ///< target nodes per subdomain (> 0)
+  RowScaling scaling = RowScaling::Stiffness;
+  int threads = 1;          ///< threads of the subdomains' factorizations and solves
+  std::string key_context;  ///< where solver.subdomains was given, for messages
+};
+
+/// What the decomposition is: sizes, the interface, the coarse problem, times and memory.
+struct FetiReport {
+  Index n_subdomains = 0;
+  Index n_split = 0;           ///< parts of the graph partition split into connected pieces
+  std::string partition_note;  ///< how the partition was adjusted (empty: as asked)
+  Index min_nodes = 0, max_nodes = 0;
+  double mean_nodes = 0.0;
+  Index n_torn = 0;                  ///< torn dofs (3 per copy of a node)
+  Index n_contact = 0;               ///< contact multipliers
+  Index n_gluing = 0;                ///< gluing multipliers (the interface)
+  Index n_dirichlet = 0;             ///< Dirichlet multipliers
+  Index n_coarse = 0;                ///< rows of G: 6 per subdomain
+  std::string row_scaling;           ///< "stiffness" or "uniform"
+  int threads = 1;                   ///< threads of the subdomain loops
+  double nnz_factors = 0.0;          ///< non-zeros of all the subdomains' factors
+  double factor_mib = 0.0;           ///< their memory, 8 bytes per non-zero [MiB]
+  double partition_s = 0.0;          ///< the graph partition [s]
+  double factorization_s = 0.0;      ///< assembly and factorization of every K_s, wall [s]
+  double factorization_cpu_s = 0.0;  ///< the same, summed over the subdomains [s]
+  double operator_s = 0.0;           ///< the torn rows, G, h and e [s]
+  long n_products = 0;               ///< products with F (filled after the solve)
+  long n_coarse_solves = 0;          ///< solves with G G^T (filled after the solve)
+  long qp_iterations = 0;            ///< MPGP steps over all QPs (filled after the solve)
+  long smalse_outer_iterations = 0;  ///< SMALSE-M's outer steps over all QPs
+  /// The certificate's check of the gluing and Dirichlet rows: the largest violation relative to
+  /// the largest displacement, and its bound (100 qp_rtol).
+  double gluing_residual = 0.0;
+  double gluing_bound = 0.0;
+  double peak_memory_mib = 0.0;  ///< peak resident memory of the process at the end [MiB]
+};
+
+}  // namespace fricon::feti
+
+FRICON_ENUM_NAMES(fricon::feti::RowScaling, "solver.tfeti_scaling",
+                  {feti::RowScaling::Stiffness, "stiffness"},
+                  {feti::RowScaling::Uniform, "uniform"});

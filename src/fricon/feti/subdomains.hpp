@@ -1,0 +1,54 @@
+#pragma once
+// feti: the subdomains of Total FETI (docs/theory.md §7.1): each a face-connected set of
+// tetrahedra (feti/partition.hpp) with its own copy of every node it touches (the torn dofs),
+// its stiffness K_s over all of them (no Dirichlet condition: every subdomain floats), its rigid
+// motions R_s (K_s R_s = 0) and the factor of the regularized K_s, whose solves are a generalized
+// inverse K_s^+ (fe/floating.hpp, the floating bodies' own). Built on a pool of threads.
+
+#include <vector>
+
+#include "fricon/core/types.hpp"
+#include "fricon/fe/assembly.hpp"
+#include "fricon/fe/material.hpp"
+#include "fricon/feti/partition.hpp"
+#include "fricon/linalg/cholesky.hpp"
+#include "fricon/mesh/tet_mesh.hpp"
+
+namespace fricon::feti {
+
+/// Rigid motions of a subdomain: three translations and three rotations.
+inline constexpr Index kSubdomainMotions = 6;
+
+struct Subdomain {
+  std::vector<Index> nodes;  ///< the mesh node of each local node, ascending
+  /// Its first torn dof: component c of local node a is torn dof first_dof + 3 a + c.
+  Index first_dof = 0;
+  Index n_tets = 0;
+  Index n_dofs() const { return 3 * static_cast<Index>(nodes.size()); }
+
+  VectorXd stiffness_diagonal;    ///< the diagonal of K_s [N/m] (scales the gluing rows)
+  MatrixXd R;                     ///< n_dofs x 6: its rigid motions [m per unit amplitude]
+  linalg::CholeskyFactor factor;  ///< of the regularized K_s: solves are K_s^+ [m/N]
+  VectorXd f;                     ///< its share of the applied load [N] (at the nodes it owns)
+  double factor_seconds = 0.0;    ///< the assembly and factorization of K_s [s]
+
+  /// The rows of the torn B that act on it (feti/torn_rows.hpp) over its local dofs, as
+  /// `rows.size()` x n_dofs, and the dual row of each.
+  SparseMatrix B;
+  std::vector<Index> rows;
+};
+
+/// The subdomain that owns each node of `mesh`: the first (lowest) of those whose tetrahedra
+/// touch it. The load of a node and its Dirichlet rows act on the owner's copy.
+std::vector<Index> node_owners(const mesh::TetMesh& mesh, const Partition& partition);
+
+/// The subdomains of `partition` of `mesh`, numbered as it numbers them, torn dofs consecutive in
+/// that order: for each, its nodes, K_s assembled with `materials` (one per region of the mesh)
+/// and factored after regularization, R_s, and the applied forces `applied` (3 x n_nodes [N],
+/// every component, fixed ones too) at the nodes it owns (`owners`, node_owners). Runs on
+/// `threads` threads. Throws NumericalError when a regularized K_s is not positive definite.
+std::vector<Subdomain> make_subdomains(const mesh::TetMesh& mesh, fe::Materials materials,
+                                       const Partition& partition, const std::vector<Index>& owners,
+                                       const fe::NodalField& applied, int threads);
+
+}  // namespace fricon::feti
