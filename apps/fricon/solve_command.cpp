@@ -60,7 +60,22 @@ void print_summary(const driver::RunResult& result, const std::filesystem::path&
   fmt::print("  mesh          {} nodes, {} {}-node tetrahedra\n", r.n_nodes, r.n_tets,
              r.nodes_per_tet);
   fmt::print("  unknowns      n_primal = {}\n", r.n_primal);
-  fmt::print("  factor        nnz(L) = {:.0f}, ordering {}\n", r.factor.nnz_L, r.factor.ordering);
+  if (r.feti) {
+    const auto& f = *r.feti;
+    fmt::print(
+        "  subdomains    {} (tfeti, {} threads), {}-{} nodes each (mean {:.0f}); {} gluing, {} "
+        "Dirichlet, {} contact multipliers; coarse problem {} rows\n",
+        f.n_subdomains, f.threads, f.min_nodes, f.max_nodes, f.mean_nodes, f.n_gluing,
+        f.n_dirichlet, f.n_contact, f.n_coarse);
+    fmt::print(
+        "  factors       nnz = {:.0f} ({:.0f} MiB) in {:.3f} s ({:.3f} s summed over the "
+        "subdomains); {} products with F; peak memory {:.0f} MiB\n",
+        f.nnz_factors, f.factor_mib, f.factorization_s, f.factorization_cpu_s, f.n_products,
+        f.peak_memory_mib);
+    if (!f.partition_note.empty()) fmt::print("  partition     {}\n", f.partition_note);
+  } else {
+    fmt::print("  factor        nnz(L) = {:.0f}, ordering {}\n", r.factor.nnz_L, r.factor.ordering);
+  }
   if (r.parallel) {
     fmt::print("  ranks         {} (backend petsc, partition {}), peak memory per rank [MiB]:",
                r.parallel->n_ranks, enum_name(r.parallel->partition));
@@ -109,6 +124,12 @@ void print_summary(const driver::RunResult& result, const std::filesystem::path&
         c.kkt.feasibility, c.kkt.stationarity, c.kkt.complementarity, c.kkt.max(),
         c.kkt.max() <= c.kkt_bound ? "<=" : ">", c.kkt_bound,
         c.kkt.max() <= c.kkt_bound ? "passed" : "FAILED");
+    if (r.feti)
+      fmt::print(
+          "  gluing        the subdomains' copies differ by {:.1e} of the displacement (root "
+          "mean squares) {} {:.1e} = 100 qp_rtol, certificate {}\n",
+          c.gluing_residual, c.gluing_residual <= c.kkt_bound ? "<=" : ">", c.kkt_bound,
+          c.gluing_residual <= c.kkt_bound ? "passed" : "FAILED");
     if (c.model == contact::FrictionModel::Coulomb)
       fmt::print(
           "  Coulomb       natural-map residual{} {:.1e} {} {:.1e} = certificate_tol{}, "
@@ -262,6 +283,12 @@ driver::Problem read_problem_on_every_rank(const std::string& file, const SolveO
   driver::Problem problem;
   const auto read = [&] {
     problem = io::read_problem(file, so.sets);
+    if (mpi_ranks() > 1 && problem.solver.backend == parallel::Backend::Tfeti)
+      throw InputError(fmt::format(
+          "{}: solver.backend: \"tfeti\" runs its subdomains on the threads of one process; "
+          "this version does not distribute them over MPI ranks (mpirun started {}): run it "
+          "without mpirun, or use backend \"petsc\" on the ranks (docs/parallel.md)",
+          problem.where("solver.backend"), mpi_ranks()));
     if (mpi_ranks() > 1 && problem.solver.backend != parallel::Backend::Petsc)
       throw InputError(fmt::format(
           "{}: solver.backend: \"{}\" runs on one process, but mpirun started {} ranks; run "

@@ -291,9 +291,7 @@ VectorXd certify(const contact::ContactDiscretization& disc, const dual::DualOpe
     // The rigid motions that contact fixes (with Total FETI those of every subdomain), and the
     // balance of the floating bodies (of the subdomains).
     w += Q.rigid_displacement(map.alpha());
-    const VectorXd Gl = Q.G() * map.all_lambda();
-    const Real scale = std::max(Q.e().norm(), Gl.norm());
-    rep.equality_residual = scale > 0.0 ? (Gl - Q.e()).norm() / scale : 0.0;
+    rep.equality_residual = qp::equality_residual({Q.G(), Q.e()}, map.all_lambda());
     if (Q.n_equality() == 0) {
       rep.rigid_amplitudes = map.alpha();
       rep.undetermined_motions = map.last_smalse().undetermined;
@@ -508,8 +506,9 @@ void conclude(const outer::OuterReport& loop, ContactOutcome& out) {
     rep.termination = outer::OuterTermination::CertificateFailed;
     out.converged = false;
     out.message = fmt::format(
-        "the certificate of the final QP failed: the subdomains' copies of a node (or a "
-        "Dirichlet value) differ by {:.3e} of the largest displacement, more than {:.1e}",
+        "the certificate of the final QP failed: the subdomains' copies of the nodes (and the "
+        "Dirichlet values) differ by {:.3e} of the displacement (root mean squares), more than "
+        "{:.1e}",
         rep.gluing_residual, rep.kkt_bound);
   }
   if (out.converged && !(rep.kkt.max() <= rep.kkt_bound)) {

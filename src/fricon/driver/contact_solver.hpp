@@ -164,15 +164,16 @@ struct ContactReport {
   /// Floating bodies (theory.md §2.10; empty or 0 without): the amplitudes of their free motions
   /// at the result (the columns of Model::floating.R) [m or rad]; the motions no contact force
   /// resists (columns over those motions, qp::SmalseReport::undetermined); the relative residual
-  /// ||G lambda - e|| / max(||e||, ||G lambda||) of the certificate and its bound; and the outer
+  /// qp::equality_residual of G lambda = e at the certificate and its bound; and the outer
   /// steps of SMALSE-M over all QPs.
   VectorXd rigid_amplitudes;
   MatrixXd undetermined_motions;
   Real equality_residual = 0.0;
   Real equality_bound = 0.0;
   long smalse_outer_iterations = 0;
-  /// Backend "tfeti" (theory.md §7.6): the largest violation of the gluing and Dirichlet rows by
-  /// the result, relative to the largest displacement; certified against kkt_bound. 0 otherwise.
+  /// Backend "tfeti" (theory.md §7.6): the violation of the gluing and Dirichlet rows by the
+  /// result, its root mean square relative to that of the displacement; certified against
+  /// kkt_bound. 0 otherwise.
   Real gluing_residual = 0.0;
   /// Against a curved rigid obstacle (theory.md §2.11): the geometric updates made (solves
   /// again at the deformed position) and, at the result, the largest difference between the

@@ -728,6 +728,10 @@ const OptionTable& loading_table() {
       if (l.steps > 1 && p.solver.backend == parallel::Backend::Petsc)
         fail(p, join_key(path, "steps"),
              "a loading path runs on one process: use solver.backend = \"cholmod\"");
+      if (l.steps > 1 && p.solver.backend == parallel::Backend::Tfeti)
+        fail(p, join_key(path, "steps"),
+             "backend \"tfeti\" solves static problems in this version: run a loading path with "
+             "solver.backend = \"cholmod\"");
     });
     return b.build();
   }();

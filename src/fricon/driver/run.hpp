@@ -75,7 +75,7 @@ struct RunReport {
   Real linear_residual = 0.0;
   std::optional<ContactReport> contact;  ///< present when the problem has a [contact] section
   std::optional<parallel::ParallelReport> parallel;  ///< present for backend "petsc"
-  std::optional<feti::FetiReport> feti;  ///< present for backend "tfeti"
+  std::optional<feti::FetiReport> feti;              ///< present for backend "tfeti"
   /// With [loading] steps > 1: every step done (the last may have failed); the other fields
   /// hold the last step's values.
   std::vector<StepReport> steps;

@@ -55,6 +55,7 @@ VectorXd solve_elastic_tfeti(const Problem& problem, const RunOptions& options, 
   qp::SeparableConstraints free;
   free.append_free(F->size());
   qp::MpgpOptions inner = problem.solver.qp;
+  inner.rel_tolerance *= dual::kEqualityToleranceShare;
   inner.monitor = [&options](const qp::MpgpIteration&) { return !options.stop_was_requested(); };
   qp::SmalseOptions outer;
   outer.equality_tolerance = inner.rel_tolerance;
@@ -70,7 +71,7 @@ VectorXd solve_elastic_tfeti(const Problem& problem, const RunOptions& options, 
   fr.qp_iterations = s.iterations;
   fr.smalse_outer_iterations = s.outer_iterations;
   fr.gluing_residual = F->gluing_residual(lambda, alpha);
-  fr.gluing_bound = kCertificateFactor * inner.rel_tolerance;
+  fr.gluing_bound = kCertificateFactor * problem.solver.qp.rel_tolerance;
   fr.peak_memory_mib = feti::peak_memory_mib();
   if (s.termination == qp::QpTermination::UserStopped)
     throw Interrupted("interrupted during the Total FETI solve");
@@ -80,8 +81,8 @@ VectorXd solve_elastic_tfeti(const Problem& problem, const RunOptions& options, 
   } else if (!(fr.gluing_residual <= fr.gluing_bound)) {
     rep.status = RunStatus::NotConverged;
     rep.message = fmt::format(
-        "the certificate failed: the subdomains' copies of a node differ by {:.3e} of the "
-        "largest displacement, more than {:.1e}",
+        "the certificate failed: the subdomains' copies of the nodes (and the Dirichlet values) "
+        "differ by {:.3e} of the displacement (root mean squares), more than {:.1e}",
         fr.gluing_residual, fr.gluing_bound);
   } else {
     rep.message =

@@ -74,6 +74,12 @@ TrescaMap::TrescaMap(const fe::DofMap& dofs, const contact::ContactDiscretizatio
                "an operator of " << Q.n_contact() << " contact multipliers and a scaling of "
                                  << scaling.size() << " for " << discretization.n_dual());
   constraints_.append_free(Q.n_equality());
+  set_qp_tolerance(qp.rel_tolerance);
+}
+
+void TrescaMap::set_qp_tolerance(Real rel_tolerance) {
+  qp_.rel_tolerance =
+      Q_.n_equality() > 0 ? dual::kEqualityToleranceShare * rel_tolerance : rel_tolerance;
 }
 
 void TrescaMap::set_lambda(const VectorXd& lambda) {

@@ -107,7 +107,9 @@ class TrescaMap final : public outer::FixedPointMap {
   /// the equality multipliers keep their values.
   void set_lambda(const VectorXd& lambda);
   /// The relative tolerance of the QPs from now on (MpgpOptions::rel_tolerance), > 0.
-  void set_qp_tolerance(Real rel_tolerance) { qp_.rel_tolerance = rel_tolerance; }
+  /// With equality multipliers (Total FETI) the QPs are solved to dual::kEqualityToleranceShare of
+  /// it (theory.md §7.6).
+  void set_qp_tolerance(Real rel_tolerance);
   /// Measures the slips from a loading path's last step (null: none); must outlive the map.
   void set_history(const SlipHistory* history) { history_ = history; }
   /// The floor `scale` [Pa] of the pressures' norm their change is relative to

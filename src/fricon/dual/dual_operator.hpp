@@ -58,6 +58,10 @@ struct DualInput {
 
 /// The dual problem's operator, whatever factors K: CHOLMOD here (FactorDualOperator), MUMPS
 /// across MPI ranks in parallel/mpi/ (docs/theory.md §3.3).
+/// The share of solver.qp_rtol to which a QP with equality multipliers is solved (Total FETI,
+/// theory.md §7.6): 100 qp_rtol bounds the certificate's gluing residual with this share.
+inline constexpr Real kEqualityToleranceShare = 1e-1;
+
 class DualOperator {
  public:
   virtual ~DualOperator() = default;
@@ -110,11 +114,15 @@ class DualOperator {
   // gluing and Dirichlet rows of the subdomains), free of any bound. h, Q and G cover them; the
   // contact discretization knows only the contact ones.
   /// The number of equality multipliers (0: none, every multiplier is a contact one).
+  /// Their gradient is the violation of the equality rows, the error of the displacement itself:
+  /// a QP with them is solved to kEqualityToleranceShare of the asked relative tolerance, so that
+  /// the displacement is as accurate as the contact multipliers' (theory.md §7.6).
   virtual Index n_equality() const { return 0; }
   /// The contact multipliers, size() - n_equality().
   Index n_contact() const { return size() - n_equality(); }
-  /// The largest violation of the equality rows by the displacement of multipliers lambda and
-  /// rigid amplitudes alpha, relative to the largest displacement (0 without equality rows).
+  /// The violation of the equality rows by the displacement of multipliers lambda and rigid
+  /// amplitudes alpha: its root mean square over the rows [m] relative to that of the
+  /// displacement (0 without equality rows).
   virtual Real gluing_residual(const VectorXd& lambda, const VectorXd& alpha) const {
     (void)lambda;
     (void)alpha;

@@ -60,8 +60,8 @@ struct FetiReport {
   long n_coarse_solves = 0;          ///< solves with G G^T (filled after the solve)
   long qp_iterations = 0;            ///< MPGP steps over all QPs (filled after the solve)
   long smalse_outer_iterations = 0;  ///< SMALSE-M's outer steps over all QPs
-  /// The certificate's check of the gluing and Dirichlet rows: the largest violation relative to
-  /// the largest displacement, and its bound (100 qp_rtol).
+  /// The certificate's check of the gluing and Dirichlet rows: the root mean square of their
+  /// violation relative to that of the displacement, and its bound (100 qp_rtol).
   double gluing_residual = 0.0;
   double gluing_bound = 0.0;
   double peak_memory_mib = 0.0;  ///< peak resident memory of the process at the end [MiB]

@@ -372,14 +372,6 @@ void add_subdomain(Partition& partition, std::vector<Index> tets) {
 
 }  // namespace
 
-bool metis_available() {
-#ifdef FRICON_HAVE_METIS
-  return true;
-#else
-  return false;
-#endif
-}
-
 Index subdomains_for_size(const mesh::TetMesh& mesh, Index subdomain_size) {
   FRICON_CHECK(subdomain_size >= 1, "subdomain size " << subdomain_size);
   const auto nearest = static_cast<Index>(

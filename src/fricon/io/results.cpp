@@ -69,6 +69,7 @@ void add_contact_report(const driver::ContactReport& c, nlohmann::json& j) {
     j["balance"] = {{"equality_residual", c.equality_residual},
                     {"bound", c.equality_bound},
                     {"smalse_outer_iterations", c.smalse_outer_iterations}};
+  if (c.gluing_residual > 0.0) j["gluing_residual"] = c.gluing_residual;
   j["state_blocks"] = c.state_blocks;
   j["block_err_history"] = c.block_history;
   nlohmann::json history = nlohmann::json::array();
@@ -204,6 +205,36 @@ void add_parallel_report(const parallel::ParallelReport& p, nlohmann::json& j) {
       {"backend", "petsc"},   {"n_ranks", p.n_ranks},       {"partition", enum_name(p.partition)},
       {"n_schur", p.n_schur}, {"analysis_s", p.analysis_s}, {"factorization_s", p.factorization_s},
       {"ranks", ranks}};
+}
+
+// Backend "tfeti": the subdomains, the interface and coarse problem, counts, times and memory.
+void add_feti_report(const feti::FetiReport& f, nlohmann::json& j) {
+  j["feti"] = {
+      {"backend", "tfeti"},
+      {"n_subdomains", f.n_subdomains},
+      {"n_split", f.n_split},
+      {"partition_note", f.partition_note},
+      {"subdomain_nodes", {{"min", f.min_nodes}, {"max", f.max_nodes}, {"mean", f.mean_nodes}}},
+      {"n_torn", f.n_torn},
+      {"n_contact", f.n_contact},
+      {"n_gluing", f.n_gluing},
+      {"n_dirichlet", f.n_dirichlet},
+      {"n_coarse", f.n_coarse},
+      {"row_scaling", f.row_scaling},
+      {"threads", f.threads},
+      {"nnz_factors", f.nnz_factors},
+      {"factor_mib", f.factor_mib},
+      {"partition_s", f.partition_s},
+      {"factorization_s", f.factorization_s},
+      {"factorization_cpu_s", f.factorization_cpu_s},
+      {"operator_s", f.operator_s},
+      {"n_products", f.n_products},
+      {"n_coarse_solves", f.n_coarse_solves},
+      {"qp_iterations", f.qp_iterations},
+      {"smalse_outer_iterations", f.smalse_outer_iterations},
+      {"gluing_residual", f.gluing_residual},
+      {"gluing_bound", f.gluing_bound},
+      {"peak_memory_mib", f.peak_memory_mib}};
 }
 
 }  // namespace
@@ -355,6 +386,7 @@ nlohmann::json report_json(const driver::Problem& problem, const driver::RunResu
                            {"undetermined", b.undetermined}});
   if (r.contact) add_contact_report(*r.contact, j);
   if (r.parallel) add_parallel_report(*r.parallel, j);
+  if (r.feti) add_feti_report(*r.feti, j);
   if (result.contact) add_contact_geometry(problem, result.model.mesh, r, *result.contact, j);
   if (!r.steps.empty()) {
     j["steps"] = nlohmann::json::array();

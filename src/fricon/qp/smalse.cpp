@@ -47,12 +47,6 @@ SparseMatrix active_columns(const SparseMatrix& G, const SeparableConstraints& c
   return Ga;
 }
 
-double relative_equality_residual(const EqualityConstraint& eq, const Eigen::VectorXd& x) {
-  const Eigen::VectorXd Gx = eq.G * x;
-  const double scale = std::max(eq.e.norm(), Gx.norm());
-  return scale > 0.0 ? (Gx - eq.e).norm() / scale : 0.0;
-}
-
 // Phase one (theory.md §4.6): the point x1 of Omega whose image G x1 is nearest to e in the
 // metric of the orthonormal rows (r^T S^+ r); its residual r = e - G x1 certifies infeasibility
 // when it is not small: for every x in Omega, d^T G x <= d^T G x1 < d^T e with d = S^+ r. Costs
@@ -164,6 +158,15 @@ std::optional<Infeasibility> balance_certificate(const EqualityConstraint& eq,
   return along_one_row(rows.G(), eq.e, c, *certificate);
 }
 
+double equality_residual(const EqualityConstraint& eq, const Eigen::VectorXd& x) {
+  const Eigen::VectorXd Gx = eq.G * x;
+  // The magnitudes of the terms of G x, which cancel where the equality holds: a load-free
+  // equality (e = 0, a body driven by prescribed displacements) is measured against them.
+  const Eigen::VectorXd magnitudes = eq.G.cwiseAbs() * x.cwiseAbs();
+  const double scale = std::max(eq.e.norm(), magnitudes.norm());
+  return scale > 0.0 ? (Gx - eq.e).norm() / scale : 0.0;
+}
+
 void SmalseOptions::validate() const {
   require("SmalseOptions::rho_factor", rho_factor, positive());
   require("SmalseOptions::M_factor", M_factor, positive());
@@ -272,9 +275,13 @@ SmalseReport solve_smalse(const Operator& A, const Eigen::VectorXd& b,
       ++rep.n_products;
     }
   }
-  // The gradient test is relative to the data of the problem (b_R and the load rho e) or, when
-  // larger, to the projected linear term's (b_base_R below: the rounding level of its gradient).
-  const double reference = std::max(resisted_part(b, c).norm(), rho * std::sqrt(eh2));
+  // The gradient test is relative to the data of the problem: b_R and the load rho e, and the
+  // projected linear term's b_base_R (the rounding level of its gradient). With the projector
+  // b's part along the rows of G is left out: it depends on which generalized inverse made A and
+  // b (the subdomains' rigid motions in Total FETI's b = B K^+ f - c, theory.md §7.3), not on the
+  // problem, and can exceed the rest by orders of magnitude.
+  const double reference =
+      std::max(resisted_part(opt.projector ? b_base : b, c).norm(), rho * std::sqrt(eh2));
   const double eta = opt.eta_factor * reference;
   double M = opt.M_factor * norm_A;
   MpgpOptions io = inner;
@@ -297,7 +304,7 @@ SmalseReport solve_smalse(const Operator& A, const Eigen::VectorXd& b,
     const MpgpReport r = solve_mpgp(A_aug, b_aug, c, io, x);
     accumulate(r, rep);
     rep.norm_gp = r.norm_gp;
-    rep.equality_residual = relative_equality_residual(kept, x);
+    rep.equality_residual = equality_residual(kept, x);
     if (r.termination != QpTermination::Converged) {
       rep.termination = r.termination;
       rep.message = fmt::format("inner solve {}: {}", k + 1, r.message);

@@ -89,7 +89,7 @@ struct SmalseReport {
   int iterations = 0;   ///< MPGP steps over all inner solves
   long n_products = 0;  ///< products with A over all inner solves (power method excluded)
   double rho = 0.0;     ///< the penalty used
-  double equality_residual = 0.0;  ///< ||G x - e|| / max(||e||, ||G x||) at the end (0 if both 0)
+  double equality_residual = 0.0;  ///< qp::equality_residual at the end
   double norm_gp = 0.0;            ///< ||g^P|| of the augmented Lagrangian at the end
   double reference_norm = 0.0;     ///< the reference of the gradient test
   /// Set when the equality cannot be met in Omega (termination NumericalFailure).
@@ -98,10 +98,14 @@ struct SmalseReport {
   /// Rows of G that act only on multipliers pinned to zero (directions of the m rows, as columns):
   /// their amplitude is not determined by the QP; the solution has none of it (least norm).
   Eigen::MatrixXd undetermined;
-  MpgpReport last_inner;  ///< the report of the last inner MPGP solve
+  MpgpReport last_inner;     ///< the report of the last inner MPGP solve
   long n_coarse_solves = 0;  ///< solves with the coarse problem G G^T (qp/coarse_space.hpp)
   double seconds = 0.0;
 };
+
+/// ||G x - e|| / max(||e||, || |G| |x| ||) (0 when both are 0): relative to the load and to the
+/// magnitudes of the terms of G x, so that a load-free equality (e = 0) is measured too.
+double equality_residual(const EqualityConstraint& eq, const Eigen::VectorXd& x);
 
 /// Whether G x = e can be met for some x in Omega, decided without A (the rows of G made
 /// orthonormal over the multipliers free to move, then phase one, as solve_smalse does when it

@@ -1,0 +1,129 @@
+// Total FETI (backend "tfeti", theory.md §7) against the direct solver on the same discrete
+// problem: the same mesh, loads and contact discretization solved with one factor of K
+// ("cholmod") is the independent truth. Each pair is solved to tight tolerances, so that both
+// answers are the discrete problem's to far below the compared precision:
+//   - gluing: an elastic brick without contact, cut into 2 to 64 subdomains, equals the direct
+//     solve to 1e-8 of max |u|;
+//   - the paper's brick (Tresca with F(s)), on 1 to 64 subdomains, the Coulomb brick, the
+//     quadratic brick, a floating block, two stacked bodies and the Hertz hemisphere: the peak
+//     pressure and max |u| to 1e-6;
+//   - bad input: more subdomains than tetrahedra names solver.subdomains; a loading path with
+//     tfeti is refused naming loading.steps.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "common/fixtures.hpp"
+#include "fricon/core/error.hpp"
+#include "fricon/driver/run.hpp"
+#include "fricon/io/problem_file.hpp"
+
+namespace {
+
+using namespace fricon;
+using namespace fricon::driver;
+using testing::HasSubstr;
+
+constexpr Real kGluing = 1e-8;      // the elastic brick: max |u| and every displacement
+constexpr Real kSameAnswer = 1e-6;  // with contact: the peak pressure and max |u|
+
+// Tight enough that the QPs and the outer loop leave both answers far below kSameAnswer.
+const std::vector<std::string> kTight = {"solver.qp_rtol=1e-9", "solver.outer_tol=1e-8",
+                                         "solver.outer_max=100"};
+
+Problem example(const std::string& file, std::vector<std::string> sets) {
+  sets.insert(sets.end(), kTight.begin(), kTight.end());
+  return io::read_problem(test::source_path(file), sets);
+}
+
+RunResult with_backend(Problem p, const std::string& backend, int subdomains = 0) {
+  p.solver.backend = backend == "tfeti" ? parallel::Backend::Tfeti : parallel::Backend::Cholmod;
+  if (subdomains > 0) p.solver.subdomains = subdomains;
+  return run(p);
+}
+
+Real peak_pressure(const RunResult& r) {
+  Real peak = 0.0;
+  for (Index p = 0; p < r.contact->lambda.size() / 3; ++p)
+    peak = std::max(peak, r.contact->lambda(3 * p));
+  return peak;
+}
+
+// The direct and the TFETI answer of one problem agree in peak pressure and max |u|.
+void expect_same_answer(const Problem& p, int subdomains) {
+  const RunResult direct = with_backend(p, "cholmod");
+  ASSERT_EQ(direct.report.status, RunStatus::Converged) << direct.report.message;
+  const RunResult feti = with_backend(p, "tfeti", subdomains);
+  ASSERT_EQ(feti.report.status, RunStatus::Converged) << feti.report.message;
+  ASSERT_TRUE(feti.report.feti);
+  EXPECT_NEAR(feti.report.max_displacement, direct.report.max_displacement,
+              kSameAnswer * direct.report.max_displacement)
+      << subdomains << " subdomains";
+  EXPECT_NEAR(peak_pressure(feti), peak_pressure(direct), kSameAnswer * peak_pressure(direct))
+      << subdomains << " subdomains";
+}
+
+TEST(Tfeti, AnElasticBrickCutIntoManySubdomainsEqualsTheDirectSolve) {
+  Problem p = example("examples/elastic-brick.toml", {"solver.qp_rtol=1e-12"});
+  const RunResult direct = with_backend(p, "cholmod");
+  ASSERT_EQ(direct.report.status, RunStatus::Converged);
+  const Real scale = direct.displacement.cwiseAbs().maxCoeff();
+  for (int subdomains : {2, 8, 27, 64}) {
+    const RunResult feti = with_backend(p, "tfeti", subdomains);
+    ASSERT_EQ(feti.report.status, RunStatus::Converged) << feti.report.message;
+    EXPECT_GE(feti.report.feti->n_subdomains, subdomains / 2);
+    EXPECT_GT(feti.report.feti->n_gluing, 0);
+    EXPECT_LE((feti.displacement - direct.displacement).cwiseAbs().maxCoeff(), kGluing * scale)
+        << subdomains << " subdomains";
+  }
+}
+
+TEST(Tfeti, ThePaperBrickOnOneToSixtyFourSubdomainsGivesTheDirectAnswer) {
+  const Problem p = example("examples/paper-brick.toml", {});
+  for (int subdomains : {1, 4, 16, 64})
+    expect_same_answer(p, subdomains);
+}
+
+TEST(Tfeti, ThePaperBrickAtNEightGivesTheDirectAnswer) {
+  expect_same_answer(example("examples/paper-brick.toml", {"mesh.cells=[24,8,8]"}), 16);
+}
+
+TEST(Tfeti, CoulombAndQuadraticBricksGiveTheDirectAnswer) {
+  expect_same_answer(example("examples/coulomb-brick.toml", {}), 8);
+  expect_same_answer(example("examples/paper-brick-quadratic.toml", {}), 8);
+}
+
+TEST(Tfeti, AFloatingBlockAndTwoStackedBodiesGiveTheDirectAnswer) {
+  expect_same_answer(example("examples/floating/free-block.toml", {}), 8);
+  expect_same_answer(example("examples/two-bodies/stacked-blocks.toml", {}), 8);
+}
+
+TEST(Tfeti, TheHertzHemisphereGivesTheDirectAnswer) {
+  expect_same_answer(example("examples/geometry/hertz-hemisphere.toml", {}), 8);
+}
+
+TEST(Tfeti, MoreSubdomainsThanTetrahedraIsRefusedByName) {
+  Problem p = example("examples/elastic-brick.toml", {});
+  try {
+    (void)with_backend(p, "tfeti", 100000);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("solver.subdomains"));
+    EXPECT_THAT(e.what(), HasSubstr("960"));
+  }
+}
+
+TEST(Tfeti, ALoadingPathIsRefusedByName) {
+  try {
+    (void)io::read_problem(test::source_path("examples/paper-brick.toml"),
+                           {"solver.backend=\"tfeti\"", "loading.steps=3"});
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("loading.steps"));
+    EXPECT_THAT(e.what(), HasSubstr("tfeti"));
+  }
+}
+
+}  // namespace
