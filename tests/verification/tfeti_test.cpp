@@ -1,4 +1,4 @@
-// Total FETI (backend "tfeti", theory.md §7) against the direct solver on the same discrete
+// Total FETI (backend "tfeti", theory.md §8) against the direct solver on the same discrete
 // problem: the same mesh, loads and contact discretization solved with one factor of K
 // ("cholmod") is the independent truth. Each pair is solved to tight tolerances, so that both
 // answers are the discrete problem's to far below the compared precision:

@@ -1,6 +1,6 @@
 #pragma once
 // core: a loop over independent items on a few threads (the subdomains of Total FETI,
-// theory.md §7.4): each thread takes the next item from a shared counter, so that items of unequal
+// theory.md §8.4): each thread takes the next item from a shared counter, so that items of unequal
 // cost balance themselves.
 
 #include <functional>

@@ -297,7 +297,7 @@ VectorXd certify(const contact::ContactDiscretization& disc, const dual::DualOpe
       rep.undetermined_motions = map.last_smalse().undetermined;
     }
   }
-  // Total FETI: the copies of every node agree and the Dirichlet values hold (theory.md §7.6).
+  // Total FETI: the copies of every node agree and the Dirichlet values hold (theory.md §8.6).
   if (Q.n_equality() > 0) rep.gluing_residual = Q.gluing_residual(map.all_lambda(), map.alpha());
   const VectorXd& w_c = map.w();
   const Real tolerance = kRecoveryTolerance * w.lpNorm<Eigen::Infinity>();
@@ -554,7 +554,7 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m,
   const qp::BlockScaling scaling =
       dual_scaling(problem, m, disc, qp::SeparableConstraints::contact_layout(disc.n_patches()));
   // Over every multiplier of Q: the equality multipliers of an operator that has them (Total
-  // FETI's, whose rows are scaled already, theory.md §7.5) keep the factor 1.
+  // FETI's, whose rows are scaled already, theory.md §8.5) keep the factor 1.
   const qp::BlockScaling qp_scaling = with_equality_multipliers(scaling, Q);
   if (step && step->norm_Q > 0.0) {
     rep.norm_Q = step->norm_Q;

@@ -661,7 +661,7 @@ const OptionTable& solver_table() {
              "`\"forward\"`. A fricon built without PETSc refuses `\"petsc\"` and says how to "
              "get it. `\"tfeti\"`: Total FETI, each body cut into subdomains that are factored "
              "on their own (on the machine's threads) and glued by multipliers in the same dual "
-             "QP as the contact ones, for meshes past one factorization; docs/theory.md §7");
+             "QP as the contact ones, for meshes past one factorization; docs/theory.md §8");
     b.choice("partition", &SolverOptions::partition,
              "with `backend = \"petsc\"`: how the tetrahedra are split among the ranks for "
              "assembly: `\"graph\"` (PT-Scotch through PETSc, on the mesh's dual graph) or "
@@ -693,7 +693,7 @@ const OptionTable& solver_table() {
              "with `backend = \"tfeti\"`: the number of subdomains over all bodies (each body "
              "gets a share in proportion to its tetrahedra, at least one), cut by METIS on the "
              "bodies' dual graphs; a part that METIS leaves disconnected becomes one subdomain "
-             "per connected piece. Absent: from `subdomain_size`; theory.md §7.1")
+             "per connected piece. Absent: from `subdomain_size`; theory.md §8.1")
         .show_default("from subdomain_size");
     tfeti_only();
     b.number("subdomain_size", &SolverOptions::subdomain_size,
@@ -706,7 +706,7 @@ const OptionTable& solver_table() {
              "with `backend = \"tfeti\"`: how the gluing and Dirichlet rows of B are scaled: "
              "`\"stiffness\"` (each by the lumped stiffness of its dofs, so that its diagonal "
              "entry of F is about 1, as the scaled contact rows'; a diagonal preconditioner of "
-             "the equality multipliers) or `\"uniform\"` (one factor for all); theory.md §7.5");
+             "the equality multipliers) or `\"uniform\"` (one factor for all); theory.md §8.5");
     tfeti_only();
     b.check(check_solver);
     return b.build();

@@ -1,5 +1,5 @@
 #pragma once
-// driver: backend "tfeti" (docs/theory.md §7) in the run: the Total FETI operator of a model,
+// driver: backend "tfeti" (docs/theory.md §8) in the run: the Total FETI operator of a model,
 // built in place of the factor of K, and the elastic solve of a model without contact by the same
 // dual QP (its multipliers all equality ones). With contact the operator goes to the contact
 // solve like any dual::DualOperator.

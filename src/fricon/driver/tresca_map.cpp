@@ -69,7 +69,7 @@ TrescaMap::TrescaMap(const fe::DofMap& dofs, const contact::ContactDiscretizatio
       lambda_(VectorXd::Zero(discretization.n_dual())),
       all_lambda_(VectorXd::Zero(Q.size())) {
   // The operator's equality multipliers (Total FETI's gluing and Dirichlet rows) follow the
-  // contact ones, free of any bound (theory.md §7.3).
+  // contact ones, free of any bound (theory.md §8.3).
   FRICON_CHECK(Q.n_contact() == discretization.n_dual() && scaling.size() == Q.size(),
                "an operator of " << Q.n_contact() << " contact multipliers and a scaling of "
                                  << scaling.size() << " for " << discretization.n_dual());

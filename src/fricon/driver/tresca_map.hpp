@@ -108,7 +108,7 @@ class TrescaMap final : public outer::FixedPointMap {
   void set_lambda(const VectorXd& lambda);
   /// The relative tolerance of the QPs from now on (MpgpOptions::rel_tolerance), > 0.
   /// With equality multipliers (Total FETI) the QPs are solved to dual::kEqualityToleranceShare of
-  /// it (theory.md §7.6).
+  /// it (theory.md §8.6).
   void set_qp_tolerance(Real rel_tolerance);
   /// Measures the slips from a loading path's last step (null: none); must outlive the map.
   void set_history(const SlipHistory* history) { history_ = history; }

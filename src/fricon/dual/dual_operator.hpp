@@ -59,7 +59,7 @@ struct DualInput {
 /// The dual problem's operator, whatever factors K: CHOLMOD here (FactorDualOperator), MUMPS
 /// across MPI ranks in parallel/mpi/ (docs/theory.md §3.3).
 /// The share of solver.qp_rtol to which a QP with equality multipliers is solved (Total FETI,
-/// theory.md §7.6): 100 qp_rtol bounds the certificate's gluing residual with this share.
+/// theory.md §8.6): 100 qp_rtol bounds the certificate's gluing residual with this share.
 inline constexpr Real kEqualityToleranceShare = 1e-1;
 
 class DualOperator {
@@ -109,14 +109,14 @@ class DualOperator {
   /// R alpha over the free dofs [m]: the rigid displacement of amplitudes alpha (m entries).
   virtual VectorXd rigid_displacement(const VectorXd& alpha) const;
 
-  // Equality multipliers (Total FETI, theory.md §7): an operator may append, after the
+  // Equality multipliers (Total FETI, theory.md §8): an operator may append, after the
   // n_dual - n_equality() contact multipliers, multipliers of equality rows of its own B (the
   // gluing and Dirichlet rows of the subdomains), free of any bound. h, Q and G cover them; the
   // contact discretization knows only the contact ones.
   /// The number of equality multipliers (0: none, every multiplier is a contact one).
   /// Their gradient is the violation of the equality rows, the error of the displacement itself:
   /// a QP with them is solved to kEqualityToleranceShare of the asked relative tolerance, so that
-  /// the displacement is as accurate as the contact multipliers' (theory.md §7.6).
+  /// the displacement is as accurate as the contact multipliers' (theory.md §8.6).
   virtual Index n_equality() const { return 0; }
   /// The contact multipliers, size() - n_equality().
   Index n_contact() const { return size() - n_equality(); }

@@ -153,7 +153,7 @@ Real FetiOperator::gluing_residual(const VectorXd& lambda, const VectorXd& alpha
     if (scale > 0.0) sum2 += (r(k) / scale) * (r(k) / scale);
   }
   // Root mean squares, of the mismatch over the rows and of u over the torn dofs: the measure
-  // the QP's gradient test bounds (a 2-norm), independent of the mesh's size (theory.md §7.6).
+  // the QP's gradient test bounds (a 2-norm), independent of the mesh's size (theory.md §8.6).
   const Real mismatch = std::sqrt(sum2 / static_cast<Real>(n));
   const Real size = u.norm() / std::sqrt(static_cast<Real>(u.size()));
   return size > 0.0 ? mismatch / size : mismatch;

@@ -1,5 +1,5 @@
 #pragma once
-// feti: the dual operator of Total FETI (docs/theory.md §7.3): F = B K^+ B^T over the contact
+// feti: the dual operator of Total FETI (docs/theory.md §8.3): F = B K^+ B^T over the contact
 // multipliers and, after them, the equality multipliers of the gluing and Dirichlet rows
 // (feti/torn_rows.hpp), with K = diag(K_s) over the torn dofs of the subdomains
 // (feti/subdomains.hpp). Every product is a sum over the subdomains,

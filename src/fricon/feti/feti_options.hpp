@@ -1,6 +1,6 @@
 #pragma once
 // feti: what a user chooses of Total FETI ([solver] subdomains, subdomain_size, tfeti_scaling;
-// docs/theory.md §7) and what a run reports of it. Data only: the problem and the run's report
+// docs/theory.md §8) and what a run reports of it. Data only: the problem and the run's report
 // hold them without depending on the solver.
 
 #include <string>
@@ -10,7 +10,7 @@
 
 namespace fricon::feti {
 
-/// How the equality rows (gluing and Dirichlet) of B are scaled (theory.md §7.5).
+/// How the equality rows (gluing and Dirichlet) of B are scaled (theory.md §8.5).
 enum class RowScaling {
   Stiffness,  ///< by the lumped stiffness of the row's dofs (the default)
   Uniform,    ///< by one factor, the mean stiffness diagonal (for comparison)

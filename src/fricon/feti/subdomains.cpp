@@ -15,7 +15,7 @@ namespace fricon::feti {
 
 namespace {
 
-// The stiffness, rigid motions and factor of one subdomain (theory.md §7.1): K_s over every dof
+// The stiffness, rigid motions and factor of one subdomain (theory.md §8.1): K_s over every dof
 // of its nodes, regularized as a floating body (fe/floating.hpp) so that its solves are K_s^+.
 void factor_subdomain(const mesh::TetMesh& mesh, fe::Materials materials,
                       const std::vector<Index>& tets, Index index, Subdomain& s) {

@@ -1,5 +1,5 @@
 #pragma once
-// feti: the subdomains of Total FETI (docs/theory.md §7.1): each a face-connected set of
+// feti: the subdomains of Total FETI (docs/theory.md §8.1): each a face-connected set of
 // tetrahedra (feti/partition.hpp) with its own copy of every node it touches (the torn dofs),
 // its stiffness K_s over all of them (no Dirichlet condition: every subdomain floats), its rigid
 // motions R_s (K_s R_s = 0) and the factor of the regularized K_s, whose solves are a generalized

@@ -1,5 +1,5 @@
 #pragma once
-// feti: Total FETI from a model's pieces, in data-flow order (docs/theory.md §7): the partition of
+// feti: Total FETI from a model's pieces, in data-flow order (docs/theory.md §8): the partition of
 // each body into subdomains -> their factored stiffnesses and rigid motions (threads) -> the torn
 // rows of B (contact, gluing, Dirichlet) -> the dual operator F, h, G, e. Also the report of it.
 

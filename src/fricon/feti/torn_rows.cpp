@@ -69,7 +69,7 @@ TornRows tear_rows(const std::vector<Subdomain>& subdomains, const std::vector<I
   const Real mean_diagonal = n_torn > 0 ? diagonal.mean() : 1.0;
   // The scale of a row on the torn dofs `a` and `b` (b < 0: a Dirichlet row on a alone): the
   // square root of the lumped stiffness 1 / (1/k_a + 1/k_b), so that the row's entry of F is of
-  // order 1 (theory.md §7.5).
+  // order 1 (theory.md §8.5).
   const auto row_scale = [&](Index a, Index b) {
     const Real ka = scaling == RowScaling::Stiffness ? diagonal(a) : mean_diagonal;
     const Real kb = b < 0 ? 0.0 : (scaling == RowScaling::Stiffness ? diagonal(b) : mean_diagonal);

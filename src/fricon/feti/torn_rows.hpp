@@ -1,5 +1,5 @@
 #pragma once
-// feti: the constraints of Total FETI as rows of one B over the torn dofs (docs/theory.md §7.2),
+// feti: the constraints of Total FETI as rows of one B over the torn dofs (docs/theory.md §8.2),
 //
 //   B = [ B_C ]  contact rows (bounds and discs): the contact discretization's rows, each
 //       [ B_G ]  gluing rows (equalities): the copies of a node agree
@@ -8,7 +8,7 @@
 // with c = (c_C, 0, c_D) so that B u <= c (contact) and B u = c (the rest). The contact rows act on
 // the owner's copy of each node (the copies are glued, so any would do). Gluing rows are
 // non-redundant: a chain through the copies of a node in subdomain order, one row per link and
-// component. Each equality row is scaled by the lumped stiffness of its dofs (theory.md §7.5), so
+// component. Each equality row is scaled by the lumped stiffness of its dofs (theory.md §8.5), so
 // that its diagonal entry of F = B K^+ B^T is of order 1, like the scaled contact rows'.
 
 #include <vector>

@@ -19,7 +19,7 @@ enum class Backend {
   /// matrix [[K, B^T], [B, 0]] across the ranks and returns Q as its Schur complement on rank 0
   /// (docs/theory.md §3.3).
   Petsc,
-  /// Total FETI (docs/theory.md §7): each body cut into subdomains, each factored on its own
+  /// Total FETI (docs/theory.md §8): each body cut into subdomains, each factored on its own
   /// (threads on one process); the subdomains glued by equality multipliers that join the
   /// contact multipliers in one dual QP.
   Tfeti,

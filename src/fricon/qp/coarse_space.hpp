@@ -1,5 +1,5 @@
 #pragma once
-// qp: the row space of the equality G x = e of SMALSE-M (docs/theory.md §4.6, §7.3): the Gram
+// qp: the row space of the equality G x = e of SMALSE-M (docs/theory.md §4.6, §8.3): the Gram
 // matrix S = G G^T of its rows and S^+, through which the projector
 //
 //   P = I - G^T S^+ G   (onto the null space of G)

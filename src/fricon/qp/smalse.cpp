@@ -237,7 +237,7 @@ SmalseReport solve_smalse(const Operator& A, const Eigen::VectorXd& b,
   // and
   //   q(x) = 1/2 x^T (P A P) x - x^T P (b - A x_e) + const,
   // so the QP may take the projected Hessian P A P (TFETI's natural coarse space, theory.md
-  // §4.6, §7.3): the part of A along the rows, which the generalized inverse leaves arbitrary,
+  // §4.6, §8.3): the part of A along the rows, which the generalized inverse leaves arbitrary,
   // drops out, and P A P + rho (I - P) has the norm of A for rho = ||A||. The discs stay centred
   // (x itself is not shifted). The multiplier of the original problem is then
   // mu - S^+ G_a (A x - b) at the solution.
@@ -278,7 +278,7 @@ SmalseReport solve_smalse(const Operator& A, const Eigen::VectorXd& b,
   // The gradient test is relative to the data of the problem: b_R and the load rho e, and the
   // projected linear term's b_base_R (the rounding level of its gradient). With the projector
   // b's part along the rows of G is left out: it depends on which generalized inverse made A and
-  // b (the subdomains' rigid motions in Total FETI's b = B K^+ f - c, theory.md §7.3), not on the
+  // b (the subdomains' rigid motions in Total FETI's b = B K^+ f - c, theory.md §8.3), not on the
   // problem, and can exceed the rest by orders of magnitude.
   const double reference =
       std::max(resisted_part(opt.projector ? b_base : b, c).norm(), rho * std::sqrt(eh2));

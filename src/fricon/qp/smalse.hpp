@@ -6,7 +6,7 @@
 //   min q(x) = 1/2 x^T A x - b^T x   subject to x in Omega (qp/constraints.hpp) and G x = e,
 //
 // G the free rigid motions of floating bodies, or of every subdomain of Total FETI (theory.md
-// §7.3). Each outer step minimizes the
+// §8.3). Each outer step minimizes the
 // augmented Lagrangian
 //
 //   L(x, mu, rho) = q(x) + mu^T (G x - e) + rho/2 ||G x - e||^2
@@ -37,7 +37,7 @@
 namespace fricon::qp {
 
 /// G x = e: m rows over the n unknowns of the QP; G sparse (a few dense rows for floating bodies,
-/// 6 sparse rows per subdomain for Total FETI, theory.md §7.3).
+/// 6 sparse rows per subdomain for Total FETI, theory.md §8.3).
 struct EqualityConstraint {
   SparseMatrix G;     ///< m x n
   Eigen::VectorXd e;  ///< m
