@@ -113,9 +113,15 @@ void TrescaMap::solve_with_equality(int k) {
   // The balance as precise as the QP's gradient test (theory.md §4.6).
   options.equality_tolerance = kEqualityShare * qp_.rel_tolerance;
   if (!warm_start_) mu_.resize(0);
+  // ||P A P|| once for a projector: it changes only with the discs pinned to zero.
+  const auto pinned = static_cast<Index>((radius_.array() == 0.0).count());
+  if (pinned != pinned_) norm_projected_ = 0.0;
+  options.norm_projected = norm_projected_;
   last_smalse_ = qp::solve_smalse_scaled(apply_Q_, Q_.h(), constraints_, scaling_, {Q_.G(), Q_.e()},
                                          options, qp_, all_lambda_, mu_);
   alpha_ = -mu_;
+  norm_projected_ = last_smalse_.norm_projected;
+  pinned_ = pinned;
   if (last_smalse_.infeasible && on_infeasible_) on_infeasible_(last_smalse_.infeasibility);
   last_qp_ = last_smalse_.last_inner;
   last_qp_.termination = last_smalse_.termination;

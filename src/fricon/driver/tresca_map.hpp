@@ -141,6 +141,8 @@ class TrescaMap final : public outer::FixedPointMap {
   qp::MpgpReport last_qp_;
   qp::SmalseReport last_smalse_;
   VectorXd mu_, alpha_;
+  Real norm_projected_ = 0.0;  ///< ||P A P|| of the last SMALSE-M solve (qp::SmalseOptions)
+  Index pinned_ = -1;          ///< the discs pinned to zero at that solve
   std::function<void(const qp::Infeasibility&)> on_infeasible_;
   const SlipHistory* history_ = nullptr;
   Real pressure_scale_ = 0.0, pressure_floor_ = 0.0;

@@ -226,9 +226,26 @@ SmalseReport solve_smalse(const Operator& A, const Eigen::VectorXd& b,
   const double eh2 = std::max(rows.norm2(e), 0.0);  // ||eh||^2
 
   // @sect: the penalty, the inner precision and the augmented Hessian A + rho Gh^T Gh.
-  const double norm_A = inner.norm_A > 0.0
-                            ? inner.norm_A
-                            : estimate_norm(A, n, inner.power_iterations, inner.power_tolerance);
+  Eigen::VectorXd Pv;
+  const Operator PAP = [&](const Eigen::VectorXd& v, Eigen::VectorXd& y) {
+    Pv = v;
+    rows.project(Pv);
+    A(Pv, y);
+    rows.project(y);
+  };
+  double norm_A = 0.0;
+  if (opt.projector && rows.rank() > 0) {
+    long products = 0;
+    norm_A = opt.norm_projected > 0.0 ? opt.norm_projected
+                                      : estimate_norm(PAP, n, inner.power_iterations,
+                                                      inner.power_tolerance, &products);
+    rep.n_products += products;
+    rep.norm_projected = norm_A;
+  } else {
+    norm_A = inner.norm_A > 0.0
+                 ? inner.norm_A
+                 : estimate_norm(A, n, inner.power_iterations, inner.power_tolerance);
+  }
   if (!(norm_A > 0.0) || !std::isfinite(norm_A))
     throw NumericalError(fmt::format("solve_smalse: ||A|| = {}", norm_A));
   rep.rho = opt.rho_factor * norm_A;
@@ -241,7 +258,6 @@ SmalseReport solve_smalse(const Operator& A, const Eigen::VectorXd& b,
   // drops out, and P A P + rho (I - P) has the norm of A for rho = ||A||. The discs stay centred
   // (x itself is not shifted). The multiplier of the original problem is then
   // mu - S^+ G_a (A x - b) at the solution.
-  Eigen::VectorXd Pv;
   const Operator A_aug = [&](const Eigen::VectorXd& v, Eigen::VectorXd& y) {
     const Eigen::VectorXd along_rows = rows.onto_rows(v);
     if (opt.projector) {

@@ -69,6 +69,12 @@ struct SmalseOptions {
   /// and the linear term P (b - A G^T e): the same QP on the affine set G x = e, with the part of
   /// A along the rows of G left out (theory.md §4.6). Default true.
   bool projector = true;
+  /// With the projector: ||P A P||, the norm the penalty, M and MPGP's step length are taken
+  /// from, if already known for the same rows (SmalseReport::norm_projected of an earlier solve);
+  /// 0 estimates it by the power method (theory.md §4.6). ||A|| itself can be far larger: a
+  /// generalized inverse inflates A along the rows of G (Total FETI's F along the subdomains'
+  /// rigid motions, by orders of magnitude), and a step length from it crawls.
+  double norm_projected = 0.0;
 
   /// Throws InputError naming the first field out of range.
   void validate() const;
@@ -89,6 +95,7 @@ struct SmalseReport {
   int iterations = 0;   ///< MPGP steps over all inner solves
   long n_products = 0;  ///< products with A over all inner solves (power method excluded)
   double rho = 0.0;     ///< the penalty used
+  double norm_projected = 0.0;  ///< ||P A P|| used with the projector (0 without)
   double equality_residual = 0.0;  ///< qp::equality_residual at the end
   double norm_gp = 0.0;            ///< ||g^P|| of the augmented Lagrangian at the end
   double reference_norm = 0.0;     ///< the reference of the gradient test
