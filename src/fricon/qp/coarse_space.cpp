@@ -24,6 +24,7 @@ CoarseSpace::CoarseSpace(const SparseMatrix& G) : G_(G) {
   if (m > kDenseCoarseLimit) {
     sparse_ = true;
     rank_ = m;
+    null_.resize(m, 0);  // definite: no direction of the rows on which G vanishes
     try {
       factor_.factorize(S);
     } catch (const NumericalError& e) {

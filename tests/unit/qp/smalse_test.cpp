@@ -7,6 +7,7 @@
 
 #include <cmath>
 
+#include "fricon/qp/coarse_space.hpp"
 #include "fricon/qp/kkt.hpp"
 #include "fricon/qp/smalse.hpp"
 
@@ -167,6 +168,59 @@ TEST(BalanceCertificate, DecidesFeasibilityWithoutTheHessian) {
   const auto pull = balance_certificate(eq, c, 1e-8);
   ASSERT_TRUE(pull);
   EXPECT_NEAR(pull->carried, 0.0, 1e-9 * pull->applied);
+}
+
+}  // namespace
+
+namespace {
+
+// Beyond kDenseCoarseLimit rows the coarse problem is factored by sparse Cholesky (Total FETI's
+// many subdomains): the same QP, rows made of pairs of unknowns (x_2i - x_2i+1 = e_i, a gluing
+// of free unknowns), checked from outside by its KKT conditions, G x = e and the unconstrained
+// solution of the equality-constrained problem by the Lagrangian's linear system.
+TEST(Smalse, ManyEqualityRowsOnFreeUnknownsUseTheSparseCoarseProblem) {
+  const Index m = kDenseCoarseLimit + 30, n = 2 * m;
+  SeparableConstraints c;
+  c.append_free(n);
+  // A diagonally dominant tridiagonal SPD A.
+  std::vector<Eigen::Triplet<double, SparseIndex>> t;
+  for (Index i = 0; i < n; ++i) {
+    t.emplace_back(i, i, 4.0 + 0.001 * static_cast<double>(i % 7));
+    if (i + 1 < n) {
+      t.emplace_back(i, i + 1, -1.0);
+      t.emplace_back(i + 1, i, -1.0);
+    }
+  }
+  SparseMatrix A(n, n);
+  A.setFromTriplets(t.begin(), t.end());
+  t.clear();
+  Eigen::VectorXd e(m), b(n);
+  for (Index i = 0; i < m; ++i) {
+    t.emplace_back(i, 2 * i, 1.0);
+    t.emplace_back(i, 2 * i + 1, -1.0);
+    e(i) = std::sin(0.1 * static_cast<double>(i));
+  }
+  for (Index i = 0; i < n; ++i)
+    b(i) = std::cos(0.37 * static_cast<double>(i));
+  EqualityConstraint eq;
+  eq.G.resize(m, n);
+  eq.G.setFromTriplets(t.begin(), t.end());
+  eq.e = e;
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(n), mu;
+  const Operator op = [&A](const Eigen::VectorXd& v, Eigen::VectorXd& y) { y = A * v; };
+  const SmalseReport r = solve_smalse(op, b, c, eq, SmalseOptions{}, tight(), x, mu);
+  ASSERT_EQ(r.termination, QpTermination::Converged) << r.message;
+  EXPECT_LE((eq.G * x - e).norm(), 1e-7 * e.norm());
+  // The KKT system [A G^T; G 0] (x, mu) = (b, e), solved directly.
+  const Eigen::MatrixXd Ad(A), Gd(eq.G);
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n + m, n + m);
+  K.topLeftCorner(n, n) = Ad;
+  K.topRightCorner(n, m) = Gd.transpose();
+  K.bottomLeftCorner(m, n) = Gd;
+  Eigen::VectorXd rhs(n + m);
+  rhs << b, e;
+  const Eigen::VectorXd exact = K.partialPivLu().solve(rhs);
+  EXPECT_LE((x - exact.head(n)).norm(), 1e-6 * exact.head(n).norm());
 }
 
 }  // namespace
