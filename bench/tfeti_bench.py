@@ -4,8 +4,8 @@ scalability with the subdomain size fixed, and the direct solver against TFETI i
 
     /usr/bin/python3 bench/tfeti_bench.py build/apps/fricon/fricon \
         [--scalability 8 16 24 32] [--cells-per-subdomain 4] [--series 16 24 32] \
-        [--series-subdomain-size 3000] [--series-tfeti-only 64] [--scaling] [--threads N] \
-        [--out DIR] [--markdown]
+        [--series-subdomain-size 1000] [--series-tfeti-only 64] [--scaling] \
+        [--sizes N S1 S2 ...] [--threads N] [--out DIR] [--markdown]
 
 The problem is examples/paper-brick.toml (Tresca friction with the paper's F(s), 3n x n x n cubes
 of 5 tetrahedra, 4-node elements) with mesh.cells = [3n, n, n].
@@ -21,6 +21,9 @@ Series (--series n...): each n solved by the direct backend ("cholmod") and by "
 solver.subdomain_size = --series-subdomain-size, alternated; wall time, the process's peak
 memory (its own rusage), products with Q or F, and the ratios tfeti/direct measured in the same
 run. --series-tfeti-only n...: sizes that only TFETI runs (the direct factor does not fit).
+
+--sizes N S1 S2 ...: the brick at n = N with solver.subdomain_size = S1, S2, ...: the time, the
+products with F and the memory of each, from which the default subdomain_size is chosen.
 
 --scaling: at the first --scalability size, tfeti_scaling "stiffness" against "uniform" (the
 diagonal scaling of the equality rows, theory.md §8.5): products with F of whole runs.
@@ -116,6 +119,21 @@ def series(fricon, out, sizes, tfeti_only, size, threads, markdown):
             "process", "", hb.table(headers, rows, markdown), ""]
 
 
+def subdomain_sizes(fricon, out, n, sizes, threads, markdown):
+    rows = []
+    for size in sizes:
+        rep = solve(fricon, out / f"size-{size}", n, threads,
+                    ['solver.backend="tfeti"', f"solver.subdomain_size={size}"])
+        f = rep["feti"]
+        rows.append([str(size), str(f["n_subdomains"]), f"{f['mean_nodes']:.0f}",
+                     str(f["n_gluing"]), str(f["n_products"]), f"{f['factor_mib']:.0f}",
+                     f"{rep['wall_s']:.1f}", f"{rep['peak_mib']:.0f}"])
+        print(f"  size {size}: {rows[-1]}", file=sys.stderr, flush=True)
+    return [f"Subdomain size at n = {n}", "",
+            hb.table(["subdomain_size", "subdomains", "mean nodes", "gluing", "products with F",
+                      "factors [MiB]", "time [s]", "peak RSS [MiB]"], rows, markdown), ""]
+
+
 def row_scaling(fricon, out, n, c, threads, markdown):
     subdomains = max(1, round((n / c) ** 3))
     rows = []
@@ -136,7 +154,8 @@ def main():
     ap.add_argument("--scalability", type=int, nargs="*", default=[8, 16, 24])
     ap.add_argument("--cells-per-subdomain", type=int, default=4)
     ap.add_argument("--series", type=int, nargs="*", default=[16, 24])
-    ap.add_argument("--series-subdomain-size", type=int, default=3000)
+    ap.add_argument("--series-subdomain-size", type=int, default=1000)
+    ap.add_argument("--sizes", type=int, nargs="*", default=[])
     ap.add_argument("--series-tfeti-only", type=int, nargs="*", default=[])
     ap.add_argument("--scaling", action="store_true")
     ap.add_argument("--threads", type=int, default=0)
@@ -155,6 +174,9 @@ def main():
         if a.scaling and a.scalability:
             lines += row_scaling(a.fricon, out, a.scalability[0], a.cells_per_subdomain,
                                  a.threads, a.markdown)
+        if len(a.sizes) > 1:
+            lines += subdomain_sizes(a.fricon, out, a.sizes[0], a.sizes[1:], a.threads,
+                                     a.markdown)
         if a.series or a.series_tfeti_only:
             lines += series(a.fricon, out, a.series, a.series_tfeti_only,
                             a.series_subdomain_size, a.threads, a.markdown)
