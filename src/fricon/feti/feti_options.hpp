@@ -25,7 +25,7 @@ bool metis_available();
 
 /// The default target size of a subdomain [nodes] (solver.subdomain_size), measured with
 /// bench/tfeti_bench.py (docs/benchmarks.md).
-inline constexpr Index kDefaultSubdomainSize = 3000;
+inline constexpr Index kDefaultSubdomainSize = 1000;
 
 struct FetiOptions {
   /// The number of subdomains over all bodies (> 0), or 0 to take it from subdomain_size.
