@@ -11,6 +11,7 @@
 #include "fricon/driver/option_table.hpp"
 #include "fricon/fe/element.hpp"
 #include "fricon/fe/rigid_motions.hpp"
+#include "fricon/feti/partition.hpp"
 #include "fricon/mesh/brick.hpp"
 #include "fricon/mesh/gmsh_file.hpp"
 
@@ -494,6 +495,9 @@ std::optional<contact::ContactDiscretization> check_model(const Problem& problem
                                                           const Model& model) {
   check_steps(problem, model.mesh);
   check_floating_bodies_touch(problem, model);
+  if (problem.solver.backend == parallel::Backend::Tfeti && problem.solver.subdomains)
+    feti::check_subdomain_count(model.mesh, *problem.solver.subdomains,
+                                problem.where("solver.subdomains"));
   if (problem.contact.empty()) return std::nullopt;
   contact::ContactDiscretization disc = discretize_contact(problem, model.mesh, model.dofs);
   check_balance(problem, model, disc);

@@ -96,7 +96,10 @@ DualGraph dual_graph(const mesh::TetMesh& mesh) {
 // ---------------------------------------------------------------------------------------------
 // The request and its distribution over the bodies.
 
-void check_request(const mesh::TetMesh& mesh, Index n_subdomains, const std::string& key_context) {
+}  // namespace
+
+void check_subdomain_count(const mesh::TetMesh& mesh, Index n_subdomains,
+                           const std::string& key_context) {
   if (n_subdomains < 1)
     throw InputError(fmt::format("{}: {} = {}: the number of subdomains must be at least 1",
                                  key_context, kKey, n_subdomains));
@@ -106,6 +109,8 @@ void check_request(const mesh::TetMesh& mesh, Index n_subdomains, const std::str
         "one tetrahedron, so at most {} subdomains",
         key_context, kKey, n_subdomains, mesh.n_tets(), mesh.n_tets()));
 }
+
+namespace {
 
 // The subdomains of each body: 1 each, then one by one to the body whose subdomains are the
 // largest (most tetrahedra per subdomain; the first such body on a tie), which keeps the largest
@@ -383,7 +388,7 @@ Partition partition_mesh(const mesh::TetMesh& mesh, const mesh::Bodies& bodies, 
                          const std::string& key_context) {
   FRICON_CHECK(static_cast<Index>(bodies.tet_body.size()) == mesh.n_tets(),
                "bodies of " << bodies.tet_body.size() << " tetrahedra, mesh of " << mesh.n_tets());
-  check_request(mesh, n_subdomains, key_context);
+  check_subdomain_count(mesh, n_subdomains, key_context);
   const std::vector<Index> share = distribute(bodies, n_subdomains);
   const DualGraph graph = dual_graph(mesh);
   const std::vector<Index> local = local_numbering(mesh, bodies);

@@ -38,6 +38,11 @@ struct Partition {
   std::string note;
 };
 
+/// Throws InputError, with `key_context` (where solver.subdomains was given) and the numbers,
+/// when `n_subdomains` is below 1 or above the tetrahedra of `mesh` (each subdomain needs one).
+void check_subdomain_count(const mesh::TetMesh& mesh, Index n_subdomains,
+                           const std::string& key_context);
+
 /// The number of subdomains for a target `subdomain_size` (nodes per subdomain, >= 1) on `mesh`:
 /// mesh.n_nodes() / subdomain_size rounded to the nearest integer, at least 1 and at most
 /// mesh.n_tets() (when the mesh has tetrahedra), so that partition_mesh accepts it. Nodes on the
