@@ -53,7 +53,9 @@ test-sanitize: deps
 	  LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp \
 	  ctest --test-dir $(SAN_BUILD) -L "unit|leak|sanitize" --output-on-failure -j $(CTEST_JOBS)
 
-# BENCH_LARGE=1 adds n = 24, 32, 48 to the contact benchmark (minutes, several GiB), the Hertz
+# BENCH_LARGE=1 adds n = 24, 32, 48 to the contact benchmark (minutes, several GiB), Total FETI's
+# scalability to n = 32 and its series against the direct solver to n = 48 (bench/tfeti_bench.py,
+# an hour), the Hertz
 # refinement study with the contact-against-no-contact ratios (bench/hertz_bench.py) and the
 # PETSc backend's strong scaling at n = 32, 48 (bench/petsc_scaling.py, docs/parallel.md); the Coulomb
 # runs at those sizes: build/bench/contact_bench --model coulomb 24 32 48 (10 min, 14 GiB).
@@ -73,6 +75,11 @@ bench: build
 	@echo "== bench/floating_bench.py"; /usr/bin/python3 bench/floating_bench.py $(BUILD)/apps/fricon/fricon
 	@echo "== bench/obstacle_bench.py"; /usr/bin/python3 bench/obstacle_bench.py $(BUILD)/apps/fricon/fricon
 	@echo "== bench/quadratic_bench.py"; /usr/bin/python3 bench/quadratic_bench.py $(BUILD)/apps/fricon/fricon
+	@echo "== bench/tfeti_bench.py"; /usr/bin/python3 bench/tfeti_bench.py $(BUILD)/apps/fricon/fricon \
+	  --scalability 8 16 --series 16
+	@if [ -n "$(BENCH_LARGE)" ]; then echo "== bench/tfeti_bench.py (large)"; \
+	  /usr/bin/python3 bench/tfeti_bench.py $(BUILD)/apps/fricon/fricon --scalability 8 16 24 32 \
+	  --scaling --sizes 24 500 1000 3000 --series 24 32 48; fi
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.hpp')

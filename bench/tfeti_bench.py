@@ -125,7 +125,7 @@ def subdomain_sizes(fricon, out, n, sizes, threads, markdown):
         rep = solve(fricon, out / f"size-{size}", n, threads,
                     ['solver.backend="tfeti"', f"solver.subdomain_size={size}"])
         f = rep["feti"]
-        rows.append([str(size), str(f["n_subdomains"]), f"{f['mean_nodes']:.0f}",
+        rows.append([str(size), str(f["n_subdomains"]), f"{f['subdomain_nodes']['mean']:.0f}",
                      str(f["n_gluing"]), str(f["n_products"]), f"{f['factor_mib']:.0f}",
                      f"{rep['wall_s']:.1f}", f"{rep['peak_mib']:.0f}"])
         print(f"  size {size}: {rows[-1]}", file=sys.stderr, flush=True)

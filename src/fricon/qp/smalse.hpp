@@ -45,9 +45,9 @@ struct EqualityConstraint {
 
 struct SmalseOptions {
   /// rho = rho_factor ||A|| (with the projector ||P A P||), the penalty. Default 1: with the
-  /// projector P A P + rho (I - P) then has the norm of P A P, and on the four examples of
-  /// examples/floating and the paper's brick under Total FETI it needed 0.6-1.0 times the
-  /// products of 0.3, half of them on the brick (theory.md §4.6); range > 0.
+  /// projector P A P + rho (I - P) then has the norm of P A P, and it needed fewer products than
+  /// 0.3 on the examples of examples/floating and on the paper's brick under Total FETI
+  /// (theory.md §4.6); range > 0.
   double rho_factor = 1.0;
   /// M_0 = M_factor ||A||, the initial ratio of the inner precision to ||G x - e||. Default 0.3
   /// (measured likewise); range > 0.
