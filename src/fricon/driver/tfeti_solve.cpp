@@ -58,6 +58,8 @@ VectorXd solve_elastic_tfeti(const Problem& problem, const RunOptions& options, 
   inner.rel_tolerance *= dual::kEqualityToleranceShare;
   inner.monitor = [&options](const qp::MpgpIteration&) { return !options.stop_was_requested(); };
   qp::SmalseOptions outer;
+  outer.rho_factor = dual::kEqualityPenaltyFactor;
+  outer.projected_norm = true;
   outer.equality_tolerance = inner.rel_tolerance;
   VectorXd lambda = VectorXd::Zero(F->size()), mu;
   const qp::SmalseReport s = qp::solve_smalse(F->as_qp_operator(), F->h(), free, {F->G(), F->e()},

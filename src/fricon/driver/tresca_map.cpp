@@ -112,6 +112,10 @@ void TrescaMap::solve_with_equality(int k) {
   options.drop_unresisted_load = k == 1 && bounds_.uses_pressure() && radius_.maxCoeff() <= 0.0;
   // The balance as precise as the QP's gradient test (theory.md §4.6).
   options.equality_tolerance = kEqualityShare * qp_.rel_tolerance;
+  if (Q_.n_equality() > 0) {
+    options.rho_factor = dual::kEqualityPenaltyFactor;
+    options.projected_norm = true;
+  }
   if (!warm_start_) mu_.resize(0);
   // ||P A P|| once for a projector: it changes only with the discs pinned to zero.
   const auto pinned = static_cast<Index>((radius_.array() == 0.0).count());

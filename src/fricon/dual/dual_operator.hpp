@@ -62,6 +62,11 @@ struct DualInput {
 /// theory.md §8.6): 100 qp_rtol bounds the certificate's gluing residual with this share.
 inline constexpr Real kEqualityToleranceShare = 1e-1;
 
+/// The penalty of SMALSE-M (qp::SmalseOptions::rho_factor, times ||P Q P||) for a QP with
+/// equality multipliers (Total FETI, theory.md §4.6, §8.6): 1, so that P Q P + rho (I - P) keeps
+/// the norm of P Q P; on the paper's brick it needed fewer products than the floating bodies' 0.3.
+inline constexpr Real kEqualityPenaltyFactor = 1.0;
+
 class DualOperator {
  public:
   virtual ~DualOperator() = default;

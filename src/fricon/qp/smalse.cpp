@@ -234,11 +234,11 @@ SmalseReport solve_smalse(const Operator& A, const Eigen::VectorXd& b,
     rows.project(y);
   };
   double norm_A = 0.0;
-  if (opt.projector && rows.rank() > 0) {
+  if (opt.projector && opt.projected_norm && rows.rank() > 0) {
     long products = 0;
-    norm_A = opt.norm_projected > 0.0 ? opt.norm_projected
-                                      : estimate_norm(PAP, n, inner.power_iterations,
-                                                      inner.power_tolerance, &products);
+    norm_A = opt.norm_projected > 0.0
+                 ? opt.norm_projected
+                 : estimate_norm(PAP, n, inner.power_iterations, inner.power_tolerance, &products);
     rep.n_products += products;
     rep.norm_projected = norm_A;
   } else {
@@ -329,20 +329,12 @@ SmalseReport solve_smalse(const Operator& A, const Eigen::VectorXd& b,
     const Eigen::VectorXd res = Ga * x - e;
     const Eigen::VectorXd S_res = rows.solve(res);
     const double res2 = std::max(res.dot(S_res), 0.0);  // ||Gh x - eh||^2
-    // With the projector the augmented Hessian is rho I on the rows, so a gradient known to
-    // eps_g leaves ||Gh x - eh|| known to eps_g / rho only: below that floor the equality is met
-    // as well as the gradient test can tell (theory.md §4.6).
-    const bool at_floor = opt.projector && std::sqrt(res2) <= eps_g / rho;
-    if (r.norm_gp <= eps_g && (rep.equality_residual <= opt.equality_tolerance || at_floor)) {
+    if (r.norm_gp <= eps_g && rep.equality_residual <= opt.equality_tolerance) {
       rep.termination = QpTermination::Converged;
       rep.message = fmt::format(
-          "||g^P|| = {:.3e} <= {:.3e} and ||G x - e|| relative {:.3e} ({}) after {} outer steps",
-          r.norm_gp, eps_g, rep.equality_residual,
-          rep.equality_residual <= opt.equality_tolerance
-              ? fmt::format("<= {:.1e}", opt.equality_tolerance)
-              : fmt::format("at the floor eps_g / rho = {:.1e} of the orthonormal rows",
-                            eps_g / rho),
-          k + 1);
+          "||g^P|| = {:.3e} <= {:.3e} and ||G x - e|| relative {:.3e} <= {:.1e} after {} outer "
+          "steps",
+          r.norm_gp, eps_g, rep.equality_residual, opt.equality_tolerance, k + 1);
       break;
     }
     // Once the residual has stopped decreasing: is the equality feasible at all (phase one)?

@@ -44,11 +44,10 @@ struct EqualityConstraint {
 };
 
 struct SmalseOptions {
-  /// rho = rho_factor ||A|| (with the projector ||P A P||), the penalty. Default 1: with the
-  /// projector P A P + rho (I - P) then has the norm of P A P, and it needed fewer products than
-  /// 0.3 on the examples of examples/floating and on the paper's brick under Total FETI
-  /// (theory.md §4.6); range > 0.
-  double rho_factor = 1.0;
+  /// rho = rho_factor ||A|| (with the projector ||P A P||), the penalty. Default 0.3 (measured
+  /// on examples/floating, bench/floating_bench.py, theory.md §4.6; Total FETI takes 1,
+  /// dual::kEqualityPenaltyFactor); range > 0.
+  double rho_factor = 0.3;
   /// M_0 = M_factor ||A||, the initial ratio of the inner precision to ||G x - e||. Default 0.3
   /// (measured likewise); range > 0.
   double M_factor = 0.3;
@@ -71,11 +70,13 @@ struct SmalseOptions {
   /// and the linear term P (b - A G^T e): the same QP on the affine set G x = e, with the part of
   /// A along the rows of G left out (theory.md §4.6). Default true.
   bool projector = true;
-  /// With the projector: ||P A P||, the norm the penalty, M and MPGP's step length are taken
-  /// from, if already known for the same rows (SmalseReport::norm_projected of an earlier solve);
-  /// 0 estimates it by the power method (theory.md §4.6). ||A|| itself can be far larger: a
-  /// generalized inverse inflates A along the rows of G (Total FETI's F along the subdomains'
-  /// rigid motions, by orders of magnitude), and a step length from it crawls.
+  /// With the projector: take the penalty, M and MPGP's step length from ||P A P|| rather than
+  /// ||A|| (Total FETI, theory.md §4.6): a generalized inverse inflates A along the rows of G (F
+  /// along the subdomains' rigid motions), and a step length from ||A|| crawls. Default false
+  /// (the floating bodies' measured defaults are relative to ||A||).
+  bool projected_norm = false;
+  /// ||P A P|| if already known for the same rows (SmalseReport::norm_projected of an earlier
+  /// solve); 0 estimates it by the power method when projected_norm is set.
   double norm_projected = 0.0;
 
   /// Throws InputError naming the first field out of range.
@@ -94,9 +95,9 @@ struct SmalseReport {
   QpTermination termination = QpTermination::NumericalFailure;
   std::string message;  ///< one sentence: why the solver stopped
   int outer_iterations = 0;
-  int iterations = 0;   ///< MPGP steps over all inner solves
-  long n_products = 0;  ///< products with A over all inner solves (power method excluded)
-  double rho = 0.0;     ///< the penalty used
+  int iterations = 0;           ///< MPGP steps over all inner solves
+  long n_products = 0;          ///< products with A over all inner solves (power method excluded)
+  double rho = 0.0;             ///< the penalty used
   double norm_projected = 0.0;  ///< ||P A P|| used with the projector (0 without)
   double equality_residual = 0.0;  ///< qp::equality_residual at the end
   double norm_gp = 0.0;            ///< ||g^P|| of the augmented Lagrangian at the end
