@@ -484,42 +484,41 @@ void conclude(const outer::OuterReport& loop, ContactOutcome& out) {
   ContactReport& rep = out.report;
   out.converged = loop.converged();
   out.message = loop.message;
-  if (out.converged && rep.model == contact::FrictionModel::Coulomb &&
-      !(rep.coulomb_residual <= rep.coulomb_bound)) {
+  // The first check that fails ends the run's convergence and gives its message.
+  const auto check = [&](bool passed, const auto& message) {
+    if (!out.converged || passed) return;
     rep.termination = outer::OuterTermination::CertificateFailed;
     out.converged = false;
-    out.message = fmt::format(
-        "the certificate of the Coulomb solution failed: its natural-map residual {:.3e} "
-        "exceeds solver.certificate_tol = {:.1e} after {} rounds of further steps at tighter "
-        "tolerances",
-        rep.coulomb_residual, rep.coulomb_bound, rep.certificate_refinements);
-  }
-  if (out.converged && !(rep.equality_residual <= rep.equality_bound)) {
-    rep.termination = outer::OuterTermination::CertificateFailed;
-    out.converged = false;
-    out.message = fmt::format(
+    out.message = message();
+  };
+  check(rep.model != contact::FrictionModel::Coulomb || rep.coulomb_residual <= rep.coulomb_bound,
+        [&] {
+          return fmt::format(
+              "the certificate of the Coulomb solution failed: its natural-map residual {:.3e} "
+              "exceeds solver.certificate_tol = {:.1e} after {} rounds of further steps at "
+              "tighter tolerances",
+              rep.coulomb_residual, rep.coulomb_bound, rep.certificate_refinements);
+        });
+  check(rep.equality_residual <= rep.equality_bound, [&] {
+    return fmt::format(
         "the certificate of the final QP failed: the floating bodies' balance G lambda = e has "
         "the relative residual {:.3e}, more than {:.1e}",
         rep.equality_residual, rep.equality_bound);
-  }
-  if (out.converged && !(rep.gluing_residual <= rep.kkt_bound)) {
-    rep.termination = outer::OuterTermination::CertificateFailed;
-    out.converged = false;
-    out.message = fmt::format(
+  });
+  check(rep.gluing_residual <= rep.kkt_bound, [&] {
+    return fmt::format(
         "the certificate of the final QP failed: the subdomains' copies of the nodes (and the "
         "Dirichlet values) differ by {:.3e} of the displacement (root mean squares), more than "
         "{:.1e}",
         rep.gluing_residual, rep.kkt_bound);
-  }
-  if (out.converged && !(rep.kkt.max() <= rep.kkt_bound)) {
-    rep.termination = outer::OuterTermination::CertificateFailed;
-    out.converged = false;
-    out.message = fmt::format(
+  });
+  check(rep.kkt.max() <= rep.kkt_bound, [&] {
+    return fmt::format(
         "the certificate of the final QP failed: its largest KKT residual {:.3e} (feasibility "
         "{:.1e}, stationarity {:.1e}, complementarity {:.1e}) exceeds {:g} x qp_rtol = {:.1e}",
         rep.kkt.max(), rep.kkt.feasibility, rep.kkt.stationarity, rep.kkt.complementarity,
         kCertificateFactor, rep.kkt_bound);
-  }
+  });
 }
 
 }  // namespace

@@ -48,17 +48,13 @@ SparseMatrix coarse_rows(const std::vector<Subdomain>& subdomains, Index n_dual)
 
 FetiOperator::FetiOperator(std::vector<Subdomain> subdomains, TornRows rows,
                            const std::vector<Index>& owner_dof, const fe::DofMap& dofs, int threads)
-    : subdomains_(std::move(subdomains)),
-      rows_(std::move(rows)),
-      dofs_(dofs),
-      owner_dof_(owner_dof),
-      threads_(std::max(threads, 1)) {
+    : subdomains_(std::move(subdomains)), rows_(std::move(rows)), threads_(std::max(threads, 1)) {
   torn_of_free_.assign(static_cast<size_t>(dofs.n_free()), -1);
   for (Index a = 0; a < dofs.n_nodes(); ++a)
     for (int c = 0; c < 3; ++c)
       if (dofs.dof(a, c) >= 0)
         torn_of_free_[static_cast<size_t>(dofs.dof(a, c))] =
-            owner_dof_[static_cast<size_t>(3 * a + c)];
+            owner_dof[static_cast<size_t>(3 * a + c)];
   partial_.assign(static_cast<size_t>(threads_), VectorXd());
   G_ = coarse_rows(subdomains_, rows_.n_rows());
   compute_load_terms();
@@ -157,32 +153,6 @@ Real FetiOperator::gluing_residual(const VectorXd& lambda, const VectorXd& alpha
   const Real mismatch = std::sqrt(sum2 / static_cast<Real>(n));
   const Real size = u.norm() / std::sqrt(static_cast<Real>(u.size()));
   return size > 0.0 ? mismatch / size : mismatch;
-}
-
-void FetiOperator::set_step_load(const fe::NodalField& applied, const fe::NodalField& prescribed,
-                                 const VectorXd& contact_offset) {
-  FRICON_CHECK(contact_offset.size() == rows_.n_contact,
-               "an offset of " << contact_offset.size() << " for " << rows_.n_contact);
-  for (Subdomain& s : subdomains_) {
-    s.f.setZero();
-    for (std::size_t a = 0; a < s.nodes.size(); ++a)
-      for (int c = 0; c < 3; ++c) {
-        const Index dof = s.first_dof + 3 * static_cast<Index>(a) + c;
-        if (owner_dof_[static_cast<size_t>(3 * s.nodes[a] + c)] == dof)
-          s.f(3 * static_cast<Index>(a) + c) = applied(c, s.nodes[a]);
-      }
-  }
-  rows_.c.head(rows_.n_contact) = contact_offset;
-  // The Dirichlet rows keep their scale: c = w times the prescribed value.
-  Index row = rows_.n_contact + rows_.n_gluing;
-  for (Index a = 0; a < dofs_.n_nodes(); ++a)
-    for (int c = 0; c < 3; ++c) {
-      if (!dofs_.is_fixed(a, c)) continue;
-      const Index dof = owner_dof_[static_cast<size_t>(3 * a + c)];
-      rows_.c(row) = rows_.B.coeff(row, dof) * prescribed(c, a);
-      ++row;
-    }
-  compute_load_terms();
 }
 
 }  // namespace fricon::feti

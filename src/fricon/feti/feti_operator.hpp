@@ -39,12 +39,6 @@ class FetiOperator final : public dual::DualOperator {
   VectorXd rigid_displacement(const VectorXd& alpha) const override;
   Index n_equality() const override { return rows_.n_equality(); }
   Real gluing_residual(const VectorXd& lambda, const VectorXd& alpha) const override;
-  /// A new load (a step of a loading path): the applied forces (3 x n_nodes [N]) at the owners'
-  /// copies, the prescribed displacements (3 x n_nodes [m]) in the Dirichlet rows and the
-  /// contact rows' offset [m^3]; h and e are recomputed (one solve per subdomain).
-  void set_step_load(const fe::NodalField& applied, const fe::NodalField& prescribed,
-                     const VectorXd& contact_offset);
-
   const std::vector<Subdomain>& subdomains() const { return subdomains_; }
   const TornRows& rows() const { return rows_; }
   /// Products with F (apply) so far; each is one solve with every subdomain's factor.
@@ -55,15 +49,12 @@ class FetiOperator final : public dual::DualOperator {
   VectorXd torn_displacement(const VectorXd& lambda, const VectorXd* alpha) const;
   /// A torn field read at the owners' copies, over the model's free dofs.
   VectorXd to_free(const VectorXd& torn) const;
-  /// h = B K^+ f - c, u0 and e = R^T f from the subdomains' loads.
+  /// h = B K^+ f - c, u0 and e = R^T f from the subdomains' loads (one solve per subdomain).
   void compute_load_terms();
 
   std::vector<Subdomain> subdomains_;
   TornRows rows_;
   std::vector<Index> torn_of_free_;  ///< the owner's torn dof of each free dof of the model
-  /// Per free dof (node, component) of the model, for set_step_load: its node and component.
-  const fe::DofMap& dofs_;
-  std::vector<Index> owner_dof_;
   int threads_ = 1;
   mutable std::vector<VectorXd> partial_;  ///< per thread: its sum of products
   mutable long n_products_ = 0;

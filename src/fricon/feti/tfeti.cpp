@@ -66,9 +66,7 @@ std::unique_ptr<FetiOperator> make_tfeti(const mesh::TetMesh& mesh, const mesh::
   // @sect: the rows of B over the torn dofs, each subdomain's share, and F, h, G, e.
   watch.restart();
   const std::vector<Index> owner_dof = owner_dofs(subdomains, owners, mesh.n_nodes());
-  TornRows rows = tear_rows(subdomains, owner_dof, dofs, prescribed,
-                            B.rows() > 0 ? B : SparseMatrix(0, dofs.n_free()),
-                            offset.size() > 0 ? offset : VectorXd(), options.scaling);
+  TornRows rows = tear_rows(subdomains, owner_dof, dofs, prescribed, B, offset, options.scaling);
   attach_rows(rows.B, subdomains);
   report.n_torn = rows.B.cols();
   report.n_contact = rows.n_contact;

@@ -126,10 +126,11 @@ TornRows tear_rows(const std::vector<Subdomain>& subdomains, const std::vector<I
 }
 
 void attach_rows(const SparseMatrix& B, std::vector<Subdomain>& subdomains) {
+  // The local number of each row of B in the subdomain at hand (-1: none), reset after each.
+  std::vector<Index> local(static_cast<size_t>(B.rows()), -1);
   for (Subdomain& s : subdomains) {
     const SparseMatrix block = B.middleCols(s.first_dof, s.n_dofs());
     // The rows it touches, ascending, and their local numbers.
-    std::vector<Index> local(static_cast<size_t>(B.rows()), -1);
     s.rows.clear();
     for (Index j = 0; j < block.outerSize(); ++j)
       for (SparseMatrix::InnerIterator it(block, j); it; ++it)
@@ -148,6 +149,8 @@ void attach_rows(const SparseMatrix& B, std::vector<Subdomain>& subdomains) {
     s.B.resize(static_cast<Index>(s.rows.size()), s.n_dofs());
     s.B.setFromTriplets(entries.begin(), entries.end());
     s.B.makeCompressed();
+    for (Index row : s.rows)
+      local[static_cast<size_t>(row)] = -1;
   }
 }
 
