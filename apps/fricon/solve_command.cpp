@@ -73,6 +73,13 @@ void print_summary(const driver::RunResult& result, const std::filesystem::path&
         f.nnz_factors, f.factor_mib, f.factorization_s, f.factorization_cpu_s, f.n_products,
         f.peak_memory_mib);
     if (!f.partition_note.empty()) fmt::print("  partition     {}\n", f.partition_note);
+    if (f.n_ranks > 1) {
+      fmt::print("  ranks         {} (tfeti), subdomains / factor MiB / peak memory MiB per rank:",
+                 f.n_ranks);
+      for (const feti::RankShare& rank : f.ranks)
+        fmt::print(" {}/{:.0f}/{:.0f}", rank.n_subdomains, rank.factor_mib, rank.peak_memory_mib);
+      fmt::print("\n");
+    }
   } else {
     fmt::print("  factor        nnz(L) = {:.0f}, ordering {}\n", r.factor.nnz_L, r.factor.ordering);
   }
@@ -283,16 +290,10 @@ driver::Problem read_problem_on_every_rank(const std::string& file, const SolveO
   driver::Problem problem;
   const auto read = [&] {
     problem = io::read_problem(file, so.sets);
-    if (mpi_ranks() > 1 && problem.solver.backend == parallel::Backend::Tfeti)
-      throw InputError(fmt::format(
-          "{}: solver.backend: \"tfeti\" runs its subdomains on the threads of one process; "
-          "this version does not distribute them over MPI ranks (mpirun started {}): run it "
-          "without mpirun, or use backend \"petsc\" on the ranks (docs/parallel.md)",
-          problem.where("solver.backend"), mpi_ranks()));
-    if (mpi_ranks() > 1 && problem.solver.backend != parallel::Backend::Petsc)
+    if (mpi_ranks() > 1 && problem.solver.backend == parallel::Backend::Cholmod)
       throw InputError(fmt::format(
           "{}: solver.backend: \"{}\" runs on one process, but mpirun started {} ranks; run "
-          "with --set solver.backend=petsc (docs/parallel.md)",
+          "with --set solver.backend=petsc or tfeti (docs/parallel.md)",
           problem.where("solver.backend"), enum_name(problem.solver.backend), mpi_ranks()));
     dir = results_folder(problem, so);
     if (is_rank_zero()) io::prepare_results(dir);
@@ -351,8 +352,9 @@ int solve(const std::string& file, const SolveOptions& so, const std::string& co
   if (problem.loading.steps > 1) follow_path(problem, dir, so.verbosity, options, written_steps);
   install_signal_handlers();
   const driver::RunResult result = fricon::solve(problem, options);
-  // The other ranks of a distributed run have served rank 0, which writes the results.
-  if (result.report.parallel && result.report.parallel->rank != 0)
+  // Rank 0 of a distributed run writes the results (the others have served it, or, with
+  // tfeti, hold the same).
+  if (!is_rank_zero())
     return result.report.status == driver::RunStatus::Converged ? kConverged : kNotConverged;
   if (!so.dump_dual.empty()) {
     if (!result.first_dual)

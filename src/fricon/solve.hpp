@@ -10,7 +10,9 @@ namespace fricon {
 
 /// Runs `problem` where solver.backend says: driver::run for "cholmod",
 /// parallel::run_distributed for "petsc" (collective over MPI_COMM_WORLD; a fricon built without
-/// PETSc refuses it with an InputError saying how to get it). Returns what they return.
+/// PETSc refuses it with an InputError saying how to get it), parallel::run_tfeti_on_ranks for
+/// "tfeti" (on the ranks of MPI_COMM_WORLD under mpirun, else driver::run). Returns what they
+/// return.
 driver::RunResult solve(const driver::Problem& problem, const driver::RunOptions& options = {});
 
 }  // namespace fricon

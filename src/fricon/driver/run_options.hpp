@@ -9,6 +9,10 @@
 #include "fricon/core/types.hpp"
 #include "fricon/qp/mpgp.hpp"
 
+namespace fricon::feti {
+class Ranks;
+}
+
 namespace fricon::driver {
 
 struct RunResult;
@@ -45,6 +49,10 @@ struct RunOptions {
   /// If set and true, the run stops at the next QP step (e.g. set by a SIGINT handler) and
   /// returns what it has, not converged; while Q is formed it throws fricon::Interrupted.
   const std::atomic<bool>* stop_requested = nullptr;
+  /// Backend "tfeti": the processes that share the subdomains (feti/ranks.hpp), every one of
+  /// them running this run the same; null: this process alone (parallel/tfeti_run.hpp sets it
+  /// under mpirun).
+  const feti::Ranks* feti_ranks = nullptr;
 
   /// Whether a stop was requested (stop_requested is set and true).
   bool stop_was_requested() const { return stop_requested != nullptr && stop_requested->load(); }

@@ -14,6 +14,7 @@ namespace fricon::driver {
 
 std::unique_ptr<feti::FetiOperator> make_feti_operator(const Problem& problem, const Model& model,
                                                        const contact::ContactDiscretization* disc,
+                                                       const RunOptions& options,
                                                        RunReport& report) {
   ScopedPhase phase(report.times, "factorize");
   feti::FetiOptions o;
@@ -29,7 +30,9 @@ std::unique_ptr<feti::FetiOperator> make_feti_operator(const Problem& problem, c
   feti::FetiReport feti_report;
   auto op = feti::make_tfeti(model.mesh, model.bodies, model.materials, model.dofs,
                              model.prescribed, applied, disc ? disc->B : no_rows,
-                             disc ? disc->offset : VectorXd(), o, feti_report);
+                             disc ? disc->offset : VectorXd(), o,
+                             options.feti_ranks ? *options.feti_ranks : feti::this_process(),
+                             feti_report);
   report.feti = feti_report;
   return op;
 }
@@ -37,7 +40,7 @@ std::unique_ptr<feti::FetiOperator> make_feti_operator(const Problem& problem, c
 void record_feti_counts(const feti::FetiOperator& F, RunReport& report) {
   if (!report.feti) return;
   report.feti->n_products = F.n_products();
-  report.feti->peak_memory_mib = feti::peak_memory_mib();
+  feti::record_peak_memory(F.ranks(), *report.feti);
   if (report.contact) {
     report.feti->qp_iterations = report.contact->qp_iterations;
     report.feti->smalse_outer_iterations = report.contact->smalse_outer_iterations;
@@ -49,7 +52,7 @@ void record_feti_counts(const feti::FetiOperator& F, RunReport& report) {
 VectorXd solve_elastic_tfeti(const Problem& problem, const RunOptions& options, RunResult& r) {
   RunReport& rep = r.report;
   phase_start(options, "factorize");
-  const std::unique_ptr<feti::FetiOperator> F = make_feti_operator(problem, r.model, nullptr, rep);
+  const std::unique_ptr<feti::FetiOperator> F = make_feti_operator(problem, r.model, nullptr, options, rep);
   phase_start(options, "solve");
   ScopedPhase phase(rep.times, "solve");
   qp::SeparableConstraints free;
@@ -74,7 +77,7 @@ VectorXd solve_elastic_tfeti(const Problem& problem, const RunOptions& options, 
   fr.smalse_outer_iterations = s.outer_iterations;
   fr.gluing_residual = F->gluing_residual(lambda, alpha);
   fr.gluing_bound = kCertificateFactor * problem.solver.qp.rel_tolerance;
-  fr.peak_memory_mib = feti::peak_memory_mib();
+  feti::record_peak_memory(F->ranks(), fr);
   if (s.termination == qp::QpTermination::UserStopped)
     throw Interrupted("interrupted during the Total FETI solve");
   if (s.termination != qp::QpTermination::Converged) {

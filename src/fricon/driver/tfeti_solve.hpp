@@ -17,14 +17,16 @@ namespace fricon::driver {
 /// The Total FETI operator of the model (assemble_loads: no K) with the contact rows of `disc`
 /// (null: none), from the problem's [solver] subdomains, subdomain_size and tfeti_scaling, its
 /// subdomain loops on the run's threads (linalg::threads(), the BLAS then on one: the parallelism
-/// is over the subdomains). Fills report.feti; phase "factorize". Throws InputError for a
-/// partition that cannot be made (naming solver.subdomains), NumericalError for a subdomain that
-/// cannot be factored.
+/// is over the subdomains), shared with the processes of options.feti_ranks (collective over
+/// them). Fills report.feti; phase "factorize". Throws InputError for a partition that cannot be
+/// made (naming solver.subdomains), NumericalError for a subdomain that cannot be factored.
 std::unique_ptr<feti::FetiOperator> make_feti_operator(const Problem& problem, const Model& model,
                                                        const contact::ContactDiscretization* disc,
+                                                       const RunOptions& options,
                                                        RunReport& report);
 
-/// After a contact solve with `F`: its products with F and coarse solves into report.feti.
+/// After a contact solve with `F`: its products with F and coarse solves into report.feti, and
+/// the processes' peak memory (collective over F.ranks()).
 void record_feti_counts(const feti::FetiOperator& F, RunReport& report);
 
 /// The displacement over the free dofs of a model without contact by Total FETI: SMALSE-M on the

@@ -47,8 +47,13 @@ SparseMatrix coarse_rows(const std::vector<Subdomain>& subdomains, Index n_dual)
 }  // namespace
 
 FetiOperator::FetiOperator(std::vector<Subdomain> subdomains, TornRows rows,
-                           const std::vector<Index>& owner_dof, const fe::DofMap& dofs, int threads)
-    : subdomains_(std::move(subdomains)), rows_(std::move(rows)), threads_(std::max(threads, 1)) {
+                           const std::vector<Index>& owner_dof, const fe::DofMap& dofs, int threads,
+                           const Ranks& ranks)
+    : subdomains_(std::move(subdomains)),
+      rows_(std::move(rows)),
+      threads_(std::max(threads, 1)),
+      ranks_(&ranks),
+      block_(ranks.block(static_cast<Index>(subdomains_.size()))) {
   torn_of_free_.assign(static_cast<size_t>(dofs.n_free()), -1);
   for (Index a = 0; a < dofs.n_nodes(); ++a)
     for (int c = 0; c < 3; ++c)
@@ -60,15 +65,25 @@ FetiOperator::FetiOperator(std::vector<Subdomain> subdomains, TornRows rows,
   compute_load_terms();
 }
 
+void FetiOperator::for_own_subdomains(
+    const std::function<void(const Subdomain& s, Index i, int thread)>& body) const {
+  const auto [first, last] = block_;
+  parallel_for(last - first, threads_, [&](Index k, int thread) {
+    body(subdomains_[static_cast<size_t>(first + k)], first + k, thread);
+  });
+}
+
 void FetiOperator::compute_load_terms() {
   const Index n = rows_.n_rows();
-  VectorXd u0_torn(rows_.B.cols());
   e_.resize(kSubdomainMotions * static_cast<Index>(subdomains_.size()));
-  parallel_for(static_cast<Index>(subdomains_.size()), threads_, [&](Index i, int) {
-    const Subdomain& s = subdomains_[static_cast<size_t>(i)];
+  for (std::size_t i = 0; i < subdomains_.size(); ++i)
+    e_.segment<kSubdomainMotions>(kSubdomainMotions * static_cast<Index>(i)) =
+        subdomains_[i].R.transpose() * subdomains_[i].f;
+  VectorXd u0_torn = VectorXd::Zero(rows_.B.cols());
+  for_own_subdomains([&](const Subdomain& s, Index, int) {
     u0_torn.segment(s.first_dof, s.n_dofs()) = s.factor.solve(s.f);
-    e_.segment<kSubdomainMotions>(kSubdomainMotions * i) = s.R.transpose() * s.f;
   });
+  ranks_->sum(u0_torn);
   h_ = VectorXd::Zero(n);
   for (const Subdomain& s : subdomains_)
     scatter_add(s.B * u0_torn.segment(s.first_dof, s.n_dofs()), s.rows, h_);
@@ -81,27 +96,27 @@ void FetiOperator::apply(const VectorXd& x, VectorXd& y) const {
   const Index n = x.size();
   for (VectorXd& p : partial_)
     p.setZero(n);
-  parallel_for(static_cast<Index>(subdomains_.size()), threads_, [&](Index i, int thread) {
-    const Subdomain& s = subdomains_[static_cast<size_t>(i)];
+  for_own_subdomains([&](const Subdomain& s, Index, int thread) {
     const VectorXd local = s.factor.solve(VectorXd(s.B.transpose() * gather(x, s.rows)));
     scatter_add(s.B * local, s.rows, partial_[static_cast<size_t>(thread)]);
   });
   y = partial_[0];
   for (std::size_t t = 1; t < partial_.size(); ++t)
     y += partial_[t];
+  ranks_->sum(y);
   ++n_products_;
   ++n_kinv_;
 }
 
 VectorXd FetiOperator::torn_displacement(const VectorXd& lambda, const VectorXd* alpha) const {
   FRICON_CHECK(lambda.size() == size(), "lambda of " << lambda.size() << " for " << size());
-  VectorXd u(rows_.B.cols());
-  parallel_for(static_cast<Index>(subdomains_.size()), threads_, [&](Index i, int) {
-    const Subdomain& s = subdomains_[static_cast<size_t>(i)];
+  VectorXd u = VectorXd::Zero(rows_.B.cols());
+  for_own_subdomains([&](const Subdomain& s, Index i, int) {
     VectorXd u_s = s.factor.solve(VectorXd(s.f - s.B.transpose() * gather(lambda, s.rows)));
     if (alpha) u_s += s.R * alpha->segment<kSubdomainMotions>(kSubdomainMotions * i);
     u.segment(s.first_dof, s.n_dofs()) = u_s;
   });
+  ranks_->sum(u);  // each torn dof is one process's: the sum is exact
   ++n_kinv_;
   return u;
 }

@@ -6,18 +6,22 @@
 //
 //   F x = sum_s B_s K_s^+ B_s^T x,
 //
-// run on a pool of threads. The equality G lambda = e, G = R^T B^T and e = R^T f, carries the
+// run on a pool of threads, over this process's subdomains, and added up over the processes
+// (feti/ranks.hpp; every process holds the whole dual vectors). The equality G lambda = e, G = R^T B^T and e = R^T f, carries the
 // rigid motions of every subdomain (6 per subdomain: the natural coarse space), and the
 // displacement is u = K^+ (f - B^T lambda) + R alpha, alpha = -mu of that equality, read at each
 // node's owner copy (the copies agree to the gluing residual, which the certificate checks).
 // To the contact solve it is one more dual::DualOperator: the QP layer sees the equality
 // multipliers as free unknowns (qp::BlockKind::Free) and the equality through qp::CoarseSpace.
 
+#include <functional>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "fricon/dual/dual_operator.hpp"
 #include "fricon/fe/dof_map.hpp"
+#include "fricon/feti/ranks.hpp"
 #include "fricon/feti/subdomains.hpp"
 #include "fricon/feti/torn_rows.hpp"
 
@@ -28,9 +32,12 @@ class FetiOperator final : public dual::DualOperator {
   /// The operator of the factored `subdomains` (make_subdomains) and the rows `rows`
   /// (tear_rows, with the same subdomains); `owner_dof` (owner_dofs) and `dofs` (the whole
   /// model's) map the torn displacement to the model's free dofs. Computes h, G and e (one solve
-  /// per subdomain). Products run on `threads` threads.
+  /// per subdomain). Products run on `threads` threads over the subdomains of this process's
+  /// block of `ranks`, which must outlive the operator; every product, h and every displacement
+  /// is collective over it.
   FetiOperator(std::vector<Subdomain> subdomains, TornRows rows,
-               const std::vector<Index>& owner_dof, const fe::DofMap& dofs, int threads);
+               const std::vector<Index>& owner_dof, const fe::DofMap& dofs, int threads,
+               const Ranks& ranks);
 
   dual::DualOperatorKind kind() const override { return dual::DualOperatorKind::Implicit; }
   void apply(const VectorXd& x, VectorXd& y) const override;
@@ -43,8 +50,13 @@ class FetiOperator final : public dual::DualOperator {
   const TornRows& rows() const { return rows_; }
   /// Products with F (apply) so far; each is one solve with every subdomain's factor.
   long n_products() const { return n_products_; }
+  /// The processes that share the subdomains.
+  const Ranks& ranks() const { return *ranks_; }
 
  private:
+  /// body(s, i, thread) for every subdomain s (number i) of this process, on the threads.
+  void for_own_subdomains(
+      const std::function<void(const Subdomain& s, Index i, int thread)>& body) const;
   /// The torn displacement K^+ (f - B^T lambda) (+ R alpha when alpha is given).
   VectorXd torn_displacement(const VectorXd& lambda, const VectorXd* alpha) const;
   /// A torn field read at the owners' copies, over the model's free dofs.
@@ -56,6 +68,8 @@ class FetiOperator final : public dual::DualOperator {
   TornRows rows_;
   std::vector<Index> torn_of_free_;  ///< the owner's torn dof of each free dof of the model
   int threads_ = 1;
+  const Ranks* ranks_;
+  std::pair<Index, Index> block_;  ///< this process's subdomains, [first, second)
   mutable std::vector<VectorXd> partial_;  ///< per thread: its sum of products
   mutable long n_products_ = 0;
 };

@@ -4,6 +4,7 @@
 // hold them without depending on the solver.
 
 #include <string>
+#include <vector>
 
 #include "fricon/core/enum_names.hpp"
 #include "fricon/core/types.hpp"
@@ -36,6 +37,15 @@ struct FetiOptions {
   std::string key_context;  ///< where solver.subdomains was given, for messages
 };
 
+/// One process's share of the subdomains (feti/ranks.hpp).
+struct RankShare {
+  Index n_subdomains = 0;            ///< the subdomains it factors
+  Index n_tets = 0;                  ///< their tetrahedra
+  double factor_mib = 0.0;           ///< their factors, 8 bytes per non-zero [MiB]
+  double factorization_cpu_s = 0.0;  ///< their assembly and factorization, summed [s]
+  double peak_memory_mib = 0.0;      ///< its peak resident memory [MiB]
+};
+
 /// What the decomposition is: sizes, the interface, the coarse problem, times and memory.
 struct FetiReport {
   Index n_subdomains = 0;
@@ -64,7 +74,10 @@ struct FetiReport {
   /// violation relative to that of the displacement, and its bound (100 qp_rtol).
   double gluing_residual = 0.0;
   double gluing_bound = 0.0;
-  double peak_memory_mib = 0.0;  ///< peak resident memory of the process at the end [MiB]
+  /// Peak resident memory at the end [MiB], the largest over the processes.
+  double peak_memory_mib = 0.0;
+  int n_ranks = 1;               ///< processes (MPI ranks) that share the subdomains
+  std::vector<RankShare> ranks;  ///< per process, in rank order
 };
 
 }  // namespace fricon::feti

@@ -15,29 +15,59 @@ namespace fricon::feti {
 
 namespace {
 
-// The stiffness, rigid motions and factor of one subdomain (theory.md §8.1): K_s over every dof
-// of its nodes, regularized as a floating body (fe/floating.hpp) so that its solves are K_s^+.
-void factor_subdomain(const mesh::TetMesh& mesh, fe::Materials materials,
-                      const std::vector<Index>& tets, Index index, Subdomain& s) {
-  const Stopwatch watch;
-  const mesh::TetMesh part = mesh::submesh(mesh, tets, &s.nodes);
+// A subdomain's own mesh, its dofs (every component of every node) and rigid motions.
+struct Piece {
+  mesh::TetMesh mesh;
+  fe::DofMap dofs;
+  fe::FloatingBodies floating;
+};
+
+// The nodes and rigid motions of one subdomain (theory.md §8.1), from the tetrahedra `tets`
+// of `mesh`.
+Piece describe_subdomain(const mesh::TetMesh& mesh, const std::vector<Index>& tets, Index index,
+                         Subdomain& s) {
+  mesh::TetMesh part = mesh::submesh(mesh, tets, &s.nodes);
   const fe::DofMap dofs(part.n_nodes());
-  const SparseMatrix K = fe::assemble_stiffness(part, materials, dofs);
-  s.stiffness_diagonal = K.diagonal();
-  const fe::FloatingBodies floating = fe::find_floating_bodies(part, mesh::find_bodies(part), dofs);
+  fe::FloatingBodies floating = fe::find_floating_bodies(part, mesh::find_bodies(part), dofs);
   FRICON_CHECK(floating.bodies.size() == 1 && floating.n_motions() == kSubdomainMotions,
                "subdomain " << index << " is not one body with six rigid motions");
   s.R = MatrixXd(floating.R);
+  s.n_tets = static_cast<Index>(tets.size());
+  return {std::move(part), dofs, std::move(floating)};
+}
+
+// The stiffness and factor of one subdomain of this process (theory.md §8.1): K_s over every
+// dof of its nodes, regularized as a floating body (fe/floating.hpp) so that its solves are
+// K_s^+.
+void factor_subdomain(const mesh::TetMesh& mesh, fe::Materials materials,
+                      const std::vector<Index>& tets, Index index, Subdomain& s) {
+  const Stopwatch watch;
+  const Piece piece = describe_subdomain(mesh, tets, index, s);
+  const SparseMatrix K = fe::assemble_stiffness(piece.mesh, materials, piece.dofs);
+  s.stiffness_diagonal = K.diagonal();
   try {
-    s.factor.factorize(fe::regularized_stiffness(K, floating));
+    s.factor.factorize(fe::regularized_stiffness(K, piece.floating));
   } catch (const NumericalError& e) {
     throw NumericalError(
         fmt::format("the stiffness of subdomain {} ({} tetrahedra) regularized by its rigid "
                     "motions is not positive definite: {}",
                     index, tets.size(), e.what()));
   }
-  s.n_tets = static_cast<Index>(tets.size());
   s.factor_seconds = watch.seconds();
+}
+
+// Every subdomain's stiffness diagonal, from the processes that factored them.
+void share_diagonals(std::vector<Subdomain>& subdomains, const Ranks& ranks) {
+  Index n_torn = 0;
+  for (const Subdomain& s : subdomains)
+    n_torn += s.n_dofs();
+  VectorXd d = VectorXd::Zero(n_torn);
+  for (const Subdomain& s : subdomains)
+    if (s.stiffness_diagonal.size() == s.n_dofs())
+      d.segment(s.first_dof, s.n_dofs()) = s.stiffness_diagonal;
+  ranks.sum(d);  // each torn dof has one subdomain, factored by one process: the sum is exact
+  for (Subdomain& s : subdomains)
+    s.stiffness_diagonal = d.segment(s.first_dof, s.n_dofs());
 }
 
 }  // namespace
@@ -56,22 +86,32 @@ std::vector<Index> node_owners(const mesh::TetMesh& mesh, const Partition& parti
 
 std::vector<Subdomain> make_subdomains(const mesh::TetMesh& mesh, fe::Materials materials,
                                        const Partition& partition, const std::vector<Index>& owners,
-                                       const fe::NodalField& applied, int threads) {
-  std::vector<Subdomain> subdomains(static_cast<size_t>(partition.n_subdomains));
-  parallel_for(partition.n_subdomains, threads, [&](Index i, int) {
-    factor_subdomain(mesh, materials, partition.tets[static_cast<size_t>(i)], i,
-                     subdomains[static_cast<size_t>(i)]);
+                                       const fe::NodalField& applied, int threads,
+                                       const Ranks& ranks) {
+  const Index n = partition.n_subdomains;
+  std::vector<Subdomain> subdomains(static_cast<size_t>(n));
+  const auto [first, last] = ranks.block(n);
+  ranks.collectively([&] {
+    parallel_for(n, threads, [&](Index i, int) {
+      const std::vector<Index>& tets = partition.tets[static_cast<size_t>(i)];
+      Subdomain& s = subdomains[static_cast<size_t>(i)];
+      if (first <= i && i < last)
+        factor_subdomain(mesh, materials, tets, i, s);
+      else
+        (void)describe_subdomain(mesh, tets, i, s);
+    });
   });
-  Index first = 0;
-  for (Index i = 0; i < partition.n_subdomains; ++i) {
+  Index first_dof = 0;
+  for (Index i = 0; i < n; ++i) {
     Subdomain& s = subdomains[static_cast<size_t>(i)];
-    s.first_dof = first;
-    first += s.n_dofs();
+    s.first_dof = first_dof;
+    first_dof += s.n_dofs();
     s.f = VectorXd::Zero(s.n_dofs());
     for (std::size_t a = 0; a < s.nodes.size(); ++a)
       if (owners[static_cast<size_t>(s.nodes[a])] == i)
         s.f.segment<3>(3 * static_cast<Index>(a)) = applied.col(s.nodes[a]);
   }
+  share_diagonals(subdomains, ranks);
   return subdomains;
 }
 

@@ -11,6 +11,7 @@
 #include "fricon/fe/assembly.hpp"
 #include "fricon/fe/material.hpp"
 #include "fricon/feti/partition.hpp"
+#include "fricon/feti/ranks.hpp"
 #include "fricon/linalg/cholesky.hpp"
 #include "fricon/mesh/tet_mesh.hpp"
 
@@ -28,7 +29,9 @@ struct Subdomain {
 
   VectorXd stiffness_diagonal;    ///< the diagonal of K_s [N/m] (scales the gluing rows)
   MatrixXd R;                     ///< n_dofs x 6: its rigid motions [m per unit amplitude]
-  linalg::CholeskyFactor factor;  ///< of the regularized K_s: solves are K_s^+ [m/N]
+  /// Of the regularized K_s, its solves K_s^+ [m/N]: only in the subdomains of this process
+  /// (Ranks::block); empty in the others.
+  linalg::CholeskyFactor factor;
   VectorXd f;                     ///< its share of the applied load [N] (at the nodes it owns)
   double factor_seconds = 0.0;    ///< the assembly and factorization of K_s [s]
 
@@ -45,10 +48,14 @@ std::vector<Index> node_owners(const mesh::TetMesh& mesh, const Partition& parti
 /// The subdomains of `partition` of `mesh`, numbered as it numbers them, torn dofs consecutive in
 /// that order: for each, its nodes, K_s assembled with `materials` (one per region of the mesh)
 /// and factored after regularization, R_s, and the applied forces `applied` (3 x n_nodes [N],
-/// every component, fixed ones too) at the nodes it owns (`owners`, node_owners). Runs on
-/// `threads` threads. Throws NumericalError when a regularized K_s is not positive definite.
+/// every component, fixed ones too) at the nodes it owns (`owners`, node_owners). Only the
+/// subdomains of this process's block (ranks.block) are factored; every process holds the
+/// others' nodes, R_s and (shared by `ranks`) stiffness diagonals. Runs on `threads` threads.
+/// Collective over `ranks`. Throws NumericalError, on every process, when a regularized K_s is
+/// not positive definite.
 std::vector<Subdomain> make_subdomains(const mesh::TetMesh& mesh, fe::Materials materials,
                                        const Partition& partition, const std::vector<Index>& owners,
-                                       const fe::NodalField& applied, int threads);
+                                       const fe::NodalField& applied, int threads,
+                                       const Ranks& ranks);
 
 }  // namespace fricon::feti

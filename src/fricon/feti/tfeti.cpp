@@ -14,23 +14,53 @@ namespace {
 constexpr double kBytesPerMib = 1024.0 * 1024.0;
 constexpr double kBytesPerEntry = 8.0;
 
-void describe_subdomains(const std::vector<Subdomain>& subdomains, FetiReport& report) {
-  report.n_subdomains = static_cast<Index>(subdomains.size());
+// Sizes over all subdomains; factors and their times over those of every process (summed).
+void describe_subdomains(const std::vector<Subdomain>& subdomains, const Ranks& ranks,
+                         FetiReport& report) {
+  const auto n = static_cast<Index>(subdomains.size());
+  report.n_subdomains = n;
   report.min_nodes = subdomains.empty() ? 0 : static_cast<Index>(subdomains[0].nodes.size());
   double total = 0.0;
   for (const Subdomain& s : subdomains) {
-    const auto n = static_cast<Index>(s.nodes.size());
-    report.min_nodes = std::min(report.min_nodes, n);
-    report.max_nodes = std::max(report.max_nodes, n);
-    total += static_cast<double>(n);
-    report.nnz_factors += s.factor.info().nnz_L;
-    report.factorization_cpu_s += s.factor_seconds;
+    const auto n_nodes = static_cast<Index>(s.nodes.size());
+    report.min_nodes = std::min(report.min_nodes, n_nodes);
+    report.max_nodes = std::max(report.max_nodes, n_nodes);
+    total += static_cast<double>(n_nodes);
   }
-  report.mean_nodes = subdomains.empty() ? 0.0 : total / static_cast<double>(subdomains.size());
+  report.mean_nodes = subdomains.empty() ? 0.0 : total / static_cast<double>(n);
+  const auto [first, last] = ranks.block(n);
+  double nnz = 0.0, cpu_s = 0.0, tets = 0.0;
+  for (Index i = first; i < last; ++i) {
+    const Subdomain& s = subdomains[static_cast<size_t>(i)];
+    nnz += s.factor.info().nnz_L;
+    cpu_s += s.factor_seconds;
+    tets += static_cast<double>(s.n_tets);
+  }
+  const std::vector<double> rank_nnz = ranks.gather(nnz), rank_cpu_s = ranks.gather(cpu_s),
+                            rank_tets = ranks.gather(tets);
+  report.n_ranks = ranks.size();
+  report.ranks.assign(static_cast<size_t>(ranks.size()), {});
+  for (std::size_t r = 0; r < report.ranks.size(); ++r) {
+    RankShare& share = report.ranks[r];
+    share.n_subdomains = n * static_cast<Index>(r + 1) / ranks.size() -
+                         n * static_cast<Index>(r) / ranks.size();
+    share.n_tets = static_cast<Index>(rank_tets[r]);
+    share.factor_mib = rank_nnz[r] * kBytesPerEntry / kBytesPerMib;
+    share.factorization_cpu_s = rank_cpu_s[r];
+    report.nnz_factors += rank_nnz[r];
+    report.factorization_cpu_s += rank_cpu_s[r];
+  }
   report.factor_mib = report.nnz_factors * kBytesPerEntry / kBytesPerMib;
 }
 
 }  // namespace
+
+void record_peak_memory(const Ranks& ranks, FetiReport& report) {
+  const std::vector<double> peaks = ranks.gather(peak_memory_mib());
+  report.peak_memory_mib = *std::max_element(peaks.begin(), peaks.end());
+  for (std::size_t r = 0; r < report.ranks.size() && r < peaks.size(); ++r)
+    report.ranks[r].peak_memory_mib = peaks[r];
+}
 
 double peak_memory_mib() {
   rusage usage{};
@@ -43,7 +73,7 @@ std::unique_ptr<FetiOperator> make_tfeti(const mesh::TetMesh& mesh, const mesh::
                                          const fe::NodalField& prescribed,
                                          const fe::NodalField& applied, const SparseMatrix& B,
                                          const VectorXd& offset, const FetiOptions& options,
-                                         FetiReport& report) {
+                                         const Ranks& ranks, FetiReport& report) {
   report.threads = options.threads;
   report.row_scaling = options.scaling == RowScaling::Stiffness ? "stiffness" : "uniform";
   // @sect: the subdomains of each body (METIS on its dual graph).
@@ -59,9 +89,9 @@ std::unique_ptr<FetiOperator> make_tfeti(const mesh::TetMesh& mesh, const mesh::
   watch.restart();
   const std::vector<Index> owners = node_owners(mesh, partition);
   std::vector<Subdomain> subdomains =
-      make_subdomains(mesh, materials, partition, owners, applied, options.threads);
+      make_subdomains(mesh, materials, partition, owners, applied, options.threads, ranks);
   report.factorization_s = watch.seconds();
-  describe_subdomains(subdomains, report);
+  describe_subdomains(subdomains, ranks, report);
 
   // @sect: the rows of B over the torn dofs, each subdomain's share, and F, h, G, e.
   watch.restart();
@@ -74,9 +104,9 @@ std::unique_ptr<FetiOperator> make_tfeti(const mesh::TetMesh& mesh, const mesh::
   report.n_dirichlet = rows.n_dirichlet;
   report.n_coarse = kSubdomainMotions * report.n_subdomains;
   auto op = std::make_unique<FetiOperator>(std::move(subdomains), std::move(rows), owner_dof, dofs,
-                                           options.threads);
+                                           options.threads, ranks);
   report.operator_s = watch.seconds();
-  report.peak_memory_mib = peak_memory_mib();
+  record_peak_memory(ranks, report);
   return op;
 }
 

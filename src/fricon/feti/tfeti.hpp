@@ -12,6 +12,7 @@
 #include "fricon/fe/material.hpp"
 #include "fricon/feti/feti_operator.hpp"
 #include "fricon/feti/feti_options.hpp"
+#include "fricon/feti/ranks.hpp"
 #include "fricon/feti/torn_rows.hpp"
 #include "fricon/mesh/bodies.hpp"
 #include "fricon/mesh/tet_mesh.hpp"
@@ -21,16 +22,22 @@ namespace fricon::feti {
 /// The Total FETI operator of a model: its mesh, bodies, materials, dofs (the Dirichlet
 /// conditions), prescribed displacements (3 x n_nodes [m]) and applied forces (3 x n_nodes [N]),
 /// with the contact rows B [m^2] over the free dofs and their offset c [m^3] (both empty without
-/// contact). Fills `report` (all but the solve's counts). Throws InputError for a partition that
-/// cannot be made (feti::partition_mesh), NumericalError for a subdomain that cannot be factored.
+/// contact). The subdomains are shared by `ranks` (this_process(): all here), which must outlive
+/// the operator; collective over them, and every process gets the whole report. Fills `report`
+/// (all but the solve's counts). Throws InputError for a partition that cannot be made
+/// (feti::partition_mesh), NumericalError for a subdomain that cannot be factored.
 std::unique_ptr<FetiOperator> make_tfeti(const mesh::TetMesh& mesh, const mesh::Bodies& bodies,
                                          fe::Materials materials, const fe::DofMap& dofs,
                                          const fe::NodalField& prescribed,
                                          const fe::NodalField& applied, const SparseMatrix& B,
                                          const VectorXd& offset, const FetiOptions& options,
-                                         FetiReport& report);
+                                         const Ranks& ranks, FetiReport& report);
 
 /// Peak resident memory of this process so far [MiB].
 double peak_memory_mib();
+
+/// The peak memory of every process so far into `report` (its ranks and their largest).
+/// Collective over `ranks`.
+void record_peak_memory(const Ranks& ranks, FetiReport& report);
 
 }  // namespace fricon::feti

@@ -209,6 +209,13 @@ void add_parallel_report(const parallel::ParallelReport& p, nlohmann::json& j) {
 
 // Backend "tfeti": the subdomains, the interface and coarse problem, counts, times and memory.
 void add_feti_report(const feti::FetiReport& f, nlohmann::json& j) {
+  nlohmann::json ranks = nlohmann::json::array();
+  for (const feti::RankShare& r : f.ranks)
+    ranks.push_back({{"n_subdomains", r.n_subdomains},
+                     {"n_tets", r.n_tets},
+                     {"factor_mib", r.factor_mib},
+                     {"factorization_cpu_s", r.factorization_cpu_s},
+                     {"peak_memory_mib", r.peak_memory_mib}});
   j["feti"] = {
       {"backend", "tfeti"},
       {"n_subdomains", f.n_subdomains},
@@ -234,7 +241,9 @@ void add_feti_report(const feti::FetiReport& f, nlohmann::json& j) {
       {"smalse_outer_iterations", f.smalse_outer_iterations},
       {"gluing_residual", f.gluing_residual},
       {"gluing_bound", f.gluing_bound},
-      {"peak_memory_mib", f.peak_memory_mib}};
+      {"peak_memory_mib", f.peak_memory_mib},
+      {"n_ranks", f.n_ranks},
+      {"ranks", ranks}};
 }
 
 }  // namespace

@@ -15,6 +15,9 @@ namespace fricon::parallel {
 inline constexpr std::string_view kFaultPhases[] = {
     "model",     "share", "partition", "scatter", "assembly", "analysis",
     "factorize", "schur", "setup",     "outer",   "solve",    "gather",
+    // backend "tfeti" (parallel/mpi/feti_ranks.hpp): a rank's own subdomains being factored, and
+    // the sum of a product with F
+    "subdomains", "products",
 };
 
 /// Test only. Throws when FRICON_TEST_FAULT=<phase>:<rank>:<kind> names `phase` and this rank of
