@@ -10,6 +10,7 @@
 #include "fricon/parallel/distributed_run.hpp"
 #include "fricon/parallel/mpi/feti_ranks.hpp"
 #include "fricon/parallel/mpi/session.hpp"
+#include "fricon/parallel/mpi/test_fault.hpp"
 
 namespace fricon::parallel {
 
@@ -58,6 +59,7 @@ driver::RunResult run_tfeti_on_ranks(const driver::Problem& problem,
   linalg::set_threads(threads_per_rank(world()));
   driver::RunResult r;
   try {
+    test_fault("model");  // (a failure before the ranks' first step together)
     r = driver::run(problem, on_ranks);
     ranks.join();
   } catch (...) {

@@ -1,0 +1,175 @@
+"""Backend "tfeti" on the ranks of an MPI job against the direct solver, end to end
+(docs/parallel.md, "Total FETI on ranks").
+
+Usage: check_mpi_tfeti.py FRICON MPIRUN CASE OUTDIR
+
+The truth is the serial CHOLMOD run of the same discrete problem (one factorization of K, no
+subdomains) at tight tolerances (qp_rtol = 1e-9, outer_tol = 1e-8). The distributed run cuts the
+bodies into subdomains, shares them out among the ranks, and must give the same peak contact
+pressure (max lambda_n) and max |u| to 1e-6, and the same status:
+  ranks1, ranks2, ranks3  the paper's brick at n = 8 on 16 subdomains, 1, 2 and 3 ranks; the
+                          report's shares of the ranks add up to the subdomains and tetrahedra
+  hertz2                  the Hertz hemisphere (a Gmsh mesh, a curved obstacle, its geometric
+                          updates) on 8 subdomains and 2 ranks
+  floating2               a body held only by contact (examples/floating/free-block.toml) on 2
+  two_bodies2             two bodies on non-matching meshes (examples/two-bodies) on 2
+  quadratic2              10-node tetrahedra on 2 ranks
+  stop_signal             SIGUSR1 to mpirun during the QPs: every rank stops at the same step,
+                          rank 0 writes the last iterate (*.not-converged.*), exit code 2
+  fault-PHASE-RANK-KIND   a fault injected on one rank (FRICON_TEST_FAULT, test only): every rank
+                          ends within check_mpi.FAULT_TIMEOUT_S with the message, as FAULTS says
+"""
+import os
+import signal
+import subprocess
+import pathlib
+import sys
+import time
+
+import check_mpi
+import common
+
+TIGHT = ["--set", "solver.qp_rtol=1e-9", "--set", "solver.outer_tol=1e-8"]
+TFETI = ["--set", "solver.backend=tfeti"]
+TOL = 1e-6
+# How an injected fault ends: "agreed" (every rank raises it, printed once by rank 0, the exit
+# code of its kind) or "abort" (the failing rank ends the job: MPI_Abort, exit code 3).
+FAULTS = {
+    "model-1-bad_alloc": "agreed",        # before the ranks' first step together
+    "subdomains-1-numerical": "agreed",   # factoring its own subdomains
+    "products-1-bad_alloc": "abort",      # inside the sum of a product with F
+}
+
+
+def compare(label, direct, distributed):
+    d, t = common.read_report(direct), common.read_report(distributed)
+    bad = []
+    # (Not the outer iterations: a stop at err(k) <= outer_tol may come one iteration apart.)
+    for key in ("status", "n_primal"):
+        if d.get(key) != t.get(key):
+            bad.append(f"{key}: {d.get(key)} vs {t.get(key)}")
+    for key in ("max_lambda_n", "max_displacement"):
+        if key in d and abs(d[key] - t[key]) > TOL * abs(d[key]):
+            bad.append(f"{key}: {d[key]!r} vs {t[key]!r}")
+    if bad:
+        sys.exit(f"FAIL {label}:\n  " + "\n  ".join(bad))
+    print(f"ok   {label}")
+
+
+def check_shares(report, ranks):
+    f = report.get("feti", {})
+    shares = f.get("ranks", [])
+    if f.get("n_ranks") != ranks or len(shares) != ranks:
+        sys.exit(f"FAIL: report.json feti has n_ranks {f.get('n_ranks')} and {len(shares)} "
+                 f"shares, expected {ranks}")
+    if sum(s["n_subdomains"] for s in shares) != f["n_subdomains"] or \
+            sum(s["n_tets"] for s in shares) != report["n_tets"]:
+        sys.exit(f"FAIL: the ranks' shares {shares} do not add up to {f['n_subdomains']} "
+                 f"subdomains and {report['n_tets']} tetrahedra")
+    if any(s["n_subdomains"] > 0 and not (s["factor_mib"] > 0 and s["peak_memory_mib"] > 0)
+           for s in shares):
+        sys.exit(f"FAIL: a rank's figures are missing: {shares}")
+
+
+def direct_and_tfeti(fricon, mpi, problem, out, ranks, subdomains, extra=()):
+    direct, distributed = out / "direct", out / f"tfeti-{ranks}"
+    check_mpi.run([fricon, "solve", str(problem), *TIGHT, *extra, "-q", "-o", str(direct)])
+    r = check_mpi.run(check_mpi.mpirun(mpi, ranks) +
+                      [fricon, "solve", str(problem), *TIGHT, *TFETI, "--set",
+                       f"solver.subdomains={subdomains}", *extra, "-o", str(distributed)])
+    if r.stdout.count("fricon 0.") != 1:
+        sys.exit(f"FAIL: the summary is not printed once:\n{r.stdout}")
+    check_shares(common.read_report(distributed), ranks)
+    compare(f"{problem.name} {' '.join(extra)} by tfeti on {subdomains} subdomains and {ranks} "
+            "rank(s) = direct", direct, distributed)
+
+
+def stop_signal(fricon, mpi, brick, outdir):
+    # Many subdomains and a tight QP keep the run in its QP steps for seconds.
+    cmd = check_mpi.mpirun(mpi, 2) + [
+        fricon, "solve", str(brick), *TFETI, "--set", "mesh.cells=[36,12,12]", "--set",
+        "solver.subdomains=27", "--set", "solver.qp_rtol=1e-12", "-o", str(outdir)]
+    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    t0 = time.time()
+    seen = []
+    while time.time() - t0 < 120:  # the monitor's header, then the line of outer iteration 1
+        line = proc.stderr.readline()
+        seen.append(line)
+        if not line or "elapsed" in line:
+            break
+    if not seen or "elapsed" not in seen[-1]:
+        proc.kill()
+        sys.exit(f"FAIL: no monitor line within 120 s: {seen}")
+    seen.append(proc.stderr.readline())
+    time.sleep(0.3)
+    proc.send_signal(signal.SIGUSR1)
+    stdout, stderr = proc.communicate(timeout=120)
+    report = outdir / "report.not-converged.json"
+    if proc.returncode != 2 or not report.exists() or (outdir / "report.json").exists():
+        sys.exit(f"FAIL: SIGUSR1: exit code {proc.returncode} (expected 2), files "
+                 f"{sorted(p.name for p in outdir.iterdir()) if outdir.exists() else []}\n"
+                 f"stderr:\n{''.join(seen)}{stderr}")
+    r = common.read_report(outdir, report.name)
+    if r["termination"] != "interrupted" or r["outer_iterations"] < 2:
+        sys.exit(f"FAIL: SIGUSR1: termination {r['termination']}, outer iterations "
+                 f"{r['outer_iterations']}")
+    print(f"ok   SIGUSR1 to mpirun: every rank stopped, the last iterate (outer iteration "
+          f"{r['outer_iterations']}) written, exit code 2")
+
+
+def injected_fault(fricon, mpi, brick, out, fault):
+    phase, rank, kind = fault.split("-")
+    value = f"{phase}:{rank}:{kind}"
+    folder = out / "f"  # unique to this case: the marker of its processes
+    cmd = check_mpi.mpirun(mpi, 2) + [fricon, "solve", str(brick), *TFETI, "--set",
+                                      "solver.subdomains=4", "-q", "-o", str(folder)]
+    code, stderr = check_mpi.run_with_deadline(cmd, {**os.environ, "FRICON_TEST_FAULT": value},
+                                               str(folder))
+    message = f"rank {rank}: injected fault FRICON_TEST_FAULT={value}"
+    if FAULTS[fault] == "abort":
+        expected_code, prefix = 3, "fricon: internal error: "
+    else:
+        expected_code = check_mpi.KIND_EXIT_CODE[kind]
+        prefix = "fricon: error: " if expected_code == 1 else "fricon: internal error: "
+    lines = [line for line in stderr.splitlines() if line.startswith("fricon:")
+             and line != "fricon: interrupted (no iterate to write yet)"]
+    problems = []
+    if code != expected_code:
+        problems.append(f"exit code {code}, expected {expected_code}")
+    if len(lines) != 1 or not lines[0].startswith(prefix + message):
+        problems.append(f"expected one line starting {prefix + message!r}, got {lines}")
+    if FAULTS[fault] == "agreed" and "MPI_ABORT" in stderr:
+        problems.append("the ranks should agree on this failure, not abort")
+    if problems:
+        sys.exit(f"FAIL {fault} ({FAULTS[fault]}): " + "; ".join(problems) +
+                 f"\nstderr:\n{stderr}")
+    check_mpi.nothing_written(folder)
+    print(f"ok   {value}: {FAULTS[fault]}, every rank ended, exit code {code}: {lines[0]}")
+
+
+def main():
+    fricon, mpi, case, out = sys.argv[1], sys.argv[2], sys.argv[3], pathlib.Path(sys.argv[4])
+    examples = common.EXAMPLES
+    brick = examples / "paper-brick.toml"
+    n8 = ["--set", "mesh.cells=[24,8,8]"]
+    out.mkdir(parents=True, exist_ok=True)
+    if case.startswith("ranks"):
+        direct_and_tfeti(fricon, mpi, brick, out, int(case[len("ranks"):]), 16, n8)
+    elif case == "hertz2":
+        direct_and_tfeti(fricon, mpi, examples / "geometry" / "hertz-hemisphere.toml", out, 2, 8)
+    elif case == "floating2":
+        direct_and_tfeti(fricon, mpi, examples / "floating" / "free-block.toml", out, 2, 8)
+    elif case == "two_bodies2":
+        direct_and_tfeti(fricon, mpi, examples / "two-bodies" / "stacked-blocks.toml", out, 2, 8)
+    elif case == "quadratic2":
+        direct_and_tfeti(fricon, mpi, examples / "paper-brick-quadratic.toml", out, 2, 8)
+    elif case == "stop_signal":
+        stop_signal(fricon, mpi, brick, out / "s")
+    elif case.startswith("fault-") and case[len("fault-"):] in FAULTS:
+        injected_fault(fricon, mpi, brick, out, case[len("fault-"):])
+    else:
+        sys.exit(f"unknown case {case!r}")
+
+
+if __name__ == "__main__":
+    main()
