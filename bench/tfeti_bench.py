@@ -5,7 +5,8 @@ scalability with the subdomain size fixed, and the direct solver against TFETI i
     /usr/bin/python3 bench/tfeti_bench.py build/apps/fricon/fricon \
         [--scalability 8 16 24 32] [--cells-per-subdomain 4] [--series 16 24 32] \
         [--series-subdomain-size 1000] [--series-tfeti-only 64] [--scaling] \
-        [--sizes N S1 S2 ...] [--threads N] [--out DIR] [--markdown]
+        [--sizes N S1 S2 ...] [--weak N1 N2] [--mpirun MPIRUN] [--threads N] [--out DIR]
+        [--markdown]
 
 The problem is examples/paper-brick.toml (Tresca friction with the paper's F(s), 3n x n x n cubes
 of 5 tetrahedra, 4-node elements) with mesh.cells = [3n, n, n].
@@ -28,6 +29,17 @@ products with F and the memory of each, from which the default subdomain_size is
 --scaling: at the first --scalability size, tfeti_scaling "stiffness" against "uniform" (the
 diagonal scaling of the equality rows, theory.md §8.5): products with F of whole runs.
 
+--weak N1 N2: weak scaling with MPI ranks (docs/parallel.md, "Total FETI on ranks"): the brick at
+n = N1 on 1 rank and at n = N2 on 2 ranks (choose N2^3 close to 2 N1^3: the same size per rank),
+both with solver.subdomain_size = --series-subdomain-size and one thread per rank. Per run: wall
+time, products with F, the QP's time per product, the factorization, and per rank its
+subdomains, factor memory and peak memory. Then a model of a run of 10^8 unknowns on 100 and
+1000 ranks, from these two runs' measured costs: per subdomain (factor memory, factorization
+time), per unknown (what every rank holds whole: mesh, model, the multipliers), and the time of
+a product split into a part per subdomain of the rank and a part per multiplier (every rank's
+vector operations, coarse solves and the sums), fitted to the two runs. Its assumptions are
+printed with it.
+
 Every run must converge, or the script stops with exit code 1. Results go to --out DIR or to a
 temporary folder removed at the end. The header gives the machine's load average at the start:
 timings mean little on a busy machine.
@@ -44,15 +56,17 @@ ROOT = pathlib.Path(__file__).resolve().parent.parent
 BRICK = ROOT / "examples" / "paper-brick.toml"
 
 
-def solve(fricon, folder, n, threads, sets=()):
-    """One solve of the brick at n with the overrides `sets`; its report with peak memory."""
+def solve(fricon, folder, n, threads, sets=(), launcher=()):
+    """One solve of the brick at n with the overrides `sets` (under `launcher`, e.g. mpirun -n 2,
+    when given); its report with the peak memory of the process started (mpirun's own, under a
+    launcher: the ranks' are in the report)."""
     import json
     import shutil
     import time
     if folder.exists():
         shutil.rmtree(folder)
     folder.mkdir(parents=True)
-    cmd = [fricon] + (["--threads", str(threads)] if threads else []) + [
+    cmd = list(launcher) + [fricon] + (["--threads", str(threads)] if threads else []) + [
         "solve", str(BRICK), "--set", f"mesh.cells=[{3 * n},{n},{n}]", "-o", str(folder),
         "-q"] + [arg for s in sets for arg in ("--set", s)]
     log = folder / "fricon.log"
@@ -148,6 +162,98 @@ def row_scaling(fricon, out, n, c, threads, markdown):
                      markdown), ""]
 
 
+MODEL_UNKNOWNS = 1e8
+MODEL_RANKS = (100, 1000)
+
+
+def weak_run(fricon, out, n, ranks, size, mpirun):
+    launcher = [mpirun, "--allow-run-as-root", "--oversubscribe", "-n", str(ranks)]
+    rep = solve(fricon, out / f"weak-{n}-{ranks}", n, 1,
+                ['solver.backend="tfeti"', f"solver.subdomain_size={size}"], launcher)
+    f = rep["feti"]
+    rep["per_product_s"] = rep["timings"]["qp"] / f["n_products"]
+    rep["n_multipliers"] = f["n_contact"] + f["n_gluing"] + f["n_dirichlet"]
+    rep["rank_peak"] = max(r["peak_memory_mib"] for r in f["ranks"])
+    rep["rank_factor"] = max(r["factor_mib"] for r in f["ranks"])
+    rep["per_rank_subdomains"] = max(r["n_subdomains"] for r in f["ranks"])
+    return rep
+
+
+def weak_scaling(fricon, out, n1, n2, size, mpirun, markdown):
+    runs = [(n1, 1, weak_run(fricon, out, n1, 1, size, mpirun)),
+            (n2, 2, weak_run(fricon, out, n2, 2, size, mpirun))]
+    headers = ["n", "ranks", "n_primal", "unknowns / rank", "subdomains", "multipliers",
+               "products", "QP time / product [ms]", "factorization [s]", "time [s]",
+               "factors / rank [MiB]", "peak / rank [MiB]"]
+    rows = []
+    for n, ranks, r in runs:
+        f = r["feti"]
+        rows.append([str(n), str(ranks),
+                     str(r["n_primal"]), str(r["n_primal"] // ranks), str(f["n_subdomains"]),
+                     str(r["n_multipliers"]), str(f["n_products"]),
+                     f"{1e3 * r['per_product_s']:.2f}", f"{f['factorization_s']:.2f}",
+                     f"{r['wall_s']:.1f}", f"{r['rank_factor']:.0f}", f"{r['rank_peak']:.0f}"])
+        print(f"  weak n = {rows[-1][0]} on {ranks}: {rows[-1]}", file=sys.stderr, flush=True)
+    (_, _, a), (_, _, b) = runs
+    lines = ["Weak scaling with MPI ranks (one thread per rank, subdomain_size "
+             f"{size})", "", hb.table(headers, rows, markdown), "",
+             f"2 ranks at n = {n2} against 1 rank at n = {n1}: time x"
+             f"{b['wall_s'] / a['wall_s']:.2f}, products x"
+             f"{b['feti']['n_products'] / a['feti']['n_products']:.2f}, time per product x"
+             f"{b['per_product_s'] / a['per_product_s']:.2f}, peak memory per rank x"
+             f"{b['rank_peak'] / a['rank_peak']:.2f}", ""]
+    return lines + model(a, b, n2)
+
+
+def model(a, b, n_b):
+    """The model of docs/benchmarks.md (Total FETI, "Weak scaling and a model") from runs a
+    (1 rank) and b (2 ranks, the brick at n = n_b)."""
+    fb = b["feti"]
+    # Per subdomain: factor memory and factorization time (one thread).
+    factor_mib = fb["factor_mib"] / fb["n_subdomains"]
+    factor_s = fb["factorization_cpu_s"] / fb["n_subdomains"]
+    subdomains_per_unknown = fb["n_subdomains"] / b["n_primal"]
+    multipliers_per_unknown = b["n_multipliers"] / b["n_primal"]
+    # What every rank holds whole, per unknown: the growth of (peak - own factors) between runs.
+    held_a = a["rank_peak"] - a["rank_factor"]
+    held_b = b["rank_peak"] - b["rank_factor"]
+    held_mib = max(held_b - held_a, 0.0) / (b["n_primal"] - a["n_primal"])
+    # Time per product = c_s * (subdomains of a rank) + c_m * multipliers, fitted to the runs.
+    sa, sb = a["per_rank_subdomains"], b["per_rank_subdomains"]
+    ma, mb = a["n_multipliers"], b["n_multipliers"]
+    det = sa * mb - sb * ma
+    c_s = (a["per_product_s"] * mb - b["per_product_s"] * ma) / det
+    c_m = (sa * b["per_product_s"] - sb * a["per_product_s"]) / det
+    if c_m < 0 or c_s < 0:  # the fit is not meaningful: all to the subdomains
+        c_s, c_m = b["per_product_s"] / sb, 0.0
+    products = fb["n_products"]
+    lines = [f"Model for {MODEL_UNKNOWNS:.0e} unknowns (from the two runs above):",
+             f"  per subdomain: factors {factor_mib:.3f} MiB, factorization {1e3 * factor_s:.1f} "
+             f"ms; per million unknowns {1e6 * subdomains_per_unknown:.0f} subdomains and "
+             f"{1e6 * multipliers_per_unknown:.0f} multipliers",
+             f"  held whole by every rank: {1e6 * held_mib:.0f} MiB per million unknowns",
+             f"  time per product: {1e3 * c_s:.3f} ms per subdomain of the rank + "
+             f"{1e9 * c_m:.1f} ns per multiplier",
+             f"  assumed: products per run as at n = {n_b} "
+             f"({products}, bounded for fixed H/h by theory.md §8.3; measured growth in the "
+             "scalability table), one thread per rank, the sums' cost per multiplier as on "
+             "one machine (no network), the coarse problem inside the per-multiplier part", ""]
+    headers = ["ranks", "subdomains / rank", "multipliers", "factors / rank [MiB]",
+               "held whole / rank [MiB]", "factorization [s]", "time per product [s]",
+               "of which per-multiplier [s]", "QPs' time [s]"]
+    rows = []
+    for ranks in MODEL_RANKS:
+        subdomains = subdomains_per_unknown * MODEL_UNKNOWNS
+        per_rank = subdomains / ranks
+        multipliers = multipliers_per_unknown * MODEL_UNKNOWNS
+        per_product = c_s * per_rank + c_m * multipliers
+        rows.append([str(ranks), f"{per_rank:.0f}", f"{multipliers:.3g}",
+                     f"{per_rank * factor_mib:.0f}", f"{held_mib * MODEL_UNKNOWNS:.0f}",
+                     f"{per_rank * factor_s:.1f}", f"{per_product:.3f}",
+                     f"{c_m * multipliers:.3f}", f"{products * per_product:.0f}"])
+    return lines + [hb.table(headers, rows, False), ""]
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("fricon")
@@ -158,6 +264,8 @@ def main():
     ap.add_argument("--sizes", type=int, nargs="*", default=[])
     ap.add_argument("--series-tfeti-only", type=int, nargs="*", default=[])
     ap.add_argument("--scaling", action="store_true")
+    ap.add_argument("--weak", type=int, nargs=2, default=None)
+    ap.add_argument("--mpirun", default="mpirun")
     ap.add_argument("--threads", type=int, default=0)
     ap.add_argument("--out", type=pathlib.Path)
     ap.add_argument("--markdown", action="store_true")
@@ -177,6 +285,9 @@ def main():
         if len(a.sizes) > 1:
             lines += subdomain_sizes(a.fricon, out, a.sizes[0], a.sizes[1:], a.threads,
                                      a.markdown)
+        if a.weak:
+            lines += weak_scaling(a.fricon, out, a.weak[0], a.weak[1], a.series_subdomain_size,
+                                  a.mpirun, a.markdown)
         if a.series or a.series_tfeti_only:
             lines += series(a.fricon, out, a.series, a.series_tfeti_only,
                             a.series_subdomain_size, a.threads, a.markdown)
