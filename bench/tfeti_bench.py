@@ -34,11 +34,12 @@ n = N1 on 1 rank and at n = N2 on 2 ranks (choose N2^3 close to 2 N1^3: the same
 both with solver.subdomain_size = --series-subdomain-size and one thread per rank. Per run: wall
 time, products with F, the QP's time per product, the factorization, and per rank its
 subdomains, factor memory and peak memory. Then a model of a run of 10^8 unknowns on 100 and
-1000 ranks, from these two runs' measured costs: per subdomain (factor memory, factorization
-time), per unknown (what every rank holds whole: mesh, model, the multipliers), and the time of
-a product split into a part per subdomain of the rank and a part per multiplier (every rank's
-vector operations, coarse solves and the sums), fitted to the two runs. Its assumptions are
-printed with it.
+1000 ranks, from these runs' measured costs: per subdomain (factor memory, factorization time),
+per unknown (what every rank holds whole: mesh, model, multipliers; the growth of a rank's
+memory besides its factors between the two runs), and the time of a product split by the run's
+own clocks (report.json feti.products_s, sums_s, timings.qp) into a part per subdomain of the
+rank and parts per multiplier (the QP's own vector operations and coarse solves on every rank,
+and the sums). Its assumptions are printed with it.
 
 Every run must converge, or the script stops with exit code 1. Results go to --out DIR or to a
 temporary folder removed at the end. The header gives the machine's load average at the start:
@@ -218,14 +219,13 @@ def model(a, b, n_b):
     held_a = a["rank_peak"] - a["rank_factor"]
     held_b = b["rank_peak"] - b["rank_factor"]
     held_mib = max(held_b - held_a, 0.0) / (b["n_primal"] - a["n_primal"])
-    # Time per product = c_s * (subdomains of a rank) + c_m * multipliers, fitted to the runs.
-    sa, sb = a["per_rank_subdomains"], b["per_rank_subdomains"]
-    ma, mb = a["n_multipliers"], b["n_multipliers"]
-    det = sa * mb - sb * ma
-    c_s = (a["per_product_s"] * mb - b["per_product_s"] * ma) / det
-    c_m = (sa * b["per_product_s"] - sb * a["per_product_s"]) / det
-    if c_m < 0 or c_s < 0:  # the fit is not meaningful: all to the subdomains
-        c_s, c_m = b["per_product_s"] / sb, 0.0
+    # Time per product, from run b's own clocks: rank 0's subdomain solves per subdomain, and
+    # per multiplier the rest of the QP's time (every rank's vector operations and coarse
+    # solves) and the sums over the ranks (waiting for the slowest rank included).
+    n_prod = fb["n_products"]
+    c_s = fb["products_s"] / n_prod / b["per_rank_subdomains"]
+    c_sum = fb["sums_s"] / n_prod / b["n_multipliers"]
+    c_m = (b["timings"]["qp"] - fb["products_s"] - fb["sums_s"]) / n_prod / b["n_multipliers"]
     products = fb["n_products"]
     lines = [f"Model for {MODEL_UNKNOWNS:.0e} unknowns (from the two runs above):",
              f"  per subdomain: factors {factor_mib:.3f} MiB, factorization {1e3 * factor_s:.1f} "
@@ -233,24 +233,27 @@ def model(a, b, n_b):
              f"{1e6 * multipliers_per_unknown:.0f} multipliers",
              f"  held whole by every rank: {1e6 * held_mib:.0f} MiB per million unknowns",
              f"  time per product: {1e3 * c_s:.3f} ms per subdomain of the rank + "
-             f"{1e9 * c_m:.1f} ns per multiplier",
+             f"{1e9 * c_m:.1f} ns per multiplier (the QP's own work) + {1e9 * c_sum:.1f} ns per "
+             "multiplier (the sums)",
              f"  assumed: products per run as at n = {n_b} "
              f"({products}, bounded for fixed H/h by theory.md §8.3; measured growth in the "
              "scalability table), one thread per rank, the sums' cost per multiplier as on "
-             "one machine (no network), the coarse problem inside the per-multiplier part", ""]
+             "one machine (no network), the coarse solves' cost per multiplier as measured "
+             "(a sparse factor of G G^T grows faster)", ""]
     headers = ["ranks", "subdomains / rank", "multipliers", "factors / rank [MiB]",
                "held whole / rank [MiB]", "factorization [s]", "time per product [s]",
-               "of which per-multiplier [s]", "QPs' time [s]"]
+               "subdomains' part [s]", "QP's own part [s]", "sums' part [s]", "QPs' time [s]"]
     rows = []
     for ranks in MODEL_RANKS:
         subdomains = subdomains_per_unknown * MODEL_UNKNOWNS
         per_rank = subdomains / ranks
         multipliers = multipliers_per_unknown * MODEL_UNKNOWNS
-        per_product = c_s * per_rank + c_m * multipliers
+        per_product = c_s * per_rank + (c_m + c_sum) * multipliers
         rows.append([str(ranks), f"{per_rank:.0f}", f"{multipliers:.3g}",
                      f"{per_rank * factor_mib:.0f}", f"{held_mib * MODEL_UNKNOWNS:.0f}",
                      f"{per_rank * factor_s:.1f}", f"{per_product:.3f}",
-                     f"{c_m * multipliers:.3f}", f"{products * per_product:.0f}"])
+                     f"{c_s * per_rank:.3f}", f"{c_m * multipliers:.3f}",
+                     f"{c_sum * multipliers:.3f}", f"{products * per_product:.0f}"])
     return lines + [hb.table(headers, rows, False), ""]
 
 

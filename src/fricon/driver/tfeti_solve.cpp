@@ -40,6 +40,8 @@ std::unique_ptr<feti::FetiOperator> make_feti_operator(const Problem& problem, c
 void record_feti_counts(const feti::FetiOperator& F, RunReport& report) {
   if (!report.feti) return;
   report.feti->n_products = F.n_products();
+  report.feti->products_s = F.products_seconds();
+  report.feti->sums_s = F.sums_seconds();
   feti::record_peak_memory(F.ranks(), *report.feti);
   if (report.contact) {
     report.feti->qp_iterations = report.contact->qp_iterations;
@@ -72,6 +74,8 @@ VectorXd solve_elastic_tfeti(const Problem& problem, const RunOptions& options, 
   rep.linear_residual = elastic_residual(r.model, u);
   feti::FetiReport& fr = *rep.feti;
   fr.n_products = F->n_products();
+  fr.products_s = F->products_seconds();
+  fr.sums_s = F->sums_seconds();
   fr.n_coarse_solves = s.n_coarse_solves;
   fr.qp_iterations = s.iterations;
   fr.smalse_outer_iterations = s.outer_iterations;

@@ -5,6 +5,7 @@
 
 #include "fricon/core/error.hpp"
 #include "fricon/core/parallel_for.hpp"
+#include "fricon/core/timer.hpp"
 
 namespace fricon::feti {
 
@@ -93,6 +94,7 @@ void FetiOperator::compute_load_terms() {
 }
 
 void FetiOperator::apply(const VectorXd& x, VectorXd& y) const {
+  Stopwatch watch;
   const Index n = x.size();
   for (VectorXd& p : partial_)
     p.setZero(n);
@@ -103,7 +105,10 @@ void FetiOperator::apply(const VectorXd& x, VectorXd& y) const {
   y = partial_[0];
   for (std::size_t t = 1; t < partial_.size(); ++t)
     y += partial_[t];
+  products_s_ += watch.seconds();
+  watch.restart();
   ranks_->sum(y);
+  sums_s_ += watch.seconds();
   ++n_products_;
   ++n_kinv_;
 }

@@ -50,6 +50,10 @@ class FetiOperator final : public dual::DualOperator {
   const TornRows& rows() const { return rows_; }
   /// Products with F (apply) so far; each is one solve with every subdomain's factor.
   long n_products() const { return n_products_; }
+  /// Wall time of the products so far [s]: the subdomains' solves of this process, and the sums
+  /// over the processes (zero alone).
+  double products_seconds() const { return products_s_; }
+  double sums_seconds() const { return sums_s_; }
   /// The processes that share the subdomains.
   const Ranks& ranks() const { return *ranks_; }
 
@@ -72,6 +76,7 @@ class FetiOperator final : public dual::DualOperator {
   std::pair<Index, Index> block_;  ///< this process's subdomains, [first, second)
   mutable std::vector<VectorXd> partial_;  ///< per thread: its sum of products
   mutable long n_products_ = 0;
+  mutable double products_s_ = 0.0, sums_s_ = 0.0;
 };
 
 }  // namespace fricon::feti

@@ -67,6 +67,8 @@ struct FetiReport {
   double factorization_cpu_s = 0.0;  ///< the same, summed over the subdomains [s]
   double operator_s = 0.0;           ///< the torn rows, G, h and e [s]
   long n_products = 0;               ///< products with F (filled after the solve)
+  double products_s = 0.0;           ///< their subdomain solves on this process, wall [s]
+  double sums_s = 0.0;               ///< their sums over the processes, wall [s]
   long n_coarse_solves = 0;          ///< solves with G G^T (filled after the solve)
   long qp_iterations = 0;            ///< MPGP steps over all QPs (filled after the solve)
   long smalse_outer_iterations = 0;  ///< SMALSE-M's outer steps over all QPs

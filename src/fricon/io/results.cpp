@@ -236,6 +236,8 @@ void add_feti_report(const feti::FetiReport& f, nlohmann::json& j) {
       {"factorization_cpu_s", f.factorization_cpu_s},
       {"operator_s", f.operator_s},
       {"n_products", f.n_products},
+      {"products_s", f.products_s},
+      {"sums_s", f.sums_s},
       {"n_coarse_solves", f.n_coarse_solves},
       {"qp_iterations", f.qp_iterations},
       {"smalse_outer_iterations", f.smalse_outer_iterations},
