@@ -315,6 +315,7 @@ void follow_path(const driver::Problem& problem, const std::filesystem::path& di
                  const std::shared_ptr<std::vector<int>>& written) {
   options.on_step = [dir, verbosity, written, output = problem.output,
                      steps = problem.loading.steps](const driver::RunResult& r) {
+    if (!is_rank_zero()) return;  // (backend tfeti on MPI ranks: rank 0 writes)
     const int step = r.report.steps.back().step;
     if (io::step_files_wanted(output, step, steps) && !io::write_step(dir, r).empty())
       written->push_back(step);

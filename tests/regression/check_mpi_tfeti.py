@@ -14,6 +14,8 @@ pressure (max lambda_n) and max |u| to 1e-6, and the same status:
   floating2               a body held only by contact (examples/floating/free-block.toml) on 2
   two_bodies2             two bodies on non-matching meshes (examples/two-bodies) on 2
   quadratic2              10-node tetrahedra on 2 ranks
+  path2                   a loading path (the Coulomb brick's friction hysteresis, 21 steps) on 8
+                          subdomains and 2 ranks: every step's forces to 1e-6 of its normal force
   stop_signal             SIGUSR1 to mpirun during the QPs: every rank stops at the same step,
                           rank 0 writes the last iterate (*.not-converged.*), exit code 2
   fault-PHASE-RANK-KIND   a fault injected on one rank (FRICON_TEST_FAULT, test only): every rank
@@ -51,6 +53,17 @@ def compare(label, direct, distributed):
     for key in ("max_lambda_n", "max_displacement"):
         if key in d and abs(d[key] - t[key]) > TOL * abs(d[key]):
             bad.append(f"{key}: {d[key]!r} vs {t[key]!r}")
+    # A loading path: every step's forces, to TOL of its normal force.
+    steps_d, steps_t = d.get("steps", []), t.get("steps", [])
+    if len(steps_d) != len(steps_t):
+        bad.append(f"{len(steps_d)} steps vs {len(steps_t)}")
+    for sd, st in zip(steps_d, steps_t):
+        scale = abs(sd["normal_force"])
+        change = max([abs(sd["normal_force"] - st["normal_force"])] +
+                     [abs(a - b) for a, b in zip(sd["tangential_force"], st["tangential_force"])])
+        if change > TOL * scale:
+            bad.append(f"step {sd['step']}: forces differ by {change:.3e} N, more than {TOL} of "
+                       f"the normal force {scale:.3e} N")
     if bad:
         sys.exit(f"FAIL {label}:\n  " + "\n  ".join(bad))
     print(f"ok   {label}")
@@ -163,6 +176,11 @@ def main():
         direct_and_tfeti(fricon, mpi, examples / "two-bodies" / "stacked-blocks.toml", out, 2, 8)
     elif case == "quadratic2":
         direct_and_tfeti(fricon, mpi, examples / "paper-brick-quadratic.toml", out, 2, 8)
+    elif case == "path2":
+        direct_and_tfeti(fricon, mpi, examples / "loading" / "brick-hysteresis.toml", out, 2, 8)
+        steps = sorted((out / "tfeti-2" / "steps").glob("patches-*.csv")) \
+            if (out / "tfeti-2" / "steps").exists() else []
+        print(f"     {len(steps)} step files written (by rank 0)")
     elif case == "stop_signal":
         stop_signal(fricon, mpi, brick, out / "s")
     elif case.startswith("fault-") and case[len("fault-"):] in FAULTS:

@@ -7,11 +7,13 @@
 //   - the paper's brick (Tresca with F(s)), on 1 to 64 subdomains, the Coulomb brick, the
 //     quadratic brick, a floating block, two stacked bodies and the Hertz hemisphere: the peak
 //     pressure and max |u| to 1e-6;
-//   - bad input: more subdomains than tetrahedra names solver.subdomains; a loading path with
-//     tfeti is refused naming loading.steps.
+//   - a loading path: the Coulomb brick's hysteresis, every step's forces to 1e-6, and an
+//     elastic path;
+//   - bad input: more subdomains than tetrahedra names solver.subdomains.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -115,15 +117,39 @@ TEST(Tfeti, MoreSubdomainsThanTetrahedraIsRefusedByName) {
   }
 }
 
-TEST(Tfeti, ALoadingPathIsRefusedByName) {
-  try {
-    (void)io::read_problem(test::source_path("examples/paper-brick.toml"),
-                           {"solver.backend=\"tfeti\"", "loading.steps=3"});
-    FAIL() << "no error";
-  } catch (const InputError& e) {
-    EXPECT_THAT(e.what(), HasSubstr("loading.steps"));
-    EXPECT_THAT(e.what(), HasSubstr("tfeti"));
+// A loading path (theory.md §2.9): the friction hysteresis of the Coulomb brick, pushed to and
+// fro by prescribed displacements alone, so that every step's load reaches the subdomains
+// through the Dirichlet rows' data and the contact rows' offsets (FetiOperator::set_load).
+TEST(Tfeti, TheHysteresisPathGivesTheDirectForcesAtEveryStep) {
+  const Problem p = example("examples/loading/brick-hysteresis.toml", {});
+  const RunResult direct = with_backend(p, "cholmod");
+  ASSERT_EQ(direct.report.status, RunStatus::Converged) << direct.report.message;
+  const RunResult feti = with_backend(p, "tfeti", 8);
+  ASSERT_EQ(feti.report.status, RunStatus::Converged) << feti.report.message;
+  ASSERT_EQ(feti.report.steps.size(), direct.report.steps.size());
+  for (std::size_t k = 0; k < direct.report.steps.size(); ++k) {
+    const StepReport& d = direct.report.steps[k];
+    const StepReport& f = feti.report.steps[k];
+    const Real scale = std::abs(d.normal_force);
+    EXPECT_NEAR(f.normal_force, d.normal_force, kSameAnswer * scale) << "step " << d.step;
+    EXPECT_LE((f.tangential_force - d.tangential_force).norm(), kSameAnswer * scale)
+        << "step " << d.step;
   }
+  EXPECT_NEAR(peak_pressure(feti), peak_pressure(direct), kSameAnswer * peak_pressure(direct));
+  EXPECT_NEAR(feti.report.max_displacement, direct.report.max_displacement,
+              kSameAnswer * direct.report.max_displacement);
+}
+
+// A path without contact: each step an elastic solve by Total FETI of the step's loads.
+TEST(Tfeti, AnElasticPathGivesTheDirectDisplacementAtTheLastStep) {
+  const Problem p = example("examples/elastic-brick.toml",
+                            {"loading.steps=3", "traction[0].path=[1.0,-0.5,2.0]"});
+  const RunResult direct = with_backend(p, "cholmod");
+  ASSERT_EQ(direct.report.status, RunStatus::Converged) << direct.report.message;
+  const RunResult feti = with_backend(p, "tfeti", 8);
+  ASSERT_EQ(feti.report.status, RunStatus::Converged) << feti.report.message;
+  const Real scale = direct.displacement.cwiseAbs().maxCoeff();
+  EXPECT_LE((feti.displacement - direct.displacement).cwiseAbs().maxCoeff(), kSameAnswer * scale);
 }
 
 }  // namespace

@@ -283,6 +283,21 @@ void remove_undetermined_motions(const dual::DualOperator& Q, const SparseMatrix
   w -= Q.rigid_displacement(N * c);
 }
 
+// The scale of the gradient in the certificate of a QP with equality multipliers (Total FETI,
+// theory.md §8.6): the resisted part of its whole scaled data, contact and equality rows, as its
+// stopping test had it. The prescribed displacements enter through the Dirichlet rows' data
+// there, not through the contact rows' (h_C = B_C K^+ f - c_C), which may be all but zero (a
+// body driven by prescribed displacements alone). 0 (the contact rows' own) without them.
+Real whole_data_scale(const dual::DualOperator& Q, const TrescaMap& map,
+                      const qp::BlockScaling& scaling) {
+  if (Q.n_equality() == 0) return 0.0;
+  qp::SeparableConstraints layout = qp::SeparableConstraints::contact_layout(Q.n_contact() / 3);
+  layout.set_disc_radii(map.radius());
+  layout.append_free(Q.n_equality());
+  const qp::BlockScaling D = with_equality_multipliers(scaling, Q);
+  return qp::resisted_part(D.dual_to_scaled(Q.h()), D.scaled(layout)).norm();
+}
+
 VectorXd certify(const contact::ContactDiscretization& disc, const dual::DualOperator& Q,
                  const SparseMatrix& R, const TrescaMap& map, const qp::BlockScaling& scaling,
                  ContactReport& rep, VectorXd& g) {
@@ -311,8 +326,8 @@ VectorXd certify(const contact::ContactDiscretization& disc, const dual::DualOpe
   g = disc.B * (Q.u0() - w) - h;
   qp::SeparableConstraints contact = qp::SeparableConstraints::contact_layout(disc.n_patches());
   contact.set_disc_radii(map.radius());
-  rep.kkt =
-      qp::scaled_kkt_residuals(map.lambda(), g, h, contact, scaling, qp::StopReference::Resisted);
+  rep.kkt = qp::scaled_kkt_residuals(map.lambda(), g, h, contact, scaling,
+                                     qp::StopReference::Resisted, whole_data_scale(Q, map, scaling));
   return w;
 }
 

@@ -13,6 +13,8 @@
 #include "fricon/core/error.hpp"
 #include "fricon/driver/run.hpp"
 #include "fricon/driver/run_steps.hpp"
+#include "fricon/driver/tfeti_solve.hpp"
+#include "fricon/linalg/blas.hpp"
 
 namespace fricon::driver {
 
@@ -63,7 +65,8 @@ fe::NodalField owned_prescribed(const Problem& part, const std::vector<int>& own
   return u;
 }
 
-LoadBasis load_basis(const Problem& problem, Model& m) {
+// u0 only with a factor of K: Total FETI's operator computes its own from the nodal loads.
+LoadBasis load_basis(const Problem& problem, Model& m, bool with_u0) {
   const std::size_t n = path_loads(problem).size();
   std::vector<int> owner;
   (void)make_prescribed(problem, m.mesh, &owner);
@@ -74,7 +77,7 @@ LoadBasis load_basis(const Problem& problem, Model& m) {
     const Problem part = scaled_loads(problem, alone, i == 0 ? 1.0 : 0.0);
     m.prescribed = owned_prescribed(part, owner, m.mesh.n_nodes());
     basis.f.push_back(load_vector(part, m, Extent::Whole));
-    basis.u0.push_back(m.factor.solve(basis.f.back()));
+    basis.u0.push_back(with_u0 ? m.factor.solve(basis.f.back()) : VectorXd());
   }
   return basis;
 }
@@ -100,7 +103,7 @@ void apply_step_loads(const Problem& step_problem, int k, const std::vector<Real
   u0 = basis.u0[0];
   for (std::size_t i = 0; i < a.size(); ++i) {
     m.f += a[i] * basis.f[i + 1];
-    u0 += a[i] * basis.u0[i + 1];
+    if (u0.size() > 0) u0 += a[i] * basis.u0[i + 1];
   }
   if (!disc) return;
   const std::vector<Vec3> obstacles = obstacle_displacements(step_problem, k);
@@ -213,12 +216,39 @@ void keep_worst_sliding(int k, PathState& state, ContactReport& c) {
   }
 }
 
-// The step's contact solve on the path's operator, then its fields and self-check.
+// The path's dual operator for the discretization `disc` (phase "dual"): on the factor of K,
+// or, with backend "tfeti", Total FETI's on its subdomains (factored again for each
+// discretization; `feti` then points to it).
+std::unique_ptr<dual::DualOperator> make_path_operator(const Problem& problem,
+                                                       const contact::ContactDiscretization& disc,
+                                                       int steps_left, const RunOptions& options,
+                                                       RunResult& r, feti::FetiOperator*& feti) {
+  if (problem.solver.backend == parallel::Backend::Tfeti) {
+    phase_start(options, "factorize");
+    std::unique_ptr<feti::FetiOperator> F = make_feti_operator(problem, r.model, &disc, options,
+                                                               r.report);
+    feti = F.get();
+    return F;
+  }
+  phase_start(options, "dual");
+  ScopedPhase phase(r.report.times, "dual");
+  dual::DualInput input{r.model.factor,          disc.B,      r.model.f, disc.dofs,
+                        interrupt_poll(options), &disc.offset};
+  input.expected_recoveries = kOuterIterationsPerStep * steps_left;
+  input.R = &r.model.floating.R;
+  return dual::make_dual_operator(problem.solver.dual_operator, input);
+}
+
+// The step's contact solve on the path's operator, then its fields and self-check. The step's
+// load goes to Q as f and u0 over the free dofs and, for an operator on the subdomains (`nodal`),
+// as the applied forces and prescribed displacements at the nodes.
 VectorXd solve_step(const Problem& step_problem, const contact::ContactDiscretization& disc,
-                    dual::DualOperator& Q, const VectorXd& u0, const PathState& state,
+                    dual::DualOperator& Q, const VectorXd& u0, const PathState& state, bool nodal,
                     const RunOptions& options, RunResult& r) {
   Model& m = r.model;
-  Q.set_load(m.f, disc.offset, &u0);
+  const fe::NodalField applied = nodal ? applied_forces(step_problem, m.mesh) : fe::NodalField();
+  Q.set_load(m.f, disc.offset, &u0, nodal ? dual::NodalLoad{&applied, &m.prescribed}
+                                          : dual::NodalLoad{});
   const PathStep step{&state.history,
                       state.lambda.size() > 0 ? &state.lambda : nullptr,
                       state.predicted.size() > 0 ? &state.predicted : nullptr,
@@ -356,11 +386,13 @@ VectorXd solve_elastic_step(const VectorXd& u0, RunResult& r) {
 RunResult run_path(const Problem& problem, const RunOptions& options) {
   const Stopwatch total;
   validate(problem);
-  if (problem.solver.backend != parallel::Backend::Cholmod)
+  if (problem.solver.backend == parallel::Backend::Petsc)
     throw InputError(fmt::format(
-        "{}: solver.backend: a loading path ([loading] steps = {}) runs on one process "
-        "(\"cholmod\"), not with backend \"{}\"",
-        problem.where("solver.backend"), problem.loading.steps, enum_name(problem.solver.backend)));
+        "{}: solver.backend: a loading path ([loading] steps = {}) does not run with backend "
+        "\"petsc\"; use \"cholmod\" or \"tfeti\"",
+        problem.where("solver.backend"), problem.loading.steps));
+  const bool tfeti = problem.solver.backend == parallel::Backend::Tfeti;
+  const linalg::KeepThreads blas_threads;  // Total FETI runs the BLAS on one thread
   RunResult r;
   RunReport& rep = r.report;
   const std::vector<PathLoad> loads = path_loads(problem);
@@ -370,24 +402,18 @@ RunResult run_path(const Problem& problem, const RunOptions& options) {
   std::optional<contact::ContactDiscretization> disc = build_factored_model(problem, options, r);
   if (options.stop_was_requested()) throw Interrupted("interrupted before the first step");
   std::unique_ptr<dual::DualOperator> Q;
+  feti::FetiOperator* feti = nullptr;  // Q, with backend "tfeti"
   // A floating body has no free displacement to start each step's search from (theory.md §2.10).
   const bool search = disc && search_applies(problem, r.model) && r.model.floating.empty();
   PathSearch path_search;
-  if (disc && !search) {
-    phase_start(options, "dual");
-    ScopedPhase phase(rep.times, "dual");
-    dual::DualInput input{r.model.factor,          disc->B,      r.model.f, disc->dofs,
-                          interrupt_poll(options), &disc->offset};
-    input.expected_recoveries = kOuterIterationsPerStep * problem.loading.steps;
-    input.R = &r.model.floating.R;
-    Q = dual::make_dual_operator(problem.solver.dual_operator, input);
-  }
+  if (disc && !search)
+    Q = make_path_operator(problem, *disc, problem.loading.steps, options, r, feti);
 
   // @sect: the steps, each from the state the last one left; a failed step ends the path.
   LoadBasis basis;
   {
     ScopedPhase phase(rep.times, "solve");
-    basis = load_basis(problem, r.model);
+    basis = load_basis(problem, r.model, !tfeti);
   }
   PathState state;
   VectorXd u0;
@@ -409,10 +435,11 @@ RunResult run_path(const Problem& problem, const RunOptions& options) {
     }
     const int steps_left = problem.loading.steps - k + 1;
     const auto solve_the_step = [&] {
-      return !disc    ? solve_elastic_step(u0, r)
-             : search ? solve_step_with_search(step_problem, *disc, u0, state, steps_left,
-                                               path_search, options, r)
-                      : solve_step(step_problem, *disc, *Q, u0, state, options, r);
+      return !disc && tfeti ? solve_elastic_tfeti(step_problem, options, r)
+             : !disc        ? solve_elastic_step(u0, r)
+             : search       ? solve_step_with_search(step_problem, *disc, u0, state, steps_left,
+                                                     path_search, options, r)
+                            : solve_step(step_problem, *disc, *Q, u0, state, tfeti, options, r);
     };
     VectorXd u = solve_the_step();
     // @sect: the step's geometric updates against curved obstacles (theory.md §2.11); the last
@@ -428,13 +455,7 @@ RunResult run_path(const Problem& problem, const RunOptions& options) {
               path_search.part.reset();
               path_search.norm_Q = path_search.norm_Q_scaled = 0.0;
             } else {
-              phase_start(options, "dual");
-              ScopedPhase phase(rep.times, "dual");
-              dual::DualInput input{r.model.factor,          disc->B,      r.model.f, disc->dofs,
-                                    interrupt_poll(options), &disc->offset};
-              input.expected_recoveries = kOuterIterationsPerStep * steps_left;
-              input.R = &r.model.floating.R;
-              Q = dual::make_dual_operator(problem.solver.dual_operator, input);
+              Q = make_path_operator(problem, *disc, steps_left, options, r, feti);
             }
             return solve_the_step();
           },
@@ -472,6 +493,7 @@ RunResult run_path(const Problem& problem, const RunOptions& options) {
     }
     if (disc) remember_step(*disc, r, u, state);
   }
+  if (feti) record_feti_counts(*feti, rep);
   if (r.stress.cols() != r.model.mesh.n_tets()) compute_stresses(r);  // a failed step's
   rep.time_s = total.seconds();
   return r;

@@ -727,11 +727,8 @@ const OptionTable& loading_table() {
       check_path(p, join_key(path, "volume_force_path"), l.volume_force_path);
       if (l.steps > 1 && p.solver.backend == parallel::Backend::Petsc)
         fail(p, join_key(path, "steps"),
-             "a loading path runs on one process: use solver.backend = \"cholmod\"");
-      if (l.steps > 1 && p.solver.backend == parallel::Backend::Tfeti)
-        fail(p, join_key(path, "steps"),
-             "backend \"tfeti\" solves static problems in this version: run a loading path with "
-             "solver.backend = \"cholmod\"");
+             "a loading path does not run with backend \"petsc\": use solver.backend = "
+             "\"cholmod\" (one factor) or \"tfeti\" (subdomains, also on MPI ranks)");
     });
     return b.build();
   }();

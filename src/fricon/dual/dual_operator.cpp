@@ -51,7 +51,7 @@ VectorXd DualOperator::rigid_displacement(const VectorXd& alpha) const {
   return *R_ * alpha;
 }
 
-void DualOperator::set_load(const VectorXd&, const VectorXd&, const VectorXd*) {
+void DualOperator::set_load(const VectorXd&, const VectorXd&, const VectorXd*, const NodalLoad&) {
   throw Error("this dual operator cannot change its load (a loading path runs on one process)");
 }
 
@@ -70,7 +70,8 @@ VectorXd FactorDualOperator::displacement(const VectorXd& lambda) const {
   return in_.factor.solve(VectorXd(f_ - in_.B.transpose() * lambda));
 }
 
-void FactorDualOperator::set_load(const VectorXd& f, const VectorXd& offset, const VectorXd* u0) {
+void FactorDualOperator::set_load(const VectorXd& f, const VectorXd& offset, const VectorXd* u0,
+                                  const NodalLoad&) {
   FRICON_CHECK(f.size() == f_.size() && offset.size() == in_.B.rows(),
                "set_load: a load of " << f.size() << " and an offset of " << offset.size());
   f_ = f;

@@ -33,6 +33,14 @@ FactorizationRequest factorization_request(DualOperatorKind kind,
                                            const std::vector<Index>& contact_dofs);
 
 /// What an operator is built from; every reference must outlive the operator.
+/// A load as nodal fields (3 x n_nodes), for a dual operator on the mesh's nodes rather than on
+/// the free dofs of one K (Total FETI, theory.md §8): the applied forces [N] at every component,
+/// fixed ones too, and the prescribed displacements [m].
+struct NodalLoad {
+  const Eigen::Matrix<Real, 3, Eigen::Dynamic>* applied = nullptr;
+  const Eigen::Matrix<Real, 3, Eigen::Dynamic>* prescribed = nullptr;
+};
+
 struct DualInput {
   const linalg::CholeskyFactor& factor;    ///< of K, built with factorization_request(kind)
   const SparseMatrix& B;                   ///< n_dual x n_free [m^2]
@@ -93,8 +101,11 @@ class DualOperator {
   virtual VectorXd displacement(const VectorXd& lambda) const = 0;
   /// Another load on the same K and B (a step of a loading path, theory.md §2.9): f [N] over the
   /// free dofs and the offset c [m^3]; u0 = K^-1 f (one solve, or `u0` when given) and h are
-  /// recomputed, Q is kept. Throws Error for an operator that cannot (the distributed one).
-  virtual void set_load(const VectorXd& f, const VectorXd& offset, const VectorXd* u0 = nullptr);
+  /// recomputed, Q is kept. An operator on the mesh's nodes (Total FETI) takes the load from
+  /// `nodal` instead, which it then requires. Throws Error for an operator that cannot (the
+  /// distributed one).
+  virtual void set_load(const VectorXd& f, const VectorXd& offset, const VectorXd* u0 = nullptr,
+                        const NodalLoad& nodal = {});
 
   /// Q as a dense matrix: dense() if formed, else n_dual products with unit vectors.
   MatrixXd to_dense() const;
@@ -152,7 +163,8 @@ class DualOperator {
 class FactorDualOperator : public DualOperator {
  public:
   VectorXd displacement(const VectorXd& lambda) const override;
-  void set_load(const VectorXd& f, const VectorXd& offset, const VectorXd* u0 = nullptr) override;
+  void set_load(const VectorXd& f, const VectorXd& offset, const VectorXd* u0 = nullptr,
+                const NodalLoad& nodal = {}) override;
 
  protected:
   /// Computes u0 and h (one solve).

@@ -52,6 +52,7 @@ FetiOperator::FetiOperator(std::vector<Subdomain> subdomains, TornRows rows,
                            const Ranks& ranks)
     : subdomains_(std::move(subdomains)),
       rows_(std::move(rows)),
+      owner_dof_(owner_dof),
       threads_(std::max(threads, 1)),
       ranks_(&ranks),
       block_(ranks.block(static_cast<Index>(subdomains_.size()))) {
@@ -63,6 +64,33 @@ FetiOperator::FetiOperator(std::vector<Subdomain> subdomains, TornRows rows,
             owner_dof[static_cast<size_t>(3 * a + c)];
   partial_.assign(static_cast<size_t>(threads_), VectorXd());
   G_ = coarse_rows(subdomains_, rows_.n_rows());
+  compute_load_terms();
+}
+
+void FetiOperator::set_load(const VectorXd& f, const VectorXd& offset, const VectorXd* u0,
+                            const dual::NodalLoad& nodal) {
+  (void)f;
+  (void)u0;
+  FRICON_CHECK(nodal.applied != nullptr && nodal.prescribed != nullptr,
+               "FetiOperator::set_load needs the nodal load");
+  FRICON_CHECK(offset.size() == rows_.n_contact,
+               "set_load: an offset of " << offset.size() << " for " << rows_.n_contact);
+  const Index n_nodes = static_cast<Index>(owner_dof_.size()) / 3;
+  // Both fields on the owners' copies, over the torn dofs.
+  VectorXd applied = VectorXd::Zero(rows_.B.cols()), prescribed = applied;
+  for (Index a = 0; a < n_nodes; ++a)
+    for (int c = 0; c < 3; ++c) {
+      const Index dof = owner_dof_[static_cast<size_t>(3 * a + c)];
+      applied(dof) = (*nodal.applied)(c, a);
+      prescribed(dof) = (*nodal.prescribed)(c, a);
+    }
+  for (Subdomain& s : subdomains_)
+    s.f = applied.segment(s.first_dof, s.n_dofs());
+  // c = (offset, 0 on the gluing rows, the Dirichlet rows' scaled values B_D u_p).
+  const Index first_dirichlet = rows_.n_contact + rows_.n_gluing;
+  rows_.c.head(rows_.n_contact) = offset;
+  rows_.c.tail(rows_.n_dirichlet) =
+      rows_.B.middleRows(first_dirichlet, rows_.n_dirichlet) * prescribed;
   compute_load_terms();
 }
 

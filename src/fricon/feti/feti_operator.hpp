@@ -44,6 +44,11 @@ class FetiOperator final : public dual::DualOperator {
   void contact_displacement(const VectorXd& lambda, VectorXd& w) const override;
   VectorXd displacement(const VectorXd& lambda) const override;
   VectorXd rigid_displacement(const VectorXd& alpha) const override;
+  /// A step of a loading path: the applied forces and prescribed displacements of `nodal`
+  /// (required; f and u0 are not used) on the subdomains and the Dirichlet rows, the contact
+  /// rows' `offset` [m^3]; h, e and u0 are recomputed (one solve per subdomain, collective).
+  void set_load(const VectorXd& f, const VectorXd& offset, const VectorXd* u0 = nullptr,
+                const dual::NodalLoad& nodal = {}) override;
   Index n_equality() const override { return rows_.n_equality(); }
   Real gluing_residual(const VectorXd& lambda, const VectorXd& alpha) const override;
   const std::vector<Subdomain>& subdomains() const { return subdomains_; }
@@ -71,6 +76,7 @@ class FetiOperator final : public dual::DualOperator {
   std::vector<Subdomain> subdomains_;
   TornRows rows_;
   std::vector<Index> torn_of_free_;  ///< the owner's torn dof of each free dof of the model
+  std::vector<Index> owner_dof_;     ///< the owner's torn dof of each component of each node
   int threads_ = 1;
   const Ranks* ranks_;
   std::pair<Index, Index> block_;  ///< this process's subdomains, [first, second)

@@ -74,7 +74,8 @@ SmalseReport solve_smalse_scaled(const Operator& A, const Eigen::VectorXd& b,
 
 KktResiduals scaled_kkt_residuals(const Eigen::VectorXd& x, const Eigen::VectorXd& g,
                                   const Eigen::VectorXd& b, const SeparableConstraints& c,
-                                  const BlockScaling& D, StopReference reference) {
+                                  const BlockScaling& D, StopReference reference,
+                                  double data_scale) {
   const SeparableConstraints c_scaled = D.scaled(c);
   const Eigen::VectorXd y = D.to_scaled(x);
   const Eigen::VectorXd b_scaled = D.dual_to_scaled(b);
@@ -82,7 +83,7 @@ KktResiduals scaled_kkt_residuals(const Eigen::VectorXd& x, const Eigen::VectorX
       reference == StopReference::Whole ? b_scaled : resisted_part(b_scaled, c_scaled);
   double scale_x =
       std::max(y.size() > 0 ? y.lpNorm<Eigen::Infinity>() : 0.0, c_scaled.max_radius());
-  double scale_g = r.norm();
+  double scale_g = data_scale > 0.0 ? data_scale : r.norm();
   if (!(scale_x > 0.0)) scale_x = 1.0;
   if (!(scale_g > 0.0)) scale_g = 1.0;
   return kkt_residuals(y, D.dual_to_scaled(g), c_scaled, scale_x, scale_g);

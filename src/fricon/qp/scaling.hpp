@@ -67,8 +67,11 @@ SmalseReport solve_smalse_scaled(const Operator& A, const Eigen::VectorXd& b,
 /// and relative to its stopping test's reference: scale_x = max(||D^-1 x||_inf, largest scaled
 /// radius), scale_g = ||D b_R|| (or ||D b|| for StopReference::Whole), a zero scale replaced by
 /// 1. A QP stopped by solve_mpgp_scaled at rel_tolerance has residuals of that order.
+/// data_scale > 0 replaces ||D b_R||: x is part of a larger QP (Total FETI's contact multipliers
+/// among the equality ones) whose stopping test referred to the whole of its data.
 KktResiduals scaled_kkt_residuals(const Eigen::VectorXd& x, const Eigen::VectorXd& g,
                                   const Eigen::VectorXd& b, const SeparableConstraints& c,
-                                  const BlockScaling& D, StopReference reference);
+                                  const BlockScaling& D, StopReference reference,
+                                  double data_scale = 0.0);
 
 }  // namespace fricon::qp
