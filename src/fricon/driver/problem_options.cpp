@@ -660,8 +660,9 @@ const OptionTable& solver_table() {
              "`\"petsc\"`, `dual_operator` may be `\"auto\"`, `\"schur\"` or `\"implicit\"`, not "
              "`\"forward\"`. A fricon built without PETSc refuses `\"petsc\"` and says how to "
              "get it. `\"tfeti\"`: Total FETI, each body cut into subdomains that are factored "
-             "on their own (on the machine's threads) and glued by multipliers in the same dual "
-             "QP as the contact ones, for meshes past one factorization; docs/theory.md §8");
+             "on their own (on the machine's threads, and under `mpirun` shared out among the "
+             "ranks) and glued by multipliers in the same dual QP as the contact ones, for "
+             "meshes past one factorization; docs/theory.md §8");
     b.choice("partition", &SolverOptions::partition,
              "with `backend = \"petsc\"`: how the tetrahedra are split among the ranks for "
              "assembly: `\"graph\"` (PT-Scotch through PETSc, on the mesh's dual graph) or "
