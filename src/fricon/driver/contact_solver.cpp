@@ -195,6 +195,7 @@ outer::OuterReport successive_approximations(TrescaMap& map, VectorXd& phi,
     rep.qp_iterations += q.iterations;
     rep.n_objective_increases += q.n_objective_increases;
     rep.smalse_outer_iterations += map.last_smalse().outer_iterations;
+    rep.coarse_solves += map.last_smalse().n_coarse_solves;
     rep.history.push_back(it);
     if (options.on_outer_iteration) options.on_outer_iteration(it);
   };

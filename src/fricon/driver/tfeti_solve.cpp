@@ -46,6 +46,7 @@ void record_feti_counts(const feti::FetiOperator& F, RunReport& report) {
   if (report.contact) {
     report.feti->qp_iterations = report.contact->qp_iterations;
     report.feti->smalse_outer_iterations = report.contact->smalse_outer_iterations;
+    report.feti->n_coarse_solves = report.contact->coarse_solves;
     report.feti->gluing_residual = report.contact->gluing_residual;
     report.feti->gluing_bound = report.contact->kkt_bound;
   }
