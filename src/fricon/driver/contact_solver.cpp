@@ -327,8 +327,9 @@ VectorXd certify(const contact::ContactDiscretization& disc, const dual::DualOpe
   g = disc.B * (Q.u0() - w) - h;
   qp::SeparableConstraints contact = qp::SeparableConstraints::contact_layout(disc.n_patches());
   contact.set_disc_radii(map.radius());
-  rep.kkt = qp::scaled_kkt_residuals(map.lambda(), g, h, contact, scaling,
-                                     qp::StopReference::Resisted, whole_data_scale(Q, map, scaling));
+  rep.kkt =
+      qp::scaled_kkt_residuals(map.lambda(), g, h, contact, scaling, qp::StopReference::Resisted,
+                               whole_data_scale(Q, map, scaling));
   return w;
 }
 

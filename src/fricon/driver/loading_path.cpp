@@ -225,8 +225,8 @@ std::unique_ptr<dual::DualOperator> make_path_operator(const Problem& problem,
                                                        RunResult& r, feti::FetiOperator*& feti) {
   if (problem.solver.backend == parallel::Backend::Tfeti) {
     phase_start(options, "factorize");
-    std::unique_ptr<feti::FetiOperator> F = make_feti_operator(problem, r.model, &disc, options,
-                                                               r.report);
+    std::unique_ptr<feti::FetiOperator> F =
+        make_feti_operator(problem, r.model, &disc, options, r.report);
     feti = F.get();
     return F;
   }
@@ -247,8 +247,8 @@ VectorXd solve_step(const Problem& step_problem, const contact::ContactDiscretiz
                     const RunOptions& options, RunResult& r) {
   Model& m = r.model;
   const fe::NodalField applied = nodal ? applied_forces(step_problem, m.mesh) : fe::NodalField();
-  Q.set_load(m.f, disc.offset, &u0, nodal ? dual::NodalLoad{&applied, &m.prescribed}
-                                          : dual::NodalLoad{});
+  Q.set_load(m.f, disc.offset, &u0,
+             nodal ? dual::NodalLoad{&applied, &m.prescribed} : dual::NodalLoad{});
   const PathStep step{&state.history,
                       state.lambda.size() > 0 ? &state.lambda : nullptr,
                       state.predicted.size() > 0 ? &state.predicted : nullptr,

@@ -209,7 +209,8 @@ VectorXd solve_with_contact(const Problem& problem, const contact::ContactDiscre
   const Model& m = r.model;
   if (problem.solver.backend == parallel::Backend::Tfeti) {
     phase_start(options, "factorize");
-    const std::unique_ptr<feti::FetiOperator> F = make_feti_operator(problem, m, &disc, options, r.report);
+    const std::unique_ptr<feti::FetiOperator> F =
+        make_feti_operator(problem, m, &disc, options, r.report);
     VectorXd u = solve_with_operator(problem, disc, *F, options, r);
     record_feti_counts(*F, r.report);
     return u;

@@ -28,11 +28,10 @@ std::unique_ptr<feti::FetiOperator> make_feti_operator(const Problem& problem, c
   const fe::NodalField applied = applied_forces(problem, model.mesh);
   const SparseMatrix no_rows(0, model.dofs.n_free());
   feti::FetiReport feti_report;
-  auto op = feti::make_tfeti(model.mesh, model.bodies, model.materials, model.dofs,
-                             model.prescribed, applied, disc ? disc->B : no_rows,
-                             disc ? disc->offset : VectorXd(), o,
-                             options.feti_ranks ? *options.feti_ranks : feti::this_process(),
-                             feti_report);
+  auto op = feti::make_tfeti(
+      model.mesh, model.bodies, model.materials, model.dofs, model.prescribed, applied,
+      disc ? disc->B : no_rows, disc ? disc->offset : VectorXd(), o,
+      options.feti_ranks ? *options.feti_ranks : feti::this_process(), feti_report);
   report.feti = feti_report;
   return op;
 }
@@ -55,7 +54,8 @@ void record_feti_counts(const feti::FetiOperator& F, RunReport& report) {
 VectorXd solve_elastic_tfeti(const Problem& problem, const RunOptions& options, RunResult& r) {
   RunReport& rep = r.report;
   phase_start(options, "factorize");
-  const std::unique_ptr<feti::FetiOperator> F = make_feti_operator(problem, r.model, nullptr, options, rep);
+  const std::unique_ptr<feti::FetiOperator> F =
+      make_feti_operator(problem, r.model, nullptr, options, rep);
   phase_start(options, "solve");
   ScopedPhase phase(rep.times, "solve");
   qp::SeparableConstraints free;

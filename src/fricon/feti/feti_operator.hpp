@@ -7,12 +7,13 @@
 //   F x = sum_s B_s K_s^+ B_s^T x,
 //
 // run on a pool of threads, over this process's subdomains, and added up over the processes
-// (feti/ranks.hpp; every process holds the whole dual vectors). The equality G lambda = e, G = R^T B^T and e = R^T f, carries the
-// rigid motions of every subdomain (6 per subdomain: the natural coarse space), and the
-// displacement is u = K^+ (f - B^T lambda) + R alpha, alpha = -mu of that equality, read at each
-// node's owner copy (the copies agree to the gluing residual, which the certificate checks).
-// To the contact solve it is one more dual::DualOperator: the QP layer sees the equality
-// multipliers as free unknowns (qp::BlockKind::Free) and the equality through qp::CoarseSpace.
+// (feti/ranks.hpp; every process holds the whole dual vectors). The equality G lambda = e, G = R^T
+// B^T and e = R^T f, carries the rigid motions of every subdomain (6 per subdomain: the natural
+// coarse space), and the displacement is u = K^+ (f - B^T lambda) + R alpha, alpha = -mu of that
+// equality, read at each node's owner copy (the copies agree to the gluing residual, which the
+// certificate checks). To the contact solve it is one more dual::DualOperator: the QP layer sees
+// the equality multipliers as free unknowns (qp::BlockKind::Free) and the equality through
+// qp::CoarseSpace.
 
 #include <functional>
 #include <memory>
@@ -79,7 +80,7 @@ class FetiOperator final : public dual::DualOperator {
   std::vector<Index> owner_dof_;     ///< the owner's torn dof of each component of each node
   int threads_ = 1;
   const Ranks* ranks_;
-  std::pair<Index, Index> block_;  ///< this process's subdomains, [first, second)
+  std::pair<Index, Index> block_;          ///< this process's subdomains, [first, second)
   mutable std::vector<VectorXd> partial_;  ///< per thread: its sum of products
   mutable long n_products_ = 0;
   mutable double products_s_ = 0.0, sums_s_ = 0.0;

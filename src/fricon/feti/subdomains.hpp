@@ -27,13 +27,13 @@ struct Subdomain {
   Index n_tets = 0;
   Index n_dofs() const { return 3 * static_cast<Index>(nodes.size()); }
 
-  VectorXd stiffness_diagonal;    ///< the diagonal of K_s [N/m] (scales the gluing rows)
-  MatrixXd R;                     ///< n_dofs x 6: its rigid motions [m per unit amplitude]
+  VectorXd stiffness_diagonal;  ///< the diagonal of K_s [N/m] (scales the gluing rows)
+  MatrixXd R;                   ///< n_dofs x 6: its rigid motions [m per unit amplitude]
   /// Of the regularized K_s, its solves K_s^+ [m/N]: only in the subdomains of this process
   /// (Ranks::block); empty in the others.
   linalg::CholeskyFactor factor;
-  VectorXd f;                     ///< its share of the applied load [N] (at the nodes it owns)
-  double factor_seconds = 0.0;    ///< the assembly and factorization of K_s [s]
+  VectorXd f;                   ///< its share of the applied load [N] (at the nodes it owns)
+  double factor_seconds = 0.0;  ///< the assembly and factorization of K_s [s]
 
   /// The rows of the torn B that act on it (feti/torn_rows.hpp) over its local dofs, as
   /// `rows.size()` x n_dofs, and the dual row of each.

@@ -11,13 +11,12 @@
 namespace fricon::parallel {
 
 /// The phases of a distributed run that test_fault() is called in, in the order a run reaches
-/// them (docs/parallel.md lists what each covers).
+/// them (docs/parallel.md lists what each covers); "subdomains" and "products" are backend
+/// tfeti's (parallel/mpi/feti_ranks.hpp): a rank factoring its own subdomains, and the sum of a
+/// product with F.
 inline constexpr std::string_view kFaultPhases[] = {
-    "model",     "share", "partition", "scatter", "assembly", "analysis",
-    "factorize", "schur", "setup",     "outer",   "solve",    "gather",
-    // backend "tfeti" (parallel/mpi/feti_ranks.hpp): a rank's own subdomains being factored, and
-    // the sum of a product with F
-    "subdomains", "products",
+    "model", "share", "partition", "scatter", "assembly", "analysis",   "factorize",
+    "schur", "setup", "outer",     "solve",   "gather",   "subdomains", "products",
 };
 
 /// Test only. Throws when FRICON_TEST_FAULT=<phase>:<rank>:<kind> names `phase` and this rank of
