@@ -295,6 +295,11 @@ driver::Problem read_problem_on_every_rank(const std::string& file, const SolveO
           "{}: solver.backend: \"{}\" runs on one process, but mpirun started {} ranks; run "
           "with --set solver.backend=petsc or tfeti (docs/parallel.md)",
           problem.where("solver.backend"), enum_name(problem.solver.backend), mpi_ranks()));
+    if (!so.dump_dual.empty() && problem.solver.backend == parallel::Backend::Tfeti)
+      throw InputError(fmt::format(
+          "--dump-dual: the dual QP of backend \"tfeti\" carries the subdomains' gluing "
+          "multipliers; dump the contact QP with --set solver.backend=cholmod ({})",
+          problem.where("solver.backend")));
     dir = results_folder(problem, so);
     if (is_rank_zero()) io::prepare_results(dir);
   };

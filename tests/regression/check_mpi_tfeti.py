@@ -16,6 +16,7 @@ pressure (max lambda_n) and max |u| to 1e-6, and the same status:
   quadratic2              10-node tetrahedra on 2 ranks
   path2                   a loading path (the Coulomb brick's friction hysteresis, 21 steps) on 8
                           subdomains and 2 ranks: every step's forces to 1e-6 of its normal force
+  dump_dual2              --dump-dual (the contact QP alone) is refused once on 2 ranks, exit 1
   stop_signal             SIGUSR1 to mpirun during the QPs: every rank stops at the same step,
                           rank 0 writes the last iterate (*.not-converged.*), exit code 2
   fault-PHASE-RANK-KIND   a fault injected on one rank (FRICON_TEST_FAULT, test only): every rank
@@ -181,6 +182,13 @@ def main():
         steps = sorted((out / "tfeti-2" / "steps").glob("patches-*.csv")) \
             if (out / "tfeti-2" / "steps").exists() else []
         print(f"     {len(steps)} step files written (by rank 0)")
+    elif case == "dump_dual2":
+        # Refused before the solve, on every rank: one message, exit code 1, nothing written.
+        cmd = check_mpi.mpirun(mpi, 2) + [fricon, "solve", str(brick), *TFETI, "--dump-dual",
+                                          str(out / "dual.json"), "-q", "-o", str(out / "d")]
+        check_mpi.expect_error(cmd, ["--dump-dual", "tfeti", "solver.backend"],
+                               "--dump-dual with tfeti on 2 ranks is refused once")
+        check_mpi.nothing_written(out / "d")
     elif case == "stop_signal":
         stop_signal(fricon, mpi, brick, out / "s")
     elif case.startswith("fault-") and case[len("fault-"):] in FAULTS:
