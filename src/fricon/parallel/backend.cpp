@@ -22,10 +22,5 @@ driver::RunResult run_distributed(const driver::Problem&, const driver::RunOptio
   throw InputError("solver.backend = \"petsc\": this fricon was built without PETSc");
 }
 
-driver::RunResult run_tfeti_on_ranks(const driver::Problem& problem,
-                                     const driver::RunOptions& options) {
-  return driver::run(problem, options);  // no MPI: this process alone
-}
-
 }  // namespace fricon::parallel
 #endif
