@@ -213,6 +213,12 @@ def stop_signal(fricon, mpi, brick, outdir):
                             "--set", "solver.dual_operator=implicit", "--set",
                             "solver.qp_variant=paper", "--set", "solver.qp_rtol=1e-12", "-o",
                             str(outdir)]
+    interrupt_run(cmd, outdir)
+
+
+def interrupt_run(cmd, outdir):
+    """Runs cmd (mpirun ... fricon solve ... -o outdir), sends SIGUSR1 to mpirun once the second
+    outer iteration has started: every rank must stop, rank 0 write the last iterate, exit 2."""
     proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     t0 = time.time()
     seen = []

@@ -23,11 +23,8 @@ pressure (max lambda_n) and max |u| to 1e-6, and the same status:
                           ends within check_mpi.FAULT_TIMEOUT_S with the message, as FAULTS says
 """
 import os
-import signal
-import subprocess
 import pathlib
 import sys
-import time
 
 import check_mpi
 import common
@@ -103,32 +100,7 @@ def stop_signal(fricon, mpi, brick, outdir):
     cmd = check_mpi.mpirun(mpi, 2) + [
         fricon, "solve", str(brick), *TFETI, "--set", "mesh.cells=[36,12,12]", "--set",
         "solver.subdomains=27", "--set", "solver.qp_rtol=1e-12", "-o", str(outdir)]
-    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    t0 = time.time()
-    seen = []
-    while time.time() - t0 < 120:  # the monitor's header, then the line of outer iteration 1
-        line = proc.stderr.readline()
-        seen.append(line)
-        if not line or "elapsed" in line:
-            break
-    if not seen or "elapsed" not in seen[-1]:
-        proc.kill()
-        sys.exit(f"FAIL: no monitor line within 120 s: {seen}")
-    seen.append(proc.stderr.readline())
-    time.sleep(0.3)
-    proc.send_signal(signal.SIGUSR1)
-    stdout, stderr = proc.communicate(timeout=120)
-    report = outdir / "report.not-converged.json"
-    if proc.returncode != 2 or not report.exists() or (outdir / "report.json").exists():
-        sys.exit(f"FAIL: SIGUSR1: exit code {proc.returncode} (expected 2), files "
-                 f"{sorted(p.name for p in outdir.iterdir()) if outdir.exists() else []}\n"
-                 f"stderr:\n{''.join(seen)}{stderr}")
-    r = common.read_report(outdir, report.name)
-    if r["termination"] != "interrupted" or r["outer_iterations"] < 2:
-        sys.exit(f"FAIL: SIGUSR1: termination {r['termination']}, outer iterations "
-                 f"{r['outer_iterations']}")
-    print(f"ok   SIGUSR1 to mpirun: every rank stopped, the last iterate (outer iteration "
-          f"{r['outer_iterations']}) written, exit code 2")
+    check_mpi.interrupt_run(cmd, outdir)
 
 
 def injected_fault(fricon, mpi, brick, out, fault):
