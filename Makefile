@@ -54,8 +54,8 @@ test-sanitize: deps
 	  ctest --test-dir $(SAN_BUILD) -L "unit|leak|sanitize" --output-on-failure -j $(CTEST_JOBS)
 
 # BENCH_LARGE=1 adds n = 24, 32, 48 to the contact benchmark (minutes, several GiB), Total FETI's
-# scalability to n = 32, its series against the direct solver to n = 48, n = 64 alone and the
-# weak scaling on MPI ranks at n = 24/30 (bench/tfeti_bench.py, two hours), the Hertz
+# scalability to n = 32 with and without the lumped preconditioner, its series against the direct
+# solver to n = 48, n = 64 alone and the weak scaling on MPI ranks at n = 24/30 (bench/tfeti_bench.py, two hours), the Hertz
 # refinement study with the contact-against-no-contact ratios (bench/hertz_bench.py) and the
 # PETSc backend's strong scaling at n = 32, 48 (bench/petsc_scaling.py, docs/parallel.md); the Coulomb
 # runs at those sizes: build/bench/contact_bench --model coulomb 24 32 48 (10 min, 14 GiB).
@@ -76,11 +76,11 @@ bench: build
 	@echo "== bench/obstacle_bench.py"; /usr/bin/python3 bench/obstacle_bench.py $(BUILD)/apps/fricon/fricon
 	@echo "== bench/quadratic_bench.py"; /usr/bin/python3 bench/quadratic_bench.py $(BUILD)/apps/fricon/fricon
 	@echo "== bench/tfeti_bench.py"; /usr/bin/python3 bench/tfeti_bench.py $(BUILD)/apps/fricon/fricon \
-	  --scalability 8 16 --series 16 $$($(BUILD)/apps/fricon/fricon --version | grep -q petsc \
-	  && echo --weak 16 20)
+	  --scalability 8 16 --preconditioners --series 16 \
+	  $$($(BUILD)/apps/fricon/fricon --version | grep -q petsc && echo --weak 16 20)
 	@if [ -n "$(BENCH_LARGE)" ]; then echo "== bench/tfeti_bench.py (large)"; \
 	  /usr/bin/python3 bench/tfeti_bench.py $(BUILD)/apps/fricon/fricon --scalability 8 16 24 32 \
-	  --scaling --sizes 24 500 1000 3000 --series 24 32 48 --series-tfeti-only 64; \
+	  --preconditioners --scaling --sizes 24 500 1000 3000 --series 24 32 48 --series-tfeti-only 64; \
 	  if $(BUILD)/apps/fricon/fricon --version | grep -q petsc; then \
 	  /usr/bin/python3 bench/tfeti_bench.py $(BUILD)/apps/fricon/fricon --scalability --series \
 	  --weak 24 30; fi; fi

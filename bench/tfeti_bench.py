@@ -4,7 +4,7 @@ scalability with the subdomain size fixed, and the direct solver against TFETI i
 
     /usr/bin/python3 bench/tfeti_bench.py build/apps/fricon/fricon \
         [--scalability 8 16 24 32] [--cells-per-subdomain 4] [--series 16 24 32] \
-        [--series-subdomain-size 1000] [--series-tfeti-only 64] [--scaling] \
+        [--series-subdomain-size 1000] [--series-tfeti-only 64] [--scaling] [--preconditioners] \
         [--sizes N S1 S2 ...] [--weak N1 N2] [--mpirun MPIRUN] [--threads N] [--out DIR]
         [--markdown]
 
@@ -25,6 +25,10 @@ run. --series-tfeti-only n...: sizes that only TFETI runs (the direct factor doe
 
 --sizes N S1 S2 ...: the brick at n = N with solver.subdomain_size = S1, S2, ...: the time, the
 products with F and the memory of each, from which the default subdomain_size is chosen.
+
+--preconditioners: in place of the scalability table, the --scalability sizes with
+solver.tfeti_preconditioner "none" and "lumped" (theory.md §8.5), alternated: products with F, the preconditioner's applications and time, and
+the QP's and the whole run's time; then, per preconditioner, the largest ratio of products per QP.
 
 --scaling: at the first --scalability size, tfeti_scaling "stiffness" against "uniform" (the
 diagonal scaling of the equality rows, theory.md §8.5): products with F of whole runs.
@@ -163,6 +167,36 @@ def row_scaling(fricon, out, n, c, threads, markdown):
                      markdown), ""]
 
 
+def preconditioners(fricon, out, sizes, c, threads, markdown):
+    """The scalability sizes solved with solver.tfeti_preconditioner "none" and "lumped"
+    (theory.md §8.5), alternated: products with F per QP, the preconditioner's applications
+    and time, the QP's time and the whole run's."""
+    headers = ["n", "subdomains", "preconditioner", "products with F", "products / QP",
+               "MPGP steps", "applications", "preconditioner [s]", "products [s]", "QP [s]",
+               "time [s]", "peak RSS [MiB]"]
+    rows, per_qp = [], {"none": [], "lumped": []}
+    for n in sizes:
+        subdomains = max(1, round((n / c) ** 3))
+        for kind in ("none", "lumped"):
+            rep = solve(fricon, out / f"precond-{n}-{kind}", n, threads,
+                        ['solver.backend="tfeti"', f"solver.subdomains={subdomains}",
+                         f'solver.tfeti_preconditioner="{kind}"'])
+            f = rep["feti"]
+            per_qp[kind].append(f["n_products"] / rep["outer_iterations"])
+            rows.append([str(n), str(f["n_subdomains"]), kind, str(f["n_products"]),
+                         f"{per_qp[kind][-1]:.0f}", str(rep["qp_iterations"]),
+                         str(f["n_preconditioner"]), f"{f['preconditioner_s']:.1f}",
+                         f"{f['products_s']:.1f}", f"{rep['timings']['qp']:.1f}",
+                         f"{rep['time_s']:.1f}", f"{rep['peak_mib']:.0f}"])
+            print(f"  preconditioner n = {n}: {rows[-1]}", file=sys.stderr, flush=True)
+    lines = [f"Preconditioners (solver.tfeti_preconditioner) with (n/{c})^3 subdomains", "",
+             hb.table(headers, rows, markdown), ""]
+    for kind, values in per_qp.items():
+        lines.append(f"{kind}: largest ratio of products with F per QP between two sizes "
+                     f"{max(values) / min(values):.2f}")
+    return lines + [""]
+
+
 MODEL_UNKNOWNS = 1e8
 MODEL_RANKS = (100, 1000)
 
@@ -267,6 +301,7 @@ def main():
     ap.add_argument("--sizes", type=int, nargs="*", default=[])
     ap.add_argument("--series-tfeti-only", type=int, nargs="*", default=[])
     ap.add_argument("--scaling", action="store_true")
+    ap.add_argument("--preconditioners", action="store_true")
     ap.add_argument("--weak", type=int, nargs=2, default=None)
     ap.add_argument("--mpirun", default="mpirun")
     ap.add_argument("--threads", type=int, default=0)
@@ -279,12 +314,15 @@ def main():
     lines = [f"fricon {version.stdout.strip()}; load average at the start {load:.2f} on "
              f"{os.cpu_count()} cores", ""]
     try:
-        if a.scalability:
+        if a.scalability and not a.preconditioners:  # its "none" rows are this table's
             lines += scalability(a.fricon, out, a.scalability, a.cells_per_subdomain, a.threads,
                                  a.markdown)
         if a.scaling and a.scalability:
             lines += row_scaling(a.fricon, out, a.scalability[0], a.cells_per_subdomain,
                                  a.threads, a.markdown)
+        if a.preconditioners and a.scalability:
+            lines += preconditioners(a.fricon, out, a.scalability, a.cells_per_subdomain,
+                                     a.threads, a.markdown)
         if len(a.sizes) > 1:
             lines += subdomain_sizes(a.fricon, out, a.sizes[0], a.sizes[1:], a.threads,
                                      a.markdown)

@@ -72,6 +72,9 @@ void print_summary(const driver::RunResult& result, const std::filesystem::path&
         "subdomains); {} products with F; peak memory {:.0f} MiB\n",
         f.nnz_factors, f.factor_mib, f.factorization_s, f.factorization_cpu_s, f.n_products,
         f.peak_memory_mib);
+    if (f.preconditioner != "none")
+      fmt::print("  preconditioner {} in face: {} applications in {:.3f} s\n", f.preconditioner,
+                 f.n_preconditioner, f.preconditioner_s);
     if (!f.partition_note.empty()) fmt::print("  partition     {}\n", f.partition_note);
     if (f.n_ranks > 1) {
       fmt::print("  ranks         {} (tfeti), subdomains / factor MiB / peak memory MiB per rank:",

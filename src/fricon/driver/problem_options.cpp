@@ -709,6 +709,12 @@ const OptionTable& solver_table() {
              "entry of F is about 1, as the scaled contact rows'; a diagonal preconditioner of "
              "the equality multipliers) or `\"uniform\"` (one factor for all); theory.md §8.5");
     tfeti_only();
+    b.choice("tfeti_preconditioner", &SolverOptions::tfeti_preconditioner,
+             "with `backend = \"tfeti\"`: what approximates F^-1 in the QP's conjugate gradient "
+             "steps: `\"none\"` (the row scaling alone) or `\"lumped\"` ((B B^T)^-1 B K B^T "
+             "(B B^T)^-1, applied to the free multipliers: preconditioning in face; one product "
+             "with every subdomain's stiffness per step, which it keeps); theory.md §8.5");
+    tfeti_only();
     b.check(check_solver);
     return b.build();
   }();

@@ -21,6 +21,7 @@ std::unique_ptr<feti::FetiOperator> make_feti_operator(const Problem& problem, c
   o.subdomains = problem.solver.subdomains.value_or(0);
   o.subdomain_size = problem.solver.subdomain_size;
   o.scaling = problem.solver.tfeti_scaling;
+  o.preconditioner = problem.solver.tfeti_preconditioner;
   // The subdomains are the parallelism: one BLAS thread inside each of their solves.
   o.threads = loop_threads(linalg::threads());
   linalg::set_threads(1);
@@ -41,6 +42,8 @@ void record_feti_counts(const feti::FetiOperator& F, RunReport& report) {
   report.feti->n_products = F.n_products();
   report.feti->products_s = F.products_seconds();
   report.feti->sums_s = F.sums_seconds();
+  report.feti->n_preconditioner = F.n_preconditioner();
+  report.feti->preconditioner_s = F.preconditioner_seconds();
   feti::record_peak_memory(F.ranks(), *report.feti);
   if (report.contact) {
     report.feti->qp_iterations = report.contact->qp_iterations;
@@ -63,6 +66,7 @@ VectorXd solve_elastic_tfeti(const Problem& problem, const RunOptions& options, 
   qp::MpgpOptions inner = problem.solver.qp;
   inner.rel_tolerance *= dual::kEqualityToleranceShare;
   inner.monitor = [&options](const qp::MpgpIteration&) { return !options.stop_was_requested(); };
+  inner.preconditioner = F->equality_preconditioner();  // every multiplier is an equality one
   qp::SmalseOptions outer;
   outer.rho_factor = dual::kEqualityPenaltyFactor;
   outer.projected_norm = true;
@@ -77,6 +81,8 @@ VectorXd solve_elastic_tfeti(const Problem& problem, const RunOptions& options, 
   fr.n_products = F->n_products();
   fr.products_s = F->products_seconds();
   fr.sums_s = F->sums_seconds();
+  fr.n_preconditioner = F->n_preconditioner();
+  fr.preconditioner_s = F->preconditioner_seconds();
   fr.n_coarse_solves = s.n_coarse_solves;
   fr.qp_iterations = s.iterations;
   fr.smalse_outer_iterations = s.outer_iterations;

@@ -107,6 +107,11 @@ class DualOperator {
   virtual void set_load(const VectorXd& f, const VectorXd& offset, const VectorXd* u0 = nullptr,
                         const NodalLoad& nodal = {});
 
+  /// M_E, an approximation of the inverse of Q's block on the equality multipliers (n_equality()
+  /// entries in and out), for MPGP's preconditioning in face (Total FETI's lumped
+  /// preconditioner, theory.md §8.5; see equality_block_preconditioner), or empty: none (the
+  /// default). Collective, as apply().
+  virtual qp::Operator equality_preconditioner() const { return {}; }
   /// Q as a dense matrix: dense() if formed, else n_dual products with unit vectors.
   MatrixXd to_dense() const;
   /// The operator as the QP layer applies it.
@@ -174,6 +179,13 @@ class FactorDualOperator : public DualOperator {
   DualInput in_;
   VectorXd f_;  ///< the load [N] (in_.f until set_load)
 };
+
+/// The preconditioner of the whole dual QP (qp::MpgpOptions::preconditioner, in the variables of
+/// Q) when Q has an equality preconditioner M_E, else empty. `d` is the factor of each multiplier
+/// in the QP's change of variables (qp::BlockScaling::d(), theory.md §4.5): the contact
+/// multipliers get d^2, the identity in the scaled variables, where the diagonal blocks of the
+/// scaled Q are about 1; the equality ones M_E (theory.md §8.5).
+qp::Operator whole_preconditioner(const DualOperator& Q, const VectorXd& d);
 
 /// The operator of `kind` (Auto resolved by resolve()). Throws Error if the factor was not built
 /// with factorization_request(kind), and whatever `poll` throws.

@@ -121,24 +121,44 @@ void FetiOperator::compute_load_terms() {
   ++n_kinv_;
 }
 
-void FetiOperator::apply(const VectorXd& x, VectorXd& y) const {
+void FetiOperator::sum_over_subdomains(
+    const VectorXd& x, VectorXd& y,
+    const std::function<void(const Subdomain& s, const VectorXd& v, VectorXd& out)>& local,
+    double* local_s, double* sums_s) const {
   Stopwatch watch;
   const Index n = x.size();
   for (VectorXd& p : partial_)
     p.setZero(n);
   for_own_subdomains([&](const Subdomain& s, Index, int thread) {
-    const VectorXd local = s.factor.solve(VectorXd(s.B.transpose() * gather(x, s.rows)));
-    scatter_add(s.B * local, s.rows, partial_[static_cast<size_t>(thread)]);
+    VectorXd out;
+    local(s, VectorXd(s.B.transpose() * gather(x, s.rows)), out);
+    scatter_add(s.B * out, s.rows, partial_[static_cast<size_t>(thread)]);
   });
   y = partial_[0];
   for (std::size_t t = 1; t < partial_.size(); ++t)
     y += partial_[t];
-  products_s_ += watch.seconds();
+  *local_s += watch.seconds();
   watch.restart();
   ranks_->sum(y);
-  sums_s_ += watch.seconds();
+  *sums_s += watch.seconds();
+}
+
+void FetiOperator::apply(const VectorXd& x, VectorXd& y) const {
+  sum_over_subdomains(
+      x, y, [](const Subdomain& s, const VectorXd& v, VectorXd& out) { out = s.factor.solve(v); },
+      &products_s_, &sums_s_);
   ++n_products_;
   ++n_kinv_;
+}
+
+qp::Operator FetiOperator::equality_preconditioner() const {
+  if (!preconditioner_) return {};
+  return [this](const VectorXd& x, VectorXd& y) {
+    const Stopwatch watch;
+    preconditioner_->apply(x, y);
+    preconditioner_s_ += watch.seconds();
+    ++n_preconditioner_;
+  };
 }
 
 VectorXd FetiOperator::torn_displacement(const VectorXd& lambda, const VectorXd* alpha) const {

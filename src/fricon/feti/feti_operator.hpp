@@ -22,6 +22,7 @@
 
 #include "fricon/dual/dual_operator.hpp"
 #include "fricon/fe/dof_map.hpp"
+#include "fricon/feti/preconditioner.hpp"
 #include "fricon/feti/ranks.hpp"
 #include "fricon/feti/subdomains.hpp"
 #include "fricon/feti/torn_rows.hpp"
@@ -51,6 +52,24 @@ class FetiOperator final : public dual::DualOperator {
   void set_load(const VectorXd& f, const VectorXd& offset, const VectorXd* u0 = nullptr,
                 const dual::NodalLoad& nodal = {}) override;
   Index n_equality() const override { return rows_.n_equality(); }
+  /// M_E of set_preconditioner, counted and timed; empty without one.
+  qp::Operator equality_preconditioner() const override;
+  /// The approximation of F^-1 that preconditioner() applies (make_preconditioner).
+  void set_preconditioner(std::unique_ptr<const Preconditioner> M) {
+    preconditioner_ = std::move(M);
+  }
+  /// Applications of the preconditioner so far, and their wall time [s].
+  long n_preconditioner() const { return n_preconditioner_; }
+  double preconditioner_seconds() const { return preconditioner_s_; }
+  /// y = sum over the subdomains s of B_s local_s(B_s^T x_s): `local(s, v, out)` sets out from
+  /// v (both over the local dofs of s), on the threads, over this process's subdomains, and the
+  /// result summed over the processes (collective). The form of every product with F (local =
+  /// K_s^+) and of the lumped preconditioner (local = K_s). Adds the wall time of the local
+  /// part and of the sums to *local_s and *sums_s.
+  void sum_over_subdomains(
+      const VectorXd& x, VectorXd& y,
+      const std::function<void(const Subdomain& s, const VectorXd& v, VectorXd& out)>& local,
+      double* local_s, double* sums_s) const;
   Real gluing_residual(const VectorXd& lambda, const VectorXd& alpha) const override;
   const std::vector<Subdomain>& subdomains() const { return subdomains_; }
   const TornRows& rows() const { return rows_; }
@@ -82,6 +101,9 @@ class FetiOperator final : public dual::DualOperator {
   const Ranks* ranks_;
   std::pair<Index, Index> block_;          ///< this process's subdomains, [first, second)
   mutable std::vector<VectorXd> partial_;  ///< per thread: its sum of products
+  std::unique_ptr<const Preconditioner> preconditioner_;
+  mutable long n_preconditioner_ = 0;
+  mutable double preconditioner_s_ = 0.0;
   mutable long n_products_ = 0;
   mutable double products_s_ = 0.0, sums_s_ = 0.0;
 };

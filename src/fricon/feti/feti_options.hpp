@@ -1,7 +1,7 @@
 #pragma once
-// feti: what a user chooses of Total FETI ([solver] subdomains, subdomain_size, tfeti_scaling;
-// docs/theory.md §8) and what a run reports of it. Data only: the problem and the run's report
-// hold them without depending on the solver.
+// feti: what a user chooses of Total FETI ([solver] subdomains, subdomain_size, tfeti_scaling,
+// tfeti_preconditioner; docs/theory.md §8) and what a run reports of it. Data only: the problem and
+// the run's report hold them without depending on the solver.
 
 #include <string>
 #include <vector>
@@ -15,6 +15,12 @@ namespace fricon::feti {
 enum class RowScaling {
   Stiffness,  ///< by the lumped stiffness of the row's dofs (the default)
   Uniform,    ///< by one factor, the mean stiffness diagonal (for comparison)
+};
+
+/// What approximates F^-1 in MPGP's CG steps (theory.md §8.5).
+enum class FetiPreconditioner {
+  None,    ///< the diagonal scaling of the rows alone
+  Lumped,  ///< (B B^T)^-1 B K B^T (B B^T)^-1, preconditioning in face
 };
 
 /// The smallest subdomain_size a user may ask for [nodes].
@@ -33,6 +39,7 @@ struct FetiOptions {
   Index subdomains = 0;
   Index subdomain_size = kDefaultSubdomainSize;  ///< target nodes per subdomain (> 0)
   RowScaling scaling = RowScaling::Stiffness;
+  FetiPreconditioner preconditioner = FetiPreconditioner::None;
   int threads = 1;          ///< threads of the subdomains' factorizations and solves
   std::string key_context;  ///< where solver.subdomains was given, for messages
 };
@@ -59,6 +66,9 @@ struct FetiReport {
   Index n_dirichlet = 0;             ///< Dirichlet multipliers
   Index n_coarse = 0;                ///< rows of G: 6 per subdomain
   std::string row_scaling;           ///< "stiffness" or "uniform"
+  std::string preconditioner;        ///< "none" or "lumped"
+  long n_preconditioner = 0;         ///< its applications (filled after the solve)
+  double preconditioner_s = 0.0;     ///< their wall time [s], collective (filled after the solve)
   int threads = 1;                   ///< threads of the subdomain loops
   double nnz_factors = 0.0;          ///< non-zeros of all the subdomains' factors
   double factor_mib = 0.0;           ///< their memory, 8 bytes per non-zero [MiB]
@@ -83,6 +93,10 @@ struct FetiReport {
 };
 
 }  // namespace fricon::feti
+
+FRICON_ENUM_NAMES(fricon::feti::FetiPreconditioner, "solver.tfeti_preconditioner",
+                  {feti::FetiPreconditioner::None, "none"},
+                  {feti::FetiPreconditioner::Lumped, "lumped"});
 
 FRICON_ENUM_NAMES(fricon::feti::RowScaling, "solver.tfeti_scaling",
                   {feti::RowScaling::Stiffness, "stiffness"},

@@ -6,6 +6,7 @@
 
 #include "fricon/core/timer.hpp"
 #include "fricon/feti/partition.hpp"
+#include "fricon/feti/preconditioner.hpp"
 #include "fricon/feti/subdomains.hpp"
 
 namespace fricon::feti {
@@ -75,7 +76,8 @@ std::unique_ptr<FetiOperator> make_tfeti(const mesh::TetMesh& mesh, const mesh::
                                          const VectorXd& offset, const FetiOptions& options,
                                          const Ranks& ranks, FetiReport& report) {
   report.threads = options.threads;
-  report.row_scaling = options.scaling == RowScaling::Stiffness ? "stiffness" : "uniform";
+  report.row_scaling = std::string(enum_name(options.scaling));
+  report.preconditioner = std::string(enum_name(options.preconditioner));
   // @sect: the subdomains of each body (METIS on its dual graph).
   Stopwatch watch;
   const Index wanted = options.subdomains > 0 ? options.subdomains
@@ -89,7 +91,8 @@ std::unique_ptr<FetiOperator> make_tfeti(const mesh::TetMesh& mesh, const mesh::
   watch.restart();
   const std::vector<Index> owners = node_owners(mesh, partition);
   std::vector<Subdomain> subdomains =
-      make_subdomains(mesh, materials, partition, owners, applied, options.threads, ranks);
+      make_subdomains(mesh, materials, partition, owners, applied, options.threads, ranks,
+                      options.preconditioner == FetiPreconditioner::Lumped);
   report.factorization_s = watch.seconds();
   describe_subdomains(subdomains, ranks, report);
 
@@ -98,6 +101,7 @@ std::unique_ptr<FetiOperator> make_tfeti(const mesh::TetMesh& mesh, const mesh::
   const std::vector<Index> owner_dof = owner_dofs(subdomains, owners, mesh.n_nodes());
   TornRows rows = tear_rows(subdomains, owner_dof, dofs, prescribed, B, offset, options.scaling);
   attach_rows(rows.B, subdomains);
+  keep_interface_stiffness(subdomains, rows.n_contact);
   report.n_torn = rows.B.cols();
   report.n_contact = rows.n_contact;
   report.n_gluing = rows.n_gluing;
@@ -105,6 +109,7 @@ std::unique_ptr<FetiOperator> make_tfeti(const mesh::TetMesh& mesh, const mesh::
   report.n_coarse = kSubdomainMotions * report.n_subdomains;
   auto op = std::make_unique<FetiOperator>(std::move(subdomains), std::move(rows), owner_dof, dofs,
                                            options.threads, ranks);
+  op->set_preconditioner(make_preconditioner(options.preconditioner, *op));
   report.operator_s = watch.seconds();
   record_peak_memory(ranks, report);
   return op;

@@ -79,6 +79,7 @@ std::string MpgpReport::full() const {
   line("n_expansion_fallbacks", std::to_string(n_expansion_fallbacks));
   line("n_products", std::to_string(n_products));
   line("n_power_products", std::to_string(n_power_products));
+  line("n_preconditioner", std::to_string(n_preconditioner));
   line("norm_A_used",
        fmt::format("{:.6e} ({})", norm_A_used, norm_A_estimated ? "power iteration" : "given"));
   line("alpha_bar_used", fmt::format("{:.6e}", alpha_bar_used));
@@ -172,6 +173,7 @@ struct MpgpState {
         Ap(x.size()),
         phi(x.size()),
         beta(x.size()),
+        z(x.size()),
         spectral(trial_length) {}
 
   /// The work vectors of the Optimal and ProjectedCG expansions (allocated at their first use).
@@ -188,6 +190,7 @@ struct MpgpState {
   Eigen::VectorXd Ap;       ///< A p
   Eigen::VectorXd phi;      ///< the free gradient at x (docs/theory.md §4.1)
   Eigen::VectorXd beta;     ///< the chopped gradient at x
+  Eigen::VectorXd z;        ///< the preconditioned free gradient (with a preconditioner)
   Eigen::VectorXd x_saved;  ///< x (and g_saved its g) before an expansion move that may fall back
   Eigen::VectorXd g_saved;
   Eigen::VectorXd gr;  ///< the reduced free gradient (direction of the Optimal expansion)
@@ -249,6 +252,7 @@ class Mpgp {
   void multiply(const Eigen::VectorXd& v, Eigen::VectorXd& Av);
   void refresh_gradient();
   void split_and_restart();
+  const Eigen::VectorXd& cg_direction();
   std::optional<Stop> stop_test();
   void count(char kind);
   void record(char kind, double alpha);
@@ -332,15 +336,16 @@ MpgpStep Mpgp::cg_or_expansion_step() {
 }
 
 // Lines 7-8: the CG step inside the feasible set, g updated recursively, and the next conjugate
-// direction p = phi - beta_cg p.
+// direction p = z - beta_cg p (z = phi, or its preconditioned image in face).
 MpgpStep Mpgp::cg_step(double a_cg, double pAp) {
   if (bb_) s_.spectral.update(s_.p.squaredNorm(), pAp, s_.Ap.squaredNorm());
   s_.x.noalias() -= a_cg * s_.p;
   s_.g.noalias() -= a_cg * s_.Ap;
   c_.project(s_.x);  // only removes rounding-level infeasibility when a_cg ~ a_f
   s_.split = kern_.split(s_.x, s_.g, s_.phi, s_.beta);
-  const double beta_cg = s_.phi.dot(s_.Ap) / pAp;
-  s_.p = s_.phi - beta_cg * s_.p;
+  const Eigen::VectorXd& z = cg_direction();
+  const double beta_cg = z.dot(s_.Ap) / pAp;
+  s_.p = z - beta_cg * s_.p;
   s_.recursive = bb_;
   return taken('c', a_cg);
 }
@@ -528,10 +533,22 @@ void Mpgp::refresh_gradient() {
   s_.recursive = false;
 }
 
-// The split of g at x, and p := phi (line 15: CG restarts).
+// The split of g at x, and p := phi, or its preconditioned image (line 15: CG restarts).
 void Mpgp::split_and_restart() {
   s_.split = kern_.split(s_.x, s_.g, s_.phi, s_.beta);
-  s_.p = s_.phi;
+  s_.p = cg_direction();
+}
+
+// The direction of the CG steps (§4.2): phi, or with a preconditioner M, z = M phi restricted to
+// the face of x. phi vanishes off the face, so g^T z = phi^T M phi > 0: a descent direction.
+const Eigen::VectorXd& Mpgp::cg_direction() {
+  if (!opt_.preconditioner) return s_.phi;
+  opt_.preconditioner(s_.phi, s_.z);
+  FRICON_CHECK(s_.z.size() == s_.phi.size(), "preconditioner returned a vector of size "
+                                                 << s_.z.size() << ", expected " << s_.phi.size());
+  kern_.restrict_to_face(s_.x, s_.z);
+  ++rep_.n_preconditioner;
+  return s_.z;
 }
 
 // Line 3, ||g^P|| <= threshold, where BarzilaiBorwein first recomputes a recursive gradient

@@ -17,7 +17,8 @@
 //        step x := P(x - alpha_bar g)                                           (1 product)
 // alpha_bar = step_factor / ||A|| with ||A|| given or estimated by power iteration. With
 // step_factor <= 2 no step increases q. Convergence is R-linear in the condition number of A.
-// No preconditioning.
+// MpgpOptions::preconditioner, when given, preconditions the CG steps in face (§4.2): they move
+// along M phi restricted to the free blocks, M an approximation of A^-1.
 //
 // MpgpOptions::variant selects the algorithm (MpgpVariant below): Paper is the algorithm above,
 // BarzilaiBorwein (the default) replaces its fixed-length projected-gradient moves by spectral
@@ -199,6 +200,12 @@ struct MpgpOptions {
   /// Optional: a stopping threshold that depends on the iterate (the inner test of SMALSE-M,
   /// qp/smalse.hpp): the test becomes ||g^P|| <= max(the threshold above, adaptive_tolerance(x)).
   std::function<double(const Eigen::VectorXd& x)> adaptive_tolerance;
+  /// Optional: M, a symmetric positive definite approximation of A^-1, for preconditioning in face
+  /// (docs/theory.md §4.2): the CG steps move along z = M phi restricted to the face of x (the
+  /// blocks that are not active) instead of phi, and CG restarts from z; the expansion and
+  /// proportioning steps, the proportionality and the stopping tests are those without. One
+  /// application per CG step and per restart. Empty (default): none.
+  Operator preconditioner;
   /// Optional; called after every iteration and once for the starting point. Return false to
   /// stop (QpTermination::UserStopped).
   std::function<bool(const MpgpIteration&)> monitor;
@@ -237,6 +244,7 @@ struct MpgpReport {
   /// n_expansion_products = 2 n_expansion for Fixed). Power-method products are not included.
   long n_products = 0;
   long n_power_products = 0;  ///< products spent estimating ||A|| (0 if MpgpOptions::norm_A > 0)
+  long n_preconditioner = 0;  ///< applications of MpgpOptions::preconditioner (0 without)
   bool norm_A_estimated = false;  ///< true if norm_A_used comes from the power method
   double norm_A_used = 0.0;       ///< ||A|| behind alpha_bar (given or estimated)
   double alpha_bar_used = 0.0;    ///< step_factor / norm_A_used

@@ -156,6 +156,19 @@ double Kernels::max_feasible_step(const Eigen::VectorXd& x, const Eigen::VectorX
   return a;
 }
 
+void Kernels::restrict_to_face(const Eigen::VectorXd& x, Eigen::VectorXd& v) const {
+  for (std::size_t k = 0; k < c_.blocks.size(); ++k) {
+    const Index o = c_.blocks[k].offset;
+    if (c_.blocks[k].kind == BlockKind::Free) continue;  // never active
+    if (c_.blocks[k].kind == BlockKind::Bound) {
+      if (x(o) <= tol_bound_) v(o) = 0.0;
+      continue;
+    }
+    const double rho = c_.radius(static_cast<Index>(k));
+    if (rho == 0.0 || norm2(x(o), x(o + 1)) >= (1.0 - tol_disc_) * rho) v(o) = v(o + 1) = 0.0;
+  }
+}
+
 void SpectralLength::update(double ss, double sy, double yy) {
   if (!(ss > 0.0 && sy > 0.0 && yy > 0.0) || !std::isfinite(ss + sy + yy)) return;
   const double a1 = ss / sy;

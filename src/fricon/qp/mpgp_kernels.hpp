@@ -7,6 +7,7 @@
 //                               direction)
 //   Kernels::rounding_scale     the rounding level of g^T d for a projected direction d
 //   Kernels::max_feasible_step  the longest feasible step along -p (the CG step's a_f)
+//   Kernels::restrict_to_face   a vector with the active blocks cleared (preconditioning in face)
 //   SpectralLength              the Barzilai-Borwein trial length of the bb variant (§4.3)
 
 #include <array>
@@ -52,6 +53,10 @@ class Kernels {
   /// Largest t >= 0 with x - t p in Omega (+inf if no block restricts; Free blocks never do); x
   /// must be feasible up to rounding.
   double max_feasible_step(const Eigen::VectorXd& x, const Eigen::VectorXd& p) const;
+
+  /// Clears v on the blocks that split() finds active at x (and on pinned discs): v restricted
+  /// to the face of x, where the preconditioned CG steps move (docs/theory.md §4.2).
+  void restrict_to_face(const Eigen::VectorXd& x, Eigen::VectorXd& v) const;
 
  private:
   const SeparableConstraints& c_;

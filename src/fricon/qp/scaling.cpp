@@ -35,6 +35,19 @@ Operator BlockScaling::scaled(const Operator& A) const {
   };
 }
 
+Operator BlockScaling::scaled_inverse(const Operator& M) const {
+  return [&M, this](const Eigen::VectorXd& y, Eigen::VectorXd& z) {
+    M(y.cwiseQuotient(d_), z);
+    z.array() /= d_.array();
+  };
+}
+
+MpgpOptions BlockScaling::scaled(const MpgpOptions& opt) const {
+  MpgpOptions o = opt;
+  if (opt.preconditioner) o.preconditioner = scaled_inverse(opt.preconditioner);
+  return o;
+}
+
 SeparableConstraints BlockScaling::scaled(const SeparableConstraints& c) const {
   FRICON_CHECK(c.size() == d_.size(), "constraints of " << c.size() << " for " << d_.size());
   SeparableConstraints s = c;
@@ -52,7 +65,7 @@ MpgpReport solve_mpgp_scaled(const Operator& A, const Eigen::VectorXd& b,
   const Operator A_scaled = D.scaled(A);
   const SeparableConstraints c_scaled = D.scaled(c);
   Eigen::VectorXd y = D.to_scaled(x);
-  MpgpReport rep = solve_mpgp(A_scaled, D.dual_to_scaled(b), c_scaled, opt, y);
+  MpgpReport rep = solve_mpgp(A_scaled, D.dual_to_scaled(b), c_scaled, D.scaled(opt), y);
   x = D.from_scaled(y);
   return rep;
 }
@@ -66,8 +79,8 @@ SmalseReport solve_smalse_scaled(const Operator& A, const Eigen::VectorXd& b,
                "x has " << x.size() << " and b " << b.size() << " entries for " << D.size());
   const EqualityConstraint eq_scaled{SparseMatrix(eq.G * D.d().asDiagonal()), eq.e};
   Eigen::VectorXd y = D.to_scaled(x);
-  SmalseReport rep =
-      solve_smalse(D.scaled(A), D.dual_to_scaled(b), D.scaled(c), eq_scaled, opt, inner, y, mu);
+  SmalseReport rep = solve_smalse(D.scaled(A), D.dual_to_scaled(b), D.scaled(c), eq_scaled, opt,
+                                  D.scaled(inner), y, mu);
   x = D.from_scaled(y);
   return rep;
 }

@@ -41,6 +41,11 @@ class BlockScaling {
   Eigen::VectorXd dual_to_scaled(const Eigen::VectorXd& v) const { return v.cwiseProduct(d_); }
   /// y -> D A D y.
   Operator scaled(const Operator& A) const;
+  /// y -> D^-1 M D^-1 y: the image of M, an approximation of A^-1 (a preconditioner), under the
+  /// change of variables, an approximation of (D A D)^-1.
+  Operator scaled_inverse(const Operator& M) const;
+  /// The options `opt` with their preconditioner, if any, made scaled_inverse of it.
+  MpgpOptions scaled(const MpgpOptions& opt) const;
   /// D^-1 Omega: the same blocks, each disc radius divided by its block's factor.
   SeparableConstraints scaled(const SeparableConstraints& c) const;
 
@@ -50,8 +55,9 @@ class BlockScaling {
 };
 
 /// solve_mpgp on the scaled problem: x (in, the initial guess; out, the last iterate) stays in
-/// the original variables; opt.norm_A must be ||D A D|| (or 0: estimated on D A D); the report's
-/// norms (gradients, b, the reference of the stopping test) are those of the scaled problem.
+/// the original variables; opt.norm_A must be ||D A D|| (or 0: estimated on D A D), and
+/// opt.preconditioner, if any, approximates A^-1 (it is scaled with A); the report's norms
+/// (gradients, b, the reference of the stopping test) are those of the scaled problem.
 MpgpReport solve_mpgp_scaled(const Operator& A, const Eigen::VectorXd& b,
                              const SeparableConstraints& c, const BlockScaling& D,
                              const MpgpOptions& opt, Eigen::VectorXd& x);

@@ -139,6 +139,7 @@ Infeasibility along_one_row(const SparseMatrix& Ga, const Eigen::VectorXd& e,
 void accumulate(const MpgpReport& inner, SmalseReport& rep) {
   rep.iterations += inner.iterations;
   rep.n_products += inner.n_products;
+  rep.n_preconditioner += inner.n_preconditioner;
   rep.last_inner = inner;
 }
 
@@ -304,6 +305,17 @@ SmalseReport solve_smalse(const Operator& A, const Eigen::VectorXd& b,
   io.rel_tolerance = 0.0;
   // ||Gh^T Gh|| = 1; with the projector the two terms act on orthogonal subspaces.
   io.norm_A = opt.projector ? std::max(norm_A, rho) : norm_A + rho;
+  // Preconditioning in face: with the projector the Hessian is P A P + rho Q on complementary
+  // subspaces, so M approximating A^-1 gives P M P + Q / rho (theory.md §4.6).
+  Eigen::VectorXd Pm;
+  if (inner.preconditioner && opt.projector)
+    io.preconditioner = [&](const Eigen::VectorXd& v, Eigen::VectorXd& z) {
+      const Eigen::VectorXd along_rows = rows.onto_rows(v);
+      Pm = v - along_rows;
+      inner.preconditioner(Pm, z);
+      rows.project(z);
+      z.noalias() += (1.0 / rho) * along_rows;
+    };
   io.adaptive_tolerance = [&](const Eigen::VectorXd& v) {
     return std::min(M * std::sqrt(residual2(v)), eta);
   };

@@ -97,6 +97,7 @@ struct SmalseReport {
   int outer_iterations = 0;
   int iterations = 0;           ///< MPGP steps over all inner solves
   long n_products = 0;          ///< products with A over all inner solves (power method excluded)
+  long n_preconditioner = 0;    ///< applications of the inner preconditioner, over all inner solves
   double rho = 0.0;             ///< the penalty used
   double norm_projected = 0.0;  ///< ||P A P|| used with the projector (0 without)
   double equality_residual = 0.0;  ///< qp::equality_residual at the end

@@ -733,27 +733,35 @@ TEST_P(MpgpVariants, InactiveContactWithFreeUnknownsGivesUnconstrainedSolution) 
 // the Free blocks interleaved with the contact blocks (not only appended): b is built around a
 // chosen optimum x* (b = A x* - g* with g* in the normal cone), which strict convexity makes
 // unique, and the solver's x is checked by the KKT conditions computed here and against x*.
-TEST_P(MpgpVariants, ActiveBoundsAndDiscsWithFreeUnknownsSatisfyKkt) {
-  constexpr Index kGroups = 6;  // per group: a bound, a disc and a free unknown, 4 unknowns
-  constexpr double kCond = 100.0;
-  std::mt19937 rng(22);
-  std::uniform_real_distribution<double> U(0.0, 1.0);
-  const Index n = 4 * kGroups;
+// Bounds, discs and free unknowns with a manufactured optimum xs: per group a free unknown, a
+// bound (active with a positive multiplier in two groups of three) and a disc (on its circle,
+// pushed outward, in every other group), b = M xs - gs with gs in the normal cone at xs.
+struct ManufacturedMixed {
   SeparableConstraints c;
-  for (Index i = 0; i < kGroups; ++i) {
+  Eigen::MatrixXd M;
+  Eigen::VectorXd b, xs;
+  Index n_active_bounds = 0;
+};
+
+ManufacturedMixed bounds_discs_and_free(Index groups, double cond, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> U(0.0, 1.0);
+  const Index n = 4 * groups;  // per group: a bound, a disc and a free unknown, 4 unknowns
+  ManufacturedMixed m;
+  SeparableConstraints& c = m.c;
+  for (Index i = 0; i < groups; ++i) {
     c.blocks.push_back({BlockKind::Free, 4 * i});
     c.blocks.push_back({BlockKind::Bound, 4 * i + 1});
     c.blocks.push_back({BlockKind::Disc, 4 * i + 2});
   }
-  c.radius = Eigen::VectorXd::Zero(3 * kGroups);
+  c.radius = Eigen::VectorXd::Zero(3 * groups);
   Eigen::VectorXd xs = Eigen::VectorXd::Zero(n), gs = Eigen::VectorXd::Zero(n);
-  Index n_active_bounds = 0;
-  for (Index i = 0; i < kGroups; ++i) {
+  for (Index i = 0; i < groups; ++i) {
     const Index o = 4 * i;
     xs(o) = (i % 2 == 0 ? -1.0 : 1.0) * (1.0 + 2.0 * U(rng));  // free, g* = 0
     if (i % 3 != 2) {  // bound active with a positive multiplier
       gs(o + 1) = 0.2 + U(rng);
-      ++n_active_bounds;
+      ++m.n_active_bounds;
     } else {
       xs(o + 1) = 0.5 + U(rng);
     }
@@ -768,20 +776,77 @@ TEST_P(MpgpVariants, ActiveBoundsAndDiscsWithFreeUnknownsSatisfyKkt) {
       xs.segment<2>(o + 2) = 0.5 * rho * eta;
     }
   }
-  ASSERT_NO_THROW(c.validate());
-  ASSERT_GE(n_active_bounds, 2);
-  const Eigen::MatrixXd M = random_spd(n, kCond, rng);
-  const Eigen::VectorXd b = M * xs - gs;
+  m.M = random_spd(n, cond, rng);
+  m.b = m.M * xs - gs;
+  m.xs = xs;
+  return m;
+}
+
+TEST_P(MpgpVariants, ActiveBoundsAndDiscsWithFreeUnknownsSatisfyKkt) {
+  constexpr double kCond = 100.0;
+  const ManufacturedMixed m = bounds_discs_and_free(6, kCond, 22);
+  ASSERT_NO_THROW(m.c.validate());
+  ASSERT_GE(m.n_active_bounds, 2);
   // The active bounds matter: the unconstrained minimiser is infeasible.
-  const Eigen::VectorXd unconstrained = M.ldlt().solve(b);
-  ASSERT_GT((unconstrained - testing::reference_project(c, unconstrained)).norm(), 1e-3);
+  const Eigen::VectorXd unconstrained = m.M.ldlt().solve(m.b);
+  ASSERT_GT((unconstrained - testing::reference_project(m.c, unconstrained)).norm(), 1e-3);
   auto opt = tight();
   opt.rel_tolerance = 1e-12;
-  Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
-  const auto rep = solve_mpgp(dense_operator(M), b, c, opt, x);
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(m.b.size());
+  const auto rep = solve_mpgp(dense_operator(m.M), m.b, m.c, opt, x);
   ASSERT_EQ(rep.termination, QpTermination::Converged) << rep.full();
-  expect_kkt_by_definition(M, b, x, c, 1e-9);
-  EXPECT_LE((x - xs).norm(), 1e-9 * kCond * xs.norm()) << (x - xs).transpose();
+  expect_kkt_by_definition(m.M, m.b, x, m.c, 1e-9);
+  EXPECT_LE((x - m.xs).norm(), 1e-9 * kCond * m.xs.norm()) << (x - m.xs).transpose();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Preconditioning in face (MpgpOptions::preconditioner, docs/theory.md §4.2)
+
+// With M = A^-1 and no constraint, the first CG step from any point is the solution.
+TEST_P(MpgpVariants, PreconditionerThatIsTheInverseSolvesAnUnconstrainedProblemInOneCgStep) {
+  constexpr Index kN = 30;
+  std::mt19937 rng(5);
+  const Eigen::MatrixXd A = random_spd(kN, 1e4, rng);
+  const Eigen::MatrixXd A_inv = A.inverse();
+  const Eigen::VectorXd b = testing::random_vector(kN, rng);
+  SeparableConstraints c;
+  c.append_free(kN);
+  auto opt = options();
+  opt.rel_tolerance = 1e-10;
+  Eigen::VectorXd plain = Eigen::VectorXd::Zero(kN);
+  const auto rep_plain = solve_mpgp(dense_operator(A), b, c, opt, plain);
+  opt.preconditioner = dense_operator(A_inv);
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(kN);
+  const auto rep = solve_mpgp(dense_operator(A), b, c, opt, x);
+  ASSERT_EQ(rep.termination, QpTermination::Converged) << rep.full();
+  EXPECT_EQ(rep.n_cg, 1);
+  EXPECT_GE(rep.n_preconditioner, 1);
+  EXPECT_GT(rep_plain.n_cg, 10);  // the condition number 1e4 needs many plain CG steps
+  const Eigen::VectorXd exact = A.ldlt().solve(b);
+  EXPECT_LE((x - exact).norm(), 1e-8 * exact.norm());
+}
+
+// With active bounds and discs the preconditioner acts in the face only (restricted to the free
+// blocks): the same manufactured optimum, by a good and by a poor approximation of A^-1.
+TEST_P(MpgpVariants, PreconditionedInFaceReachesTheManufacturedOptimum) {
+  constexpr double kCond = 1e3;
+  const ManufacturedMixed m = bounds_discs_and_free(8, kCond, 31);
+  const Index n = m.b.size();
+  std::mt19937 rng(77);
+  const Eigen::MatrixXd good = m.M.inverse();
+  const Eigen::MatrixXd poor = random_spd(n, 50.0, rng);  // SPD, unrelated to M
+  for (const Eigen::MatrixXd* P : {&good, &poor}) {
+    auto opt = options();
+    opt.rel_tolerance = 1e-12;
+    opt.preconditioner = dense_operator(*P);
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
+    const auto rep = solve_mpgp(dense_operator(m.M), m.b, m.c, opt, x);
+    ASSERT_EQ(rep.termination, QpTermination::Converged) << rep.full();
+    EXPECT_GT(rep.n_preconditioner, 0);
+    EXPECT_EQ(rep.n_objective_increases, 0);
+    expect_kkt_by_definition(m.M, m.b, x, m.c, 1e-9);
+    EXPECT_LE((x - m.xs).norm(), 1e-9 * kCond * m.xs.norm()) << (x - m.xs).transpose();
+  }
 }
 
 // A load only on the free unknowns: the part of b that the bounds and discs resist is 0, but x = 0

@@ -100,6 +100,27 @@ TEST(BlockScaling, ScaledSolveReachesTheSameMinimizerInFewerProducts) {
   EXPECT_LT(scaled_kkt_residuals(x_scaled, g, p.b, p.c, D, StopReference::Resisted).max(), 1e-8);
 }
 
+// A preconditioner M ~ A^-1 of the unscaled problem becomes D^-1 M D^-1: the exact inverse stays
+// the exact inverse of D A D.
+TEST(BlockScaling, APreconditionerIsScaledAsTheInverseOfTheHessian) {
+  const GradedProblem p = graded_problem(5, 12);
+  const BlockScaling D = BlockScaling::per_block(p.c, p.patch_factor);
+  const Eigen::MatrixXd A_inv = p.M.inverse();
+  MpgpOptions opt;
+  opt.preconditioner = dense_operator(A_inv);
+  const MpgpOptions scaled = D.scaled(opt);
+  ASSERT_TRUE(scaled.preconditioner);
+  const Operator A = dense_operator(p.M);
+  const Operator DAD = D.scaled(A);
+  std::mt19937 rng(3);
+  const Eigen::VectorXd y = qp::testing::random_vector(p.b.size(), rng);
+  Eigen::VectorXd Ay(y.size()), back(y.size());
+  DAD(y, Ay);
+  scaled.preconditioner(Ay, back);
+  EXPECT_LE((back - y).norm(), 1e-9 * y.norm());
+  EXPECT_FALSE(D.scaled(MpgpOptions{}).preconditioner);  // none stays none
+}
+
 TEST(ResistedPart, KeepsThePositiveNormalEntriesAndTheDiscsOfPositiveRadius) {
   SeparableConstraints c = SeparableConstraints::contact_layout(3);
   c.set_disc_radii(Eigen::Vector3d(1.0, 0.0, 2.0));

@@ -76,6 +76,36 @@ TEST(Smalse, MeetsTheEqualityAndTheKktConditionsOfTheWholeProblem) {
   EXPECT_LE(k.max(), 1e-7) << k.feasibility << " " << k.stationarity << " " << k.complementarity;
 }
 
+// The inner solves preconditioned in face (with the projector, P M P + Q / rho): the same KKT
+// point of the whole problem, with M = A^-1 and with a poor M.
+TEST(Smalse, APreconditionedInnerSolveMeetsTheSameConditions) {
+  const Index patches = 6, n = 3 * patches;
+  SeparableConstraints c = SeparableConstraints::contact_layout(patches);
+  c.set_disc_radii(Eigen::VectorXd::Constant(patches, 0.4));
+  const Eigen::MatrixXd A = spd(n, 7);
+  std::srand(11);
+  const Eigen::VectorXd b = Eigen::VectorXd::Random(n);
+  DenseEquality eq{Eigen::MatrixXd::Zero(2, n), Eigen::VectorXd(2)};
+  for (Index p = 0; p < patches; ++p) {
+    eq.G(0, 3 * p) = 1.0;
+    eq.G(1, 3 * p + 1) = 1.0 + 0.1 * static_cast<double>(p);
+  }
+  eq.e << 3.0, 0.5;
+  const Eigen::MatrixXd good = A.inverse(), poor = spd(n, 3);
+  for (const Eigen::MatrixXd* M : {&good, &poor}) {
+    MpgpOptions inner = tight();
+    inner.preconditioner = dense(*M);
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(n), mu;
+    const SmalseReport r = solve_smalse(dense(A), b, c, eq, SmalseOptions{}, inner, x, mu);
+    ASSERT_EQ(r.termination, QpTermination::Converged) << r.message;
+    EXPECT_GT(r.n_preconditioner, 0);
+    EXPECT_LE((eq.G * x - eq.e).norm(), 1e-8 * eq.e.norm());
+    const Eigen::VectorXd g = A * x - b + eq.G.transpose() * mu;
+    const KktResiduals k = kkt_residuals(x, g, c, 1.0, b.norm());
+    EXPECT_LE(k.max(), 1e-7) << k.feasibility << " " << k.stationarity << " " << k.complementarity;
+  }
+}
+
 TEST(Smalse, AnEqualityOmegaCannotMeetIsCertifiedInfeasible) {
   const Index patches = 4, n = 3 * patches;
   SeparableConstraints c = SeparableConstraints::contact_layout(patches);
