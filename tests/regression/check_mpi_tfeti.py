@@ -14,6 +14,9 @@ pressure (max lambda_n) and max |u| to 1e-6, and the same status:
   floating2               a body held only by contact (examples/floating/free-block.toml) on 2
   two_bodies2             two bodies on non-matching meshes (examples/two-bodies) on 2
   quadratic2              10-node tetrahedra on 2 ranks
+  lumped2                 the brick at n = 8 on 16 subdomains and 2 ranks with the lumped
+                          preconditioner (solver.tfeti_preconditioner, theory.md §8.5), whose
+                          products with the subdomains' stiffnesses are sums over the ranks too
   path2                   a loading path (the Coulomb brick's friction hysteresis, 21 steps) on 8
                           subdomains and 2 ranks: every step's forces to 1e-6 of its normal force
   dump_dual2              --dump-dual (the contact QP alone) is refused once on 2 ranks, exit 1
@@ -82,12 +85,13 @@ def check_shares(report, ranks):
         sys.exit(f"FAIL: a rank's figures are missing: {shares}")
 
 
-def direct_and_tfeti(fricon, mpi, problem, out, ranks, subdomains, extra=()):
+def direct_and_tfeti(fricon, mpi, problem, out, ranks, subdomains, extra=(), tfeti_extra=()):
     direct, distributed = out / "direct", out / f"tfeti-{ranks}"
     check_mpi.run([fricon, "solve", str(problem), *TIGHT, *extra, "-q", "-o", str(direct)])
     r = check_mpi.run(check_mpi.mpirun(mpi, ranks) +
                       [fricon, "solve", str(problem), *TIGHT, *TFETI, "--set",
-                       f"solver.subdomains={subdomains}", *extra, "-o", str(distributed)])
+                       f"solver.subdomains={subdomains}", *extra, *tfeti_extra, "-o",
+                       str(distributed)])
     if r.stdout.count("fricon 0.") != 1:
         sys.exit(f"FAIL: the summary is not printed once:\n{r.stdout}")
     check_shares(common.read_report(distributed), ranks)
@@ -147,6 +151,11 @@ def main():
         direct_and_tfeti(fricon, mpi, examples / "floating" / "free-block.toml", out, 2, 8)
     elif case == "two_bodies2":
         direct_and_tfeti(fricon, mpi, examples / "two-bodies" / "stacked-blocks.toml", out, 2, 8)
+    elif case == "lumped2":
+        direct_and_tfeti(fricon, mpi, brick, out, 2, 16, n8,
+                         ["--set", 'solver.tfeti_preconditioner="lumped"'])
+        if common.read_report(out / "tfeti-2")["feti"]["n_preconditioner"] <= 0:
+            sys.exit("FAIL: the lumped preconditioner was not applied")
     elif case == "quadratic2":
         direct_and_tfeti(fricon, mpi, examples / "paper-brick-quadratic.toml", out, 2, 8)
     elif case == "path2":
