@@ -710,10 +710,11 @@ const OptionTable& solver_table() {
              "the equality multipliers) or `\"uniform\"` (one factor for all); theory.md §8.5");
     tfeti_only();
     b.choice("tfeti_preconditioner", &SolverOptions::tfeti_preconditioner,
-             "with `backend = \"tfeti\"`: what approximates F^-1 in the QP's conjugate gradient "
-             "steps: `\"none\"` (the row scaling alone) or `\"lumped\"` ((B B^T)^-1 B K B^T "
-             "(B B^T)^-1, applied to the free multipliers: preconditioning in face; one product "
-             "with every subdomain's stiffness per step, which it keeps); theory.md §8.5");
+             "with `backend = \"tfeti\"`: what preconditions the gluing and Dirichlet "
+             "multipliers in the QP's conjugate gradient steps: `\"none\"` (the row scaling "
+             "alone) or `\"lumped\"` ((B_E B_E^T)^-1 B_E K B_E^T (B_E B_E^T)^-1, in face: one "
+             "product with every subdomain's stiffness between its interface dofs per step, "
+             "which it keeps); theory.md §8.5");
     tfeti_only();
     b.check(check_solver);
     return b.build();

@@ -105,7 +105,7 @@ qp::Operator DualOperator::as_qp_operator() const {
 
 qp::Operator whole_preconditioner(const DualOperator& Q, const VectorXd& d) {
   qp::Operator equality = Q.equality_preconditioner();
-  if (!equality) return {};
+  if (!equality || Q.n_equality() == 0) return {};  // the identity of the scaled QP: none
   FRICON_CHECK(d.size() == Q.size(), "a scaling of " << d.size() << " for " << Q.size());
   const Index n_contact = Q.n_contact(), n_equality = Q.n_equality();
   return [equality = std::move(equality), d2 = VectorXd(d.head(n_contact).array().square()),

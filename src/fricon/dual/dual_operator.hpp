@@ -109,8 +109,8 @@ class DualOperator {
 
   /// M_E, an approximation of the inverse of Q's block on the equality multipliers (n_equality()
   /// entries in and out), for MPGP's preconditioning in face (Total FETI's lumped
-  /// preconditioner, theory.md §8.5; see equality_block_preconditioner), or empty: none (the
-  /// default). Collective, as apply().
+  /// preconditioner, theory.md §8.5; whole_preconditioner makes the QP's of it), or empty: none
+  /// (the default). Collective, as apply().
   virtual qp::Operator equality_preconditioner() const { return {}; }
   /// Q as a dense matrix: dense() if formed, else n_dual products with unit vectors.
   MatrixXd to_dense() const;

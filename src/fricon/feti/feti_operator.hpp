@@ -54,7 +54,7 @@ class FetiOperator final : public dual::DualOperator {
   Index n_equality() const override { return rows_.n_equality(); }
   /// M_E of set_preconditioner, counted and timed; empty without one.
   qp::Operator equality_preconditioner() const override;
-  /// The approximation of F^-1 that preconditioner() applies (make_preconditioner).
+  /// The M_E that equality_preconditioner() applies (make_preconditioner; null: none).
   void set_preconditioner(std::unique_ptr<const Preconditioner> M) {
     preconditioner_ = std::move(M);
   }

@@ -17,10 +17,10 @@ enum class RowScaling {
   Uniform,    ///< by one factor, the mean stiffness diagonal (for comparison)
 };
 
-/// What approximates F^-1 in MPGP's CG steps (theory.md §8.5).
+/// What approximates the inverse of F's equality block in MPGP's CG steps (theory.md §8.5).
 enum class FetiPreconditioner {
   None,    ///< the diagonal scaling of the rows alone
-  Lumped,  ///< (B B^T)^-1 B K B^T (B B^T)^-1, preconditioning in face
+  Lumped,  ///< (B_E B_E^T)^-1 B_E K B_E^T (B_E B_E^T)^-1, preconditioning in face
 };
 
 /// The smallest subdomain_size a user may ask for [nodes].

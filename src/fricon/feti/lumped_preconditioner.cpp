@@ -14,6 +14,7 @@
 // costs a few operations per row.
 
 #include <Eigen/SparseCholesky>
+
 #include "fricon/core/error.hpp"
 #include "fricon/feti/feti_operator.hpp"
 #include "fricon/feti/preconditioner.hpp"

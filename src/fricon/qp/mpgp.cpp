@@ -173,7 +173,6 @@ struct MpgpState {
         Ap(x.size()),
         phi(x.size()),
         beta(x.size()),
-        z(x.size()),
         spectral(trial_length) {}
 
   /// The work vectors of the Optimal and ProjectedCG expansions (allocated at their first use).
@@ -190,7 +189,7 @@ struct MpgpState {
   Eigen::VectorXd Ap;       ///< A p
   Eigen::VectorXd phi;      ///< the free gradient at x (docs/theory.md §4.1)
   Eigen::VectorXd beta;     ///< the chopped gradient at x
-  Eigen::VectorXd z;        ///< the preconditioned free gradient (with a preconditioner)
+  Eigen::VectorXd z;        ///< the preconditioned free gradient (sized by the first use)
   Eigen::VectorXd x_saved;  ///< x (and g_saved its g) before an expansion move that may fall back
   Eigen::VectorXd g_saved;
   Eigen::VectorXd gr;  ///< the reduced free gradient (direction of the Optimal expansion)
@@ -543,6 +542,7 @@ void Mpgp::split_and_restart() {
 // the face of x. phi vanishes off the face, so g^T z = phi^T M phi > 0: a descent direction.
 const Eigen::VectorXd& Mpgp::cg_direction() {
   if (!opt_.preconditioner) return s_.phi;
+  s_.z.resize(s_.phi.size());  // allocates once
   opt_.preconditioner(s_.phi, s_.z);
   FRICON_CHECK(s_.z.size() == s_.phi.size(), "preconditioner returned a vector of size "
                                                  << s_.z.size() << ", expected " << s_.phi.size());

@@ -53,56 +53,61 @@ double support_of(const Eigen::VectorXd& g, const SeparableConstraints& c) {
   return s;
 }
 
-TEST(Smalse, MeetsTheEqualityAndTheKktConditionsOfTheWholeProblem) {
+// Six patches with discs of radius 0.4 and two rows: the sum of the normal multipliers, and of
+// the first tangential ones; e reachable.
+struct TwoRowProblem {
+  SeparableConstraints c;
+  Eigen::MatrixXd A;
+  Eigen::VectorXd b;
+  DenseEquality eq;
+};
+
+TwoRowProblem two_row_problem() {
   const Index patches = 6, n = 3 * patches;
-  SeparableConstraints c = SeparableConstraints::contact_layout(patches);
-  c.set_disc_radii(Eigen::VectorXd::Constant(patches, 0.4));
-  const Eigen::MatrixXd A = spd(n, 7);
+  TwoRowProblem q;
+  q.c = SeparableConstraints::contact_layout(patches);
+  q.c.set_disc_radii(Eigen::VectorXd::Constant(patches, 0.4));
+  q.A = spd(n, 7);
   std::srand(11);
-  const Eigen::VectorXd b = Eigen::VectorXd::Random(n);
-  // Two rows: the sum of the normal multipliers, and of the first tangential ones; e reachable.
-  DenseEquality eq{Eigen::MatrixXd::Zero(2, n), Eigen::VectorXd(2)};
+  q.b = Eigen::VectorXd::Random(n);
+  q.eq = {Eigen::MatrixXd::Zero(2, n), Eigen::VectorXd(2)};
   for (Index p = 0; p < patches; ++p) {
-    eq.G(0, 3 * p) = 1.0;
-    eq.G(1, 3 * p + 1) = 1.0 + 0.1 * static_cast<double>(p);
+    q.eq.G(0, 3 * p) = 1.0;
+    q.eq.G(1, 3 * p + 1) = 1.0 + 0.1 * static_cast<double>(p);
   }
-  eq.e << 3.0, 0.5;
-  Eigen::VectorXd x = Eigen::VectorXd::Zero(n), mu;
-  const SmalseReport r = solve_smalse(dense(A), b, c, eq, SmalseOptions{}, tight(), x, mu);
-  ASSERT_EQ(r.termination, QpTermination::Converged) << r.message;
-  EXPECT_LE((eq.G * x - eq.e).norm(), 1e-8 * eq.e.norm());
-  const Eigen::VectorXd g = A * x - b + eq.G.transpose() * mu;
-  const KktResiduals k = kkt_residuals(x, g, c, 1.0, b.norm());
+  q.eq.e << 3.0, 0.5;
+  return q;
+}
+
+// x (with the equality's multiplier mu) meets G x = e and the KKT conditions of the whole problem.
+void expect_whole_kkt(const TwoRowProblem& q, const Eigen::VectorXd& x, const Eigen::VectorXd& mu) {
+  EXPECT_LE((q.eq.G * x - q.eq.e).norm(), 1e-8 * q.eq.e.norm());
+  const Eigen::VectorXd g = q.A * x - q.b + q.eq.G.transpose() * mu;
+  const KktResiduals k = kkt_residuals(x, g, q.c, 1.0, q.b.norm());
   EXPECT_LE(k.max(), 1e-7) << k.feasibility << " " << k.stationarity << " " << k.complementarity;
+}
+
+TEST(Smalse, MeetsTheEqualityAndTheKktConditionsOfTheWholeProblem) {
+  const TwoRowProblem q = two_row_problem();
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(q.b.size()), mu;
+  const SmalseReport r = solve_smalse(dense(q.A), q.b, q.c, q.eq, SmalseOptions{}, tight(), x, mu);
+  ASSERT_EQ(r.termination, QpTermination::Converged) << r.message;
+  expect_whole_kkt(q, x, mu);
 }
 
 // The inner solves preconditioned in face (with the projector, P M P + Q / rho): the same KKT
 // point of the whole problem, with M = A^-1 and with a poor M.
 TEST(Smalse, APreconditionedInnerSolveMeetsTheSameConditions) {
-  const Index patches = 6, n = 3 * patches;
-  SeparableConstraints c = SeparableConstraints::contact_layout(patches);
-  c.set_disc_radii(Eigen::VectorXd::Constant(patches, 0.4));
-  const Eigen::MatrixXd A = spd(n, 7);
-  std::srand(11);
-  const Eigen::VectorXd b = Eigen::VectorXd::Random(n);
-  DenseEquality eq{Eigen::MatrixXd::Zero(2, n), Eigen::VectorXd(2)};
-  for (Index p = 0; p < patches; ++p) {
-    eq.G(0, 3 * p) = 1.0;
-    eq.G(1, 3 * p + 1) = 1.0 + 0.1 * static_cast<double>(p);
-  }
-  eq.e << 3.0, 0.5;
-  const Eigen::MatrixXd good = A.inverse(), poor = spd(n, 3);
+  const TwoRowProblem q = two_row_problem();
+  const Eigen::MatrixXd good = q.A.inverse(), poor = spd(q.b.size(), 3);
   for (const Eigen::MatrixXd* M : {&good, &poor}) {
     MpgpOptions inner = tight();
     inner.preconditioner = dense(*M);
-    Eigen::VectorXd x = Eigen::VectorXd::Zero(n), mu;
-    const SmalseReport r = solve_smalse(dense(A), b, c, eq, SmalseOptions{}, inner, x, mu);
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(q.b.size()), mu;
+    const SmalseReport r = solve_smalse(dense(q.A), q.b, q.c, q.eq, SmalseOptions{}, inner, x, mu);
     ASSERT_EQ(r.termination, QpTermination::Converged) << r.message;
     EXPECT_GT(r.n_preconditioner, 0);
-    EXPECT_LE((eq.G * x - eq.e).norm(), 1e-8 * eq.e.norm());
-    const Eigen::VectorXd g = A * x - b + eq.G.transpose() * mu;
-    const KktResiduals k = kkt_residuals(x, g, c, 1.0, b.norm());
-    EXPECT_LE(k.max(), 1e-7) << k.feasibility << " " << k.stationarity << " " << k.complementarity;
+    expect_whole_kkt(q, x, mu);
   }
 }
 
