@@ -27,8 +27,10 @@ run. --series-tfeti-only n...: sizes that only TFETI runs (the direct factor doe
 products with F and the memory of each, from which the default subdomain_size is chosen.
 
 --preconditioners: in place of the scalability table, the --scalability sizes with
-solver.tfeti_preconditioner "none" and "lumped" (theory.md §8.5), alternated: products with F, the preconditioner's applications and time, and
-the QP's and the whole run's time; then, per preconditioner, the largest ratio of products per QP.
+solver.tfeti_preconditioner "none", "lumped" and "dirichlet" (theory.md §8.5), alternated: first
+the elastic brick (examples/elastic-brick.toml, the gluing alone: CG steps), then the paper's
+brick: products with F, the preconditioner's applications and time, and the QP's and the whole
+run's time; per preconditioner, the largest ratio of CG steps or products per QP.
 
 --scaling: at the first --scalability size, tfeti_scaling "stiffness" against "uniform" (the
 diagonal scaling of the equality rows, theory.md §8.5): products with F of whole runs.
@@ -59,9 +61,10 @@ import hertz_bench as hb
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 BRICK = ROOT / "examples" / "paper-brick.toml"
+ELASTIC = ROOT / "examples" / "elastic-brick.toml"
 
 
-def solve(fricon, folder, n, threads, sets=(), launcher=()):
+def solve(fricon, folder, n, threads, sets=(), launcher=(), problem=BRICK):
     """One solve of the brick at n with the overrides `sets` (under `launcher`, e.g. mpirun -n 2,
     when given); its report with the peak memory of the process started (mpirun's own, under a
     launcher: the ranks' are in the report)."""
@@ -72,7 +75,7 @@ def solve(fricon, folder, n, threads, sets=(), launcher=()):
         shutil.rmtree(folder)
     folder.mkdir(parents=True)
     cmd = list(launcher) + [fricon] + (["--threads", str(threads)] if threads else []) + [
-        "solve", str(BRICK), "--set", f"mesh.cells=[{3 * n},{n},{n}]", "-o", str(folder),
+        "solve", str(problem), "--set", f"mesh.cells=[{3 * n},{n},{n}]", "-o", str(folder),
         "-q"] + [arg for s in sets for arg in ("--set", s)]
     log = folder / "fricon.log"
     start = time.perf_counter()
@@ -167,17 +170,47 @@ def row_scaling(fricon, out, n, c, threads, markdown):
                      markdown), ""]
 
 
+PRECONDITIONERS = ("none", "lumped", "dirichlet")
+
+
+def elastic_preconditioners(fricon, out, sizes, c, threads, markdown):
+    """The gluing alone: examples/elastic-brick.toml (the brick without contact) at the
+    scalability sizes with each preconditioner: SMALSE-M's steps (CG steps, there being no
+    bounds), the products with F (the steps and the estimate of ||P F P||) and the time."""
+    headers = ["n", "subdomains", "preconditioner", "CG steps", "products with F",
+               "applications", "time [s]", "peak RSS [MiB]"]
+    rows, steps = [], {kind: [] for kind in PRECONDITIONERS}
+    for n in sizes:
+        subdomains = max(1, round((n / c) ** 3))
+        for kind in PRECONDITIONERS:
+            rep = solve(fricon, out / f"elastic-{n}-{kind}", n, threads,
+                        ['solver.backend="tfeti"', f"solver.subdomains={subdomains}",
+                         f'solver.tfeti_preconditioner="{kind}"'], problem=ELASTIC)
+            f = rep["feti"]
+            steps[kind].append(f["qp_iterations"])
+            rows.append([str(n), str(f["n_subdomains"]), kind, str(f["qp_iterations"]),
+                         str(f["n_products"]), str(f["n_preconditioner"]),
+                         f"{rep['time_s']:.1f}", f"{rep['peak_mib']:.0f}"])
+            print(f"  elastic n = {n}: {rows[-1]}", file=sys.stderr, flush=True)
+    lines = [f"The elastic brick (gluing alone) with (n/{c})^3 subdomains", "",
+             hb.table(headers, rows, markdown), ""]
+    for kind, values in steps.items():
+        lines.append(f"{kind}: largest ratio of CG steps between two sizes "
+                     f"{max(values) / min(values):.2f}")
+    return lines + [""]
+
+
 def preconditioners(fricon, out, sizes, c, threads, markdown):
-    """The scalability sizes solved with solver.tfeti_preconditioner "none" and "lumped"
-    (theory.md §8.5), alternated: products with F per QP, the preconditioner's applications
-    and time, the QP's time and the whole run's."""
+    """The scalability sizes solved with each solver.tfeti_preconditioner (theory.md §8.5),
+    alternated: products with F per QP, the preconditioner's applications and time, the QP's
+    time and the whole run's."""
     headers = ["n", "subdomains", "preconditioner", "products with F", "products / QP",
                "MPGP steps", "applications", "preconditioner [s]", "products [s]", "QP [s]",
                "time [s]", "peak RSS [MiB]"]
-    rows, per_qp = [], {"none": [], "lumped": []}
+    rows, per_qp = [], {kind: [] for kind in PRECONDITIONERS}
     for n in sizes:
         subdomains = max(1, round((n / c) ** 3))
-        for kind in ("none", "lumped"):
+        for kind in PRECONDITIONERS:
             rep = solve(fricon, out / f"precond-{n}-{kind}", n, threads,
                         ['solver.backend="tfeti"', f"solver.subdomains={subdomains}",
                          f'solver.tfeti_preconditioner="{kind}"'])
@@ -321,6 +354,8 @@ def main():
             lines += row_scaling(a.fricon, out, a.scalability[0], a.cells_per_subdomain,
                                  a.threads, a.markdown)
         if a.preconditioners and a.scalability:
+            lines += elastic_preconditioners(a.fricon, out, a.scalability,
+                                             a.cells_per_subdomain, a.threads, a.markdown)
             lines += preconditioners(a.fricon, out, a.scalability, a.cells_per_subdomain,
                                      a.threads, a.markdown)
         if len(a.sizes) > 1:

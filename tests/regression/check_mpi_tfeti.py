@@ -17,6 +17,8 @@ pressure (max lambda_n) and max |u| to 1e-6, and the same status:
   lumped2                 the brick at n = 8 on 16 subdomains and 2 ranks with the lumped
                           preconditioner (solver.tfeti_preconditioner, theory.md §8.5), whose
                           products with the subdomains' stiffnesses are sums over the ranks too
+  dirichlet2              the same with the Dirichlet preconditioner (the subdomains' Schur
+                          complements, each rank factoring its subdomains' interiors)
   path2                   a loading path (the Coulomb brick's friction hysteresis, 21 steps) on 8
                           subdomains and 2 ranks: every step's forces to 1e-6 of its normal force
   dump_dual2              --dump-dual (the contact QP alone) is refused once on 2 ranks, exit 1
@@ -151,11 +153,12 @@ def main():
         direct_and_tfeti(fricon, mpi, examples / "floating" / "free-block.toml", out, 2, 8)
     elif case == "two_bodies2":
         direct_and_tfeti(fricon, mpi, examples / "two-bodies" / "stacked-blocks.toml", out, 2, 8)
-    elif case == "lumped2":
+    elif case in ("lumped2", "dirichlet2"):
+        kind = case[:-1]
         direct_and_tfeti(fricon, mpi, brick, out, 2, 16, n8,
-                         ["--set", 'solver.tfeti_preconditioner="lumped"'])
+                         ["--set", f'solver.tfeti_preconditioner="{kind}"'])
         if common.read_report(out / "tfeti-2")["feti"]["n_preconditioner"] <= 0:
-            sys.exit("FAIL: the lumped preconditioner was not applied")
+            sys.exit(f"FAIL: the {kind} preconditioner was not applied")
     elif case == "quadratic2":
         direct_and_tfeti(fricon, mpi, examples / "paper-brick-quadratic.toml", out, 2, 8)
     elif case == "path2":

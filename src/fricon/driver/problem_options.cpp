@@ -712,9 +712,11 @@ const OptionTable& solver_table() {
     b.choice("tfeti_preconditioner", &SolverOptions::tfeti_preconditioner,
              "with `backend = \"tfeti\"`: what preconditions the gluing and Dirichlet "
              "multipliers in the QP's conjugate gradient steps: `\"none\"` (the row scaling "
-             "alone) or `\"lumped\"` ((B_E B_E^T)^-1 B_E K B_E^T (B_E B_E^T)^-1, in face: one "
+             "alone), `\"lumped\"` ((B_E B_E^T)^-1 B_E K B_E^T (B_E B_E^T)^-1, in face: one "
              "product with every subdomain's stiffness between its interface dofs per step, "
-             "which it keeps); theory.md §8.5");
+             "which it keeps) or `\"dirichlet\"` (the same with each subdomain's Schur "
+             "complement on those dofs: it keeps K_s and a factor of its interior, and a step "
+             "costs two products with K_s and a solve with that factor); theory.md §8.5");
     tfeti_only();
     b.check(check_solver);
     return b.build();

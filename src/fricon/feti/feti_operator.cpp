@@ -123,15 +123,15 @@ void FetiOperator::compute_load_terms() {
 
 void FetiOperator::sum_over_subdomains(
     const VectorXd& x, VectorXd& y,
-    const std::function<void(const Subdomain& s, const VectorXd& v, VectorXd& out)>& local,
+    const std::function<void(const Subdomain& s, Index i, const VectorXd& v, VectorXd& out)>& local,
     double* local_s, double* sums_s) const {
   Stopwatch watch;
   const Index n = x.size();
   for (VectorXd& p : partial_)
     p.setZero(n);
-  for_own_subdomains([&](const Subdomain& s, Index, int thread) {
+  for_own_subdomains([&](const Subdomain& s, Index i, int thread) {
     VectorXd out;
-    local(s, VectorXd(s.B.transpose() * gather(x, s.rows)), out);
+    local(s, i, VectorXd(s.B.transpose() * gather(x, s.rows)), out);
     scatter_add(s.B * out, s.rows, partial_[static_cast<size_t>(thread)]);
   });
   y = partial_[0];
@@ -145,7 +145,8 @@ void FetiOperator::sum_over_subdomains(
 
 void FetiOperator::apply(const VectorXd& x, VectorXd& y) const {
   sum_over_subdomains(
-      x, y, [](const Subdomain& s, const VectorXd& v, VectorXd& out) { out = s.factor.solve(v); },
+      x, y,
+      [](const Subdomain& s, Index, const VectorXd& v, VectorXd& out) { out = s.factor.solve(v); },
       &products_s_, &sums_s_);
   ++n_products_;
   ++n_kinv_;

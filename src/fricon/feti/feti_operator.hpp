@@ -61,17 +61,19 @@ class FetiOperator final : public dual::DualOperator {
   /// Applications of the preconditioner so far, and their wall time [s].
   long n_preconditioner() const { return n_preconditioner_; }
   double preconditioner_seconds() const { return preconditioner_s_; }
-  /// y = sum over the subdomains s of B_s local_s(B_s^T x_s): `local(s, v, out)` sets out from
-  /// v (both over the local dofs of s), on the threads, over this process's subdomains, and the
-  /// result summed over the processes (collective). The form of every product with F (local =
-  /// K_s^+) and of the lumped preconditioner (local = K_s). Adds the wall time of the local
-  /// part and of the sums to *local_s and *sums_s.
-  void sum_over_subdomains(
-      const VectorXd& x, VectorXd& y,
-      const std::function<void(const Subdomain& s, const VectorXd& v, VectorXd& out)>& local,
-      double* local_s, double* sums_s) const;
+  /// y = sum over the subdomains s of B_s local_s(B_s^T x_s): `local(s, i, v, out)` sets out from
+  /// v (both over the local dofs of s, number i), on the threads, over this process's subdomains,
+  /// and the result summed over the processes (collective). The form of every product with F
+  /// (local = K_s^+) and of the preconditioners (local = K_s or its Schur complement). Adds the
+  /// wall time of the local part and of the sums to *local_s and *sums_s.
+  void sum_over_subdomains(const VectorXd& x, VectorXd& y,
+                           const std::function<void(const Subdomain& s, Index i, const VectorXd& v,
+                                                    VectorXd& out)>& local,
+                           double* local_s, double* sums_s) const;
   Real gluing_residual(const VectorXd& lambda, const VectorXd& alpha) const override;
   const std::vector<Subdomain>& subdomains() const { return subdomains_; }
+  /// The threads of the subdomain loops.
+  int threads() const { return threads_; }
   const TornRows& rows() const { return rows_; }
   /// Products with F (apply) so far; each is one solve with every subdomain's factor.
   long n_products() const { return n_products_; }

@@ -19,8 +19,9 @@ enum class RowScaling {
 
 /// What approximates the inverse of F's equality block in MPGP's CG steps (theory.md §8.5).
 enum class FetiPreconditioner {
-  None,    ///< the diagonal scaling of the rows alone
-  Lumped,  ///< (B_E B_E^T)^-1 B_E K B_E^T (B_E B_E^T)^-1, preconditioning in face
+  None,       ///< the diagonal scaling of the rows alone
+  Lumped,     ///< (B_E B_E^T)^-1 B_E K B_E^T (B_E B_E^T)^-1, preconditioning in face
+  Dirichlet,  ///< the same with K_s's Schur complements on the equality rows' dofs
 };
 
 /// The smallest subdomain_size a user may ask for [nodes].
@@ -66,7 +67,7 @@ struct FetiReport {
   Index n_dirichlet = 0;             ///< Dirichlet multipliers
   Index n_coarse = 0;                ///< rows of G: 6 per subdomain
   std::string row_scaling;           ///< "stiffness" or "uniform"
-  std::string preconditioner;        ///< "none" or "lumped"
+  std::string preconditioner;        ///< "none", "lumped" or "dirichlet"
   long n_preconditioner = 0;         ///< its applications (filled after the solve)
   double preconditioner_s = 0.0;     ///< their wall time [s], collective (filled after the solve)
   int threads = 1;                   ///< threads of the subdomain loops
@@ -96,7 +97,8 @@ struct FetiReport {
 
 FRICON_ENUM_NAMES(fricon::feti::FetiPreconditioner, "solver.tfeti_preconditioner",
                   {feti::FetiPreconditioner::None, "none"},
-                  {feti::FetiPreconditioner::Lumped, "lumped"});
+                  {feti::FetiPreconditioner::Lumped, "lumped"},
+                  {feti::FetiPreconditioner::Dirichlet, "dirichlet"});
 
 FRICON_ENUM_NAMES(fricon::feti::RowScaling, "solver.tfeti_scaling",
                   {feti::RowScaling::Stiffness, "stiffness"},

@@ -1,12 +1,75 @@
 #include "fricon/feti/preconditioner.hpp"
 
+#include "fricon/core/error.hpp"
+#include "fricon/feti/feti_operator.hpp"
+
 namespace fricon::feti {
+
+InterfacePreconditioner::InterfacePreconditioner(const FetiOperator& F)
+    : F_(F), n_contact_(F.rows().n_contact), n_equality_(F.rows().n_equality()) {
+  const auto [first, last] = F.ranks().block(static_cast<Index>(F.subdomains().size()));
+  for (Index i = first; i < last; ++i) {
+    const Subdomain& s = F.subdomains()[static_cast<size_t>(i)];
+    FRICON_CHECK(s.K.rows() == s.n_dofs(), "the preconditioner needs K_s of subdomain " << i);
+  }
+  // The gluing and Dirichlet rows are independent (one row per link of a node's chain of copies,
+  // one per fixed component): B_E B_E^T is positive definite.
+  const SparseMatrix B_E = F.rows().B.middleRows(n_contact_, n_equality_);
+  SparseMatrix gram = B_E * B_E.transpose();
+  gram.makeCompressed();
+  row_gram_.compute(gram);
+  if (row_gram_.info() != Eigen::Success)
+    throw NumericalError("the preconditioner: B_E B_E^T is not positive definite");
+}
+
+void InterfacePreconditioner::apply(const VectorXd& x, VectorXd& y) const {
+  FRICON_CHECK(x.size() == n_equality_, "M_E of " << x.size() << " for " << n_equality_);
+  // t over all rows of B, zero on the contact rows, so that the sum over the subdomains is
+  // B S B_E^T t_E; its equality rows are B_E S B_E^T t_E.
+  VectorXd t = VectorXd::Zero(n_contact_ + n_equality_), St;
+  t.tail(n_equality_) = row_gram_.solve(x);
+  double local_s = 0.0, sums_s = 0.0;
+  F_.sum_over_subdomains(
+      t, St,
+      [this](const Subdomain& s, Index i, const VectorXd& v, VectorXd& out) {
+        local(s, i, v, out);
+      },
+      &local_s, &sums_s);
+  y = row_gram_.solve(VectorXd(St.tail(n_equality_)));
+}
+
+std::vector<bool> equality_dofs(const Subdomain& s, Index n_contact) {
+  std::vector<bool> on_equality(static_cast<size_t>(s.n_dofs()), false);
+  const SparseMatrix Bt = s.B.transpose();  // column k: local row k of B_s
+  for (Index k = 0; k < Bt.outerSize(); ++k)
+    if (s.rows[static_cast<size_t>(k)] >= n_contact)
+      for (SparseMatrix::InnerIterator it(Bt, k); it; ++it)
+        on_equality[static_cast<size_t>(it.row())] = true;
+  return on_equality;
+}
+
+void keep_interface_stiffness(std::vector<Subdomain>& subdomains, Index n_contact) {
+  for (Subdomain& s : subdomains) {
+    if (s.K.rows() == 0) continue;
+    const std::vector<bool> on_interface = equality_dofs(s, n_contact);
+    s.K.prune([&](Index i, Index j, Real) {
+      return on_interface[static_cast<size_t>(i)] && on_interface[static_cast<size_t>(j)];
+    });
+  }
+}
+
+void keep_stiffness_for(FetiPreconditioner kind, std::vector<Subdomain>& subdomains,
+                        Index n_contact) {
+  if (kind == FetiPreconditioner::Lumped) keep_interface_stiffness(subdomains, n_contact);
+}
 
 std::unique_ptr<const Preconditioner> make_preconditioner(FetiPreconditioner kind,
                                                           const FetiOperator& F) {
   switch (kind) {
     case FetiPreconditioner::Lumped:
       return make_lumped_preconditioner(F);
+    case FetiPreconditioner::Dirichlet:
+      return make_dirichlet_preconditioner(F);
     case FetiPreconditioner::None:
       break;
   }

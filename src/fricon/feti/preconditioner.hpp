@@ -1,12 +1,19 @@
 #pragma once
 // feti: what approximates the inverse of F's block on the equality multipliers, F_EE, in MPGP's
-// preconditioning in face (docs/theory.md §8.5; qp::MpgpOptions::preconditioner), one
-// implementation per file:
-//   lumped_preconditioner.cpp  (B_E B_E^T)^-1 B_E K B_E^T (B_E B_E^T)^-1
+// preconditioning in face (docs/theory.md §8.5; qp::MpgpOptions::preconditioner). Both kinds have
+// the form
+//
+//   M_E = (B_E B_E^T)^-1 B_E S B_E^T (B_E B_E^T)^-1,   S = diag(S_s),
+//
+// (InterfacePreconditioner below) and differ in S_s, one implementation per file:
+//   lumped_preconditioner.cpp     S_s = K_s
+//   dirichlet_preconditioner.cpp  S_s = K_s's Schur complement on its equality rows' dofs
 // chosen once, by solver.tfeti_preconditioner (FetiPreconditioner).
 
 #include <memory>
 #include <vector>
+
+#include <Eigen/SparseCholesky>
 
 #include "fricon/core/types.hpp"
 #include "fricon/feti/feti_options.hpp"
@@ -26,17 +33,53 @@ class Preconditioner {
   virtual void apply(const VectorXd& x, VectorXd& y) const = 0;
 };
 
-/// The preconditioner `kind` of F (null for FetiPreconditioner::None); F must outlive it. The
-/// lumped one needs the subdomains' stiffnesses (make_subdomains with keep_stiffness). Collective.
+/// M_E = (B_E B_E^T)^-1 B_E S B_E^T (B_E B_E^T)^-1 with S = diag(S_s) given by local().
+/// (B_E B_E^T)^-1 on both sides makes M_E invariant to the scaling of the rows (a row scaled by w
+/// has F's entries times w and M_E's divided by w) and accounts for the chains of gluing rows at
+/// a node of three or more copies, which are not orthogonal. B_E B_E^T is block diagonal, one
+/// small block per node and component (its chain of gluing rows and its Dirichlet row), so that
+/// its sparse LDL^T (Eigen's, minimum degree) has no fill; every process holds it, as it holds
+/// the coarse problem.
+class InterfacePreconditioner : public Preconditioner {
+ public:
+  /// Factors B_E B_E^T of F's rows; F must outlive it. Throws NumericalError if it is singular.
+  explicit InterfacePreconditioner(const FetiOperator& F);
+  /// Two solves with B_E B_E^T and one sum over the subdomains of local() (collective).
+  void apply(const VectorXd& x, VectorXd& y) const final;
+
+ protected:
+  /// out = S_s v for subdomain s (number i, one of this process's), v and out over its local
+  /// dofs; v is zero off its equality rows' dofs. Called on the subdomain threads.
+  virtual void local(const Subdomain& s, Index i, const VectorXd& v, VectorXd& out) const = 0;
+  const FetiOperator& F_;
+
+ private:
+  Index n_contact_, n_equality_;
+  Eigen::SimplicialLDLT<SparseMatrix> row_gram_;  ///< of B_E B_E^T
+};
+
+/// The preconditioner `kind` of F (null for FetiPreconditioner::None); F must outlive it. Both
+/// kinds need the subdomains' stiffnesses (make_subdomains with keep_stiffness; the lumped one
+/// only their entries of keep_interface_stiffness). Collective.
 std::unique_ptr<const Preconditioner> make_preconditioner(FetiPreconditioner kind,
                                                           const FetiOperator& F);
 
+/// Which of subdomain s's local dofs are on equality rows (B_s's rows numbered from `n_contact`
+/// on, attach_rows): the dofs on which M_E's S_s acts.
+std::vector<bool> equality_dofs(const Subdomain& s, Index n_contact);
+
 /// K_s of each subdomain that keeps it (Subdomain::K) reduced to the entries between its dofs on
-/// the equality rows (B_s's rows numbered from `n_contact` on, attach_rows): all that
-/// B_E K B_E^T reads, a fraction of K_s.
+/// the equality rows (equality_dofs): all that the lumped B_E K B_E^T reads, a fraction of K_s.
 void keep_interface_stiffness(std::vector<Subdomain>& subdomains, Index n_contact);
+
+/// Of the subdomains' stiffnesses, what preconditioner `kind` reads: the interface entries for
+/// the lumped one (keep_interface_stiffness), the whole K_s for the Dirichlet one.
+void keep_stiffness_for(FetiPreconditioner kind, std::vector<Subdomain>& subdomains,
+                        Index n_contact);
 
 /// The lumped preconditioner (lumped_preconditioner.cpp).
 std::unique_ptr<const Preconditioner> make_lumped_preconditioner(const FetiOperator& F);
+/// The Dirichlet preconditioner (dirichlet_preconditioner.cpp).
+std::unique_ptr<const Preconditioner> make_dirichlet_preconditioner(const FetiOperator& F);
 
 }  // namespace fricon::feti

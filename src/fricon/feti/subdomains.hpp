@@ -32,7 +32,7 @@ struct Subdomain {
   /// Of the regularized K_s, its solves K_s^+ [m/N]: only in the subdomains of this process
   /// (Ranks::block); empty in the others.
   linalg::CholeskyFactor factor;
-  /// K_s itself [N/m], both triangles, when asked for (the lumped preconditioner): only in the
+  /// K_s itself [N/m], both triangles, when asked for (the preconditioners): only in the
   /// subdomains of this process; else empty.
   SparseMatrix K;
   VectorXd f;                   ///< its share of the applied load [N] (at the nodes it owns)

@@ -92,7 +92,7 @@ std::unique_ptr<FetiOperator> make_tfeti(const mesh::TetMesh& mesh, const mesh::
   const std::vector<Index> owners = node_owners(mesh, partition);
   std::vector<Subdomain> subdomains =
       make_subdomains(mesh, materials, partition, owners, applied, options.threads, ranks,
-                      options.preconditioner == FetiPreconditioner::Lumped);
+                      options.preconditioner != FetiPreconditioner::None);
   report.factorization_s = watch.seconds();
   describe_subdomains(subdomains, ranks, report);
 
@@ -101,7 +101,7 @@ std::unique_ptr<FetiOperator> make_tfeti(const mesh::TetMesh& mesh, const mesh::
   const std::vector<Index> owner_dof = owner_dofs(subdomains, owners, mesh.n_nodes());
   TornRows rows = tear_rows(subdomains, owner_dof, dofs, prescribed, B, offset, options.scaling);
   attach_rows(rows.B, subdomains);
-  keep_interface_stiffness(subdomains, rows.n_contact);
+  keep_stiffness_for(options.preconditioner, subdomains, rows.n_contact);
   report.n_torn = rows.B.cols();
   report.n_contact = rows.n_contact;
   report.n_gluing = rows.n_gluing;

@@ -1,0 +1,112 @@
+// feti: the Dirichlet preconditioner of Total FETI (docs/theory.md §8.5), on the equality
+// multipliers (gluing and Dirichlet rows B_E):
+//
+//   M_E = (B_E B_E^T)^-1 B_E S B_E^T (B_E B_E^T)^-1,   S = diag(S_s),
+//   S_s = K_bb - K_bi K_ii^-1 K_ib,
+//
+// b the dofs of subdomain s on equality rows, i the others: the stiffness of the subdomain's
+// interface with its interior free to follow, where the lumped preconditioner takes K_bb alone.
+// Each subdomain of this process factors K_ii (Eigen's sparse LDL^T, minimum degree) once. As
+// B_E^T t is zero on the interior dofs, a product needs no copy of K_s's blocks:
+//
+//   w = K_s v,  z = K_ii^-1 w_i,  S_s v = (w - K_s [0; z])_b.
+//
+// A subdomain whose equality dofs do not hold its rigid motions (K_ii singular: an interface
+// on one line) keeps the lumped term K_bb, as does one without interior dofs.
+
+#include <algorithm>
+
+#include <fmt/format.h>
+#include <Eigen/SparseCholesky>
+
+#include "fricon/core/error.hpp"
+#include "fricon/core/parallel_for.hpp"
+#include "fricon/feti/feti_operator.hpp"
+#include "fricon/feti/preconditioner.hpp"
+
+namespace fricon::feti {
+
+namespace {
+
+// K_ii is taken as singular when its smallest pivot is below this share of its largest: rounding
+// in a rigid motion's pivot is far below, a held subdomain's pivots far above (the ratio of the
+// element stiffnesses of one mesh).
+constexpr double kSingularPivotShare = 1e-12;
+
+// One subdomain's interior: its dofs off the equality rows and the factor of K_ii over them.
+struct Interior {
+  std::vector<Index> dofs;
+  Eigen::SimplicialLDLT<SparseMatrix> K_ii;
+  bool held = false;  // K_ii is positive definite; else S_s = K_bb
+};
+
+void factor_interior(const Subdomain& s, Index n_contact, Interior& interior) {
+  const std::vector<bool> on_equality = equality_dofs(s, n_contact);
+  std::vector<Index> position(static_cast<size_t>(s.n_dofs()), -1);
+  for (Index d = 0; d < s.n_dofs(); ++d)
+    if (!on_equality[static_cast<size_t>(d)]) {
+      position[static_cast<size_t>(d)] = static_cast<Index>(interior.dofs.size());
+      interior.dofs.push_back(d);
+    }
+  const auto n = static_cast<Index>(interior.dofs.size());
+  if (n == 0) return;
+  std::vector<Eigen::Triplet<Real>> entries;
+  for (Index col = 0; col < s.K.outerSize(); ++col) {
+    const Index c = position[static_cast<size_t>(col)];
+    if (c < 0) continue;
+    for (SparseMatrix::InnerIterator it(s.K, col); it; ++it) {
+      const Index r = position[static_cast<size_t>(it.row())];
+      if (r >= 0) entries.emplace_back(r, c, it.value());
+    }
+  }
+  SparseMatrix K_ii(n, n);
+  K_ii.setFromTriplets(entries.begin(), entries.end());
+  interior.K_ii.compute(K_ii);
+  if (interior.K_ii.info() != Eigen::Success) return;
+  const VectorXd& D = interior.K_ii.vectorD();
+  interior.held = D.minCoeff() > kSingularPivotShare * D.cwiseAbs().maxCoeff();
+}
+
+class DirichletPreconditioner final : public InterfacePreconditioner {
+ public:
+  explicit DirichletPreconditioner(const FetiOperator& F)
+      : InterfacePreconditioner(F), interiors_(F.subdomains().size()) {
+    const auto [first, last] = F.ranks().block(static_cast<Index>(F.subdomains().size()));
+    parallel_for(last - first, F.threads(), [&](Index k, int) {
+      const Index i = first + k;
+      factor_interior(F.subdomains()[static_cast<size_t>(i)], F.rows().n_contact,
+                      interiors_[static_cast<size_t>(i)]);
+    });
+  }
+
+ private:
+  void local(const Subdomain& s, Index i, const VectorXd& v, VectorXd& out) const override {
+    const Interior& interior = interiors_[static_cast<size_t>(i)];
+    out = s.K * v;
+    if (!interior.held) {
+      for (const Index d : interior.dofs)
+        out(d) = 0.0;
+      return;
+    }
+    VectorXd w_i(static_cast<Index>(interior.dofs.size()));
+    for (std::size_t k = 0; k < interior.dofs.size(); ++k)
+      w_i(static_cast<Index>(k)) = out(interior.dofs[k]);
+    const VectorXd z = interior.K_ii.solve(w_i);
+    VectorXd z_full = VectorXd::Zero(s.n_dofs());
+    for (std::size_t k = 0; k < interior.dofs.size(); ++k)
+      z_full(interior.dofs[k]) = z(static_cast<Index>(k));
+    out.noalias() -= s.K * z_full;
+    for (const Index d : interior.dofs)
+      out(d) = 0.0;
+  }
+
+  std::vector<Interior> interiors_;  ///< per subdomain; only this process's are filled
+};
+
+}  // namespace
+
+std::unique_ptr<const Preconditioner> make_dirichlet_preconditioner(const FetiOperator& F) {
+  return std::make_unique<DirichletPreconditioner>(F);
+}
+
+}  // namespace fricon::feti
