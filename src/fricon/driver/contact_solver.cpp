@@ -23,12 +23,6 @@ namespace {
 // Power iteration for ||Q|| (theory.md §4.2): the settings of the reference reproduction.
 constexpr int kPowerIterations = 200;
 constexpr Real kPowerTolerance = 1e-10;
-// With equality multipliers (Total FETI) the QP's step lengths come from ||P Q P||, which
-// SMALSE-M estimates itself (theory.md §4.6); ||Q|| and ||D Q D|| then only scale the Coulomb
-// residual and are reported, so that a few digits suffice. Q's norm there is that of one
-// generalized inverse (theory.md §8.3), whose top eigenvalues cluster: at 1e-10 the power
-// iteration took hundreds of products with F on the brick at n = 16.
-constexpr Real kEqualityPowerTolerance = 1e-4;
 // The recovery on the contact dofs must agree with the full solve to this relative accuracy.
 constexpr Real kRecoveryTolerance = 1e-8;
 // A patch slips when ||lambda_t|| is this close to its radius (relative); it is separated when
@@ -109,7 +103,7 @@ Real estimate_norm_Q(const dual::DualOperator& Q, const qp::BlockScaling& D,
     scaled(x, y);
   };
   return qp::estimate_norm(apply, Q.size(), kPowerIterations,
-                           Q.n_equality() > 0 ? kEqualityPowerTolerance : kPowerTolerance);
+                           Q.n_equality() > 0 ? dual::kEqualityPowerTolerance : kPowerTolerance);
 }
 
 // The change of variables of the dual QP (theory.md §4.5): per patch the factor of

@@ -65,6 +65,7 @@ VectorXd solve_elastic_tfeti(const Problem& problem, const RunOptions& options, 
   free.append_free(F->size());
   qp::MpgpOptions inner = problem.solver.qp;
   inner.rel_tolerance *= dual::kEqualityToleranceShare;
+  inner.power_tolerance = dual::kEqualityPowerTolerance;
   inner.monitor = [&options](const qp::MpgpIteration&) { return !options.stop_was_requested(); };
   inner.preconditioner = F->equality_preconditioner();  // every multiplier is an equality one
   qp::SmalseOptions outer;

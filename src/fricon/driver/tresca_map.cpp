@@ -74,6 +74,7 @@ TrescaMap::TrescaMap(const fe::DofMap& dofs, const contact::ContactDiscretizatio
                "an operator of " << Q.n_contact() << " contact multipliers and a scaling of "
                                  << scaling.size() << " for " << discretization.n_dual());
   constraints_.append_free(Q.n_equality());
+  if (Q.n_equality() > 0) qp_.power_tolerance = dual::kEqualityPowerTolerance;
   set_qp_tolerance(qp.rel_tolerance);
 }
 

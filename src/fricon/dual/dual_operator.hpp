@@ -75,6 +75,15 @@ inline constexpr Real kEqualityToleranceShare = 1e-1;
 /// the norm of P Q P; on the paper's brick it needed fewer products than the floating bodies' 0.3.
 inline constexpr Real kEqualityPenaltyFactor = 1.0;
 
+/// The relative change at which the power iterations stop for a QP with equality multipliers
+/// (Total FETI; qp::MpgpOptions::power_tolerance): ||P Q P||, from which SMALSE-M takes its
+/// penalty and step length (an estimate low by 1e-3 still leaves the step 1.95/||P Q P|| below
+/// 2/||P Q P||), and ||Q||, which only scales the Coulomb residual there. On a mesh of many
+/// subdomains the top eigenvalues are close and the power iteration converges slowly: at the
+/// direct solver's 1e-8 and 1e-10 it took up to its caps of 100 and 200 products with F on the
+/// brick, more than the QP itself without contact (docs/benchmarks.md).
+inline constexpr Real kEqualityPowerTolerance = 1e-4;
+
 class DualOperator {
  public:
   virtual ~DualOperator() = default;
