@@ -173,6 +173,17 @@ def row_scaling(fricon, out, n, c, threads, markdown):
 PRECONDITIONERS = ("none", "lumped", "dirichlet")
 
 
+def each_preconditioner(fricon, out, tag, sizes, c, threads, problem=BRICK):
+    """Per size n of `sizes` with (n/c)^3 subdomains, and per preconditioner (alternated): n,
+    the preconditioner and the run's report."""
+    for n in sizes:
+        subdomains = max(1, round((n / c) ** 3))
+        for kind in PRECONDITIONERS:
+            yield n, kind, solve(fricon, out / f"{tag}-{n}-{kind}", n, threads,
+                                 ['solver.backend="tfeti"', f"solver.subdomains={subdomains}",
+                                  f'solver.tfeti_preconditioner="{kind}"'], problem=problem)
+
+
 def elastic_preconditioners(fricon, out, sizes, c, threads, markdown):
     """The gluing alone: examples/elastic-brick.toml (the brick without contact) at the
     scalability sizes with each preconditioner: SMALSE-M's steps (CG steps, there being no
@@ -180,18 +191,13 @@ def elastic_preconditioners(fricon, out, sizes, c, threads, markdown):
     headers = ["n", "subdomains", "preconditioner", "CG steps", "products with F",
                "applications", "time [s]", "peak RSS [MiB]"]
     rows, steps = [], {kind: [] for kind in PRECONDITIONERS}
-    for n in sizes:
-        subdomains = max(1, round((n / c) ** 3))
-        for kind in PRECONDITIONERS:
-            rep = solve(fricon, out / f"elastic-{n}-{kind}", n, threads,
-                        ['solver.backend="tfeti"', f"solver.subdomains={subdomains}",
-                         f'solver.tfeti_preconditioner="{kind}"'], problem=ELASTIC)
-            f = rep["feti"]
-            steps[kind].append(f["qp_iterations"])
-            rows.append([str(n), str(f["n_subdomains"]), kind, str(f["qp_iterations"]),
-                         str(f["n_products"]), str(f["n_preconditioner"]),
-                         f"{rep['time_s']:.1f}", f"{rep['peak_mib']:.0f}"])
-            print(f"  elastic n = {n}: {rows[-1]}", file=sys.stderr, flush=True)
+    for n, kind, rep in each_preconditioner(fricon, out, "elastic", sizes, c, threads, ELASTIC):
+        f = rep["feti"]
+        steps[kind].append(f["qp_iterations"])
+        rows.append([str(n), str(f["n_subdomains"]), kind, str(f["qp_iterations"]),
+                     str(f["n_products"]), str(f["n_preconditioner"]),
+                     f"{rep['time_s']:.1f}", f"{rep['peak_mib']:.0f}"])
+        print(f"  elastic n = {n}: {rows[-1]}", file=sys.stderr, flush=True)
     lines = [f"The elastic brick (gluing alone) with (n/{c})^3 subdomains", "",
              hb.table(headers, rows, markdown), ""]
     for kind, values in steps.items():
@@ -208,20 +214,15 @@ def preconditioners(fricon, out, sizes, c, threads, markdown):
                "MPGP steps", "applications", "preconditioner [s]", "products [s]", "QP [s]",
                "time [s]", "peak RSS [MiB]"]
     rows, per_qp = [], {kind: [] for kind in PRECONDITIONERS}
-    for n in sizes:
-        subdomains = max(1, round((n / c) ** 3))
-        for kind in PRECONDITIONERS:
-            rep = solve(fricon, out / f"precond-{n}-{kind}", n, threads,
-                        ['solver.backend="tfeti"', f"solver.subdomains={subdomains}",
-                         f'solver.tfeti_preconditioner="{kind}"'])
-            f = rep["feti"]
-            per_qp[kind].append(f["n_products"] / rep["outer_iterations"])
-            rows.append([str(n), str(f["n_subdomains"]), kind, str(f["n_products"]),
-                         f"{per_qp[kind][-1]:.0f}", str(rep["qp_iterations"]),
-                         str(f["n_preconditioner"]), f"{f['preconditioner_s']:.1f}",
-                         f"{f['products_s']:.1f}", f"{rep['timings']['qp']:.1f}",
-                         f"{rep['time_s']:.1f}", f"{rep['peak_mib']:.0f}"])
-            print(f"  preconditioner n = {n}: {rows[-1]}", file=sys.stderr, flush=True)
+    for n, kind, rep in each_preconditioner(fricon, out, "precond", sizes, c, threads):
+        f = rep["feti"]
+        per_qp[kind].append(f["n_products"] / rep["outer_iterations"])
+        rows.append([str(n), str(f["n_subdomains"]), kind, str(f["n_products"]),
+                     f"{per_qp[kind][-1]:.0f}", str(rep["qp_iterations"]),
+                     str(f["n_preconditioner"]), f"{f['preconditioner_s']:.1f}",
+                     f"{f['products_s']:.1f}", f"{rep['timings']['qp']:.1f}",
+                     f"{rep['time_s']:.1f}", f"{rep['peak_mib']:.0f}"])
+        print(f"  preconditioner n = {n}: {rows[-1]}", file=sys.stderr, flush=True)
     lines = [f"Preconditioners (solver.tfeti_preconditioner) with (n/{c})^3 subdomains", "",
              hb.table(headers, rows, markdown), ""]
     for kind, values in per_qp.items():

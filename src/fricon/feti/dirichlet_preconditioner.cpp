@@ -14,12 +14,8 @@
 // A subdomain whose equality dofs do not hold its rigid motions (K_ii singular: an interface
 // on one line) keeps the lumped term K_bb, as does one without interior dofs.
 
-#include <algorithm>
-
-#include <fmt/format.h>
 #include <Eigen/SparseCholesky>
 
-#include "fricon/core/error.hpp"
 #include "fricon/core/parallel_for.hpp"
 #include "fricon/feti/feti_operator.hpp"
 #include "fricon/feti/preconditioner.hpp"
@@ -82,21 +78,18 @@ class DirichletPreconditioner final : public InterfacePreconditioner {
  private:
   void local(const Subdomain& s, Index i, const VectorXd& v, VectorXd& out) const override {
     const Interior& interior = interiors_[static_cast<size_t>(i)];
-    out = s.K * v;
-    if (!interior.held) {
-      for (const Index d : interior.dofs)
-        out(d) = 0.0;
-      return;
+    out = s.K * v;  // K_bb v_b on b, K_ib v_b on i
+    if (interior.held) {
+      VectorXd z_full = VectorXd::Zero(s.n_dofs());
+      VectorXd w_i(static_cast<Index>(interior.dofs.size()));
+      for (std::size_t k = 0; k < interior.dofs.size(); ++k)
+        w_i(static_cast<Index>(k)) = out(interior.dofs[k]);
+      const VectorXd z = interior.K_ii.solve(w_i);
+      for (std::size_t k = 0; k < interior.dofs.size(); ++k)
+        z_full(interior.dofs[k]) = z(static_cast<Index>(k));
+      out.noalias() -= s.K * z_full;  // - K_bi K_ii^-1 K_ib v_b on b
     }
-    VectorXd w_i(static_cast<Index>(interior.dofs.size()));
-    for (std::size_t k = 0; k < interior.dofs.size(); ++k)
-      w_i(static_cast<Index>(k)) = out(interior.dofs[k]);
-    const VectorXd z = interior.K_ii.solve(w_i);
-    VectorXd z_full = VectorXd::Zero(s.n_dofs());
-    for (std::size_t k = 0; k < interior.dofs.size(); ++k)
-      z_full(interior.dofs[k]) = z(static_cast<Index>(k));
-    out.noalias() -= s.K * z_full;
-    for (const Index d : interior.dofs)
+    for (const Index d : interior.dofs)  // S_s acts on b alone
       out(d) = 0.0;
   }
 
