@@ -14,9 +14,11 @@ of 5 tetrahedra, 4-node elements) with mesh.cells = [3n, n, n].
 Numerical scalability (--scalability n...): the brick cut into (n / c)^3 subdomains, c =
 --cells-per-subdomain, so that every subdomain has about 3 c^3 cubes whatever n (H/h fixed). Per
 n: subdomains, unknowns, multipliers (contact, gluing, Dirichlet), coarse rows, QPs (the outer
-iterations), products with F per QP, MPGP steps per QP, the time. Theory (theory.md §8.3): the
-products per QP stay bounded as n grows. The table gives the largest ratio of products per QP
-between two sizes.
+iterations), products with F per QP (all of them, and MPGP's alone: n_mult), MPGP's steps per QP
+by kind (report.json qp_steps), the time; and the products with Q per QP of the direct solver on
+the same mesh (the same contact QP without gluing multipliers: how much of any growth is the
+contact problem's own). Theory (theory.md §8.3): the products per QP stay bounded as n grows.
+The table gives the largest ratio of products per QP between two sizes.
 
 Series (--series n...): each n solved by the direct backend ("cholmod") and by "tfeti" with
 solver.subdomain_size = --series-subdomain-size, alternated; wall time, the process's peak
@@ -95,25 +97,38 @@ def solve(fricon, folder, n, threads, sets=(), launcher=(), problem=BRICK):
 
 def scalability(fricon, out, sizes, c, threads, markdown):
     headers = ["n", "subdomains", "n_primal", "contact", "gluing", "Dirichlet", "coarse rows",
-               "QPs", "products with F", "products / QP", "MPGP steps / QP", "time [s]",
+               "QPs", "products with F", "products / QP", "MPGP products / QP",
+               "steps / QP: CG, expansion, proportioning", "direct: products / QP", "time [s]",
                "peak RSS [MiB]"]
-    rows, per_qp = [], []
+    rows, per_qp, mpgp_per_qp, direct_per_qp = [], [], [], []
     for n in sizes:
         subdomains = max(1, round((n / c) ** 3))
         rep = solve(fricon, out / f"scal-{n}", n, threads,
                     ['solver.backend="tfeti"', f"solver.subdomains={subdomains}"])
+        direct = solve(fricon, out / f"scal-direct-{n}", n, threads, ['solver.backend="cholmod"'])
         f = rep["feti"]
         qps = rep["outer_iterations"]
         per_qp.append(f["n_products"] / qps)
+        mpgp_per_qp.append(rep["n_mult"] / qps)
+        direct_per_qp.append(direct["n_mult"] / direct["outer_iterations"])
+        steps = rep["qp_steps"]
         rows.append([str(n), str(f["n_subdomains"]), str(rep["n_primal"]), str(f["n_contact"]),
                      str(f["n_gluing"]), str(f["n_dirichlet"]), str(f["n_coarse"]), str(qps),
-                     str(f["n_products"]), f"{per_qp[-1]:.0f}", f"{rep['qp_iterations'] / qps:.0f}",
-                     f"{rep['time_s']:.1f}", f"{rep['peak_mib']:.0f}"])
+                     str(f["n_products"]), f"{per_qp[-1]:.0f}", f"{mpgp_per_qp[-1]:.0f}",
+                     ", ".join(f"{steps[k] / qps:.0f}" for k in
+                               ("cg", "expansion", "proportioning")),
+                     f"{direct_per_qp[-1]:.0f}", f"{rep['time_s']:.1f}",
+                     f"{rep['peak_mib']:.0f}"])
         print(f"  scalability n = {n}: {rows[-1]}", file=sys.stderr, flush=True)
-    spread = max(per_qp) / min(per_qp)
+
+    def spread(values):
+        return max(values) / min(values)
+
     return [f"Numerical scalability: the brick cut into (n/{c})^3 subdomains (H/h fixed)", "",
             hb.table(headers, rows, markdown), "",
-            f"largest ratio of products with F per QP between two sizes: {spread:.2f}", ""]
+            "largest ratio between two sizes of the products per QP: with F (all of them) "
+            f"{spread(per_qp):.2f}, MPGP's {spread(mpgp_per_qp):.2f}; the direct solver's "
+            f"(the same contact QP without gluing) {spread(direct_per_qp):.2f}", ""]
 
 
 def series(fricon, out, sizes, tfeti_only, size, threads, markdown):

@@ -126,8 +126,10 @@ void print_summary(const driver::RunResult& result, const std::filesystem::path&
     for (double e : c.err_history)
       fmt::print(" {:.2e}", e);
     fmt::print(
-        "\n  dual QP       {} MPGP steps, n_mult = {} products with Q ({}), {} solves with K\n",
-        c.qp_iterations, c.n_mult, enum_name(c.dual_operator), c.n_kinv);
+        "\n  dual QP       {} MPGP steps ({} CG, {} expansion, {} proportioning), n_mult = {} "
+        "products with Q ({}), {} solves with K\n",
+        c.qp_iterations, c.qp_steps.cg, c.qp_steps.expansion, c.qp_steps.proportioning, c.n_mult,
+        enum_name(c.dual_operator), c.n_kinv);
     fmt::print(
         "  KKT           feasibility {:.1e}, stationarity {:.1e}, complementarity {:.1e}: max "
         "{:.1e} {} {:.1e} = 100 qp_rtol, certificate {}\n",

@@ -1,7 +1,7 @@
 """Solve the paper's brick (n = 4) with the fricon program and check every result file.
 
 Checks facts that hold independently of the solver's internals:
-  - report.json has the documented keys, the paper's sizes (n_p = 900, n_d = 36), a converged
+  - report.json has the documented keys, MPGP steps by kind that add up to qp_iterations, the paper's sizes (n_p = 900, n_d = 36), a converged
     outer loop whose last err(k) is below outer_tol, and KKT residuals at the QP tolerance;
   - report.json's geometry: one region "body" of the brick's volume, the obstacle z = 0 with
     normal e3 (not given: the plane of the bottom), the basis n = -e3, t1 = e1, t2 = e2;
@@ -28,6 +28,9 @@ for key in ["n_primal", "n_dual", "outer_iterations", "n_mult", "err_history", "
             "total_normal_force", "kkt"]:
     assert key in report, f"report.json lacks {key}"
 assert report["status"] == "converged"
+# The MPGP steps by kind add up to the steps.
+steps = report["qp_steps"]
+assert steps["cg"] + steps["expansion"] + steps["proportioning"] == report["qp_iterations"], steps
 assert report["n_primal"] == 900 and report["n_dual"] == 36
 assert report["err_history"][-1] <= report["problem"]["solver"]["outer_tol"]
 assert len(report["err_history"]) == report["outer_iterations"]

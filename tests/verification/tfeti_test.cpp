@@ -73,6 +73,10 @@ void expect_same_answer(const Problem& p, int subdomains,
       << subdomains << " subdomains";
   EXPECT_NEAR(peak_pressure(feti), peak_pressure(direct), kSameAnswer * peak_pressure(direct))
       << subdomains << " subdomains";
+  // SMALSE-M's inner steps, counted by kind over every QP, add up to its steps.
+  const auto& c = *feti.report.contact;
+  EXPECT_EQ(c.qp_steps.cg + c.qp_steps.expansion + c.qp_steps.proportioning, c.qp_iterations);
+  EXPECT_GT(c.qp_steps.cg, 0);
 }
 
 TEST(Tfeti, AnElasticBrickCutIntoManySubdomainsEqualsTheDirectSolve) {

@@ -197,6 +197,7 @@ outer::OuterReport successive_approximations(TrescaMap& map, VectorXd& phi,
                              .seconds = o.seconds};
     rep.n_mult += q.n_products;
     rep.qp_iterations += q.iterations;
+    rep.qp_steps += q.steps();
     rep.n_objective_increases += q.n_objective_increases;
     rep.smalse_outer_iterations += map.last_smalse().outer_iterations;
     rep.coarse_solves += map.last_smalse().n_coarse_solves;

@@ -124,6 +124,7 @@ struct ContactReport {
   int outer_iterations = 0;
   long n_mult = 0;                ///< products with Q over all QPs (the paper's n_mult)
   long qp_iterations = 0;         ///< MPGP steps over all QPs
+  qp::MpgpSteps qp_steps;         ///< the same by kind
   long n_kinv = 0;                ///< solves with the factor of K, all of them
   int n_objective_increases = 0;  ///< over all QPs (expected 0)
   std::vector<Real> err_history;

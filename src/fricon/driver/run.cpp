@@ -179,6 +179,7 @@ std::vector<Index> SearchRounds::patches_to_add(const contact::ContactDiscretiza
   if (!grow) return {};
   products_ += c.report.n_mult;
   qp_iterations_ += c.report.qp_iterations;
+  steps_ += c.report.qp_steps;
   solves_ += c.report.n_kinv;
   if (round < kMaxSearchRounds) return added;
   // Every left-out patch: the candidates are increasing, the rest is their complement.
@@ -196,6 +197,7 @@ std::vector<Index> SearchRounds::patches_to_add(const contact::ContactDiscretiza
 VectorXd SearchRounds::adopt_answer(ContactOutcome&& c, RunResult& r) const {
   c.report.n_mult += products_;
   c.report.qp_iterations += qp_iterations_;
+  c.report.qp_steps += steps_;
   c.report.n_kinv += solves_;
   return adopt(std::move(c), r);
 }
@@ -291,18 +293,21 @@ VectorXd update_geometry(
   if (updates.max < 0 || !r.report.contact || !r.contact) return u;
   std::optional<contact::ContactDiscretization> relinearized;
   long products = 0, qp_iterations = 0, solves = 0;
+  qp::MpgpSteps steps;
   for (int done = 0;; ++done) {
     const contact::ContactDiscretization& disc = relinearized ? *relinearized : first;
     const bool close = measure_linearization(problem, disc, u, done, r);
     ContactReport& c = *r.report.contact;
     c.n_mult += products;
     c.qp_iterations += qp_iterations;
+    c.qp_steps += steps;
     c.n_kinv += solves;
     if (close || done == updates.max || r.report.status != RunStatus::Converged ||
         options.stop_was_requested())
       return u;
     products = c.n_mult;
     qp_iterations = c.qp_iterations;
+    steps = c.qp_steps;
     solves = c.n_kinv;
     {
       phase_start(options, "contact");

@@ -59,6 +59,7 @@ class SearchRounds {
 
  private:
   long products_ = 0, qp_iterations_ = 0, solves_ = 0;
+  qp::MpgpSteps steps_;
 };
 
 /// Whether the contact search leaves patches out (theory.md §2.7): solver.contact_search is not

@@ -132,6 +132,9 @@ void TrescaMap::solve_with_equality(int k) {
   last_qp_.termination = last_smalse_.termination;
   last_qp_.message = last_smalse_.message;
   last_qp_.iterations = last_smalse_.iterations;
+  last_qp_.n_cg = static_cast<int>(last_smalse_.steps.cg);
+  last_qp_.n_expansion = static_cast<int>(last_smalse_.steps.expansion);
+  last_qp_.n_proportioning = static_cast<int>(last_smalse_.steps.proportioning);
   last_qp_.n_products = last_smalse_.n_products;
 }
 

@@ -216,6 +216,20 @@ struct MpgpOptions {
   void validate() const;
 };
 
+/// MPGP's steps by kind (docs/theory.md §4.2), summed over one or more solves.
+struct MpgpSteps {
+  long cg = 0;             ///< conjugate gradient steps
+  long expansion = 0;      ///< expansion steps (a CG step cut at the boundary, then a move)
+  long proportioning = 0;  ///< proportioning steps (along the chopped gradient)
+
+  MpgpSteps& operator+=(const MpgpSteps& o) {
+    cg += o.cg;
+    expansion += o.expansion;
+    proportioning += o.proportioning;
+    return *this;
+  }
+};
+
 struct MpgpReport {
   QpTermination termination = QpTermination::NumericalFailure;
   std::string message;                             ///< one sentence: why the solver stopped
@@ -259,6 +273,8 @@ struct MpgpReport {
   int n_objective_increases = 0;
   double seconds = 0.0;                ///< wall time of solve_mpgp [s], power method included
   std::vector<MpgpIteration> history;  ///< filled if MpgpOptions::record_history
+
+  MpgpSteps steps() const { return {n_cg, n_expansion, n_proportioning}; }
 
   /// One line: termination, iterations, products, relative ||g^P|| (and the variant if not
   /// Paper, the expansion if not Fixed).

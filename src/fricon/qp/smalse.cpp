@@ -138,6 +138,7 @@ Infeasibility along_one_row(const SparseMatrix& Ga, const Eigen::VectorXd& e,
 
 void accumulate(const MpgpReport& inner, SmalseReport& rep) {
   rep.iterations += inner.iterations;
+  rep.steps += inner.steps();
   rep.n_products += inner.n_products;
   rep.n_preconditioner += inner.n_preconditioner;
   rep.last_inner = inner;

@@ -96,6 +96,7 @@ struct SmalseReport {
   std::string message;  ///< one sentence: why the solver stopped
   int outer_iterations = 0;
   int iterations = 0;           ///< MPGP steps over all inner solves
+  MpgpSteps steps;              ///< the same by kind
   long n_products = 0;          ///< products with A over all inner solves (power method excluded)
   long n_preconditioner = 0;    ///< applications of the inner preconditioner, over all inner solves
   double rho = 0.0;             ///< the penalty used
