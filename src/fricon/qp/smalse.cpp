@@ -178,215 +178,304 @@ void SmalseOptions::validate() const {
   require("SmalseOptions::max_outer", max_outer, integer_at_least(1));
 }
 
-SmalseReport solve_smalse(const Operator& A, const Eigen::VectorXd& b,
-                          const SeparableConstraints& c, const EqualityConstraint& eq,
-                          const SmalseOptions& opt, const MpgpOptions& inner, Eigen::VectorXd& x,
-                          Eigen::VectorXd& mu) {
-  const Stopwatch watch;
-  opt.validate();
+namespace {
+
+// One SMALSE-M solve (theory.md §4.6), as named steps: the rows of G over the multipliers free
+// to move and their coarse problem S = G G^T (constructor); the check that every load along them
+// is resisted; the penalty and the augmented Hessian; the start and the linear term; then the
+// outer steps, each an MPGP solve of the augmented Lagrangian and the update of mu and M.
+// With the rows made orthonormal, Gh = W^T G_a and eh = W^T e for some W with W W^T = S^+;
+// every quantity is written through G_a and S^+ (mu = W mu_h, the null directions of the rows
+// keeping no multiplier: least norm). The operators built here refer to the object: it stays
+// where it is made.
+class SmalseM {
+ public:
+  SmalseM(const Operator& A, const Eigen::VectorXd& b, const SeparableConstraints& c,
+          const EqualityConstraint& eq, const SmalseOptions& opt, const MpgpOptions& inner,
+          SmalseReport& rep)
+      : A_(A),
+        b_(b),
+        c_(c),
+        eq_(eq),
+        opt_(opt),
+        inner_(inner),
+        rep_(rep),
+        rows_(active_columns(eq.G, c)),
+        Ga_(rows_.G()),
+        e_(kept_load()),
+        kept_{Ga_, e_},
+        eh2_(std::max(rows_.norm2(e_), 0.0)) {
+    rep_.undetermined = rows_.null();
+  }
+
+  // A load along a row direction on no free multiplier, unless dropped, makes the equality
+  // infeasible: false, with the certificate in the report.
+  bool load_is_resisted() {
+    if (opt_.drop_unresisted_load) return true;
+    auto certificate = unresisted_load(rows_, eq_.e, opt_.equality_tolerance);
+    if (!certificate) return true;
+    rep_.infeasible = true;
+    rep_.infeasibility = std::move(*certificate);
+    rep_.termination = QpTermination::NumericalFailure;
+    rep_.message =
+        "the equality constraint cannot be met: a load acts on a motion no multiplier resists";
+    return false;
+  }
+
+  void solve(Eigen::VectorXd& x, Eigen::VectorXd& mu) {
+    mu -= rows_.null() * (rows_.null().transpose() * mu);
+    choose_penalty();
+    const Operator A_aug = augmented_hessian();
+    start(x, mu);
+    set_inner_options();
+    for (int k = 0; k < opt_.max_outer; ++k)
+      if (outer_step(k, A_aug, x, mu)) break;
+    if (opt_.projector && rows_.rank() > 0) recover_multiplier(x, mu);
+  }
+
+  long n_coarse_solves() const { return rows_.n_solves(); }
+
+ private:
+  // The equality as it is solved: without the load on motions no multiplier resists, if that
+  // load is dropped.
+  Eigen::VectorXd kept_load() const {
+    if (!opt_.drop_unresisted_load) return eq_.e;
+    const Eigen::MatrixXd& null = rows_.null();
+    return eq_.e - null * (null.transpose() * eq_.e);
+  }
+
+  // ||Gh v - eh||^2
+  double residual2(const Eigen::VectorXd& v) const {
+    return std::max(rows_.norm2(Ga_ * v - e_), 0.0);
+  }
+
+  // rho = rho_factor ||A||, with ||P A P|| in place of ||A|| where the options ask for it.
+  void choose_penalty() {
+    if (opt_.projector && opt_.projected_norm && rows_.rank() > 0) {
+      const Operator PAP = [this](const Eigen::VectorXd& v, Eigen::VectorXd& y) {
+        Pv_ = v;
+        rows_.project(Pv_);
+        A_(Pv_, y);
+        rows_.project(y);
+      };
+      long products = 0;
+      norm_A_ = opt_.norm_projected > 0.0 ? opt_.norm_projected
+                                          : estimate_norm(PAP, c_.size(), inner_.power_iterations,
+                                                          inner_.power_tolerance, &products);
+      rep_.n_products += products;
+      rep_.norm_projected = norm_A_;
+    } else {
+      norm_A_ = inner_.norm_A > 0.0
+                    ? inner_.norm_A
+                    : estimate_norm(A_, c_.size(), inner_.power_iterations, inner_.power_tolerance);
+    }
+    if (!(norm_A_ > 0.0) || !std::isfinite(norm_A_))
+      throw NumericalError(fmt::format("solve_smalse: ||A|| = {}", norm_A_));
+    rep_.rho = opt_.rho_factor * norm_A_;
+    rho_ = rep_.rho;
+  }
+
+  // A + rho Gh^T Gh, or with the projector P A P + rho Gh^T Gh. On the affine set G_a x = e,
+  // with P = I - G_a^T S^+ G_a and x_e = G_a^T S^+ e, P x = x - x_e and
+  //   q(x) = 1/2 x^T (P A P) x - x^T P (b - A x_e) + const,
+  // so the QP may take the projected Hessian P A P (TFETI's natural coarse space, theory.md
+  // §4.6, §8.3): the part of A along the rows, which the generalized inverse leaves arbitrary,
+  // drops out, and P A P + rho (I - P) has the norm of A for rho = ||A||. The discs stay centred
+  // (x itself is not shifted). The multiplier of the original problem is then
+  // mu - S^+ G_a (A x - b) at the solution (recover_multiplier).
+  Operator augmented_hessian() {
+    return [this](const Eigen::VectorXd& v, Eigen::VectorXd& y) {
+      const Eigen::VectorXd along_rows = rows_.onto_rows(v);
+      if (opt_.projector) {
+        Pv_ = v - along_rows;
+        A_(Pv_, y);
+        rows_.project(y);
+      } else {
+        A_(v, y);
+      }
+      y.noalias() += rho_ * along_rows;
+    };
+  }
+
+  // A cold start (x = 0) begins at the least-norm solution of the equality, x_e, projected onto
+  // Omega (feasible for a load that pressure alone balances). With the projector the linear term
+  // is P (b - A x_e), and a warm start's mu is moved to the projected problem's.
+  void start(Eigen::VectorXd& x, Eigen::VectorXd& mu) {
+    x_e_ = Ga_.transpose() * rows_.solve(e_);
+    const bool cold = x.isZero(0.0);
+    if (cold) {
+      x = x_e_;
+      c_.project(x);
+    }
+    b_base_ = b_;
+    if (!opt_.projector) return;
+    Eigen::VectorXd Ax(c_.size());
+    A_(x_e_, Ax);
+    b_base_ -= Ax;
+    rows_.project(b_base_);
+    ++rep_.n_products;
+    if (!cold) {
+      A_(x, Ax);
+      mu += rows_.solve(Ga_ * (Ax - b_));
+      ++rep_.n_products;
+    }
+  }
+
+  // The inner MPGP's options: its norm, the preconditioner in face and the adaptive precision
+  // min(M ||Gh x - eh||, eta). The gradient test is relative to the data of the problem: b_R and
+  // the load rho e, and the projected linear term's b_base_R (the rounding level of its
+  // gradient). With the projector b's part along the rows of G is left out: it depends on which
+  // generalized inverse made A and b (the subdomains' rigid motions in Total FETI's
+  // b = B K^+ f - c, theory.md §8.3), not on the problem, and can exceed the rest by orders of
+  // magnitude.
+  void set_inner_options() {
+    reference_ =
+        std::max(resisted_part(opt_.projector ? b_base_ : b_, c_).norm(), rho_ * std::sqrt(eh2_));
+    const double eta = opt_.eta_factor * reference_;
+    M_ = opt_.M_factor * norm_A_;
+    io_ = inner_;
+    io_.rel_tolerance = 0.0;
+    // ||Gh^T Gh|| = 1; with the projector the two terms act on orthogonal subspaces.
+    io_.norm_A = opt_.projector ? std::max(norm_A_, rho_) : norm_A_ + rho_;
+    // Preconditioning in face: with the projector the Hessian is P A P + rho Q on complementary
+    // subspaces, so M approximating A^-1 gives P M P + Q / rho (theory.md §4.6).
+    if (inner_.preconditioner && opt_.projector)
+      io_.preconditioner = [this](const Eigen::VectorXd& v, Eigen::VectorXd& z) {
+        const Eigen::VectorXd along_rows = rows_.onto_rows(v);
+        Pm_ = v - along_rows;
+        inner_.preconditioner(Pm_, z);
+        rows_.project(z);
+        z.noalias() += (1.0 / rho_) * along_rows;
+      };
+    io_.adaptive_tolerance = [this, eta](const Eigen::VectorXd& v) {
+      return std::min(M_ * std::sqrt(residual2(v)), eta);
+    };
+  }
+
+  // Outer step k: minimize the augmented Lagrangian at mu, then stop (converged, failed, the
+  // equality found infeasible, the steps used up) or update mu and M. Returns true to stop.
+  bool outer_step(int k, const Operator& A_aug, Eigen::VectorXd& x, Eigen::VectorXd& mu) {
+    rep_.outer_iterations = k + 1;
+    const Eigen::VectorXd b_aug = b_base_ - Ga_.transpose() * mu + rho_ * x_e_;
+    rep_.reference_norm = std::max(reference_, resisted_part(b_base_, c_).norm());
+    const double eps_g = std::max(inner_.rel_tolerance * rep_.reference_norm, inner_.abs_tolerance);
+    io_.abs_tolerance = eps_g;
+    const MpgpReport r = solve_mpgp(A_aug, b_aug, c_, io_, x);
+    accumulate(r, rep_);
+    rep_.norm_gp = r.norm_gp;
+    rep_.equality_residual = equality_residual(kept_, x);
+    if (r.termination != QpTermination::Converged) {
+      rep_.termination = r.termination;
+      rep_.message = fmt::format("inner solve {}: {}", k + 1, r.message);
+      return true;
+    }
+    const Eigen::VectorXd res = Ga_ * x - e_;
+    const Eigen::VectorXd S_res = rows_.solve(res);
+    const double res2 = std::max(res.dot(S_res), 0.0);  // ||Gh x - eh||^2
+    if (r.norm_gp <= eps_g && rep_.equality_residual <= opt_.equality_tolerance) {
+      rep_.termination = QpTermination::Converged;
+      rep_.message = fmt::format(
+          "||g^P|| = {:.3e} <= {:.3e} and ||G x - e|| relative {:.3e} <= {:.1e} after {} outer "
+          "steps",
+          r.norm_gp, eps_g, rep_.equality_residual, opt_.equality_tolerance, k + 1);
+      return true;
+    }
+    if (found_infeasible(std::sqrt(res2), x)) return true;
+    update_multiplier(k, r.objective, S_res, res2, mu);
+    if (k + 1 < opt_.max_outer) return false;
+    rep_.termination = QpTermination::MaxIterations;
+    rep_.message =
+        fmt::format("reached max_outer = {} with ||G x - e|| / ||e|| = {:.3e} (target {:.1e})",
+                    opt_.max_outer, rep_.equality_residual, opt_.equality_tolerance);
+    return true;
+  }
+
+  // Once the residual has stopped decreasing: is the equality feasible at all (phase one)? True,
+  // with the certificate in the report, when it is not.
+  bool found_infeasible(double res_norm, const Eigen::VectorXd& x) {
+    stagnant_ = res_norm > kStagnation * residual_prev_ ? stagnant_ + 1 : 0;
+    residual_prev_ = res_norm;
+    if (stagnant_ < kStagnantSteps) return false;
+    stagnant_ = 0;
+    auto certificate = phase_one_certificate(rows_, e_, c_, inner_, x,
+                                             std::max(kInfeasibleShare, opt_.equality_tolerance));
+    if (!certificate) return false;
+    rep_.infeasible = true;
+    rep_.infeasibility = along_one_row(Ga_, eq_.e, c_, std::move(*certificate));
+    rep_.termination = QpTermination::NumericalFailure;
+    rep_.message = fmt::format(
+        "the equality constraint cannot be met in Omega: along the certificate direction the "
+        "load is {:.4g} but Omega gives at most {:.4g}",
+        rep_.infeasibility.applied, rep_.infeasibility.carried);
+    return true;
+  }
+
+  // mu += rho S^+ (G_a x - e), then the semi-monotonic update of M: divided by beta when
+  // L(x_k, mu_k+1) did not increase by rho/2 ||Gh x - eh||^2.
+  void update_multiplier(int k, double objective, const Eigen::VectorXd& S_res, double res2,
+                         Eigen::VectorXd& mu) {
+    const double L = objective - mu.dot(e_) + 0.5 * rho_ * eh2_ + rho_ * res2;
+    mu += rho_ * S_res;
+    if (k > 0 && L < L_prev_ + 0.5 * rho_ * res2) M_ /= opt_.beta;
+    L_prev_ = L;
+  }
+
+  // The multiplier of the original problem from the projected one's: mu - S^+ G_a (A x - b).
+  void recover_multiplier(const Eigen::VectorXd& x, Eigen::VectorXd& mu) {
+    Eigen::VectorXd Ax(c_.size());
+    A_(x, Ax);
+    ++rep_.n_products;
+    mu -= rows_.solve(Ga_ * (Ax - b_));
+  }
+
+  const Operator& A_;
+  const Eigen::VectorXd& b_;
+  const SeparableConstraints& c_;
+  const EqualityConstraint& eq_;
+  const SmalseOptions& opt_;
+  const MpgpOptions& inner_;
+  SmalseReport& rep_;
+  const CoarseSpace rows_;
+  const SparseMatrix& Ga_;
+  const Eigen::VectorXd e_;        ///< e as solved (kept_load)
+  const EqualityConstraint kept_;  ///< G_a x = e_
+  const double eh2_;               ///< ||eh||^2
+  double norm_A_ = 0.0, rho_ = 0.0;
+  Eigen::VectorXd x_e_, b_base_;
+  double reference_ = 0.0;  ///< the reference of the gradient test
+  double M_ = 0.0;          ///< the ratio of the inner precision to ||Gh x - eh||
+  MpgpOptions io_;          ///< the inner solves' options
+  double L_prev_ = 0.0, residual_prev_ = std::numeric_limits<double>::infinity();
+  int stagnant_ = 0;
+  Eigen::VectorXd Pv_, Pm_;  ///< work vectors of the operators
+};
+
+void check_sizes(const Eigen::VectorXd& b, const SeparableConstraints& c,
+                 const EqualityConstraint& eq, const Eigen::VectorXd& x,
+                 const Eigen::VectorXd& mu) {
   const Index n = c.size(), m = eq.G.rows();
   if (eq.G.cols() != n || eq.e.size() != m || b.size() != n || x.size() != n ||
       (mu.size() != 0 && mu.size() != m))
     throw InputError(fmt::format(
         "solve_smalse: G is {} x {}, e has {}, b {}, x {}, mu {} entries for {} unknowns", m,
         eq.G.cols(), eq.e.size(), b.size(), x.size(), mu.size(), n));
-  if (mu.size() == 0) mu = Eigen::VectorXd::Zero(m);
+}
+
+}  // namespace
+
+SmalseReport solve_smalse(const Operator& A, const Eigen::VectorXd& b,
+                          const SeparableConstraints& c, const EqualityConstraint& eq,
+                          const SmalseOptions& opt, const MpgpOptions& inner, Eigen::VectorXd& x,
+                          Eigen::VectorXd& mu) {
+  const Stopwatch watch;
+  opt.validate();
+  check_sizes(b, c, eq, x, mu);
+  if (mu.size() == 0) mu = Eigen::VectorXd::Zero(eq.G.rows());
   SmalseReport rep;
-
-  // @sect: the rows of G over the multipliers free to move and their coarse problem S = G G^T;
-  // a row direction on none of them must carry no load.
-  const CoarseSpace rows(active_columns(eq.G, c));
-  const SparseMatrix& Ga = rows.G();
-  const Eigen::MatrixXd& null = rows.null();
-  rep.undetermined = null;
-  const auto finish = [&] {
-    rep.n_coarse_solves = rows.n_solves();
-    rep.seconds = watch.seconds();
-  };
-  if (!opt.drop_unresisted_load)
-    if (auto certificate = unresisted_load(rows, eq.e, opt.equality_tolerance)) {
-      rep.infeasible = true;
-      rep.infeasibility = std::move(*certificate);
-      rep.termination = QpTermination::NumericalFailure;
-      rep.message =
-          "the equality constraint cannot be met: a load acts on a motion no multiplier "
-          "resists";
-      finish();
-      return rep;
-    }
-  // The equality as it is solved: without the dropped load, if it is dropped.
-  const Eigen::VectorXd e =
-      opt.drop_unresisted_load ? Eigen::VectorXd(eq.e - null * (null.transpose() * eq.e)) : eq.e;
-  const EqualityConstraint kept{Ga, e};
-  // With the rows made orthonormal, Gh = W^T G_a and eh = W^T e for some W with W W^T = S^+;
-  // every quantity below is written through G_a and S^+ (mu = W mu_h, the null directions of
-  // the rows keeping no multiplier: least norm).
-  mu -= null * (null.transpose() * mu);
-  const auto residual2 = [&](const Eigen::VectorXd& v) {  // ||Gh v - eh||^2
-    return std::max(rows.norm2(Ga * v - e), 0.0);
-  };
-  const double eh2 = std::max(rows.norm2(e), 0.0);  // ||eh||^2
-
-  // @sect: the penalty, the inner precision and the augmented Hessian A + rho Gh^T Gh.
-  Eigen::VectorXd Pv;
-  const Operator PAP = [&](const Eigen::VectorXd& v, Eigen::VectorXd& y) {
-    Pv = v;
-    rows.project(Pv);
-    A(Pv, y);
-    rows.project(y);
-  };
-  double norm_A = 0.0;
-  if (opt.projector && opt.projected_norm && rows.rank() > 0) {
-    long products = 0;
-    norm_A = opt.norm_projected > 0.0
-                 ? opt.norm_projected
-                 : estimate_norm(PAP, n, inner.power_iterations, inner.power_tolerance, &products);
-    rep.n_products += products;
-    rep.norm_projected = norm_A;
-  } else {
-    norm_A = inner.norm_A > 0.0
-                 ? inner.norm_A
-                 : estimate_norm(A, n, inner.power_iterations, inner.power_tolerance);
-  }
-  if (!(norm_A > 0.0) || !std::isfinite(norm_A))
-    throw NumericalError(fmt::format("solve_smalse: ||A|| = {}", norm_A));
-  rep.rho = opt.rho_factor * norm_A;
-  const double rho = rep.rho;
-  // On the affine set G_a x = e, with P = I - G_a^T S^+ G_a and x_e = G_a^T S^+ e, P x = x - x_e
-  // and
-  //   q(x) = 1/2 x^T (P A P) x - x^T P (b - A x_e) + const,
-  // so the QP may take the projected Hessian P A P (TFETI's natural coarse space, theory.md
-  // §4.6, §8.3): the part of A along the rows, which the generalized inverse leaves arbitrary,
-  // drops out, and P A P + rho (I - P) has the norm of A for rho = ||A||. The discs stay centred
-  // (x itself is not shifted). The multiplier of the original problem is then
-  // mu - S^+ G_a (A x - b) at the solution.
-  const Operator A_aug = [&](const Eigen::VectorXd& v, Eigen::VectorXd& y) {
-    const Eigen::VectorXd along_rows = rows.onto_rows(v);
-    if (opt.projector) {
-      Pv = v - along_rows;
-      A(Pv, y);
-      rows.project(y);
-    } else {
-      A(v, y);
-    }
-    y.noalias() += rho * along_rows;
-  };
-  // A cold start begins at the least-norm solution of the equality, x_e, projected onto Omega
-  // (feasible for a load that pressure alone balances).
-  const Eigen::VectorXd x_e = Ga.transpose() * rows.solve(e);
-  const bool cold = x.isZero(0.0);
-  if (cold) {
-    x = x_e;
-    c.project(x);
-  }
-  Eigen::VectorXd b_base = b;
-  if (opt.projector) {
-    Eigen::VectorXd Ax(n);
-    A(x_e, Ax);
-    b_base -= Ax;
-    rows.project(b_base);
-    ++rep.n_products;
-    // The warm start's multiplier in the projected problem.
-    if (!cold) {
-      A(x, Ax);
-      mu += rows.solve(Ga * (Ax - b));
-      ++rep.n_products;
-    }
-  }
-  // The gradient test is relative to the data of the problem: b_R and the load rho e, and the
-  // projected linear term's b_base_R (the rounding level of its gradient). With the projector
-  // b's part along the rows of G is left out: it depends on which generalized inverse made A and
-  // b (the subdomains' rigid motions in Total FETI's b = B K^+ f - c, theory.md §8.3), not on the
-  // problem, and can exceed the rest by orders of magnitude.
-  const double reference =
-      std::max(resisted_part(opt.projector ? b_base : b, c).norm(), rho * std::sqrt(eh2));
-  const double eta = opt.eta_factor * reference;
-  double M = opt.M_factor * norm_A;
-  MpgpOptions io = inner;
-  io.rel_tolerance = 0.0;
-  // ||Gh^T Gh|| = 1; with the projector the two terms act on orthogonal subspaces.
-  io.norm_A = opt.projector ? std::max(norm_A, rho) : norm_A + rho;
-  // Preconditioning in face: with the projector the Hessian is P A P + rho Q on complementary
-  // subspaces, so M approximating A^-1 gives P M P + Q / rho (theory.md §4.6).
-  Eigen::VectorXd Pm;
-  if (inner.preconditioner && opt.projector)
-    io.preconditioner = [&](const Eigen::VectorXd& v, Eigen::VectorXd& z) {
-      const Eigen::VectorXd along_rows = rows.onto_rows(v);
-      Pm = v - along_rows;
-      inner.preconditioner(Pm, z);
-      rows.project(z);
-      z.noalias() += (1.0 / rho) * along_rows;
-    };
-  io.adaptive_tolerance = [&](const Eigen::VectorXd& v) {
-    return std::min(M * std::sqrt(residual2(v)), eta);
-  };
-
-  // @sect: the outer steps.
-  double L_prev = 0.0, residual_prev = std::numeric_limits<double>::infinity();
-  int stagnant = 0;
-  for (int k = 0; k < opt.max_outer; ++k) {
-    rep.outer_iterations = k + 1;
-    const Eigen::VectorXd b_aug = b_base - Ga.transpose() * mu + rho * x_e;
-    rep.reference_norm = std::max(reference, resisted_part(b_base, c).norm());
-    const double eps_g = std::max(inner.rel_tolerance * rep.reference_norm, inner.abs_tolerance);
-    io.abs_tolerance = eps_g;
-    const MpgpReport r = solve_mpgp(A_aug, b_aug, c, io, x);
-    accumulate(r, rep);
-    rep.norm_gp = r.norm_gp;
-    rep.equality_residual = equality_residual(kept, x);
-    if (r.termination != QpTermination::Converged) {
-      rep.termination = r.termination;
-      rep.message = fmt::format("inner solve {}: {}", k + 1, r.message);
-      break;
-    }
-    const Eigen::VectorXd res = Ga * x - e;
-    const Eigen::VectorXd S_res = rows.solve(res);
-    const double res2 = std::max(res.dot(S_res), 0.0);  // ||Gh x - eh||^2
-    if (r.norm_gp <= eps_g && rep.equality_residual <= opt.equality_tolerance) {
-      rep.termination = QpTermination::Converged;
-      rep.message = fmt::format(
-          "||g^P|| = {:.3e} <= {:.3e} and ||G x - e|| relative {:.3e} <= {:.1e} after {} outer "
-          "steps",
-          r.norm_gp, eps_g, rep.equality_residual, opt.equality_tolerance, k + 1);
-      break;
-    }
-    // Once the residual has stopped decreasing: is the equality feasible at all (phase one)?
-    const double res_norm = std::sqrt(res2);
-    stagnant = res_norm > kStagnation * residual_prev ? stagnant + 1 : 0;
-    residual_prev = res_norm;
-    if (stagnant >= kStagnantSteps) {
-      stagnant = 0;
-      if (auto certificate = phase_one_certificate(
-              rows, e, c, inner, x, std::max(kInfeasibleShare, opt.equality_tolerance))) {
-        rep.infeasible = true;
-        rep.infeasibility = along_one_row(Ga, eq.e, c, std::move(*certificate));
-        rep.termination = QpTermination::NumericalFailure;
-        rep.message = fmt::format(
-            "the equality constraint cannot be met in Omega: along the certificate direction the "
-            "load is {:.4g} but Omega gives at most {:.4g}",
-            rep.infeasibility.applied, rep.infeasibility.carried);
-        break;
-      }
-    }
-    // Lagrange multipliers, then the semi-monotonic update of M.
-    const double L = r.objective - mu.dot(e) + 0.5 * rho * eh2 + rho * res2;  // L(x_k, mu_k+1)
-    mu += rho * S_res;
-    if (k > 0 && L < L_prev + 0.5 * rho * res2) M /= opt.beta;
-    L_prev = L;
-    if (k + 1 == opt.max_outer) {
-      rep.termination = QpTermination::MaxIterations;
-      rep.message =
-          fmt::format("reached max_outer = {} with ||G x - e|| / ||e|| = {:.3e} (target {:.1e})",
-                      opt.max_outer, rep.equality_residual, opt.equality_tolerance);
-    }
-  }
-  if (opt.projector && rows.rank() > 0) {
-    Eigen::VectorXd Ax(n);
-    A(x, Ax);
-    ++rep.n_products;
-    mu -= rows.solve(Ga * (Ax - b));
-  }
-  finish();
+  SmalseM smalse(A, b, c, eq, opt, inner, rep);
+  if (smalse.load_is_resisted()) smalse.solve(x, mu);
+  rep.n_coarse_solves = smalse.n_coarse_solves();
+  rep.seconds = watch.seconds();
   return rep;
 }
 
