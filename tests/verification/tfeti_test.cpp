@@ -216,6 +216,13 @@ TEST(Tfeti, AFloatingBlockAndTwoStackedBodiesGiveTheDirectAnswer) {
   expect_same_answer(example("examples/two-bodies/stacked-blocks.toml", {}), 8);
 }
 
+// The wheel (examples/geometry/wheel.toml): two materials, a curved tread, Coulomb friction, and
+// driven by a prescribed displacement only, so that the equality G lambda = e has e = 0
+// (theory.md §4.6, the inner floor).
+TEST(Tfeti, TheWheelGivesTheDirectAnswer) {
+  expect_same_answer(example("examples/geometry/wheel.toml", {}), 8);
+}
+
 TEST(Tfeti, TheHertzHemisphereGivesTheDirectAnswer) {
   expect_same_answer(example("examples/geometry/hertz-hemisphere.toml", {}), 8);
 }

@@ -359,7 +359,7 @@ class SmalseM {
     const Eigen::VectorXd b_aug = b_base_ - Ga_.transpose() * mu + rho_ * x_e_;
     rep_.reference_norm = std::max(reference_, resisted_part(b_base_, c_).norm());
     const double eps_g = std::max(inner_.rel_tolerance * rep_.reference_norm, inner_.abs_tolerance);
-    io_.abs_tolerance = eps_g;
+    io_.abs_tolerance = std::min(eps_g, equality_floor_);
     const MpgpReport r = solve_mpgp(A_aug, b_aug, c_, io_, x);
     accumulate(r, rep_);
     rep_.norm_gp = r.norm_gp;
@@ -381,6 +381,7 @@ class SmalseM {
       return true;
     }
     if (found_infeasible(std::sqrt(res2), x)) return true;
+    tighten_for_equality(res2);
     update_multiplier(k, r.objective, S_res, res2, mu);
     if (k + 1 < opt_.max_outer) return false;
     rep_.termination = QpTermination::MaxIterations;
@@ -408,6 +409,18 @@ class SmalseM {
         "load is {:.4g} but Omega gives at most {:.4g}",
         rep_.infeasibility.applied, rep_.infeasibility.carried);
     return true;
+  }
+
+  // The residual along the rows moves the augmented gradient by about rho ||Gh x - eh||, so an
+  // inner solve that stops at a gradient of eps_g leaves the residual at about eps_g / rho,
+  // whatever mu does; M shrinks and the outer steps stall. Where that residual is above the
+  // equality's tolerance (e.g. a load-free equality, e = 0, measured against the magnitudes of
+  // G x's terms), the later inner solves stop only at the gradient that the tolerance asks for:
+  // rho ||Gh x - eh|| scaled by the tolerance over the residual (theory.md §4.6).
+  void tighten_for_equality(double res2) {
+    if (rep_.equality_residual <= opt_.equality_tolerance) return;
+    const double needed = rho_ * std::sqrt(res2) * opt_.equality_tolerance / rep_.equality_residual;
+    equality_floor_ = std::min(equality_floor_, needed);
   }
 
   // mu += rho S^+ (G_a x - e), then the semi-monotonic update of M: divided by beta when
@@ -447,6 +460,8 @@ class SmalseM {
   MpgpOptions io_;          ///< the inner solves' options
   double L_prev_ = 0.0, residual_prev_ = std::numeric_limits<double>::infinity();
   int stagnant_ = 0;
+  /// The inner solves' precision that the equality asks for (tighten_for_equality).
+  double equality_floor_ = std::numeric_limits<double>::infinity();
   Eigen::VectorXd Pv_, Pm_;  ///< work vectors of the operators
 };
 
