@@ -11,6 +11,8 @@ pressure (max lambda_n) and max |u| to 1e-6, and the same status:
                           report's shares of the ranks add up to the subdomains and tetrahedra
   hertz2                  the Hertz hemisphere (a Gmsh mesh, a curved obstacle, its geometric
                           updates) on 8 subdomains and 2 ranks
+  wheel2                  the wheel (two materials, Coulomb, a curved tread, driven by a prescribed
+                          displacement only) on 8 subdomains and 2 ranks
   floating2               a body held only by contact (examples/floating/free-block.toml) on 2
   two_bodies2             two bodies on non-matching meshes (examples/two-bodies) on 2
   quadratic2              10-node tetrahedra on 2 ranks
@@ -149,6 +151,8 @@ def main():
         direct_and_tfeti(fricon, mpi, brick, out, int(case[len("ranks"):]), 16, n8)
     elif case == "hertz2":
         direct_and_tfeti(fricon, mpi, examples / "geometry" / "hertz-hemisphere.toml", out, 2, 8)
+    elif case == "wheel2":
+        direct_and_tfeti(fricon, mpi, examples / "geometry" / "wheel.toml", out, 2, 8)
     elif case == "floating2":
         direct_and_tfeti(fricon, mpi, examples / "floating" / "free-block.toml", out, 2, 8)
     elif case == "two_bodies2":
