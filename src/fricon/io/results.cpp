@@ -32,50 +32,56 @@ nlohmann::json obstacle_json(const contact::Obstacle& obstacle, const Vec3& disp
   return j;
 }
 
-// The contact part of the report: counts, the paper's measures, the certificate and the outer
-// history.
-void add_contact_report(const driver::ContactReport& c, nlohmann::json& j) {
-  j.update({{"n_dual", c.n_dual},
-            {"n_candidate_patches", c.n_candidate_patches},
-            {"search_rounds", c.search_rounds},
-            {"outer_iterations", c.outer_iterations},
-            {"n_mult", c.n_mult},
-            {"qp_iterations", c.qp_iterations},
-            {"qp_steps",
-             {{"cg", c.qp_steps.cg},
-              {"expansion", c.qp_steps.expansion},
-              {"proportioning", c.qp_steps.proportioning}}},
-            {"n_kinv", c.n_kinv},
-            {"err_history", c.err_history},
-            {"wn_pos_l2", c.wn_pos_l2},
-            {"wn_pos_inf", c.wn_pos_inf},
-            {"max_neg_wn", c.max_neg_wn},
-            {"max_wt", c.max_wt},
-            {"max_lambda_n", c.max_lambda_n},
-            {"max_lambda_t", c.max_lambda_t},
-            {"total_normal_force", c.total_normal_force},
-            {"transmitted_normal_force", c.transmitted_normal_force}});
+// The counts of the contact solve: sizes, outer iterations and the QPs' steps and products.
+nlohmann::json contact_counts(const driver::ContactReport& c) {
+  return {{"n_dual", c.n_dual},
+          {"n_candidate_patches", c.n_candidate_patches},
+          {"search_rounds", c.search_rounds},
+          {"outer_iterations", c.outer_iterations},
+          {"n_mult", c.n_mult},
+          {"qp_iterations", c.qp_iterations},
+          {"qp_steps",
+           {{"cg", c.qp_steps.cg},
+            {"expansion", c.qp_steps.expansion},
+            {"proportioning", c.qp_steps.proportioning}}},
+          {"n_kinv", c.n_kinv},
+          {"err_history", c.err_history}};
+}
+
+// The paper's measures of the last iterate and the contact forces (theory.md §6.4).
+nlohmann::json contact_measures(const driver::ContactReport& c) {
+  return {{"wn_pos_l2", c.wn_pos_l2},
+          {"wn_pos_inf", c.wn_pos_inf},
+          {"max_neg_wn", c.max_neg_wn},
+          {"max_wt", c.max_wt},
+          {"max_lambda_n", c.max_lambda_n},
+          {"max_lambda_t", c.max_lambda_t},
+          {"total_normal_force", c.total_normal_force},
+          {"transmitted_normal_force", c.transmitted_normal_force}};
+}
+
+// The certificate: the KKT residuals of the last QP, and where they apply the Coulomb
+// residual, the balance of floating bodies and the gluing of Total FETI.
+void add_certificates(const driver::ContactReport& c, nlohmann::json& j) {
   j["kkt"] = {{"feasibility", c.kkt.feasibility},
               {"stationarity", c.kkt.stationarity},
               {"complementarity", c.kkt.complementarity},
               {"max", c.kkt.max()},
               {"bound", c.kkt_bound}};
-  j["termination"] = enum_name(c.termination);
-  j["n_objective_increases"] = c.n_objective_increases;
-  j["model"] = c.mixed_models ? std::string("mixed") : std::string(enum_name(c.model));
   if (c.model == contact::FrictionModel::Coulomb)
     j["coulomb"] = {{"residual", c.coulomb_residual},
                     {"bound", c.coulomb_bound},
                     {"scale", c.lambda_scale},
                     {"refinements", c.certificate_refinements}};
-  j["patch_states"] = {{"stick", c.n_stick}, {"slip", c.n_slip}, {"separated", c.n_separated}};
   if (c.rigid_amplitudes.size() > 0)
     j["balance"] = {{"equality_residual", c.equality_residual},
                     {"bound", c.equality_bound},
                     {"smalse_outer_iterations", c.smalse_outer_iterations}};
   if (c.gluing_residual > 0.0) j["gluing_residual"] = c.gluing_residual;
-  j["state_blocks"] = c.state_blocks;
-  j["block_err_history"] = c.block_history;
+}
+
+// The outer iterations, one entry each.
+nlohmann::json outer_history(const driver::ContactReport& c) {
   nlohmann::json history = nlohmann::json::array();
   for (const auto& it : c.history)
     history.push_back({{"k", it.k},
@@ -86,21 +92,75 @@ void add_contact_report(const driver::ContactReport& c, nlohmann::json& j) {
                        {"qp_termination", enum_name(it.qp_termination)},
                        {"n_objective_increases", it.n_objective_increases},
                        {"seconds", it.seconds}});
-  j["contact"] = {{"boundary", c.boundary},
-                  {"friction_law", c.friction_law},
-                  {"dual_operator", enum_name(c.dual_operator)},
-                  {"n_patches", c.n_patches},
-                  {"n_surface_nodes", c.n_surface_nodes},
-                  {"n_contact_nodes", c.n_contact_nodes},
-                  {"stability_ratio", c.stability_ratio},
-                  {"stability_estimated", c.stability_estimated},
-                  {"n_inactive_multipliers", c.n_inactive_multipliers},
-                  {"radius_integration", c.radius_integration},
-                  {"contraction_ratio", c.contraction_ratio},
-                  {"norm_Q", c.norm_Q},
-                  {"norm_Q_scaled", c.norm_Q_scaled},
-                  {"fixed_point_residual", c.fixed_point_residual},
-                  {"history", history}};
+  return history;
+}
+
+// The "contact" section: the discretization, the dual operator and the outer loop's history.
+nlohmann::json contact_section(const driver::ContactReport& c) {
+  return {{"boundary", c.boundary},
+          {"friction_law", c.friction_law},
+          {"dual_operator", enum_name(c.dual_operator)},
+          {"n_patches", c.n_patches},
+          {"n_surface_nodes", c.n_surface_nodes},
+          {"n_contact_nodes", c.n_contact_nodes},
+          {"stability_ratio", c.stability_ratio},
+          {"stability_estimated", c.stability_estimated},
+          {"n_inactive_multipliers", c.n_inactive_multipliers},
+          {"radius_integration", c.radius_integration},
+          {"contraction_ratio", c.contraction_ratio},
+          {"norm_Q", c.norm_Q},
+          {"norm_Q_scaled", c.norm_Q_scaled},
+          {"fixed_point_residual", c.fixed_point_residual},
+          {"history", outer_history(c)}};
+}
+
+// One contact pair: what touches what, its forces and states; for two bodies the master side.
+nlohmann::json pair_json(const driver::PairReport& r) {
+  const contact::PairInfo& p = r.info;
+  nlohmann::json pair = {
+      {"key", p.key},
+      {"boundary", p.boundary},
+      {"obstacle", !p.master.empty() ? std::string("body")
+                   : p.obstacle      ? std::string(p.obstacle->kind())
+                                     : std::string("plane")},
+      {"model", enum_name(r.model)},
+      {"friction_law", r.friction_law},
+      {"n_patches", r.n_patches},
+      {"patch_states", {{"stick", r.n_stick}, {"slip", r.n_slip}, {"separated", r.n_separated}}},
+      {"normal_force", r.normal_force},
+      {"force", vec3(r.force)},
+      {"tangential_force", vec3(r.tangential_force)},
+      {"stability_ratio", p.stability.ratio},
+      {"basis", {{"n", vec3(p.n)}, {"t1", vec3(p.t1)}, {"t2", vec3(p.t2)}}},
+      {"max_slip", r.max_slip}};
+  if (p.obstacle) pair["obstacle_geometry"] = obstacle_json(*p.obstacle, p.obstacle_displacement);
+  if (!p.master.empty()) {
+    pair["master"] = p.master;
+    pair["search_distance"] = p.search_distance;
+    pair["master_coverage"] = p.master_coverage;
+    pair["master_element_size"] = p.master_element_size;
+    pair["small_sliding"] = r.small_sliding;
+    pair["max_slip_step"] = r.max_slip_step;
+    pair["master_penetration"] = r.master_penetration;
+    pair["normal_displacement"] = r.normal_displacement;
+    pair["master_kept_out"] = r.master_kept_out;
+  }
+  return pair;
+}
+
+// The contact part of the report: counts, the paper's measures, the certificate, the outer
+// history and the pairs.
+void add_contact_report(const driver::ContactReport& c, nlohmann::json& j) {
+  j.update(contact_counts(c));
+  j.update(contact_measures(c));
+  add_certificates(c, j);
+  j["termination"] = enum_name(c.termination);
+  j["n_objective_increases"] = c.n_objective_increases;
+  j["model"] = c.mixed_models ? std::string("mixed") : std::string(enum_name(c.model));
+  j["patch_states"] = {{"stick", c.n_stick}, {"slip", c.n_slip}, {"separated", c.n_separated}};
+  j["state_blocks"] = c.state_blocks;
+  j["block_err_history"] = c.block_history;
+  j["contact"] = contact_section(c);
   if (!c.partition_note.empty()) j["partition_note"] = c.partition_note;
   if (c.geometry_updates >= 0)
     j["geometry"] = {{"updates", c.geometry_updates},
@@ -108,38 +168,8 @@ void add_contact_report(const driver::ContactReport& c, nlohmann::json& j) {
                      {"normal_displacement", c.geometry_scale},
                      {"tolerance", c.geometry_tolerance}};
   nlohmann::json pairs = nlohmann::json::array();
-  for (const driver::PairReport& r : c.pairs) {
-    const contact::PairInfo& p = r.info;
-    nlohmann::json pair = {
-        {"key", p.key},
-        {"boundary", p.boundary},
-        {"obstacle", !p.master.empty() ? std::string("body")
-                     : p.obstacle      ? std::string(p.obstacle->kind())
-                                       : std::string("plane")},
-        {"model", enum_name(r.model)},
-        {"friction_law", r.friction_law},
-        {"n_patches", r.n_patches},
-        {"patch_states", {{"stick", r.n_stick}, {"slip", r.n_slip}, {"separated", r.n_separated}}},
-        {"normal_force", r.normal_force},
-        {"force", vec3(r.force)},
-        {"tangential_force", vec3(r.tangential_force)},
-        {"stability_ratio", p.stability.ratio},
-        {"basis", {{"n", vec3(p.n)}, {"t1", vec3(p.t1)}, {"t2", vec3(p.t2)}}},
-        {"max_slip", r.max_slip}};
-    if (p.obstacle) pair["obstacle_geometry"] = obstacle_json(*p.obstacle, p.obstacle_displacement);
-    if (!p.master.empty()) {
-      pair["master"] = p.master;
-      pair["search_distance"] = p.search_distance;
-      pair["master_coverage"] = p.master_coverage;
-      pair["master_element_size"] = p.master_element_size;
-      pair["small_sliding"] = r.small_sliding;
-      pair["max_slip_step"] = r.max_slip_step;
-      pair["master_penetration"] = r.master_penetration;
-      pair["normal_displacement"] = r.normal_displacement;
-      pair["master_kept_out"] = r.master_kept_out;
-    }
-    pairs.push_back(std::move(pair));
-  }
+  for (const driver::PairReport& r : c.pairs)
+    pairs.push_back(pair_json(r));
   j["pairs"] = std::move(pairs);
 }
 
