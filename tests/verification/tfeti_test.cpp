@@ -223,6 +223,18 @@ TEST(Tfeti, TheWheelGivesTheDirectAnswer) {
   expect_same_answer(example("examples/geometry/wheel.toml", {}), 8);
 }
 
+// The wheel with its bore not moved: no load at all, only the tread's gaps, so the exact answer
+// is u = 0 and lambda = 0. Projected, the gaps reach the gluing multipliers (P b), and an
+// iteration toward 0 would be measured against itself (theory.md §4.6): it must not run.
+TEST(Tfeti, TheWheelAtRestStaysExactlyAtRest) {
+  const Problem p = example("examples/geometry/wheel.toml", {"dirichlet[0].value=[0.0,0.0,0.0]"});
+  for (const RunResult& r : {with_backend(p, "cholmod"), with_backend(p, "tfeti", 8)}) {
+    ASSERT_EQ(r.report.status, RunStatus::Converged) << r.report.message;
+    EXPECT_EQ(r.report.max_displacement, 0.0);
+    EXPECT_EQ(r.contact->lambda.lpNorm<Eigen::Infinity>(), 0.0);
+  }
+}
+
 TEST(Tfeti, TheHertzHemisphereGivesTheDirectAnswer) {
   expect_same_answer(example("examples/geometry/hertz-hemisphere.toml", {}), 8);
 }

@@ -95,6 +95,28 @@ TEST(Smalse, MeetsTheEqualityAndTheKktConditionsOfTheWholeProblem) {
   expect_whole_kkt(q, x, mu);
 }
 
+// Gaps alone and no load (e = 0, b < 0 on the bounds and 0 elsewhere, a body driven by prescribed
+// displacements that are zero): x = 0 and mu = 0 meet the KKT conditions exactly, and the solver
+// returns them exactly from a warm start, without steps, with and without the projector.
+TEST(Smalse, GapsAloneWithNoLoadGiveZeroExactly) {
+  TwoRowProblem q = two_row_problem();
+  q.eq.e.setZero();
+  q.b.setZero();
+  for (Index p = 0; p < q.b.size() / 3; ++p)
+    q.b(3 * p) = -0.1 - 0.05 * static_cast<double>(p);
+  for (const bool projector : {true, false}) {
+    SmalseOptions opt;
+    opt.projector = projector;
+    Eigen::VectorXd x = Eigen::VectorXd::Constant(q.b.size(), 0.2), mu;
+    const SmalseReport r = solve_smalse(dense(q.A), q.b, q.c, q.eq, opt, tight(), x, mu);
+    ASSERT_EQ(r.termination, QpTermination::Converged) << r.message;
+    EXPECT_EQ(r.iterations, 0);
+    EXPECT_EQ(x.lpNorm<Eigen::Infinity>(), 0.0);
+    EXPECT_EQ(mu.lpNorm<Eigen::Infinity>(), 0.0);
+    expect_whole_kkt(q, x, mu);
+  }
+}
+
 // The inner solves preconditioned in face (with the projector, P M P + Q / rho): the same KKT
 // point of the whole problem, with M = A^-1 and with a poor M.
 TEST(Smalse, APreconditionedInnerSolveMeetsTheSameConditions) {
