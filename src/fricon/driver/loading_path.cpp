@@ -381,121 +381,167 @@ VectorXd solve_elastic_step(const VectorXd& u0, RunResult& r) {
   return u0;
 }
 
-}  // namespace
+// The step whose linearized gap was farthest from the true one, relative to its normal
+// displacement: the path's report gives that step's figures.
+struct WorstLinearization {
+  Real ratio = 0.0, change = 0.0, scale = 0.0;
+  int updates = 0;
 
-RunResult run_path(const Problem& problem, const RunOptions& options) {
-  const Stopwatch total;
-  validate(problem);
+  // Takes a converged step's figures if they are the worst so far; the report then shows the
+  // worst of the path.
+  void keep(ContactReport& c) {
+    if (c.geometry_updates < 0) return;
+    const Real step_ratio = c.geometry_scale > 0.0 ? c.geometry_change / c.geometry_scale : 0.0;
+    if (step_ratio >= ratio)
+      *this = {step_ratio, c.geometry_change, c.geometry_scale, c.geometry_updates};
+    c.geometry_change = change;
+    c.geometry_scale = scale;
+    c.geometry_updates = updates;
+  }
+};
+
+void refuse_petsc(const Problem& problem) {
   if (problem.solver.backend == parallel::Backend::Petsc)
     throw InputError(fmt::format(
         "{}: solver.backend: a loading path ([loading] steps = {}) does not run with backend "
         "\"petsc\"; use \"cholmod\" or \"tfeti\"",
         problem.where("solver.backend"), problem.loading.steps));
-  const bool tfeti = problem.solver.backend == parallel::Backend::Tfeti;
-  const linalg::KeepThreads blas_threads;  // Total FETI runs the BLAS on one thread
-  RunResult r;
-  RunReport& rep = r.report;
-  const std::vector<PathLoad> loads = path_loads(problem);
+}
 
-  // @sect: the model, the contact discretization, the factor of K and Q, once for the whole
-  // path; with the contact search Q is that of the candidates, formed again when they grow.
-  std::optional<contact::ContactDiscretization> disc = build_factored_model(problem, options, r);
-  if (options.stop_was_requested()) throw Interrupted("interrupted before the first step");
-  std::unique_ptr<dual::DualOperator> Q;
-  feti::FetiOperator* feti = nullptr;  // Q, with backend "tfeti"
-  // A floating body has no free displacement to start each step's search from (theory.md §2.10).
-  const bool search = disc && search_applies(problem, r.model) && r.model.floating.empty();
-  PathSearch path_search;
-  if (disc && !search)
-    Q = make_path_operator(problem, *disc, problem.loading.steps, options, r, feti);
-
-  // @sect: the steps, each from the state the last one left; a failed step ends the path.
-  LoadBasis basis;
-  {
-    ScopedPhase phase(rep.times, "solve");
-    basis = load_basis(problem, r.model, !tfeti);
-  }
-  PathState state;
-  VectorXd u0;
-  // The step whose linearized gap was farthest from the true one, relative to its normal
-  // displacement (the path's report gives that step's figures).
-  struct {
-    Real ratio = 0.0, change = 0.0, scale = 0.0;
-    int updates = 0;
-  } worst_linearization;
-  if (disc) state.tangential = VectorXd::Zero(disc->n_dual());
-  for (int k = 1; k <= problem.loading.steps; ++k) {
-    const Stopwatch step_clock;
-    const std::vector<Real> factors = step_factors(loads, k);
-    const Problem step_problem = scaled_loads(problem, factors, 1.0);  // at_step(problem, k)
+// One loading path (theory.md §2.9) as named steps: the model, the contact discretization, the
+// factor of K and Q once for the whole path (constructor; with the contact search Q is that of
+// the candidates, formed again when they grow), then each step from the state the last one
+// left: its loads, its solve, its geometric updates against curved obstacles, its report. A
+// failed step ends the path.
+class PathRun {
+ public:
+  PathRun(const Problem& problem, const RunOptions& options)
+      : problem_(problem),
+        options_(options),
+        tfeti_(problem.solver.backend == parallel::Backend::Tfeti),
+        loads_(path_loads(problem)) {
+    disc_ = build_factored_model(problem_, options_, r_);
+    if (options_.stop_was_requested()) throw Interrupted("interrupted before the first step");
+    // A floating body has no free displacement to start each step's search from (theory.md
+    // §2.10).
+    search_ = disc_ && search_applies(problem_, r_.model) && r_.model.floating.empty();
+    if (disc_ && !search_)
+      Q_ = make_path_operator(problem_, *disc_, problem_.loading.steps, options_, r_, feti_);
     {
-      ScopedPhase phase(rep.times, "assembly");
-      apply_step_loads(step_problem, k, factors, basis, state, r.model, u0,
-                       disc ? &*disc : nullptr);
+      ScopedPhase phase(r_.report.times, "solve");
+      basis_ = load_basis(problem_, r_.model, !tfeti_);
     }
-    const int steps_left = problem.loading.steps - k + 1;
-    const auto solve_the_step = [&] {
-      return !disc && tfeti ? solve_elastic_tfeti(step_problem, options, r)
-             : !disc        ? solve_elastic_step(u0, r)
-             : search       ? solve_step_with_search(step_problem, *disc, u0, state, steps_left,
-                                                     path_search, options, r)
-                            : solve_step(step_problem, *disc, *Q, u0, state, tfeti, options, r);
-    };
-    VectorXd u = solve_the_step();
-    // @sect: the step's geometric updates against curved obstacles (theory.md §2.11); the last
-    // linearization stays for the next steps.
-    if (disc) {
-      const std::vector<Vec3> obstacles = obstacle_displacements(step_problem, k);
-      u = update_geometry(
-          step_problem, *disc, std::move(u), options, r,
-          [&](const contact::ContactDiscretization& relinearized) {
-            relinearize_step(relinearized, state, r.model, *disc);
-            if (search) {
-              path_search.Q.reset();
-              path_search.part.reset();
-              path_search.norm_Q = path_search.norm_Q_scaled = 0.0;
-            } else {
-              Q = make_path_operator(problem, *disc, steps_left, options, r, feti);
-            }
-            return solve_the_step();
-          },
-          &obstacles);
+    if (disc_) state_.tangential = VectorXd::Zero(disc_->n_dual());
+  }
+
+  RunResult run() {
+    for (int k = 1; k <= problem_.loading.steps; ++k)
+      if (run_step(k)) break;
+    if (feti_) record_feti_counts(*feti_, r_.report);
+    if (r_.stress.cols() != r_.model.mesh.n_tets()) compute_stresses(r_);  // a failed step's
+    return std::move(r_);
+  }
+
+ private:
+  // Step k; true when the path ends there (the step failed or a stop was requested).
+  bool run_step(int k) {
+    const Stopwatch step_clock;
+    const std::vector<Real> factors = step_factors(loads_, k);
+    const Problem step_problem = scaled_loads(problem_, factors, 1.0);  // at_step(problem, k)
+    {
+      ScopedPhase phase(r_.report.times, "assembly");
+      apply_step_loads(step_problem, k, factors, basis_, state_, r_.model, u0_,
+                       disc_ ? &*disc_ : nullptr);
     }
-    if (rep.contact) keep_worst_sliding(k, state, *rep.contact);
-    if (disc && rep.status == RunStatus::Converged) {
-      if (rep.contact && rep.contact->geometry_updates >= 0) {
-        ContactReport& c = *rep.contact;
-        const Real ratio = c.geometry_scale > 0.0 ? c.geometry_change / c.geometry_scale : 0.0;
-        if (ratio >= worst_linearization.ratio)
-          worst_linearization = {ratio, c.geometry_change, c.geometry_scale, c.geometry_updates};
-        c.geometry_change = worst_linearization.change;
-        c.geometry_scale = worst_linearization.scale;
-        c.geometry_updates = worst_linearization.updates;
-      }
-    }
+    const int steps_left = problem_.loading.steps - k + 1;
+    VectorXd u = solve(step_problem, steps_left);
+    if (disc_) u = update_geometry_of_step(step_problem, k, steps_left, std::move(u));
+    return end_step(k, step_problem, u, step_clock.seconds());
+  }
+
+  // The step's solve: elastic (on subdomains with backend "tfeti"), with the contact search, or
+  // with the path's Q.
+  VectorXd solve(const Problem& step_problem, int steps_left) {
+    if (!disc_)
+      return tfeti_ ? solve_elastic_tfeti(step_problem, options_, r_) : solve_elastic_step(u0_, r_);
+    if (search_)
+      return solve_step_with_search(step_problem, *disc_, u0_, state_, steps_left, path_search_,
+                                    options_, r_);
+    return solve_step(step_problem, *disc_, *Q_, u0_, state_, tfeti_, options_, r_);
+  }
+
+  // The step's geometric updates against curved obstacles (theory.md §2.11): each new
+  // linearization forms Q again and solves the step again; the last stays for the next steps.
+  VectorXd update_geometry_of_step(const Problem& step_problem, int k, int steps_left, VectorXd u) {
+    const std::vector<Vec3> obstacles = obstacle_displacements(step_problem, k);
+    return update_geometry(
+        step_problem, *disc_, std::move(u), options_, r_,
+        [&](const contact::ContactDiscretization& relinearized) {
+          relinearize_step(relinearized, state_, r_.model, *disc_);
+          if (search_) {
+            path_search_.Q.reset();
+            path_search_.part.reset();
+            path_search_.norm_Q = path_search_.norm_Q_scaled = 0.0;
+          } else {
+            Q_ = make_path_operator(problem_, *disc_, steps_left, options_, r_, feti_);
+          }
+          return solve(step_problem, steps_left);
+        },
+        &obstacles);
+  }
+
+  // The step's report and the state for the next step; true when the path ends here.
+  bool end_step(int k, const Problem& step_problem, const VectorXd& u, Real seconds) {
+    RunReport& rep = r_.report;
+    if (rep.contact) keep_worst_sliding(k, state_, *rep.contact);
+    if (disc_ && rep.contact && rep.status == RunStatus::Converged) worst_.keep(*rep.contact);
     // The stresses of a step only for whom watches the steps, and for the result.
-    const bool last = k == problem.loading.steps;
-    finish_run(step_problem, u, r, options.on_step || last);
+    const bool last = k == problem_.loading.steps;
+    finish_run(step_problem, u, r_, options_.on_step || last);
     const bool failed = rep.status != RunStatus::Converged;
     if (failed)
       rep.message = fmt::format("step {} of {} of the loading path failed: {}", k,
-                                problem.loading.steps, rep.message);
-    rep.steps.push_back(describe_step(k, loads, r, step_clock.seconds()));
-    if (options.on_step) options.on_step(r);
-    if (failed) break;
+                                problem_.loading.steps, rep.message);
+    rep.steps.push_back(describe_step(k, loads_, r_, seconds));
+    if (options_.on_step) options_.on_step(r_);
+    if (failed) return true;
     // A stop requested during a converged step (or by on_step itself) keeps that step and ends
     // the path there: the result holds the steps that on_step saw, and is not complete.
-    if (!last && options.stop_was_requested()) {
+    if (!last && options_.stop_was_requested()) {
       rep.status = RunStatus::NotConverged;
       rep.message = fmt::format("interrupted after step {} of {} of the loading path", k,
-                                problem.loading.steps);
-      break;
+                                problem_.loading.steps);
+      return true;
     }
-    if (disc) remember_step(*disc, r, u, state);
+    if (disc_) remember_step(*disc_, r_, u, state_);
+    return false;
   }
-  if (feti) record_feti_counts(*feti, rep);
-  if (r.stress.cols() != r.model.mesh.n_tets()) compute_stresses(r);  // a failed step's
-  rep.time_s = total.seconds();
+
+  const Problem& problem_;
+  const RunOptions& options_;
+  const bool tfeti_;
+  const linalg::KeepThreads blas_threads_;  // Total FETI runs the BLAS on one thread
+  const std::vector<PathLoad> loads_;
+  RunResult r_;
+  std::optional<contact::ContactDiscretization> disc_;
+  bool search_ = false;
+  std::unique_ptr<dual::DualOperator> Q_;
+  feti::FetiOperator* feti_ = nullptr;  // Q_, with backend "tfeti"
+  PathSearch path_search_;
+  LoadBasis basis_;
+  PathState state_;
+  VectorXd u0_;
+  WorstLinearization worst_;
+};
+
+}  // namespace
+
+RunResult run_path(const Problem& problem, const RunOptions& options) {
+  const Stopwatch total;
+  validate(problem);
+  refuse_petsc(problem);
+  RunResult r = PathRun(problem, options).run();
+  r.report.time_s = total.seconds();
   return r;
 }
 

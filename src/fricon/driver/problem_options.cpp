@@ -587,137 +587,166 @@ const OptionTable& friction_table() {
   return table;
 }
 
+namespace {
+
+// The keys of [solver], in the order of the documentation's table, as named groups.
+using SolverKeys = OptionTableBuilder<SolverOptions>;
+
+// When the outer loop and each QP stop.
+void add_stopping_keys(SolverKeys& b) {
+  b.number("outer_tol", at(&SolverOptions::outer, &outer::OuterOptions::tol), outer::kOuterTolRange,
+           "the successive approximations stop when err(k) falls below it");
+  b.number("outer_max", at(&SolverOptions::outer, &outer::OuterOptions::max_iterations),
+           outer::kOuterMaxRange, "at most this many outer iterations");
+  b.number("qp_rtol", at(&SolverOptions::qp, &qp::MpgpOptions::rel_tolerance),
+           open_interval(0.0, 1.0),
+           "a QP stops when ‖projected gradient‖ <= qp_rtol ‖h_R‖ in the scaled variables, "
+           "h_R the part of h that the constraints resist (theory.md §4.2); the certificate "
+           "allows 100 qp_rtol. At the default the patch pressures of the Hertz and wheel "
+           "examples are within 1e-4 of the peak of a solve to 1e-13");
+}
+
+// Which variables and which patches the dual QP has.
+void add_dual_problem_keys(SolverKeys& b) {
+  b.choice("dual_scaling", &SolverOptions::dual_scaling,
+           "the variables the dual QP is solved in: `\"patch\"` (each patch's multipliers "
+           "divided by one factor from its area and the indentation modulus E/(1−ν²) under "
+           "it, so that a graded mesh's patches do not spread the spectrum of Q) or `\"none\"` "
+           "(the multipliers themselves, as in the paper). Results are in physical units "
+           "either way; theory.md §4.5");
+  b.choice("contact_search", &SolverOptions::contact_search,
+           "which patches enter the dual QP: `\"gap\"` (those the free displacement K⁻¹f "
+           "brings within `contact_search_margin` of closing, grown until no patch left out "
+           "penetrates; the certificate covers every patch) or `\"off\"` (every patch). Tresca "
+           "friction with a positive `slip_bound`, which acts without pressure, and `backend = "
+           "\"petsc\"` use every patch; theory.md §2.7");
+  b.number("contact_search_margin", &SolverOptions::contact_search_margin, non_negative(),
+           "a patch is a first candidate when its mean gap at the free displacement is at "
+           "most this many times the deepest free penetration (0: the patches the free body "
+           "would penetrate)");
+}
+
+// How the QPs and the outer loop iterate.
+void add_iteration_keys(SolverKeys& b) {
+  b.number("qp_max", at(&SolverOptions::qp, &qp::MpgpOptions::max_iterations), integer_at_least(1),
+           "at most this many iterations per QP");
+  b.number("certificate_tol", &SolverOptions::certificate_tol, open_interval(0.0, 1.0),
+           "Coulomb: the largest natural-map residual of a converged run; a fixed point above "
+           "it takes further steps at tighter tolerances, else the run is not converged "
+           "(theory.md §5.6)");
+  b.boolean("warm_start", &SolverOptions::warm_start,
+            "start each QP from the previous multipliers");
+  b.choice("qp_variant", at(&SolverOptions::qp, &qp::MpgpOptions::variant),
+           "inner QP algorithm: `\"bb\"` (MPGP with Barzilai-Borwein lengths for the "
+           "expansion and proportioning steps; 5-8x fewer products with Q than `\"paper\"` on "
+           "the paper's problems) or `\"paper\"` (the plain MPGP of the paper; `fricon paper` "
+           "uses it so that n_mult compares with the paper's); theory.md §4");
+  b.choice("qp_expansion", at(&SolverOptions::qp, &qp::MpgpOptions::expansion),
+           "the move of MPGP's expansion step: `\"fixed\"` (to the boundary along the CG "
+           "direction, then a projected free-gradient step of the fixed length 1.95/‖Q‖, the "
+           "paper's), `\"opt\"` (that step with PERMON's exact line-search length along the "
+           "free gradient) or `\"projcg\"` (the full CG step past the boundary, projected). "
+           "With the contact search the three need about the same products over whole runs "
+           "(theory.md §4.2); `\"projcg\"` is the default of `fricon dual solve`");
+  b.choice("acceleration", at(&SolverOptions::outer, &outer::OuterOptions::acceleration),
+           "`\"none\"`: the paper's successive approximations phi^k = Psi(phi^(k-1)); "
+           "`\"anderson\"`: Anderson mixing of the last `anderson_depth` iterates (the "
+           "stopping test still measures err(k) = the relative fixed-point residual)");
+  b.number("anderson_depth", at(&SolverOptions::outer, &outer::OuterOptions::anderson_depth),
+           outer::kAndersonDepthRange, "iterates kept by Anderson mixing");
+}
+
+// How Q is applied and where K is factored.
+void add_factorization_keys(SolverKeys& b) {
+  b.choice("dual_operator", &SolverOptions::dual_operator,
+           "how Q = B K^-1 B^T is applied: `\"implicit\"` (each product with Q is one solve "
+           "with K, the paper's way), `\"forward\"` (Q = Y^T Y with Y = L^-1 P B^T, computed "
+           "by a forward sweep over the part of the factor that the contact surface reaches; "
+           "the outer loop then recovers w on that part only), `\"schur\"` (K factored with "
+           "the contact dofs last; Q formed from the factor of the Schur complement onto "
+           "them, and the outer loop runs on the contact surface only), or `\"auto\"` "
+           "(`\"forward\"` while the dense Q, n_dual^2 entries, is no larger than the factor "
+           "of K, or up to 6,000 multipliers; else `\"implicit\"`). All give the same solution "
+           "to the QP tolerance; iteration counts can differ by rounding (theory.md §3.3)");
+  b.choice("backend", &SolverOptions::backend,
+           "where K is factored: `\"cholmod\"` (one process, CHOLMOD) or `\"petsc\"` (the ranks "
+           "of an MPI job: `mpirun -n P fricon solve FILE --set solver.backend=petsc`; each "
+           "rank assembles its own tetrahedra and MUMPS factors across them). With "
+           "`\"petsc\"`, `dual_operator` may be `\"auto\"`, `\"schur\"` or `\"implicit\"`, not "
+           "`\"forward\"`. A fricon built without PETSc refuses `\"petsc\"` and says how to "
+           "get it. `\"tfeti\"`: Total FETI, each body cut into subdomains that are factored "
+           "on their own (on the machine's threads, and under `mpirun` shared out among the "
+           "ranks) and glued by multipliers in the same dual QP as the contact ones, for "
+           "meshes past one factorization; docs/theory.md §8");
+  b.choice("partition", &SolverOptions::partition,
+           "with `backend = \"petsc\"`: how the tetrahedra are split among the ranks for "
+           "assembly: `\"graph\"` (PT-Scotch through PETSc, on the mesh's dual graph) or "
+           "`\"blocks\"` (consecutive blocks in mesh order). It changes who computes what, not "
+           "the answer (beyond rounding)");
+  b.number("memory_per_rank", &SolverOptions::memory_per_rank, positive("MiB"),
+           "the most memory the MUMPS factorization may take on one rank. A run whose "
+           "estimate (from MUMPS's analysis) exceeds it on some rank stops before the "
+           "numerical factorization, with the estimate in the message; docs/parallel.md")
+      .show_default("no limit");
+  b.when([](const SolverOptions& s) { return s.backend == parallel::Backend::Petsc; },
+         [](const SolverOptions& s) {
+           return fmt::format(
+               "limits the MUMPS factorization of backend = \"petsc\" (backend is \"{}\")",
+               enum_name(s.backend));
+         },
+         "with `backend = \"petsc\"`");
+}
+
+// The subdomains of backend "tfeti", used only with it.
+void add_tfeti_keys(SolverKeys& b) {
+  const auto tfeti_only = [&b] {
+    b.when([](const SolverOptions& s) { return s.backend == parallel::Backend::Tfeti; },
+           [](const SolverOptions& s) {
+             return fmt::format("sets up the subdomains of backend = \"tfeti\" (backend is \"{}\")",
+                                enum_name(s.backend));
+           },
+           "with `backend = \"tfeti\"`");
+  };
+  b.number("subdomains", &SolverOptions::subdomains, integer_at_least(1),
+           "with `backend = \"tfeti\"`: the number of subdomains over all bodies (each body "
+           "gets a share in proportion to its tetrahedra, at least one), cut by METIS on the "
+           "bodies' dual graphs; a part that METIS leaves disconnected becomes one subdomain "
+           "per connected piece. Absent: from `subdomain_size`; theory.md §8.1")
+      .show_default("from subdomain_size");
+  tfeti_only();
+  b.number("subdomain_size", &SolverOptions::subdomain_size,
+           integer_at_least(feti::kMinSubdomainSize),
+           "with `backend = \"tfeti\"` and no `subdomains`: the target number of nodes per "
+           "subdomain (the default was measured the fastest on the paper's brick, "
+           "docs/benchmarks.md)");
+  tfeti_only();
+  b.choice("tfeti_scaling", &SolverOptions::tfeti_scaling,
+           "with `backend = \"tfeti\"`: how the gluing and Dirichlet rows of B are scaled: "
+           "`\"stiffness\"` (each by the lumped stiffness of its dofs, so that its diagonal "
+           "entry of F is about 1, as the scaled contact rows'; a diagonal preconditioner of "
+           "the equality multipliers) or `\"uniform\"` (one factor for all); theory.md §8.5");
+  tfeti_only();
+  b.choice("tfeti_preconditioner", &SolverOptions::tfeti_preconditioner,
+           "with `backend = \"tfeti\"`: what preconditions the gluing and Dirichlet "
+           "multipliers in the QP's conjugate gradient steps: `\"none\"` (the row scaling "
+           "alone), `\"lumped\"` ((B_E B_E^T)^-1 B_E K B_E^T (B_E B_E^T)^-1, in face: one "
+           "product with every subdomain's stiffness between its interface dofs per step, "
+           "which it keeps) or `\"dirichlet\"` (the same with each subdomain's Schur "
+           "complement on those dofs: it keeps K_s and a factor of its interior, and a step "
+           "costs two products with K_s and a solve with that factor); theory.md §8.5");
+  tfeti_only();
+}
+
+}  // namespace
+
 const OptionTable& solver_table() {
   static const OptionTable table = [] {
-    OptionTableBuilder<SolverOptions> b("solver", "a table [solver]");
-    b.number("outer_tol", at(&SolverOptions::outer, &outer::OuterOptions::tol),
-             outer::kOuterTolRange,
-             "the successive approximations stop when err(k) falls below it");
-    b.number("outer_max", at(&SolverOptions::outer, &outer::OuterOptions::max_iterations),
-             outer::kOuterMaxRange, "at most this many outer iterations");
-    b.number("qp_rtol", at(&SolverOptions::qp, &qp::MpgpOptions::rel_tolerance),
-             open_interval(0.0, 1.0),
-             "a QP stops when ‖projected gradient‖ <= qp_rtol ‖h_R‖ in the scaled variables, "
-             "h_R the part of h that the constraints resist (theory.md §4.2); the certificate "
-             "allows 100 qp_rtol. At the default the patch pressures of the Hertz and wheel "
-             "examples are within 1e-4 of the peak of a solve to 1e-13");
-    b.choice("dual_scaling", &SolverOptions::dual_scaling,
-             "the variables the dual QP is solved in: `\"patch\"` (each patch's multipliers "
-             "divided by one factor from its area and the indentation modulus E/(1−ν²) under "
-             "it, so that a graded mesh's patches do not spread the spectrum of Q) or `\"none\"` "
-             "(the multipliers themselves, as in the paper). Results are in physical units "
-             "either way; theory.md §4.5");
-    b.choice("contact_search", &SolverOptions::contact_search,
-             "which patches enter the dual QP: `\"gap\"` (those the free displacement K⁻¹f "
-             "brings within `contact_search_margin` of closing, grown until no patch left out "
-             "penetrates; the certificate covers every patch) or `\"off\"` (every patch). Tresca "
-             "friction with a positive `slip_bound`, which acts without pressure, and `backend = "
-             "\"petsc\"` use every patch; theory.md §2.7");
-    b.number("contact_search_margin", &SolverOptions::contact_search_margin, non_negative(),
-             "a patch is a first candidate when its mean gap at the free displacement is at "
-             "most this many times the deepest free penetration (0: the patches the free body "
-             "would penetrate)");
-    b.number("qp_max", at(&SolverOptions::qp, &qp::MpgpOptions::max_iterations),
-             integer_at_least(1), "at most this many iterations per QP");
-    b.number("certificate_tol", &SolverOptions::certificate_tol, open_interval(0.0, 1.0),
-             "Coulomb: the largest natural-map residual of a converged run; a fixed point above "
-             "it takes further steps at tighter tolerances, else the run is not converged "
-             "(theory.md §5.6)");
-    b.boolean("warm_start", &SolverOptions::warm_start,
-              "start each QP from the previous multipliers");
-    b.choice("qp_variant", at(&SolverOptions::qp, &qp::MpgpOptions::variant),
-             "inner QP algorithm: `\"bb\"` (MPGP with Barzilai-Borwein lengths for the "
-             "expansion and proportioning steps; 5-8x fewer products with Q than `\"paper\"` on "
-             "the paper's problems) or `\"paper\"` (the plain MPGP of the paper; `fricon paper` "
-             "uses it so that n_mult compares with the paper's); theory.md §4");
-    b.choice("qp_expansion", at(&SolverOptions::qp, &qp::MpgpOptions::expansion),
-             "the move of MPGP's expansion step: `\"fixed\"` (to the boundary along the CG "
-             "direction, then a projected free-gradient step of the fixed length 1.95/‖Q‖, the "
-             "paper's), `\"opt\"` (that step with PERMON's exact line-search length along the "
-             "free gradient) or `\"projcg\"` (the full CG step past the boundary, projected). "
-             "With the contact search the three need about the same products over whole runs "
-             "(theory.md §4.2); `\"projcg\"` is the default of `fricon dual solve`");
-    b.choice("acceleration", at(&SolverOptions::outer, &outer::OuterOptions::acceleration),
-             "`\"none\"`: the paper's successive approximations phi^k = Psi(phi^(k-1)); "
-             "`\"anderson\"`: Anderson mixing of the last `anderson_depth` iterates (the "
-             "stopping test still measures err(k) = the relative fixed-point residual)");
-    b.number("anderson_depth", at(&SolverOptions::outer, &outer::OuterOptions::anderson_depth),
-             outer::kAndersonDepthRange, "iterates kept by Anderson mixing");
-    b.choice("dual_operator", &SolverOptions::dual_operator,
-             "how Q = B K^-1 B^T is applied: `\"implicit\"` (each product with Q is one solve "
-             "with K, the paper's way), `\"forward\"` (Q = Y^T Y with Y = L^-1 P B^T, computed "
-             "by a forward sweep over the part of the factor that the contact surface reaches; "
-             "the outer loop then recovers w on that part only), `\"schur\"` (K factored with "
-             "the contact dofs last; Q formed from the factor of the Schur complement onto "
-             "them, and the outer loop runs on the contact surface only), or `\"auto\"` "
-             "(`\"forward\"` while the dense Q, n_dual^2 entries, is no larger than the factor "
-             "of K, or up to 6,000 multipliers; else `\"implicit\"`). All give the same solution "
-             "to the QP tolerance; iteration counts can differ by rounding (theory.md §3.3)");
-    b.choice("backend", &SolverOptions::backend,
-             "where K is factored: `\"cholmod\"` (one process, CHOLMOD) or `\"petsc\"` (the ranks "
-             "of an MPI job: `mpirun -n P fricon solve FILE --set solver.backend=petsc`; each "
-             "rank assembles its own tetrahedra and MUMPS factors across them). With "
-             "`\"petsc\"`, `dual_operator` may be `\"auto\"`, `\"schur\"` or `\"implicit\"`, not "
-             "`\"forward\"`. A fricon built without PETSc refuses `\"petsc\"` and says how to "
-             "get it. `\"tfeti\"`: Total FETI, each body cut into subdomains that are factored "
-             "on their own (on the machine's threads, and under `mpirun` shared out among the "
-             "ranks) and glued by multipliers in the same dual QP as the contact ones, for "
-             "meshes past one factorization; docs/theory.md §8");
-    b.choice("partition", &SolverOptions::partition,
-             "with `backend = \"petsc\"`: how the tetrahedra are split among the ranks for "
-             "assembly: `\"graph\"` (PT-Scotch through PETSc, on the mesh's dual graph) or "
-             "`\"blocks\"` (consecutive blocks in mesh order). It changes who computes what, not "
-             "the answer (beyond rounding)");
-    b.number("memory_per_rank", &SolverOptions::memory_per_rank, positive("MiB"),
-             "the most memory the MUMPS factorization may take on one rank. A run whose "
-             "estimate (from MUMPS's analysis) exceeds it on some rank stops before the "
-             "numerical factorization, with the estimate in the message; docs/parallel.md")
-        .show_default("no limit");
-    b.when([](const SolverOptions& s) { return s.backend == parallel::Backend::Petsc; },
-           [](const SolverOptions& s) {
-             return fmt::format(
-                 "limits the MUMPS factorization of backend = \"petsc\" (backend is \"{}\")",
-                 enum_name(s.backend));
-           },
-           "with `backend = \"petsc\"`");
-    // The keys of backend "tfeti" are used only with it.
-    const auto tfeti_only = [&b] {
-      b.when([](const SolverOptions& s) { return s.backend == parallel::Backend::Tfeti; },
-             [](const SolverOptions& s) {
-               return fmt::format(
-                   "sets up the subdomains of backend = \"tfeti\" (backend is \"{}\")",
-                   enum_name(s.backend));
-             },
-             "with `backend = \"tfeti\"`");
-    };
-    b.number("subdomains", &SolverOptions::subdomains, integer_at_least(1),
-             "with `backend = \"tfeti\"`: the number of subdomains over all bodies (each body "
-             "gets a share in proportion to its tetrahedra, at least one), cut by METIS on the "
-             "bodies' dual graphs; a part that METIS leaves disconnected becomes one subdomain "
-             "per connected piece. Absent: from `subdomain_size`; theory.md §8.1")
-        .show_default("from subdomain_size");
-    tfeti_only();
-    b.number("subdomain_size", &SolverOptions::subdomain_size,
-             integer_at_least(feti::kMinSubdomainSize),
-             "with `backend = \"tfeti\"` and no `subdomains`: the target number of nodes per "
-             "subdomain (the default was measured the fastest on the paper's brick, "
-             "docs/benchmarks.md)");
-    tfeti_only();
-    b.choice("tfeti_scaling", &SolverOptions::tfeti_scaling,
-             "with `backend = \"tfeti\"`: how the gluing and Dirichlet rows of B are scaled: "
-             "`\"stiffness\"` (each by the lumped stiffness of its dofs, so that its diagonal "
-             "entry of F is about 1, as the scaled contact rows'; a diagonal preconditioner of "
-             "the equality multipliers) or `\"uniform\"` (one factor for all); theory.md §8.5");
-    tfeti_only();
-    b.choice("tfeti_preconditioner", &SolverOptions::tfeti_preconditioner,
-             "with `backend = \"tfeti\"`: what preconditions the gluing and Dirichlet "
-             "multipliers in the QP's conjugate gradient steps: `\"none\"` (the row scaling "
-             "alone), `\"lumped\"` ((B_E B_E^T)^-1 B_E K B_E^T (B_E B_E^T)^-1, in face: one "
-             "product with every subdomain's stiffness between its interface dofs per step, "
-             "which it keeps) or `\"dirichlet\"` (the same with each subdomain's Schur "
-             "complement on those dofs: it keeps K_s and a factor of its interior, and a step "
-             "costs two products with K_s and a solve with that factor); theory.md §8.5");
-    tfeti_only();
+    SolverKeys b("solver", "a table [solver]");
+    add_stopping_keys(b);
+    add_dual_problem_keys(b);
+    add_iteration_keys(b);
+    add_factorization_keys(b);
+    add_tfeti_keys(b);
     b.check(check_solver);
     return b.build();
   }();
