@@ -75,13 +75,25 @@ void share_diagonals(std::vector<Subdomain>& subdomains, const Ranks& ranks) {
 }  // namespace
 
 std::vector<Index> node_owners(const mesh::TetMesh& mesh, const Partition& partition) {
+  // Subdomain by subdomain, how many of its tetrahedra touch each node (`touching`, reset after
+  // each subdomain); a node goes to the first subdomain whose count beats the best so far.
   std::vector<Index> owner(static_cast<size_t>(mesh.n_nodes()), partition.n_subdomains);
-  for (Index t = 0; t < mesh.n_tets(); ++t) {
-    const Index s = partition.subdomain_of_tet[static_cast<size_t>(t)];
-    for (Index a = 0; a < mesh.nodes_per_tet(); ++a) {
-      Index& o = owner[static_cast<size_t>(mesh.tet_node(t, a))];
-      o = std::min(o, s);
-    }
+  std::vector<Index> best(static_cast<size_t>(mesh.n_nodes()), 0);
+  std::vector<Index> touching(static_cast<size_t>(mesh.n_nodes()), 0);
+  for (Index s = 0; s < partition.n_subdomains; ++s) {
+    const std::vector<Index>& tets = partition.tets[static_cast<size_t>(s)];
+    for (Index t : tets)
+      for (Index a = 0; a < mesh.nodes_per_tet(); ++a)
+        ++touching[static_cast<size_t>(mesh.tet_node(t, a))];
+    for (Index t : tets)
+      for (Index a = 0; a < mesh.nodes_per_tet(); ++a) {
+        const auto node = static_cast<size_t>(mesh.tet_node(t, a));
+        if (touching[node] > best[node]) {
+          best[node] = touching[node];
+          owner[node] = s;
+        }
+        touching[node] = 0;
+      }
   }
   return owner;
 }

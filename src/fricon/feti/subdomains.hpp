@@ -44,8 +44,10 @@ struct Subdomain {
   std::vector<Index> rows;
 };
 
-/// The subdomain that owns each node of `mesh`: the first (lowest) of those whose tetrahedra
-/// touch it. The load of a node and its Dirichlet rows act on the owner's copy.
+/// The subdomain that owns each node of `mesh`: of those whose tetrahedra touch it, the one with
+/// the most tetrahedra at the node (the copy most firmly attached to its subdomain), the lowest
+/// index among equals. The load of a node, its contact columns and its Dirichlet rows act on the
+/// owner's copy, and its displacement is read there (theory.md §8.1).
 std::vector<Index> node_owners(const mesh::TetMesh& mesh, const Partition& partition);
 
 /// The subdomains of `partition` of `mesh`, numbered as it numbers them, torn dofs consecutive in
