@@ -2,8 +2,10 @@
 // one subdomain, every subdomain face-connected (checked here by a search of our own over the
 // faces) and inside one body, about as many subdomains as asked, distributed over the bodies by
 // their size; bad requests are InputErrors naming solver.subdomains. feti::subdomains_for_size
-// turns nodes per subdomain into a count that partition_mesh accepts.
+// turns nodes per subdomain into a count that partition_mesh accepts; feti::node_owners picks
+// the copy of each node that carries its rows.
 #include "fricon/feti/partition.hpp"
+#include "fricon/feti/subdomains.hpp"
 
 #include <gtest/gtest.h>
 
@@ -311,3 +313,37 @@ TEST(SubdomainsForSize, GivesACountThatPartitionMeshAccepts) {
 }
 
 }  // namespace
+
+// The owner of a node (theory.md §8.1) against a count made here: the subdomain with the most
+// tetrahedra at the node, the lowest index among equals. Three interleaved subdomains of the bar
+// give nodes held by 1 to 6 tetrahedra of each, with ties; and a node's copy in subdomain 0 is
+// often not its owner, which the former rule (the lowest index) would have made it.
+TEST(Partition, ANodeIsOwnedByTheSubdomainWithTheMostTetrahedraAtIt) {
+  const TetMesh m = mesh::make_brick(kBar);
+  constexpr Index kInterleaved = 3;
+  Partition p;
+  p.n_subdomains = kInterleaved;
+  p.tets.resize(kInterleaved);
+  for (Index t = 0; t < m.n_tets(); ++t) {
+    p.subdomain_of_tet.push_back(t % kInterleaved);
+    p.tets[static_cast<size_t>(t % kInterleaved)].push_back(t);
+  }
+  std::vector<std::array<Index, kInterleaved>> count(static_cast<size_t>(m.n_nodes()));
+  for (auto& c : count)
+    c.fill(0);
+  for (Index t = 0; t < m.n_tets(); ++t)
+    for (Index a = 0; a < 4; ++a)
+      ++count[static_cast<size_t>(m.tets(a, t))][t % kInterleaved];
+
+  const std::vector<Index> owner = node_owners(m, p);
+  ASSERT_EQ(static_cast<Index>(owner.size()), m.n_nodes());
+  Index not_lowest = 0;
+  for (Index node = 0; node < m.n_nodes(); ++node) {
+    const auto& c = count[static_cast<size_t>(node)];
+    const auto most = std::max_element(c.begin(), c.end());  // the first of the largest
+    EXPECT_EQ(owner[static_cast<size_t>(node)], most - c.begin()) << "node " << node;
+    const auto lowest = std::find_if(c.begin(), c.end(), [](Index k) { return k > 0; });
+    if (most != lowest) ++not_lowest;
+  }
+  EXPECT_GT(not_lowest, 0);
+}
