@@ -10,6 +10,7 @@
 # with a --set override appended, see problem_file_fuzz.cpp); the others fuzz/seeds/<reader>/.
 # FUZZ_FRESH_CORPUS=1 (make test-fuzz) starts each target from its seeds alone, in
 # build-fuzz/fresh-corpus, emptied first: a short run then costs the same every time.
+# UNITY=OFF compiles the library's files one by one rather than in CMake's unity batches.
 set -euo pipefail
 
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -32,7 +33,7 @@ if ! command -v clang++ >/dev/null || ! command -v clang >/dev/null; then
 fi
 
 cmake -S "$root/fuzz" -B "$build" -G Ninja -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
-  -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+  -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_UNITY_BUILD="${UNITY:-ON}" >/dev/null
 cmake --build "$build" --target "${targets[@]}"
 
 artifacts=$build/artifacts

@@ -125,4 +125,14 @@ std::string input_error_of(const std::function<void()>& f) {
   return "";
 }
 
+void expect_input_error(const std::function<void()>& f, const std::vector<std::string>& parts) {
+  const std::string message = input_error_of(f);
+  if (message.empty()) {
+    ADD_FAILURE() << "no InputError thrown";
+    return;
+  }
+  for (const auto& part : parts)
+    EXPECT_NE(message.find(part), std::string::npos) << "'" << part << "' not in: " << message;
+}
+
 }  // namespace fricon::test

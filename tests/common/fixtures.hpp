@@ -128,4 +128,8 @@ std::filesystem::path shared_data(const std::string& name);
 /// goes through.
 std::string input_error_of(const std::function<void()>& f);
 
+/// Runs `f`, which must throw InputError whose message contains every one of `parts` (a failure
+/// of the current test otherwise).
+void expect_input_error(const std::function<void()>& f, const std::vector<std::string>& parts);
+
 }  // namespace fricon::test

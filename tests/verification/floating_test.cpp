@@ -23,7 +23,8 @@
 #include "fricon/io/problem_file.hpp"
 #include "fricon/mesh/brick.hpp"
 
-namespace {
+// A named namespace, not an anonymous one: the unity build compiles several test files as one.
+namespace floating_test {
 
 using namespace fricon;
 using namespace fricon::driver;
@@ -210,4 +211,4 @@ TEST(FloatingBodies, AFloatingBodyWithoutAContactSurfaceIsRefusedBeforeTheFactor
   EXPECT_THAT(error, HasSubstr("no [[contact]] surface or master lies on it"));
 }
 
-}  // namespace
+}  // namespace floating_test

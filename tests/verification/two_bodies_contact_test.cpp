@@ -40,7 +40,8 @@
 #include "fricon/mesh/bodies.hpp"
 #include "fricon/mesh/brick.hpp"
 
-namespace {
+// A named namespace, not an anonymous one: the unity build compiles several test files as one.
+namespace two_bodies_contact_test {
 
 using namespace fricon;
 using namespace fricon::driver;
@@ -767,4 +768,4 @@ TEST(TwoBodiesContact, BadInput) {
   EXPECT_THAT(run_error(far), HasSubstr("the pair has no overlap"));
 }
 
-}  // namespace
+}  // namespace two_bodies_contact_test

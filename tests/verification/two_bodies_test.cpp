@@ -19,7 +19,8 @@
 #include "fricon/mesh/bodies.hpp"
 #include "fricon/mesh/brick.hpp"
 
-namespace {
+// A named namespace, not an anonymous one: the unity build compiles several test files as one.
+namespace two_bodies_test {
 
 using namespace fricon;
 using namespace fricon::driver;
@@ -233,4 +234,4 @@ TEST(TwoBodies, EachPairFollowsItsOwnModelAndLaw) {
   EXPECT_LE(c.coulomb_residual, c.coulomb_bound);
 }
 
-}  // namespace
+}  // namespace two_bodies_test

@@ -10,10 +10,6 @@ namespace fricon::contact {
 
 namespace {
 
-// A slave triangle faces a master node when their outward normals make an angle above 90
-// degrees by this cosine (as the slave's own search, master_surface.cpp).
-constexpr Real kFacingCosine = 1e-3;
-
 // The slave triangles of the pair (mesh face indices).
 std::vector<Index> pair_faces(const ContactSurface& surface, Index pair) {
   std::vector<Index> faces;

@@ -17,9 +17,6 @@ namespace {
 
 // The default search distance: this share of the slave tag's diameter.
 constexpr Real kDefaultSearchShare = 0.1;
-// A master triangle faces a slave node when their outward normals make an angle above 90
-// degrees by this cosine: n_slave . n_master < -kFacingCosine.
-constexpr Real kFacingCosine = 1e-3;
 // A node this far inside the master (relative to the slave's diameter) is on it: rounding of the
 // geometry. Deeper, the bodies overlap at the start.
 constexpr Real kOverlapRoundoff = 1e-9;

@@ -18,6 +18,10 @@
 
 namespace fricon::contact {
 
+/// A slave triangle faces a master one when their outward normals make an angle above 90 degrees
+/// by this cosine: n_slave . n_master < -kFacingCosine (the search of both sides, theory.md §2.8).
+inline constexpr Real kFacingCosine = 1e-3;
+
 /// A point or vector of a plane, in the coordinates of an orthonormal basis of that plane [m].
 using Vec2 = Eigen::Matrix<Real, 2, 1>;
 

@@ -15,14 +15,12 @@
 #include "fricon/driver/floating_bodies.hpp"
 #include "fricon/driver/tresca_map.hpp"
 #include "fricon/qp/friction_cone.hpp"
+#include "fricon/qp/mpgp.hpp"
 
 namespace fricon::driver {
 
 namespace {
 
-// Power iteration for ||Q|| (theory.md §4.2): the settings of the reference reproduction.
-constexpr int kPowerIterations = 200;
-constexpr Real kPowerTolerance = 1e-10;
 // The recovery on the contact dofs must agree with the full solve to this relative accuracy.
 constexpr Real kRecoveryTolerance = 1e-8;
 // A patch slips when ||lambda_t|| is this close to its radius (relative); it is separated when
@@ -102,8 +100,9 @@ Real estimate_norm_Q(const dual::DualOperator& Q, const qp::BlockScaling& D,
     if (options.stop_was_requested()) throw Interrupted("interrupted while estimating ||Q||");
     scaled(x, y);
   };
-  return qp::estimate_norm(apply, Q.size(), kPowerIterations,
-                           Q.n_equality() > 0 ? dual::kEqualityPowerTolerance : kPowerTolerance);
+  return qp::estimate_norm(
+      apply, Q.size(), qp::kNormPowerIterations,
+      Q.n_equality() > 0 ? dual::kEqualityPowerTolerance : qp::kNormPowerTolerance);
 }
 
 // The change of variables of the dual QP (theory.md §4.5): per patch the factor of

@@ -10,14 +10,12 @@
 #include "fricon/core/timer.hpp"
 #include "fricon/qp/constraints.hpp"
 #include "fricon/qp/friction_cone.hpp"
+#include "fricon/qp/mpgp.hpp"
 
 namespace fricon::driver {
 
 namespace {
 
-// Power iteration for ||W||, as for the dual Hessian of fricon's own problems.
-constexpr int kPowerIterations = 200;
-constexpr Real kPowerTolerance = 1e-10;
 // A refinement divides the QP and outer tolerances by this.
 constexpr Real kRefinementFactor = 1e-2;
 // A failed solve looks at W's spectrum (dense, up to this size): below kSingularRatio of the
@@ -272,10 +270,10 @@ LocalSolution solve_local(const qp::LocalProblem& p, const LocalSolveOptions& op
   s.split = parts.split;
   if (parts.split) parts.A = 0.5 * (p.W - Wt);
   const qp::Operator S = parts.S_op();
-  s.norm_W = qp::estimate_norm(S, p.q.size(), kPowerIterations, kPowerTolerance);
+  s.norm_W = qp::estimate_norm(S, p.q.size(), qp::kNormPowerIterations, qp::kNormPowerTolerance);
   if (parts.split)
     s.norm_A = qp::estimate_norm([&parts](const VectorXd& x, VectorXd& y) { y = parts.A * x; },
-                                 p.q.size(), kPowerIterations, kPowerTolerance);
+                                 p.q.size(), qp::kNormPowerIterations, qp::kNormPowerTolerance);
   s.r = VectorXd::Zero(p.q.size());
   if (!(s.norm_W > 0.0)) {
     s.reason = "the symmetric part of W is zero";
@@ -284,9 +282,10 @@ LocalSolution solve_local(const qp::LocalProblem& p, const LocalSolveOptions& op
   // @sect: the scaled variables, and ||D S D|| behind MPGP's step length.
   const qp::BlockScaling D = options.scaling ? contact_scaling(parts.S.diagonal())
                                              : qp::BlockScaling::identity(p.q.size());
-  s.norm_W_scaled = options.scaling ? qp::estimate_norm(D.scaled(S), p.q.size(), kPowerIterations,
-                                                        kPowerTolerance)
-                                    : s.norm_W;
+  s.norm_W_scaled = options.scaling
+                        ? qp::estimate_norm(D.scaled(S), p.q.size(), qp::kNormPowerIterations,
+                                            qp::kNormPowerTolerance)
+                        : s.norm_W;
   if (!(s.norm_W_scaled > 0.0)) {
     s.reason = "D W D is zero";
     return s;

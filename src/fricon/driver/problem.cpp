@@ -75,6 +75,10 @@ std::string Problem::where(std::string_view key) const {
   return source;
 }
 
+void Problem::fail(std::string_view key, std::string_view what) const {
+  throw InputError(fmt::format("{}: {}: {}", where(key), key, what));
+}
+
 std::string Problem::contact_key(std::size_t i) const {
   return contact.size() == 1 && !given_as_array("contact") ? std::string("contact")
                                                            : fmt::format("contact[{}]", i);

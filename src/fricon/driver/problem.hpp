@@ -281,6 +281,8 @@ struct Problem {
   /// Where `key` was given, for the start of a message: its own position, else that of the
   /// closest enclosing key ("dirichlet[0]", "dirichlet"), else `source`.
   std::string where(std::string_view key) const;
+  /// Throws InputError "WHERE: KEY: WHAT" with WHERE = where(KEY): a bad value of `key`.
+  [[noreturn]] void fail(std::string_view key, std::string_view what) const;
   /// The key path of contact pair i: "contact" for the one pair of [contact], "contact[i]" for
   /// an entry of [[contact]] (also when the file gives one pair as [[contact]]: the record
   /// holds its keys as "contact[0]...").

@@ -20,17 +20,13 @@ namespace fricon::driver {
 
 namespace {
 
-[[noreturn]] void fail(const Problem& p, const std::string& key, std::string_view what) {
-  throw InputError(fmt::format("{}: {}: {}", p.where(key), key, what));
-}
-
 /// Slips (kinks, a table's t) must increase strictly.
 void require_increasing(const Problem& p, const std::string& key, const std::vector<Real>& v) {
   for (std::size_t i = 1; i < v.size(); ++i)
     if (!(v[i] > v[i - 1]))
-      fail(p, fmt::format("{}[{}]", key, i),
-           fmt::format("expected slips in strictly increasing order, got {} after {}",
-                       format_real(v[i]), format_real(v[i - 1])));
+      p.fail(fmt::format("{}[{}]", key, i),
+             fmt::format("expected slips in strictly increasing order, got {} after {}",
+                         format_real(v[i]), format_real(v[i - 1])));
 }
 
 std::string_view unused_mesh_key(const MeshOptions& m) {
@@ -47,9 +43,9 @@ std::string_view unused_mesh_key(const MeshOptions& m) {
 
 void check_mesh(const Problem& p, const std::string& path, const MeshOptions& m) {
   if (m.kind == MeshKind::Arrays && !m.given)
-    fail(p, join_key(path, "kind"),
-         "expected a mesh given by code with kind = \"arrays\" (fricon.Mesh), got \"arrays\" "
-         "without a mesh");
+    p.fail(join_key(path, "kind"),
+           "expected a mesh given by code with kind = \"arrays\" (fricon.Mesh), got \"arrays\" "
+           "without a mesh");
   if (m.kind != MeshKind::Brick) return;
   // 5 tetrahedra and about 3 dofs per cube: keep every count far from overflow (and from 32-bit
   // indices in the ordering libraries) instead of failing on allocation later.
@@ -57,9 +53,9 @@ void check_mesh(const Problem& p, const std::string& path, const MeshOptions& m)
   const double total = static_cast<double>(m.cells[0]) * static_cast<double>(m.cells[1]) *
                        static_cast<double>(m.cells[2]);
   if (total > kMaxCells)
-    fail(p, join_key(path, "cells"),
-         fmt::format("expected at most {:.0f} cubes in all, got {} x {} x {} = {:.3g}", kMaxCells,
-                     m.cells[0], m.cells[1], m.cells[2], total));
+    p.fail(join_key(path, "cells"),
+           fmt::format("expected at most {:.0f} cubes in all, got {} x {} x {} = {:.3g}", kMaxCells,
+                       m.cells[0], m.cells[1], m.cells[2], total));
 }
 
 /// The keys of [material] and of a [[material]] entry (which has its region first).
@@ -99,14 +95,13 @@ void check_friction(const Problem& p, const std::string& path, const FrictionOpt
     case contact::FrictionLawKind::Table:
       require_increasing(p, join_key(path, "t"), fr.t);
       if (fr.f.size() != fr.t.size())
-        fail(p, join_key(path, "f"),
-             fmt::format("expected as many values as {} ({}), got {}", join_key(path, "t"),
-                         fr.t.size(), fr.f.size()));
+        p.fail(join_key(path, "f"), fmt::format("expected as many values as {} ({}), got {}",
+                                                join_key(path, "t"), fr.t.size(), fr.f.size()));
       break;
     case contact::FrictionLawKind::Function:
       if (!fr.function)
-        fail(p, join_key(path, "law"),
-             "law \"function\" needs a function given from code (FrictionLawSpec::function)");
+        p.fail(join_key(path, "law"),
+               "law \"function\" needs a function given from code (FrictionLawSpec::function)");
       [[fallthrough]];
     case contact::FrictionLawKind::Expression:
       require_increasing(p, join_key(path, "kinks"), fr.kinks);
@@ -127,18 +122,17 @@ void check_path(const Problem& p, const std::string& key, const std::vector<Real
           kLoadStepsRange);
   const auto steps = static_cast<std::size_t>(p.loading.steps);
   if (steps == 1)
-    fail(p, key,
-         "a path needs [loading] steps > 1 (with steps = 1, the default, the problem is static: "
-         "drop the path or set loading.steps)");
+    p.fail(key,
+           "a path needs [loading] steps > 1 (with steps = 1, the default, the problem is static: "
+           "drop the path or set loading.steps)");
   if (per_component && factors.size() == 3 * steps) return;
   if (factors.size() != steps)
-    fail(p, key,
-         per_component
-             ? fmt::format("expected one factor per step, loading.steps = {} values, or one "
-                           "[fx, fy, fz] per step ({} values), got {}",
-                           steps, 3 * steps, factors.size())
-             : fmt::format("expected one factor per step, loading.steps = {} values, got {}", steps,
-                           factors.size()));
+    p.fail(key, per_component
+                    ? fmt::format("expected one factor per step, loading.steps = {} values, or one "
+                                  "[fx, fy, fz] per step ({} values), got {}",
+                                  steps, 3 * steps, factors.size())
+                    : fmt::format("expected one factor per step, loading.steps = {} values, got {}",
+                                  steps, factors.size()));
 }
 
 /// The steps whose files a loading path writes: only along a path, within it, increasing.
@@ -146,37 +140,37 @@ void check_output(const Problem& p, const std::string& path, const OutputOptions
   const bool chosen = !o.step_files.empty() || o.step_files_every != 1;
   const std::string key = join_key(path, o.step_files.empty() ? "step_files_every" : "step_files");
   if (chosen && p.loading.steps == 1)
-    fail(p, key,
-         "chooses the step files of a loading path, but [loading] steps = 1 (the default): a "
-         "static run writes no step files");
+    p.fail(key,
+           "chooses the step files of a loading path, but [loading] steps = 1 (the default): a "
+           "static run writes no step files");
   for (std::size_t i = 0; i < o.step_files.size(); ++i) {
     const std::string entry = fmt::format("{}[{}]", key, i);
     if (o.step_files[i] > p.loading.steps)
-      fail(p, entry,
-           fmt::format("step {} is beyond the path's {} steps (loading.steps)", o.step_files[i],
-                       p.loading.steps));
+      p.fail(entry, fmt::format("step {} is beyond the path's {} steps (loading.steps)",
+                                o.step_files[i], p.loading.steps));
     if (i > 0 && o.step_files[i] <= o.step_files[i - 1])
-      fail(p, entry,
-           fmt::format("expected steps in strictly increasing order, got {} after {}",
-                       o.step_files[i], o.step_files[i - 1]));
+      p.fail(entry, fmt::format("expected steps in strictly increasing order, got {} after {}",
+                                o.step_files[i], o.step_files[i - 1]));
   }
 }
 
 void check_solver(const Problem& p, const std::string& path, const SolverOptions& s) {
   if (s.backend == parallel::Backend::Petsc && !parallel::petsc_available())
-    fail(p, join_key(path, "backend"),
-         "\"petsc\": this fricon was built without PETSc; install Debian's petsc-dev (`make deps` "
-         "or scripts/install-deps.sh does) and rebuild (`make build`: CMake finds it), then run "
-         "`mpirun -n P fricon solve ...` (docs/parallel.md)");
+    p.fail(
+        join_key(path, "backend"),
+        "\"petsc\": this fricon was built without PETSc; install Debian's petsc-dev (`make deps` "
+        "or scripts/install-deps.sh does) and rebuild (`make build`: CMake finds it), then run "
+        "`mpirun -n P fricon solve ...` (docs/parallel.md)");
   if (s.backend == parallel::Backend::Tfeti && !feti::metis_available())
-    fail(p, join_key(path, "backend"),
-         "\"tfeti\": this fricon was built without METIS, which cuts the bodies into subdomains; "
-         "install Debian's libmetis-dev (`make deps` or scripts/install-deps.sh does) and rebuild "
-         "(`make build`)");
+    p.fail(
+        join_key(path, "backend"),
+        "\"tfeti\": this fricon was built without METIS, which cuts the bodies into subdomains; "
+        "install Debian's libmetis-dev (`make deps` or scripts/install-deps.sh does) and rebuild "
+        "(`make build`)");
   if (s.backend == parallel::Backend::Petsc && s.dual_operator == dual::DualOperatorKind::Forward)
-    fail(p, join_key(path, "dual_operator"),
-         "\"forward\" sweeps a CHOLMOD factor; with backend = \"petsc\" use \"auto\", \"schur\" "
-         "(Q from MUMPS's Schur complement) or \"implicit\" (a distributed solve per product)");
+    p.fail(join_key(path, "dual_operator"),
+           "\"forward\" sweeps a CHOLMOD factor; with backend = \"petsc\" use \"auto\", \"schur\" "
+           "(Q from MUMPS's Schur complement) or \"implicit\" (a distributed solve per product)");
 }
 
 /// The contact face must keep some free dofs: the Dirichlet entries on it may not fix all of
@@ -188,20 +182,20 @@ void check_contact_not_clamped(const Problem& p, const std::string& key, const C
       for (std::size_t i = 0; i < 3; ++i)
         fixed[i] = fixed[i] || d.components[i];
   if (fixed[0] && fixed[1] && fixed[2])
-    fail(p, join_key(key, "boundary"),
-         fmt::format("contact and Dirichlet on the same face \"{}\": [[dirichlet]] fixes all of "
-                     "x, y, z there, so no contact node would be left",
-                     c.boundary));
+    p.fail(join_key(key, "boundary"),
+           fmt::format("contact and Dirichlet on the same face \"{}\": [[dirichlet]] fixes all of "
+                       "x, y, z there, so no contact node would be left",
+                       c.boundary));
 }
 
 /// A pair's master is another surface than its slave (self-contact is not supported).
 void check_master(const Problem& p, const std::string& key, const ContactOptions& c) {
   if (!c.obstacle || c.obstacle->kind != ObstacleKind::Body) return;
   if (c.obstacle->boundary == c.boundary)
-    fail(p, join_key(key, "obstacle.boundary"),
-         fmt::format("expected the tag of another surface than the contact surface, got \"{}\" "
-                     "for both: self-contact is not supported",
-                     c.boundary));
+    p.fail(join_key(key, "obstacle.boundary"),
+           fmt::format("expected the tag of another surface than the contact surface, got \"{}\" "
+                       "for both: self-contact is not supported",
+                       c.boundary));
 }
 
 /// Whether pair b is pair a the other way round: a's contact surface is b's master and a's master
@@ -225,18 +219,18 @@ void check_contact_pairs(const Problem& p) {
     check_master(p, key, c);
     for (std::size_t j = 0; j < i; ++j) {
       if (p.contact[j].boundary == c.boundary)
-        fail(p, join_key(key, "boundary"),
-             fmt::format("expected a surface of its own, got \"{}\", the contact surface of "
-                         "contact[{}] too",
-                         c.boundary, j));
+        p.fail(join_key(key, "boundary"),
+               fmt::format("expected a surface of its own, got \"{}\", the contact surface of "
+                           "contact[{}] too",
+                           c.boundary, j));
       if (reversed_pair(p.contact[j], c))
-        fail(p, join_key(key, "obstacle.boundary"),
-             fmt::format("\"{}\" against \"{}\" is the interface of contact[{}] (\"{}\" "
-                         "against \"{}\") given the other way round: each interface is one "
-                         "pair (theory.md §2.8), else its contact force would be split between "
-                         "the two; keep one of them",
-                         c.boundary, c.obstacle->boundary, j, p.contact[j].boundary,
-                         p.contact[j].obstacle->boundary));
+        p.fail(join_key(key, "obstacle.boundary"),
+               fmt::format("\"{}\" against \"{}\" is the interface of contact[{}] (\"{}\" "
+                           "against \"{}\") given the other way round: each interface is one "
+                           "pair (theory.md §2.8), else its contact force would be split between "
+                           "the two; keep one of them",
+                           c.boundary, c.obstacle->boundary, j, p.contact[j].boundary,
+                           p.contact[j].obstacle->boundary));
     }
   }
 }
@@ -358,8 +352,8 @@ const OptionTable& material_entry_table() {
       const auto i = static_cast<std::size_t>(&m - p.materials.data());
       for (std::size_t j = 0; j < i && i < p.materials.size(); ++j)
         if (p.materials[j].region == m.region)
-          fail(p, join_key(path, "region"),
-               fmt::format("region \"{}\" already has a material (material[{}])", m.region, j));
+          p.fail(join_key(path, "region"),
+                 fmt::format("region \"{}\" already has a material (material[{}])", m.region, j));
       check_material(p, path, m);
     });
     return b.build();
@@ -387,10 +381,10 @@ const OptionTable& dirichlet_table() {
       check_path(p, join_key(path, "path"), d.path);
       for (std::size_t c = 0; c < 3; ++c)
         if (!d.components[c] && d.value[static_cast<Index>(c)] != 0.0)
-          fail(p, fmt::format("{}.value[{}]", path, c),
-               fmt::format("a value for component {} that {}.components does not fix (it would "
-                           "be ignored): add \"{}\" to components or set it to 0",
-                           "xyz"[c], path, "xyz"[c]));
+          p.fail(fmt::format("{}.value[{}]", path, c),
+                 fmt::format("a value for component {} that {}.components does not fix (it would "
+                             "be ignored): add \"{}\" to components or set it to 0",
+                             "xyz"[c], path, "xyz"[c]));
     });
     return b.build();
   }();
@@ -537,12 +531,12 @@ const OptionTable& obstacle_table() {
       // stableNorm: the norm of [0, 0, 1e308] (or of [0, 0, 1e-200]) without overflow or
       // underflow of its square.
       if (o.kind == ObstacleKind::Plane && !(o.normal.stableNorm() > 0.0))
-        fail(p, join_key(path, "normal"),
-             "expected a non-zero vector (the plane's normal, pointing towards the body), got "
-             "[0, 0, 0]");
+        p.fail(join_key(path, "normal"),
+               "expected a non-zero vector (the plane's normal, pointing towards the body), got "
+               "[0, 0, 0]");
       if (o.kind == ObstacleKind::Cylinder && !(o.axis.stableNorm() > 0.0))
-        fail(p, join_key(path, "axis"),
-             "expected a non-zero vector (the cylinder's axis), got [0, 0, 0]");
+        p.fail(join_key(path, "axis"),
+               "expected a non-zero vector (the cylinder's axis), got [0, 0, 0]");
       check_path(p, join_key(path, "path"), o.path, /*per_component=*/true);
     });
     return b.build();
@@ -765,9 +759,9 @@ const OptionTable& loading_table() {
     b.check([](const Problem& p, const std::string& path, const LoadingOptions& l) {
       check_path(p, join_key(path, "volume_force_path"), l.volume_force_path);
       if (l.steps > 1 && p.solver.backend == parallel::Backend::Petsc)
-        fail(p, join_key(path, "steps"),
-             "a loading path does not run with backend \"petsc\": use solver.backend = "
-             "\"cholmod\" (one factor) or \"tfeti\" (subdomains, also on MPI ranks)");
+        p.fail(join_key(path, "steps"),
+               "a loading path does not run with backend \"petsc\": use solver.backend = "
+               "\"cholmod\" (one factor) or \"tfeti\" (subdomains, also on MPI ranks)");
     });
     return b.build();
   }();

@@ -21,13 +21,9 @@ namespace fricon::driver {
 
 namespace {
 
-[[noreturn]] void fail(const Problem& p, const std::string& key, std::string_view what) {
-  throw InputError(fmt::format("{}: {}: {}", p.where(key), key, what));
-}
-
 [[noreturn]] void fail_expected(const Problem& p, const std::string& key, std::string_view expected,
                                 std::string_view got) {
-  fail(p, key, fmt::format("expected {}, got {}", expected, got));
+  p.fail(key, fmt::format("expected {}, got {}", expected, got));
 }
 
 /// The key of value i of a number option: key[i], or key[row][column] for a matrix.
@@ -122,7 +118,7 @@ void check_section(const Problem& p, const OptionTable& table, const std::string
     const auto unused = table.why_unused(section, o);
     if (unused) {
       // A value that the choices ignore is an error only where its absence can be told.
-      if (o.optional && !absent) fail(p, key, *unused);
+      if (o.optional && !absent) p.fail(key, *unused);
       continue;
     }
     if (absent) {

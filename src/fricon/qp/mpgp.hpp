@@ -300,4 +300,10 @@ MpgpReport solve_mpgp(const Operator& A, const Eigen::VectorXd& b, const Separab
 double estimate_norm(const Operator& A, Index n, int max_iterations, double tolerance,
                      long* n_products = nullptr);
 
+/// The power iteration for the norm of a contact solve's dual Hessian (theory.md §4.2), fricon's
+/// problems and FCLIB's alike: at most this many products, to this relative change (the settings
+/// of the paper's reproduction).
+inline constexpr int kNormPowerIterations = 200;
+inline constexpr double kNormPowerTolerance = 1e-10;
+
 }  // namespace fricon::qp

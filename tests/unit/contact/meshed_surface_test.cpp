@@ -29,7 +29,7 @@ namespace {
 using Points = Eigen::Matrix<Real, 3, Eigen::Dynamic>;
 using Triangles = Eigen::Matrix<Index, 3, Eigen::Dynamic>;
 
-const std::string kWhere = "problem.toml: contact.obstacle";
+const std::string kObstacleKey = "problem.toml: contact.obstacle";
 
 mesh::RigidSurface make_surface(const std::string& name, const std::vector<Vec3>& points,
                                 const std::vector<std::array<Index, 3>>& triangles) {
@@ -154,7 +154,7 @@ Real brute_distance(const Vec3& x, const Vec3& a, const Vec3& b, const Vec3& c) 
 
 TEST(MeshedSurface, CubeDistanceIsExactInsideOutsideAndNearEdgesAndCorners) {
   const mesh::RigidSurface surface = cube_surface(3);
-  const ObstaclePtr cube = make_meshed_surface(surface, Points(3, 0), kWhere);
+  const ObstaclePtr cube = make_meshed_surface(surface, Points(3, 0), kObstacleKey);
   EXPECT_EQ(cube->kind(), "surface");
   EXPECT_FALSE(cube->flat());
   expect_cube_distances(*cube);
@@ -182,7 +182,7 @@ TEST(MeshedSurface, InconsistentOrientationIsFixed) {
       if ((variant == 1 && outward) || (variant == 2 && rng() % 2 == 1))
         std::swap(given.triangles(1, t), given.triangles(2, t));
     }
-    const ObstaclePtr cube = make_meshed_surface(given, Points(3, 0), kWhere);
+    const ObstaclePtr cube = make_meshed_surface(given, Points(3, 0), kObstacleKey);
     bool all_outward = false;
     EXPECT_NEAR(oriented_volume_six(*cube, Vec3::Constant(0.5), &all_outward), 6.0, 1e-12);
     EXPECT_TRUE(all_outward) << variant;
@@ -193,7 +193,7 @@ TEST(MeshedSurface, InconsistentOrientationIsFixed) {
 TEST(MeshedSurface, ParametersAreTheTriangleCountAndTheBoundingBox) {
   mesh::RigidSurface surface = cube_surface(2);
   surface.points.array() += 3.0;
-  const ObstaclePtr cube = make_meshed_surface(surface, Points(3, 0), kWhere);
+  const ObstaclePtr cube = make_meshed_surface(surface, Points(3, 0), kObstacleKey);
   const std::vector<ObstacleParameter> parameters = cube->parameters();
   ASSERT_EQ(parameters.size(), 2u);
   EXPECT_EQ(parameters[0].name, "triangles");
@@ -264,7 +264,7 @@ TEST(MeshedSurface, SharpEdgesAndCornersGetTheRightSide) {
   std::uniform_real_distribution<Real> unit(0.0, 1.0), offset(-0.1, 0.1);
   for (const auto& corners : shapes) {
     const ObstaclePtr obstacle =
-        make_meshed_surface(tetrahedron_surface(corners), Points(3, 0), kWhere);
+        make_meshed_surface(tetrahedron_surface(corners), Points(3, 0), kObstacleKey);
     int outside = 0, inside = 0;
     for (int i = 0; i < 2000; ++i) {
       // Near a corner or a point of an edge, or anywhere around.
@@ -319,7 +319,7 @@ TEST(MeshedSurface, OpenSquareFacesTheBody) {
     // The body above: the outside is +z, whatever the file's orientation.
     Points above = grid_at_height(0.5);
     above.col(4) = Vec3(0.5, 0.5, -0.5);  // one point of the body below does not outvote them
-    const ObstaclePtr up = make_meshed_surface(square, above, kWhere);
+    const ObstaclePtr up = make_meshed_surface(square, above, kObstacleKey);
     Proximity p = up->closest(Vec3(0.3, 0.6, 0.25));
     EXPECT_NEAR(p.distance, 0.25, 1e-14) << down;
     EXPECT_NEAR((p.normal - Vec3::UnitZ()).norm(), 0.0, 1e-14) << down;
@@ -334,7 +334,7 @@ TEST(MeshedSurface, OpenSquareFacesTheBody) {
     EXPECT_NEAR(p.distance, -1.3, 1e-14) << down;
     EXPECT_NEAR((p.normal - Vec3(0.3, 0.4, 1.2) / 1.3).norm(), 0.0, 1e-14) << down;
     // The body below: the sign flips.
-    const ObstaclePtr below = make_meshed_surface(square, grid_at_height(-0.5), kWhere);
+    const ObstaclePtr below = make_meshed_surface(square, grid_at_height(-0.5), kObstacleKey);
     p = below->closest(Vec3(0.3, 0.6, 0.25));
     EXPECT_NEAR(p.distance, -0.25, 1e-14) << down;
     EXPECT_NEAR((p.normal + Vec3::UnitZ()).norm(), 0.0, 1e-14) << down;
@@ -348,7 +348,7 @@ TEST(MeshedSurface, OpenSquareFacesTheBody) {
     Points tied(3, 2);
     tied << 0.5, 0.5, 0.5, 0.5, 1.0, -1.0;
     for (const Points& none_or_tied : {Points(3, 0), tied}) {
-      p = make_meshed_surface(square, none_or_tied, kWhere)->closest(Vec3(0.5, 0.5, 0.1));
+      p = make_meshed_surface(square, none_or_tied, kObstacleKey)->closest(Vec3(0.5, 0.5, 0.1));
       EXPECT_NEAR(p.distance, down ? -0.1 : 0.1, 1e-14);
     }
     // On the surface: distance 0 and the triangle's normal.
@@ -369,7 +369,7 @@ TEST(MeshedSurface, TwoOpenComponentsEachFaceTheirPartOfTheBody) {
   both.triangles << floor.triangles, floor.triangles.array() + floor.points.cols();
   Points body(3, 18);
   body << grid_at_height(0.2), grid_at_height(1.7);
-  const ObstaclePtr obstacle = make_meshed_surface(both, body, kWhere);
+  const ObstaclePtr obstacle = make_meshed_surface(both, body, kObstacleKey);
   EXPECT_NEAR(obstacle->closest(Vec3(0.5, 0.5, 0.3)).distance, 0.3, 1e-14);
   EXPECT_NEAR(obstacle->closest(Vec3(0.5, 0.5, 1.6)).distance, 0.4, 1e-14);
   EXPECT_NEAR((obstacle->closest(Vec3(0.5, 0.5, 1.6)).normal + Vec3::UnitZ()).norm(), 0.0, 1e-14);
@@ -427,7 +427,7 @@ TEST(MeshedSurface, SphereDistanceIsWithinTheChordErrorAndExactForItsTriangles) 
   }
   ASSERT_GT(chord, 1e-4);
   ASSERT_LT(chord, 1e-2);
-  const ObstaclePtr sphere = make_meshed_surface(ball, Points(3, 0), kWhere);
+  const ObstaclePtr sphere = make_meshed_surface(ball, Points(3, 0), kObstacleKey);
   std::mt19937 rng(5);
   std::normal_distribution<Real> normal;
   std::uniform_real_distribution<Real> radius(0.2, 2.0);
@@ -459,9 +459,9 @@ TEST(MeshedSurface, SphereDistanceIsWithinTheChordErrorAndExactForItsTriangles) 
 
 void expect_refused(const mesh::RigidSurface& surface, const std::vector<std::string>& parts) {
   const std::string message =
-      test::input_error_of([&] { (void)make_meshed_surface(surface, Points(3, 0), kWhere); });
+      test::input_error_of([&] { (void)make_meshed_surface(surface, Points(3, 0), kObstacleKey); });
   ASSERT_FALSE(message.empty()) << "no InputError";
-  for (const std::string& part : {kWhere, std::string("'") + surface.name + "'"})
+  for (const std::string& part : {kObstacleKey, std::string("'") + surface.name + "'"})
     EXPECT_NE(message.find(part), std::string::npos) << message;
   for (const std::string& part : parts)
     EXPECT_NE(message.find(part), std::string::npos) << "'" << part << "' not in: " << message;

@@ -19,13 +19,13 @@ using namespace fricon::contact;
 namespace {
 
 // A skewed box's bottom as the contact surface, with every node free, at `order`.
-struct Surface {
+struct BottomSurface {
   mesh::TetMesh mesh;
   fe::DofMap dofs{0};
   ContactSurface surface;
 };
-Surface bottom(int order) {
-  Surface s;
+BottomSurface bottom(int order) {
+  BottomSurface s;
   s.mesh = mesh::make_brick({Vec3(1.3, 0.7, 0.5), {4, 2, 1}});
   if (order == 2) mesh::add_edge_midpoints(s.mesh);
   s.dofs = fe::DofMap(s.mesh.n_nodes());
@@ -54,7 +54,7 @@ MatrixXd reference_mass(int order) {
 
 TEST(SurfaceIntegrals, StraightTrianglesHaveTheClosedFormMassMatrices) {
   for (int order : {1, 2}) {
-    const Surface s = bottom(order);
+    const BottomSurface s = bottom(order);
     const Real scale = order == 1 ? 12.0 : 180.0;
     for (Index k = 0; k < static_cast<Index>(s.surface.faces.size()); ++k) {
       const Real area = mesh::face_area(s.mesh, s.surface.faces[static_cast<size_t>(k)]);
@@ -84,7 +84,7 @@ TEST(SurfaceIntegrals, RowsOfBIntegrateAQuadraticFieldExactly) {
     return F(x1, y1) - F(x0, y1) - F(x1, y0) + F(x0, y0);
   };
   for (int order : {1, 2}) {
-    const Surface s = bottom(order);
+    const BottomSurface s = bottom(order);
     const Patches patches = chessboard_patches(s.mesh, s.surface, "test");
     const SparseMatrix B = assemble_b(s.mesh, s.dofs, s.surface, patches);
     fe::NodalField u = fe::NodalField::Zero(3, s.mesh.n_nodes());
@@ -127,7 +127,7 @@ TEST(SurfaceIntegrals, APatchWhoseEdgeNodesAreAllHeldIsRefused) {
   const SparseMatrix B = assemble_b(m, dofs, surface, patches);
   EXPECT_THROW(require_active_patches(surface, patches, B, "test"), NumericalError);
   // With the edge nodes free every patch is active.
-  const Surface free = bottom(2);
+  const BottomSurface free = bottom(2);
   const Patches free_patches = chessboard_patches(free.mesh, free.surface, "test");
   EXPECT_NO_THROW(
       require_active_patches(free.surface, free_patches,

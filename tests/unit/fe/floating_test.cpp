@@ -20,8 +20,8 @@ using namespace fricon::fe;
 
 namespace {
 
-constexpr Real kYoung = 2e11;   // Pa
-constexpr Real kPoisson = 0.3;  // -
+constexpr Real kSteelYoung = 2e11;   // Pa
+constexpr Real kSteelPoisson = 0.3;  // -
 
 // A 2 x 1 x 0.5 m brick with the components `components` fixed on the faces `tags`.
 struct Case {
@@ -62,7 +62,7 @@ TEST(FloatingBodies, TheFreeMotionsAreTheKernelOfKAndNamedByWhatTheyAre) {
     for (Index j = 0; j < f.n_motions(); ++j)
       EXPECT_EQ(f.bodies[0].motion_name(j), c.motions[static_cast<size_t>(j)]);
     // K R = 0, and the kernel of K has exactly the dimension of R's columns.
-    const SparseMatrix K = assemble_stiffness(m, isotropic(kYoung, kPoisson), dofs);
+    const SparseMatrix K = assemble_stiffness(m, isotropic(kSteelYoung, kSteelPoisson), dofs);
     const MatrixXd R(f.R);
     EXPECT_LE((K * R).norm(), 1e-10 * MatrixXd(K).norm() * R.norm());
     const Eigen::SelfAdjointEigenSolver<MatrixXd> eig(MatrixXd(K), Eigen::EigenvaluesOnly);
@@ -78,7 +78,7 @@ TEST(FloatingBodies, TheRegularizedFactorIsAGeneralizedInverse) {
     if (c.motions.empty()) continue;
     const DofMap dofs(fixed_by(m, c));
     const FloatingBodies f = find_floating_bodies(m, bodies, dofs);
-    const SparseMatrix K = assemble_stiffness(m, isotropic(kYoung, kPoisson), dofs);
+    const SparseMatrix K = assemble_stiffness(m, isotropic(kSteelYoung, kSteelPoisson), dofs);
     linalg::CholeskyFactor factor;
     factor.factorize(regularized_stiffness(K, f));
     // K K^+ K = K, column by column (the whole matrix, densely).

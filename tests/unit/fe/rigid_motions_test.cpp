@@ -49,7 +49,7 @@ Index kernel_dimension(const mesh::TetMesh& m, const std::vector<bool>& fixed) {
   return (eig.eigenvalues().array() < kKernelTolerance * lmax).count();
 }
 
-struct Case {
+struct BodiesCase {
   std::vector<std::pair<std::string, std::string>> conditions;  // (tag, components)
   Index free_a, free_b;
   std::string loose_b;  // RigidMotionCheck::loose_axes of body b
@@ -59,14 +59,14 @@ TEST(RigidMotions, EachBodyCountsItsOwnConditionsAndTheSumIsTheKernelOfK) {
   const mesh::TetMesh m = two_bricks();
   const mesh::Bodies bodies = mesh::find_bodies(m);
   ASSERT_EQ(bodies.n_bodies(), 2);
-  const std::vector<Case> cases{
+  const std::vector<BodiesCase> cases{
       {{{"a_x0", "xyz"}}, 0, 6, "x, y or z"},              // b held by nothing
       {{{"a_x0", "xyz"}, {"b_z0", "z"}}, 0, 3, "x or y"},  // b on a roller
       {{{"a_x0", "xyz"}, {"b_x0", "xyz"}}, 0, 0, ""},      // both clamped
       {{{"a_z0", "z"}, {"b_x1", "xyz"}}, 3, 0, ""},        // a on a roller
       {{{"b_x0", "x"}}, 6, 3, "y or z"},                   // b: x and two rotations held
   };
-  for (const Case& c : cases) {
+  for (const BodiesCase& c : cases) {
     std::vector<bool> fixed(static_cast<size_t>(3 * m.n_nodes()), false);
     std::string name;
     for (const auto& [tag, components] : c.conditions) {

@@ -127,17 +127,6 @@ std::vector<Index> subdomains_per_body(const mesh::Bodies& bodies, const Partiti
   return count;
 }
 
-// Runs `f`, which must throw InputError whose message contains every one of `parts`.
-void expect_input_error(const std::function<void()>& f, const std::vector<std::string>& parts) {
-  const std::string message = test::input_error_of(f);
-  if (message.empty()) {
-    ADD_FAILURE() << "no InputError thrown";
-    return;
-  }
-  for (const auto& part : parts)
-    EXPECT_NE(message.find(part), std::string::npos) << "'" << part << "' not in: " << message;
-}
-
 #define SKIP_WITHOUT_METIS() \
   if (!metis_available()) GTEST_SKIP() << "fricon built without METIS (libmetis-dev)"
 
@@ -264,27 +253,27 @@ TEST(Partition, AsManySubdomainsAsTetrahedraIsAccepted) {
 TEST(Partition, MoreSubdomainsThanTetrahedraIsAnInputErrorNamingTheKey) {
   const TetMesh m = mesh::make_brick(kTiny);
   const mesh::Bodies bodies = mesh::find_bodies(m);
-  expect_input_error([&] { partition_mesh(m, bodies, 6, kWhere); },
-                     {kWhere, "solver.subdomains = 6", "5 tetrahedra"});
+  test::expect_input_error([&] { partition_mesh(m, bodies, 6, kWhere); },
+                           {kWhere, "solver.subdomains = 6", "5 tetrahedra"});
   const TetMesh two = mesh::disjoint_union({m, shifted(m, Vec3(2, 0, 0))}, {"", "b_"});
-  expect_input_error([&] { partition_mesh(two, mesh::find_bodies(two), 11, kWhere); },
-                     {kWhere, "solver.subdomains = 11", "10 tetrahedra"});
+  test::expect_input_error([&] { partition_mesh(two, mesh::find_bodies(two), 11, kWhere); },
+                           {kWhere, "solver.subdomains = 11", "10 tetrahedra"});
 }
 
 TEST(Partition, FewerThanOneSubdomainIsAnInputErrorNamingTheKey) {
   const TetMesh m = mesh::make_brick(kTiny);
   const mesh::Bodies bodies = mesh::find_bodies(m);
-  expect_input_error([&] { partition_mesh(m, bodies, 0, kWhere); },
-                     {kWhere, "solver.subdomains = 0", "at least 1"});
-  expect_input_error([&] { partition_mesh(m, bodies, -3, kWhere); },
-                     {kWhere, "solver.subdomains = -3"});
+  test::expect_input_error([&] { partition_mesh(m, bodies, 0, kWhere); },
+                           {kWhere, "solver.subdomains = 0", "at least 1"});
+  test::expect_input_error([&] { partition_mesh(m, bodies, -3, kWhere); },
+                           {kWhere, "solver.subdomains = -3"});
 }
 
 TEST(Partition, WithoutMetisCuttingABodySaysWhatToInstall) {
   if (metis_available()) GTEST_SKIP() << "fricon built with METIS";
   const TetMesh m = mesh::make_brick(kBar);
-  expect_input_error([&] { partition_mesh(m, mesh::find_bodies(m), 4, kWhere); },
-                     {kWhere, "solver.subdomains", "\"tfeti\" needs METIS", "libmetis-dev"});
+  test::expect_input_error([&] { partition_mesh(m, mesh::find_bodies(m), 4, kWhere); },
+                           {kWhere, "solver.subdomains", "\"tfeti\" needs METIS", "libmetis-dev"});
 }
 
 TEST(SubdomainsForSize, IsTheNodeCountOverTheSizeWithinOneAndTheTetrahedra) {

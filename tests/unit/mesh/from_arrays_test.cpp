@@ -21,17 +21,6 @@ using namespace fricon::mesh;
 
 namespace {
 
-// Runs `f`, which must throw InputError whose message contains every one of `parts`.
-void expect_input_error(const std::function<void()>& f, const std::vector<std::string>& parts) {
-  const std::string message = test::input_error_of(f);
-  if (message.empty()) {
-    ADD_FAILURE() << "no InputError thrown";
-    return;
-  }
-  for (const auto& part : parts)
-    EXPECT_NE(message.find(part), std::string::npos) << "'" << part << "' not in: " << message;
-}
-
 // Two positively oriented tetrahedra on the triangle 0 1 2, A = (0 1 2 3) above it and
 // B = (0 2 1 4) below, their six outer triangles tagged "all"; linear (5 nodes).
 TetMesh two_tets() {
@@ -119,16 +108,16 @@ TEST(MeshFromArrays, OtherWidthsAreRefused) {
   const TetMesh q = two_quadratic_tets();
   MeshArrays a = arrays_of(q, kQuadraticTriangleNodes);
   a.nodes_per_tet = 5;
-  expect_input_error([&] { mesh_from_arrays(a, "arrays"); },
-                     {"arrays: tets: expected 4 nodes per tetrahedron", "10", "got 5"});
+  test::expect_input_error([&] { mesh_from_arrays(a, "arrays"); },
+                           {"arrays: tets: expected 4 nodes per tetrahedron", "10", "got 5"});
   a = arrays_of(q, kQuadraticTriangleNodes);
   a.boundary["all"].width = 4;
-  expect_input_error([&] { mesh_from_arrays(a, "arrays"); },
-                     {"arrays: boundary['all']: expected 3 nodes per triangle", "got 4"});
+  test::expect_input_error([&] { mesh_from_arrays(a, "arrays"); },
+                           {"arrays: boundary['all']: expected 3 nodes per triangle", "got 4"});
   a = arrays_of(two_tets(), kLinearTriangleNodes);
   a.boundary["all"] = arrays_of(q, kQuadraticTriangleNodes).boundary["all"];
-  expect_input_error([&] { mesh_from_arrays(a, "arrays"); },
-                     {"boundary['all']: 6-node triangles on linear (4-node) tetrahedra"});
+  test::expect_input_error([&] { mesh_from_arrays(a, "arrays"); },
+                           {"boundary['all']: 6-node triangles on linear (4-node) tetrahedra"});
 }
 
 TEST(MeshFromArrays, NonConformingEdgeNodesAreRefused) {
@@ -137,7 +126,7 @@ TEST(MeshFromArrays, NonConformingEdgeNodesAreRefused) {
                            const std::vector<std::string>& parts) {
     MeshArrays a = arrays_of(two_quadratic_tets(), kLinearTriangleNodes);
     change(a);
-    expect_input_error([&] { mesh_from_arrays(a, "arrays"); }, parts);
+    test::expect_input_error([&] { mesh_from_arrays(a, "arrays"); }, parts);
   };
   // B gives the shared edge 0-1 a node of its own (a new point there).
   error_of(
@@ -162,8 +151,9 @@ TEST(MeshFromArrays, ASixNodeTriangleMustHaveTheTetrahedrasEdgeNodes) {
   MeshArrays a = arrays_of(two_quadratic_tets(), kQuadraticTriangleNodes);
   std::vector<Index>& rows = a.boundary["all"].nodes;
   std::swap(rows[kLinearTriangleNodes], rows[kLinearTriangleNodes + 1]);  // row 0: edges 01, 12
-  expect_input_error([&] { mesh_from_arrays(a, "arrays"); },
-                     {"arrays: boundary['all'][0, 3] is node", "the tetrahedra give the edge"});
+  test::expect_input_error(
+      [&] { mesh_from_arrays(a, "arrays"); },
+      {"arrays: boundary['all'][0, 3] is node", "the tetrahedra give the edge"});
 }
 
 }  // namespace

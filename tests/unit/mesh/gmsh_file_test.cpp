@@ -27,17 +27,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Runs `f`, which must throw InputError whose message contains every one of `parts`.
-void expect_input_error(const std::function<void()>& f, const std::vector<std::string>& parts) {
-  const std::string message = test::input_error_of(f);
-  if (message.empty()) {
-    ADD_FAILURE() << "no InputError thrown";
-    return;
-  }
-  for (const auto& part : parts)
-    EXPECT_NE(message.find(part), std::string::npos) << "'" << part << "' not in: " << message;
-}
-
 using Key3 = std::array<Index, 3>;
 using Key4 = std::array<Index, 4>;
 
@@ -191,8 +180,8 @@ TEST_F(GmshFile, TriangleInTwoTagsRoundTrips) {
 
 TEST_F(GmshFile, WriteRefusesBadVersionAndName) {
   const TetMesh m = make_brick(BrickSpec{Vec3(1, 1, 1), {1, 1, 1}});
-  expect_input_error([&] { write_gmsh(test_dir() / "v3.msh", m, 30); }, {"v3.msh", "30"});
-  expect_input_error([&] { write_gmsh(test_dir() / "mesh.vtk", m); }, {"mesh.vtk", ".msh"});
+  test::expect_input_error([&] { write_gmsh(test_dir() / "v3.msh", m, 30); }, {"v3.msh", "30"});
+  test::expect_input_error([&] { write_gmsh(test_dir() / "mesh.vtk", m); }, {"mesh.vtk", ".msh"});
 }
 
 // @sect: .geo files meshed on the fly.
@@ -239,7 +228,7 @@ TEST_F(GmshFile, SizeFactorRefines) {
 // one: the box then failed with "syntax error (;)" (issue 23; gmsh_api::flush_geo_parser).
 TEST_F(GmshFile, AGeoFileThatFailedToParseDoesNotSpoilTheNext) {
   for (const char* bad : {"this is not Gmsh;\n", "this is not Gmsh's language;\n"}) {
-    expect_input_error([&] { read_gmsh(write_file("bad.geo", bad)); }, {"bad.geo"});
+    test::expect_input_error([&] { read_gmsh(write_file("bad.geo", bad)); }, {"bad.geo"});
     EXPECT_NEAR(total_volume(read_gmsh(write_file("box_after_bad.geo", kBoxGeo))), 2.0, 1e-12)
         << "after " << bad;
   }
@@ -280,7 +269,7 @@ TEST_F(GmshFile, ThreadsReadingGeoFilesAtOnceGetTheMeshOfOne) {
 TEST_F(GmshFile, SizeFactorOnlyForGeo) {
   const fs::path file = test_dir() / "factor.msh";
   write_gmsh(file, make_brick(BrickSpec{Vec3(1, 1, 1), {1, 1, 1}}));
-  expect_input_error([&] { read_gmsh(file, 0.5); }, {"factor.msh", ".geo"});
+  test::expect_input_error([&] { read_gmsh(file, 0.5); }, {"factor.msh", ".geo"});
 }
 
 TEST_F(GmshFile, SphereVolumeConverges) {
@@ -351,7 +340,7 @@ MeshSize{PointsOf{Volume{1};}} = 0.25;
 }
 
 TEST_F(GmshFile, RefusesACurveNamedAsASurface) {
-  expect_input_error(
+  test::expect_input_error(
       [&] {
         (void)read_gmsh(write_file("clash.geo", R"(SetFactory("OpenCASCADE");
 Box(1) = {0, 0, 0, 1, 1, 1};
@@ -386,8 +375,8 @@ $EndElements
 )";
 
 TEST_F(GmshFile, RefusesHexahedra) {
-  expect_input_error([&] { read_gmsh(write_file("hex.msh", kHexMsh)); },
-                     {"hex.msh", "Hexahedron", "Recombine"});
+  test::expect_input_error([&] { read_gmsh(write_file("hex.msh", kHexMsh)); },
+                           {"hex.msh", "Hexahedron", "Recombine"});
 }
 
 // One tetrahedron (Gmsh element 7) on nodes 1-4, then `extra` nodes and elements.
@@ -408,15 +397,15 @@ TEST_F(GmshFile, AcceptsTheHandWrittenTetrahedron) {
 }
 
 TEST_F(GmshFile, RefusesInvertedTetrahedron) {
-  expect_input_error([&] { read_gmsh(write_file("inverted.msh", one_tet_msh("1 3 2 4"))); },
-                     {"inverted.msh", "inverted", "Gmsh element 7"});
+  test::expect_input_error([&] { read_gmsh(write_file("inverted.msh", one_tet_msh("1 3 2 4"))); },
+                           {"inverted.msh", "inverted", "Gmsh element 7"});
 }
 
 TEST_F(GmshFile, RefusesNodeOfNoTetrahedron) {
   // Gmsh node 15 carries only a point element (Gmsh type 15): it belongs to no tetrahedron.
   const std::string msh = one_tet_msh("1 2 3 4", "15 5 5 5\n", 1, "9 15 2 0 3 15\n", 1);
-  expect_input_error([&] { read_gmsh(write_file("unused.msh", msh)); },
-                     {"unused.msh", "Gmsh node 15"});
+  test::expect_input_error([&] { read_gmsh(write_file("unused.msh", msh)); },
+                           {"unused.msh", "Gmsh node 15"});
 }
 
 TEST_F(GmshFile, RefusesTaggedTriangleThatIsNoTetFace) {
@@ -424,8 +413,9 @@ TEST_F(GmshFile, RefusesTaggedTriangleThatIsNoTetFace) {
   // on neither and the face 1 3 2 of the first: neither a boundary nor a rigid surface.
   const std::string msh = one_tet_msh("1 2 3 4", "5 1 1 1\n", 1,
                                       "8 4 2 0 1 2 3 4 5\n20 2 2 3 5 1 2 5\n21 2 2 3 5 1 3 2\n", 3);
-  expect_input_error([&] { read_gmsh(write_file("loose.msh", msh)); },
-                     {"loose.msh", "Gmsh element 20", "contact", "1 of its 2", "rigid surface"});
+  test::expect_input_error(
+      [&] { read_gmsh(write_file("loose.msh", msh)); },
+      {"loose.msh", "Gmsh element 20", "contact", "1 of its 2", "rigid surface"});
 }
 
 // @sect: rigid surfaces.
@@ -538,7 +528,7 @@ TEST_F(GmshFile, ATriangleOnNodesOfTheTetrahedraMayBeARigidSurface) {
 
 TEST_F(GmshFile, RefusesASurfacePartlyOnTheTetrahedra) {
   // A triangle of the block's bottom in the group "plate" too.
-  expect_input_error(
+  test::expect_input_error(
       [&] { read_gmsh(write_file("mixed.msh", block_and_plate_msh("11 2 2 3 3 1 2 4\n", 1))); },
       {"mixed.msh", "physical group 'plate'", "Gmsh element", "is no face of any tetrahedron",
        "1 of its 3"});
@@ -574,7 +564,7 @@ TEST_F(GmshFile, GeoSurfaceMeshedAloneIsARigidSurface) {
 }
 
 TEST_F(GmshFile, RefusesACurveOnARigidSurfaceOnly) {
-  expect_input_error(
+  test::expect_input_error(
       [&] {
         (void)read_gmsh(write_file("rim.geo", std::string(kBlockAndPlateGeo) + R"(e = 1e-6;
 Physical Curve("rim") = Curve In BoundingBox{-e, -e, 2 - e, 1 + e, e, 2 + e};
@@ -584,12 +574,12 @@ Physical Curve("rim") = Curve In BoundingBox{-e, -e, 2 - e, 1 + e, e, 2 + e};
 }
 
 TEST_F(GmshFile, RefusesMissingFile) {
-  expect_input_error([&] { read_gmsh(test_dir() / "nowhere.msh"); },
-                     {"nowhere.msh", "no such file"});
+  test::expect_input_error([&] { read_gmsh(test_dir() / "nowhere.msh"); },
+                           {"nowhere.msh", "no such file"});
 }
 
 TEST_F(GmshFile, RefusesGarbage) {
-  expect_input_error(
+  test::expect_input_error(
       [&] { read_gmsh(write_file("garbage.msh", "this is not a mesh\n1 2 3\n$Nodes\nx\n")); },
       {"garbage.msh"});
 }

@@ -35,17 +35,6 @@ constexpr int kQuadratic = 2;
 constexpr int kTet10Nodes = 4 + kTetEdges;
 constexpr int kTriangle6Nodes = 3 + kTriangleEdges;
 
-// Runs `f`, which must throw InputError whose message contains every one of `parts`.
-void expect_input_error(const std::function<void()>& f, const std::vector<std::string>& parts) {
-  const std::string message = test::input_error_of(f);
-  if (message.empty()) {
-    ADD_FAILURE() << "no InputError thrown";
-    return;
-  }
-  for (const auto& part : parts)
-    EXPECT_NE(message.find(part), std::string::npos) << "'" << part << "' not in: " << message;
-}
-
 // The edge node of tetrahedron t between its corners a and b (nodes of the mesh), or -1.
 Index tet_edge_node(const TetMesh& m, Index t, Index a, Index b) {
   for (int e = 0; e < kTetEdges; ++e) {
@@ -170,27 +159,28 @@ TEST_F(GmshQuadratic, TenNodeTetrahedronKeepsGmshNodeOrder) {
 
 TEST_F(GmshQuadratic, TenNodeTetrahedronAtOrderOneIsRefused) {
   const fs::path file = write_file("tet10_linear.msh", tet10_msh());
-  expect_input_error([&] { read_gmsh(file, {}, kLinear); },
-                     {"tet10_linear.msh", "10-node (quadratic)", "order 1", "[mesh] order = 2",
-                      "Mesh.ElementOrder = 1"});
+  test::expect_input_error([&] { read_gmsh(file, {}, kLinear); },
+                           {"tet10_linear.msh", "10-node (quadratic)", "order 1",
+                            "[mesh] order = 2", "Mesh.ElementOrder = 1"});
   EXPECT_EQ(read_gmsh(file, {}, kQuadratic).order(), kQuadratic);
 }
 
 TEST_F(GmshQuadratic, RefusesAnOrderOtherThanOneAndTwo) {
   const fs::path file = write_file("tet10_order3.msh", tet10_msh());
-  expect_input_error([&] { read_gmsh(file, {}, 3); }, {"tet10_order3.msh", "element order 3"});
+  test::expect_input_error([&] { read_gmsh(file, {}, 3); },
+                           {"tet10_order3.msh", "element order 3"});
 }
 
 TEST_F(GmshQuadratic, RefusesFourNodeAndTenNodeTetrahedraTogether) {
   // A 4-node tetrahedron (Gmsh element 2) on nodes 2 4 3 and node 11 beside the 10-node one, in
   // a volume of its own (elementary entity 2)...
   const std::string node = "11 1 1 1\n";
-  expect_input_error(
+  test::expect_input_error(
       [&] { read_gmsh(write_file("mixed.msh", tet10_msh("2 4 2 0 2 2 4 3 11\n", 1, node, 1))); },
       {"mixed.msh", "'Tetrahedron 4' (Gmsh type 4)", "'Tetrahedron 10' (Gmsh type 11)",
        "Mesh.ElementOrder = 2"});
   // ... or in the same one, where Gmsh lists the tetrahedra together under the first one's type.
-  expect_input_error(
+  test::expect_input_error(
       [&] { read_gmsh(write_file("mixed1.msh", tet10_msh("2 4 2 0 1 2 4 3 11\n", 1, node, 1))); },
       {"mixed1.msh", "entity 1 of dimension 3", "1 elements of type 'Tetrahedron 10'",
        "among 2 of their kind", "another order", "Mesh.ElementOrder = 2"});
@@ -198,14 +188,15 @@ TEST_F(GmshQuadratic, RefusesFourNodeAndTenNodeTetrahedraTogether) {
 
 TEST_F(GmshQuadratic, RefusesThreeNodeTrianglesOnTenNodeTetrahedra) {
   // The bottom as a 3-node triangle (Gmsh element 2) of "sides".
-  expect_input_error([&] { read_gmsh(write_file("tri3.msh", tet10_msh("2 2 2 2 1 1 3 2\n", 1))); },
-                     {"tri3.msh", "Gmsh element 2", "'sides'", "'Triangle 3' (Gmsh type 2)",
-                      "'Tetrahedron 10' (Gmsh type 11)", "6-node"});
+  test::expect_input_error(
+      [&] { read_gmsh(write_file("tri3.msh", tet10_msh("2 2 2 2 1 1 3 2\n", 1))); },
+      {"tri3.msh", "Gmsh element 2", "'sides'", "'Triangle 3' (Gmsh type 2)",
+       "'Tetrahedron 10' (Gmsh type 11)", "6-node"});
 }
 
 TEST_F(GmshQuadratic, RefusesATriangleWhoseEdgeNodesAreNotItsTetrahedrons) {
   // The bottom with its edge nodes 6 and 7 swapped.
-  expect_input_error(
+  test::expect_input_error(
       [&] { read_gmsh(write_file("swapped.msh", tet10_msh("2 9 2 2 1 1 3 2 6 7 5\n", 1))); },
       {"swapped.msh", "Gmsh element 2", "'sides'", "does not conform"});
 }
@@ -265,8 +256,9 @@ Box(1) = {0,0,0, 1,1,1};
 Mesh.MeshSizeMax = 1;
 Mesh.ElementOrder = 3;
 )");
-  expect_input_error([&] { read_gmsh(geo); }, {"order3.geo", "Tetrahedron 20",
-                                               "Mesh.ElementOrder = 1", "Mesh.ElementOrder = 2"});
+  test::expect_input_error(
+      [&] { read_gmsh(geo); },
+      {"order3.geo", "Tetrahedron 20", "Mesh.ElementOrder = 1", "Mesh.ElementOrder = 2"});
 }
 
 TEST_F(GmshQuadratic, CurvesAtOrderTwoHaveTheirMidpoints) {

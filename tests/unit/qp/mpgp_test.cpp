@@ -477,14 +477,14 @@ TEST(Mpgp, ExpansionMovesThatWouldIncreaseQFallBack) {
 // ---------------------------------------------------------------------------------------------
 // Random contact-layout problems
 
-struct RandomCase {
+struct RandomLayout {
   Index n_patches;
   double cond;
   unsigned seed;
 };
 
-std::vector<RandomCase> random_cases() {
-  std::vector<RandomCase> cases;
+std::vector<RandomLayout> random_cases() {
+  std::vector<RandomLayout> cases;
   unsigned seed = 100;
   for (Index n_patches : {1, 2, 3, 5, 8, 13, 20}) {
     for (double cond : {1.0, 10.0, 100.0, 1000.0})

@@ -8,11 +8,11 @@ namespace fricon::fe {
 
 namespace {
 
-constexpr int kNodes = 4;
-constexpr int kDim = 3;
-constexpr Real kReferenceVolume = 1.0 / 6.0;
-
 class TetP1 final : public Element {
+  static constexpr int kNodes = 4;
+  static constexpr int kDim = 3;
+  static constexpr Real kReferenceVolume = 1.0 / 6.0;
+
  public:
   TetP1()
       : stiffness_(tabulate(tet_centroid_rule(), kReferenceVolume)),

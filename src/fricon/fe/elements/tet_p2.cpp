@@ -9,14 +9,14 @@ namespace fricon::fe {
 
 namespace {
 
-constexpr int kCorners = 4;
-constexpr int kNodes = kCorners + mesh::kTetEdges;
-constexpr int kDim = 3;
-constexpr Real kReferenceVolume = 1.0 / 6.0;
-// Collapsed Gauss points per direction for the mass (degree 4; tet_rule(n) is exact to 2n - 3).
-constexpr int kMassGaussPoints = 4;
-
 class TetP2 final : public Element {
+  static constexpr int kCorners = 4;
+  static constexpr int kNodes = kCorners + mesh::kTetEdges;
+  static constexpr int kDim = 3;
+  static constexpr Real kReferenceVolume = 1.0 / 6.0;
+  // Collapsed Gauss points per direction for the mass (degree 4; tet_rule(n) is exact to 2n - 3).
+  static constexpr int kMassGaussPoints = 4;
+
  public:
   TetP2()
       : stiffness_(tabulate(tet_degree2_rule(), kReferenceVolume)),

@@ -7,11 +7,11 @@ namespace fricon::fe {
 
 namespace {
 
-constexpr int kNodes = 3;
-constexpr int kDim = 2;
-constexpr Real kReferenceArea = 0.5;
-
 class TriangleP1 final : public Element {
+  static constexpr int kNodes = 3;
+  static constexpr int kDim = 2;
+  static constexpr Real kReferenceArea = 0.5;
+
  public:
   TriangleP1() : mass_(tabulate(triangle_degree2_rule(), kReferenceArea)) {}
   std::string_view name() const override { return "3-node triangle"; }

@@ -10,15 +10,15 @@ namespace fricon::fe {
 
 namespace {
 
-constexpr int kCorners = 3;
-constexpr int kNodes = kCorners + mesh::kTriangleEdges;
-constexpr int kDim = 2;
-constexpr Real kReferenceArea = 0.5;
-// Collapsed Gauss points per direction for the mass (degree 4; triangle_rule(n) is exact to
-// 2n - 2).
-constexpr int kMassGaussPoints = 3;
-
 class TriangleP2 final : public Element {
+  static constexpr int kCorners = 3;
+  static constexpr int kNodes = kCorners + mesh::kTriangleEdges;
+  static constexpr int kDim = 2;
+  static constexpr Real kReferenceArea = 0.5;
+  // Collapsed Gauss points per direction for the mass (degree 4; triangle_rule(n) is exact to
+  // 2n - 2).
+  static constexpr int kMassGaussPoints = 3;
+
  public:
   TriangleP2() : mass_(tabulate(triangle_rule(kMassGaussPoints), kReferenceArea)) {}
   std::string_view name() const override { return "6-node triangle"; }

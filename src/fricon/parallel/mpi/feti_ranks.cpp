@@ -8,14 +8,6 @@
 
 namespace fricon::parallel {
 
-namespace {
-
-void check_mpi(int code, const char* call) {
-  if (code != MPI_SUCCESS) throw Error(fmt::format("{} failed (MPI error {})", call, code));
-}
-
-}  // namespace
-
 MpiRanks::MpiRanks(MPI_Comm comm, const std::atomic<bool>* stop_requested)
     : comm_(comm), stop_requested_(stop_requested) {
   MPI_Comm_rank(comm_, &rank_);

@@ -76,11 +76,6 @@ DualGraph dual_graph(const mesh::TetMesh& mesh) {
   return g;
 }
 
-void check_mpi(int code, const char* what) {
-  if (code != MPI_SUCCESS)
-    throw Error(fmt::format("partitioning the mesh: {} failed (MPI error {})", what, code));
-}
-
 // The counts and offsets of the blocks of `n` items by rank, as MPI's v-collectives take them.
 struct Blocks {
   std::vector<int> counts, offsets;
@@ -122,7 +117,7 @@ AdjacencyRows scatter_rows(const DualGraph* g, Index n, MPI_Comm comm, int rank,
   std::vector<PetscInt> my_degree(static_cast<std::size_t>(n_mine));
   check_mpi(MPI_Scatterv(degree.data(), rows.counts.data(), rows.offsets.data(), MPIU_INT,
                          my_degree.data(), n_mine, MPIU_INT, 0, comm),
-            "MPI_Scatterv");
+            "MPI_Scatterv", "partitioning the mesh");
   AdjacencyRows a;
   check(PetscMalloc1(n_mine + 1, &a.ia), "PetscMalloc1");
   a.ia[0] = 0;
@@ -132,7 +127,7 @@ AdjacencyRows scatter_rows(const DualGraph* g, Index n, MPI_Comm comm, int rank,
   check_mpi(
       MPI_Scatterv(rank == 0 ? g->adj.data() : nullptr, edges.counts.data(), edges.offsets.data(),
                    MPIU_INT, a.ja, static_cast<int>(a.ia[n_mine]), MPIU_INT, 0, comm),
-      "MPI_Scatterv");
+      "MPI_Scatterv", "partitioning the mesh");
   return a;
 }
 
@@ -165,7 +160,7 @@ std::vector<int> partition_graph(DualGraph& g, Index n, MPI_Comm comm, int rank,
   std::vector<int> owner(rank == 0 ? static_cast<std::size_t>(n) : 0);
   check_mpi(MPI_Gatherv(local.data(), n_mine, MPI_INT, owner.data(), rows.counts.data(),
                         rows.offsets.data(), MPI_INT, 0, comm),
-            "MPI_Gatherv");
+            "MPI_Gatherv", "partitioning the mesh");
   return owner;
 }
 
@@ -187,7 +182,7 @@ std::vector<int> partition_elements(const mesh::TetMesh* mesh, PartitionKind kin
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
   long n = rank == 0 ? static_cast<long>(mesh->n_tets()) : 0;
-  check_mpi(MPI_Bcast(&n, 1, MPI_LONG, 0, comm), "MPI_Bcast");
+  check_mpi(MPI_Bcast(&n, 1, MPI_LONG, 0, comm), "MPI_Bcast", "partitioning the mesh");
   std::vector<int> owner;
   switch (kind) {
     case PartitionKind::Graph:

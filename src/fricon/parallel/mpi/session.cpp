@@ -27,11 +27,13 @@ void finalize_at_exit() {
   if (!done) PetscFinalize();
 }
 
-void check_mpi(int code, const char* what) {
-  if (code != MPI_SUCCESS) throw Error(fmt::format("{} failed (MPI error {})", what, code));
-}
-
 }  // namespace
+
+void check_mpi(int code, const char* call, std::string_view during) {
+  if (code == MPI_SUCCESS) return;
+  if (during.empty()) throw Error(fmt::format("{} failed (MPI error {})", call, code));
+  throw Error(fmt::format("{}: {} failed (MPI error {})", during, call, code));
+}
 
 bool launched_by_mpi() {
   for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK", "MPI_LOCALNRANKS"})

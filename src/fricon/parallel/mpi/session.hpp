@@ -13,6 +13,7 @@
 
 #include <functional>
 #include <string>
+#include <string_view>
 
 namespace fricon::parallel {
 
@@ -42,6 +43,11 @@ ErrorPacket capture_current_exception();
 [[noreturn]] void raise(const ErrorPacket& e);
 /// The packet of rank `root` on every rank of `comm`. Collective.
 void broadcast(ErrorPacket& e, int root, MPI_Comm comm);
+
+/// Returns when `code` is MPI_SUCCESS; else throws Error("<during>: <call> failed (MPI error
+/// <code>)"), `call` the MPI function that returned it and `during` what the rank was doing
+/// (may be empty).
+void check_mpi(int code, const char* call, std::string_view during = {});
 
 /// Runs `step` on every rank of `comm`; returns on all ranks when it succeeded on all, else
 /// every rank throws the error of the lowest failing rank (its type and message, with
