@@ -23,8 +23,7 @@ namespace {
 std::vector<Index> tagged_faces(const mesh::TetMesh& mesh, const Problem& problem,
                                 const std::string& key, const std::string& tag) {
   auto faces = mesh.faces_with_tag(tag);
-  if (faces.empty())
-    throw InputError(fmt::format("{}: {}: {}", problem.where(key), key, mesh.no_surface(tag)));
+  if (faces.empty()) problem.fail(key, mesh.no_surface(tag));
   return faces;
 }
 
@@ -33,8 +32,8 @@ std::vector<Index> tagged_nodes(const mesh::TetMesh& mesh, const Problem& proble
                                 const std::string& key, const std::string& tag) {
   auto nodes = mesh.nodes_with_tag(tag);
   if (nodes.empty())
-    throw InputError(fmt::format("{}: {}: boundary '{}' does not exist on the mesh (tags: {})",
-                                 problem.where(key), key, tag, mesh.tag_list()));
+    problem.fail(key, fmt::format("boundary '{}' does not exist on the mesh (tags: {})", tag,
+                                  mesh.tag_list()));
   return nodes;
 }
 
@@ -182,9 +181,8 @@ std::vector<fe::Material> make_materials(const Problem& problem, const mesh::Tet
   for (size_t i = 0; i < problem.materials.size(); ++i) {
     const std::string key = fmt::format("material[{}].region", i);
     if (mesh.find_region(problem.materials[i].region) < 0)
-      throw InputError(fmt::format("{}: {}: the mesh has no region \"{}\" (its regions: {})",
-                                   problem.where(key), key, problem.materials[i].region,
-                                   region_list(mesh)));
+      problem.fail(key, fmt::format("the mesh has no region \"{}\" (its regions: {})",
+                                    problem.materials[i].region, region_list(mesh)));
   }
   std::vector<fe::Material> materials;
   for (int r = 0; r < mesh.n_regions(); ++r) {

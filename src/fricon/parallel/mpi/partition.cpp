@@ -76,6 +76,9 @@ DualGraph dual_graph(const mesh::TetMesh& mesh) {
   return g;
 }
 
+// What a failed MPI call was part of, for its message (check_mpi).
+constexpr const char* kPartitioning = "partitioning the mesh";
+
 // The counts and offsets of the blocks of `n` items by rank, as MPI's v-collectives take them.
 struct Blocks {
   std::vector<int> counts, offsets;
@@ -117,7 +120,7 @@ AdjacencyRows scatter_rows(const DualGraph* g, Index n, MPI_Comm comm, int rank,
   std::vector<PetscInt> my_degree(static_cast<std::size_t>(n_mine));
   check_mpi(MPI_Scatterv(degree.data(), rows.counts.data(), rows.offsets.data(), MPIU_INT,
                          my_degree.data(), n_mine, MPIU_INT, 0, comm),
-            "MPI_Scatterv", "partitioning the mesh");
+            "MPI_Scatterv", kPartitioning);
   AdjacencyRows a;
   check(PetscMalloc1(n_mine + 1, &a.ia), "PetscMalloc1");
   a.ia[0] = 0;
@@ -127,7 +130,7 @@ AdjacencyRows scatter_rows(const DualGraph* g, Index n, MPI_Comm comm, int rank,
   check_mpi(
       MPI_Scatterv(rank == 0 ? g->adj.data() : nullptr, edges.counts.data(), edges.offsets.data(),
                    MPIU_INT, a.ja, static_cast<int>(a.ia[n_mine]), MPIU_INT, 0, comm),
-      "MPI_Scatterv", "partitioning the mesh");
+      "MPI_Scatterv", kPartitioning);
   return a;
 }
 
@@ -160,7 +163,7 @@ std::vector<int> partition_graph(DualGraph& g, Index n, MPI_Comm comm, int rank,
   std::vector<int> owner(rank == 0 ? static_cast<std::size_t>(n) : 0);
   check_mpi(MPI_Gatherv(local.data(), n_mine, MPI_INT, owner.data(), rows.counts.data(),
                         rows.offsets.data(), MPI_INT, 0, comm),
-            "MPI_Gatherv", "partitioning the mesh");
+            "MPI_Gatherv", kPartitioning);
   return owner;
 }
 
@@ -182,7 +185,7 @@ std::vector<int> partition_elements(const mesh::TetMesh* mesh, PartitionKind kin
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
   long n = rank == 0 ? static_cast<long>(mesh->n_tets()) : 0;
-  check_mpi(MPI_Bcast(&n, 1, MPI_LONG, 0, comm), "MPI_Bcast", "partitioning the mesh");
+  check_mpi(MPI_Bcast(&n, 1, MPI_LONG, 0, comm), "MPI_Bcast", kPartitioning);
   std::vector<int> owner;
   switch (kind) {
     case PartitionKind::Graph:

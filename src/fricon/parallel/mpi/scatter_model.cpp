@@ -162,28 +162,29 @@ constexpr long kFailed = -1;
 constexpr std::size_t kChunk = std::size_t{1} << 30;
 constexpr int kTag = 7301;
 
+// What a failed MPI call was part of, for its message (check_mpi).
+constexpr const char* kScattering = "giving the ranks their parts of the model";
+
 void send(const std::vector<char>& bytes, int to, MPI_Comm comm) {
   long n = static_cast<long>(bytes.size());
-  check_mpi(MPI_Send(&n, 1, MPI_LONG, to, kTag, comm), "MPI_Send",
-            "giving the ranks their parts of the model");
+  check_mpi(MPI_Send(&n, 1, MPI_LONG, to, kTag, comm), "MPI_Send", kScattering);
   for (std::size_t at = 0; at < bytes.size(); at += kChunk)
     check_mpi(MPI_Send(bytes.data() + at, static_cast<int>(std::min(kChunk, bytes.size() - at)),
                        MPI_BYTE, to, kTag, comm),
-              "MPI_Send", "giving the ranks their parts of the model");
+              "MPI_Send", kScattering);
 }
 
 // This rank's part from rank 0, or nothing when rank 0 failed to build it.
 std::optional<std::vector<char>> receive(MPI_Comm comm) {
   long n = 0;
-  check_mpi(MPI_Recv(&n, 1, MPI_LONG, 0, kTag, comm, MPI_STATUS_IGNORE), "MPI_Recv",
-            "giving the ranks their parts of the model");
+  check_mpi(MPI_Recv(&n, 1, MPI_LONG, 0, kTag, comm, MPI_STATUS_IGNORE), "MPI_Recv", kScattering);
   if (n == kFailed) return std::nullopt;
   test_fault("scatter");
   std::vector<char> bytes(static_cast<std::size_t>(n));
   for (std::size_t at = 0; at < bytes.size(); at += kChunk)
     check_mpi(MPI_Recv(bytes.data() + at, static_cast<int>(std::min(kChunk, bytes.size() - at)),
                        MPI_BYTE, 0, kTag, comm, MPI_STATUS_IGNORE),
-              "MPI_Recv", "giving the ranks their parts of the model");
+              "MPI_Recv", kScattering);
   return bytes;
 }
 
