@@ -311,7 +311,8 @@ VectorXd certify(const contact::ContactDiscretization& disc, const dual::DualOpe
     // The rigid motions that contact fixes (with Total FETI those of every subdomain), and the
     // balance of the floating bodies (of the subdomains).
     w += Q.rigid_displacement(map.alpha());
-    rep.equality_residual = qp::equality_residual({Q.G(), Q.e()}, map.all_lambda());
+    rep.equality_residual =
+        qp::equality_residual({Q.G(), Q.e()}, map.all_lambda(), map.last_smalse().equality_floor);
     if (Q.n_equality() == 0) {
       rep.rigid_amplitudes = map.alpha();
       rep.undetermined_motions = map.last_smalse().undetermined;

@@ -35,19 +35,38 @@ CoarseSpace::CoarseSpace(const SparseMatrix& G) : G_(G) {
     }
     return;
   }
-  const Eigen::SelfAdjointEigenSolver<MatrixXd> eig{MatrixXd(S)};
+  decompose_scaled(MatrixXd(S));
+}
+
+// S = D^{1/2} S_s D^{1/2}, D = diag(S): the rank is decided on S_s, whose diagonal is 1, so that
+// rows of very different lengths (a small subdomain's rotations against a large one's
+// translations, theory.md §8.3) are not taken for dependent ones. S^+ is applied as
+// W W^T with W = D^{-1/2} V_r diag(1/sqrt(sigma_r)) (V_r, sigma_r of S_s): G^T W W^T G is the
+// orthogonal projector onto the row space of G all the same, and W^T G has orthonormal rows.
+void CoarseSpace::decompose_scaled(const MatrixXd& S) {
+  const Index m = S.rows();
+  VectorXd inv_sqrt_d(m);
+  for (Index i = 0; i < m; ++i)  // a row that acts on nothing keeps its scale (a null direction)
+    inv_sqrt_d(i) = S(i, i) > 0.0 ? 1.0 / std::sqrt(S(i, i)) : 1.0;
+  const MatrixXd S_s = inv_sqrt_d.asDiagonal() * S * inv_sqrt_d.asDiagonal();
+  const Eigen::SelfAdjointEigenSolver<MatrixXd> eig(S_s);
   const double largest = std::max(eig.eigenvalues().maxCoeff(), 0.0);
   std::vector<Index> range, null;
   for (Index i = 0; i < m; ++i)
     (largest > 0.0 && eig.eigenvalues()(i) > kRankTolerance * largest ? range : null).push_back(i);
   rank_ = static_cast<Index>(range.size());
   W_.resize(m, rank_);
-  null_.resize(m, static_cast<Index>(null.size()));
   for (std::size_t j = 0; j < range.size(); ++j)
-    W_.col(static_cast<Index>(j)) =
-        eig.eigenvectors().col(range[j]) / std::sqrt(eig.eigenvalues()(range[j]));
+    W_.col(static_cast<Index>(j)) = inv_sqrt_d.asDiagonal() * eig.eigenvectors().col(range[j]) /
+                                    std::sqrt(eig.eigenvalues()(range[j]));
+  // The null directions of S are D^{-1/2} times those of S_s, made orthonormal.
+  MatrixXd null_scaled(m, static_cast<Index>(null.size()));
   for (std::size_t j = 0; j < null.size(); ++j)
-    null_.col(static_cast<Index>(j)) = eig.eigenvectors().col(null[j]);
+    null_scaled.col(static_cast<Index>(j)) =
+        inv_sqrt_d.asDiagonal() * eig.eigenvectors().col(null[j]);
+  null_ = null_scaled.cols() > 0 ? MatrixXd(null_scaled.householderQr().householderQ() *
+                                            MatrixXd::Identity(m, null_scaled.cols()))
+                                 : MatrixXd(m, 0);
 }
 
 VectorXd CoarseSpace::solve(const VectorXd& r) const {

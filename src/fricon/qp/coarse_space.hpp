@@ -7,7 +7,8 @@
 // and the least-norm solution x_e = G^T S^+ e are applied. For floating bodies G has a handful of
 // dense rows (6 per body); for Total FETI it has 6 rows per subdomain, sparse, and S is the coarse
 // problem, thousands of rows in a large mesh. One class for both, with two ways to invert S:
-//   dense  S's eigenvectors (any rank: a row direction on which G vanishes is reported, so that
+//   dense  the eigenvectors of S scaled to a unit diagonal (any rank, decided whatever the
+//          lengths of the rows: a row direction on which G vanishes is reported, so that
 //          SMALSE-M can refuse or drop the load along it), for up to kDenseCoarseLimit rows;
 //   sparse S = L L^T by CHOLMOD (S must be positive definite), beyond that (PERMON and ESPRESO
 //          factor the coarse problem the same way).
@@ -50,10 +51,13 @@ class CoarseSpace {
   long n_solves() const { return n_solves_; }
 
  private:
+  /// The dense path: W_, null_ and rank_ from S.
+  void decompose_scaled(const MatrixXd& S);
+
   SparseMatrix G_;
   Index rank_ = 0;
   bool sparse_ = false;
-  MatrixXd W_;  ///< dense: S^+ = W W^T, W = V_r diag(1/sqrt(sigma_r))
+  MatrixXd W_;  ///< dense: S^+ = W W^T (decompose_scaled)
   MatrixXd null_;
   linalg::CholeskyFactor factor_;  ///< sparse: of S
   mutable long n_solves_ = 0;

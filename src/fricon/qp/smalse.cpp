@@ -163,12 +163,12 @@ std::optional<Infeasibility> balance_certificate(const EqualityConstraint& eq,
   return along_one_row(rows.G(), eq.e, c, *certificate);
 }
 
-double equality_residual(const EqualityConstraint& eq, const Eigen::VectorXd& x) {
+double equality_residual(const EqualityConstraint& eq, const Eigen::VectorXd& x, double floor) {
   const Eigen::VectorXd Gx = eq.G * x;
   // The magnitudes of the terms of G x, which cancel where the equality holds: a load-free
   // equality (e = 0, a body driven by prescribed displacements) is measured against them.
   const Eigen::VectorXd magnitudes = eq.G.cwiseAbs() * x.cwiseAbs();
-  const double scale = std::max(eq.e.norm(), magnitudes.norm());
+  const double scale = std::max({eq.e.norm(), magnitudes.norm(), floor});
   return scale > 0.0 ? (Gx - eq.e).norm() / scale : 0.0;
 }
 
@@ -352,6 +352,7 @@ class SmalseM {
   void set_inner_options() {
     reference_ =
         std::max(resisted_part(opt_.projector ? b_base_ : b_, c_).norm(), rho_ * std::sqrt(eh2_));
+    rep_.equality_floor = equality_floor();
     const double eta = opt_.eta_factor * reference_;
     M_ = opt_.M_factor * norm_A_;
     io_ = inner_;
@@ -384,7 +385,7 @@ class SmalseM {
     const MpgpReport r = solve_mpgp(A_aug, b_aug, c_, io_, x);
     accumulate(r, rep_);
     rep_.norm_gp = r.norm_gp;
-    rep_.equality_residual = equality_residual(kept_, x);
+    rep_.equality_residual = equality_residual(kept_, x, rep_.equality_floor);
     if (r.termination != QpTermination::Converged) {
       rep_.termination = r.termination;
       rep_.message = fmt::format("inner solve {}: {}", k + 1, r.message);
@@ -430,6 +431,18 @@ class SmalseM {
         "load is {:.4g} but Omega gives at most {:.4g}",
         rep_.infeasibility.applied, rep_.infeasibility.carried);
     return true;
+  }
+
+  // The magnitudes of G x's terms for x of the size the gradient test resolves, r / ||A|| spread
+  // evenly over the n unknowns: || |G_a| 1 || r / (||A|| sqrt(n)). r is the smaller of the two
+  // sizes of the data: b's resisted part before the projection (without the gaps of separated
+  // patches, which the projector spreads over the free multipliers) and after it (without the
+  // rigid parts that a generalized inverse leaves in b).
+  double equality_floor() const {
+    const auto n = static_cast<double>(c_.size());
+    const double r = std::min(reference_, resisted_part(b_, c_).norm());
+    const Eigen::VectorXd spread = Ga_.cwiseAbs() * Eigen::VectorXd::Ones(c_.size());
+    return spread.norm() * r / (norm_A_ * std::sqrt(n));
   }
 
   // The residual along the rows moves the augmented gradient by about rho ||Gh x - eh||, so an

@@ -102,8 +102,13 @@ struct SmalseReport {
   double rho = 0.0;             ///< the penalty used
   double norm_projected = 0.0;  ///< ||P A P|| used with the projector (0 without)
   double equality_residual = 0.0;  ///< qp::equality_residual at the end
-  double norm_gp = 0.0;            ///< ||g^P|| of the augmented Lagrangian at the end
-  double reference_norm = 0.0;     ///< the reference of the gradient test
+  /// The floor of the residual's scale (qp::equality_residual's `floor`, in the units of e): the
+  /// magnitudes of G x's terms for a multiplier vector of the size the gradient test resolves,
+  /// r_ref / ||A|| spread evenly over the unknowns. It keeps the measure finite where the
+  /// solution is x = 0 but the data are not (theory.md §4.6).
+  double equality_floor = 0.0;
+  double norm_gp = 0.0;         ///< ||g^P|| of the augmented Lagrangian at the end
+  double reference_norm = 0.0;  ///< the reference of the gradient test
   /// Set when the equality cannot be met in Omega (termination NumericalFailure).
   bool infeasible = false;
   Infeasibility infeasibility;
@@ -115,9 +120,12 @@ struct SmalseReport {
   double seconds = 0.0;
 };
 
-/// ||G x - e|| / max(||e||, || |G| |x| ||) (0 when both are 0): relative to the load and to the
-/// magnitudes of the terms of G x, so that a load-free equality (e = 0) is measured too.
-double equality_residual(const EqualityConstraint& eq, const Eigen::VectorXd& x);
+/// ||G x - e|| / max(||e||, || |G| |x| ||, floor) (0 when all are 0): relative to the load and to
+/// the magnitudes of the terms of G x, so that a load-free equality (e = 0) is measured too, and
+/// at least to `floor` (>= 0, SmalseReport::equality_floor), so that an x that tends to 0 is not
+/// measured against itself alone.
+double equality_residual(const EqualityConstraint& eq, const Eigen::VectorXd& x,
+                         double floor = 0.0);
 
 /// Whether G x = e can be met for some x in Omega, decided without A (the rows of G made
 /// orthonormal over the multipliers free to move, then phase one, as solve_smalse does when it
