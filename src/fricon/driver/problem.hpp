@@ -227,7 +227,7 @@ struct SolverOptions {
   int subdomain_size = static_cast<int>(feti::kDefaultSubdomainSize);  ///< [solver.subdomain_size]
   feti::RowScaling tfeti_scaling = feti::RowScaling::Stiffness;        ///< [solver.tfeti_scaling]
   /// [solver.tfeti_preconditioner]
-  feti::FetiPreconditioner tfeti_preconditioner = feti::FetiPreconditioner::None;
+  feti::FetiPreconditioner tfeti_preconditioner = feti::kDefaultPreconditioner;
 };
 
 /// The number of load steps of a path ([loading] steps).

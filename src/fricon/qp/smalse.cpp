@@ -329,10 +329,12 @@ class SmalseM {
       c_.project(x);
     }
     b_base_ = b_;
+    data_norm_ = resisted_part(b_, c_).norm();
     if (!opt_.projector) return;
     Eigen::VectorXd Ax(c_.size());
     A_(x_e_, Ax);
     b_base_ -= Ax;
+    data_norm_ = projected_resisted_norm(b_base_);
     rows_.project(b_base_);
     ++rep_.n_products;
     if (!cold) {
@@ -342,16 +344,26 @@ class SmalseM {
     }
   }
 
+  // The size of the projected data d = b - A x_e that the constraints resist: d's resisted part
+  // (the gaps of separated patches, which x = 0 satisfies by itself, left out), then projected,
+  // then its resisted part again. Projecting d first would spread those gaps over the free
+  // multipliers (every row of G is a subdomain's rigid motion, which meets both), and on a mesh
+  // with far patches they exceeded the rest by orders of magnitude (theory.md §4.6).
+  double projected_resisted_norm(const Eigen::VectorXd& d) const {
+    Eigen::VectorXd kept = resisted_part(d, c_);
+    rows_.project(kept);
+    return resisted_part(kept, c_).norm();
+  }
+
   // The inner MPGP's options: its norm, the preconditioner in face and the adaptive precision
-  // min(M ||Gh x - eh||, eta). The gradient test is relative to the data of the problem: b_R and
-  // the load rho e, and the projected linear term's b_base_R (the rounding level of its
-  // gradient). With the projector b's part along the rows of G is left out: it depends on which
-  // generalized inverse made A and b (the subdomains' rigid motions in Total FETI's
-  // b = B K^+ f - c, theory.md §8.3), not on the problem, and can exceed the rest by orders of
-  // magnitude.
+  // min(M ||Gh x - eh||, eta). The gradient test is relative to the data of the problem: the
+  // larger of the load rho e and b_R, with the projector the projected linear term's resisted
+  // part (projected_resisted_norm). With the projector b's part along the rows of G is left out: it
+  // depends on which generalized inverse made A and b (the subdomains' rigid motions in Total
+  // FETI's b = B K^+ f - c, theory.md §8.3), not on the problem, and can exceed the rest by orders
+  // of magnitude.
   void set_inner_options() {
-    reference_ =
-        std::max(resisted_part(opt_.projector ? b_base_ : b_, c_).norm(), rho_ * std::sqrt(eh2_));
+    reference_ = std::max(data_norm_, rho_ * std::sqrt(eh2_));
     rep_.equality_floor = equality_floor();
     const double eta = opt_.eta_factor * reference_;
     M_ = opt_.M_factor * norm_A_;
@@ -379,7 +391,7 @@ class SmalseM {
   bool outer_step(int k, const Operator& A_aug, Eigen::VectorXd& x, Eigen::VectorXd& mu) {
     rep_.outer_iterations = k + 1;
     const Eigen::VectorXd b_aug = b_base_ - Ga_.transpose() * mu + rho_ * x_e_;
-    rep_.reference_norm = std::max(reference_, resisted_part(b_base_, c_).norm());
+    rep_.reference_norm = reference_;
     const double eps_g = std::max(inner_.rel_tolerance * rep_.reference_norm, inner_.abs_tolerance);
     io_.abs_tolerance = std::min(eps_g, equality_floor_);
     const MpgpReport r = solve_mpgp(A_aug, b_aug, c_, io_, x);
@@ -490,6 +502,7 @@ class SmalseM {
   double norm_A_ = 0.0, rho_ = 0.0;
   Eigen::VectorXd x_e_, b_base_;
   double reference_ = 0.0;  ///< the reference of the gradient test
+  double data_norm_ = 0.0;  ///< the resisted data's size (projected_resisted_norm)
   double M_ = 0.0;          ///< the ratio of the inner precision to ||Gh x - eh||
   MpgpOptions io_;          ///< the inner solves' options
   double L_prev_ = 0.0, residual_prev_ = std::numeric_limits<double>::infinity();
