@@ -198,6 +198,11 @@ struct MpgpState {
   /// stopping test must be certified with a recomputed g (BarzilaiBorwein; Paper accepts the
   /// recursive gradient, as [HL09] does).
   bool recursive = false;
+  /// What p still has to become before the next CG or expansion step (Mpgp::next_direction):
+  /// the direction is formed only when a step takes it, so that a preconditioner is not applied
+  /// for a proportioning step, which moves along g instead.
+  enum class Direction { Ready, Restart, Conjugate } direction = Direction::Ready;
+  double pAp = 0.0;         ///< p^T A p of the last CG step (for Direction::Conjugate)
   double q_prev = 0.0;      ///< q after the last step (for n_objective_increases)
   bool stopped = false;     ///< the monitor returned false
   SpectralLength spectral;  ///< the trial length of the spectral moves (BarzilaiBorwein)
@@ -251,6 +256,7 @@ class Mpgp {
   void multiply(const Eigen::VectorXd& v, Eigen::VectorXd& Av);
   void refresh_gradient();
   void split_and_restart();
+  void next_direction();
   const Eigen::VectorXd& cg_direction();
   std::optional<Stop> stop_test();
   void count(char kind);
@@ -322,6 +328,7 @@ bool Mpgp::proportional() const {
 // Lines 5-12: the CG step length a_cg along -p and the feasible one a_f decide between the CG
 // step and the expansion step (1 product, A p, shared by both).
 MpgpStep Mpgp::cg_or_expansion_step() {
+  next_direction();
   multiply(s_.p, s_.Ap);
   const double pAp = s_.p.dot(s_.Ap);
   const double a_cg = s_.g.dot(s_.p) / pAp;
@@ -334,19 +341,34 @@ MpgpStep Mpgp::cg_or_expansion_step() {
   return a_cg <= a_f ? cg_step(a_cg, pAp) : expansion_step(a_f, a_cg);
 }
 
-// Lines 7-8: the CG step inside the feasible set, g updated recursively, and the next conjugate
-// direction p = z - beta_cg p (z = phi, or its preconditioned image in face).
+// Lines 7-8: the CG step inside the feasible set, g updated recursively; the next conjugate
+// direction p = z - beta_cg p follows if the next step takes it (next_direction).
 MpgpStep Mpgp::cg_step(double a_cg, double pAp) {
   if (bb_) s_.spectral.update(s_.p.squaredNorm(), pAp, s_.Ap.squaredNorm());
   s_.x.noalias() -= a_cg * s_.p;
   s_.g.noalias() -= a_cg * s_.Ap;
   c_.project(s_.x);  // only removes rounding-level infeasibility when a_cg ~ a_f
   s_.split = kern_.split(s_.x, s_.g, s_.phi, s_.beta);
-  const Eigen::VectorXd& z = cg_direction();
-  const double beta_cg = z.dot(s_.Ap) / pAp;
-  s_.p = z - beta_cg * s_.p;
+  s_.pAp = pAp;
+  s_.direction = MpgpState::Direction::Conjugate;
   s_.recursive = bb_;
   return taken('c', a_cg);
+}
+
+// The CG direction at x, formed when a CG or expansion step takes it: phi (or its preconditioned
+// image z) after a restart (line 15), z - beta_cg p after a CG step (line 8; A p and p^T A p are
+// still those of that step). x, g and phi are those the direction was due at, so the iterates are
+// those of forming it at once.
+void Mpgp::next_direction() {
+  using Direction = MpgpState::Direction;
+  if (s_.direction == Direction::Restart) {
+    s_.p = cg_direction();
+  } else if (s_.direction == Direction::Conjugate) {
+    const Eigen::VectorXd& z = cg_direction();
+    const double beta_cg = z.dot(s_.Ap) / s_.pAp;
+    s_.p = z - beta_cg * s_.p;
+  }
+  s_.direction = Direction::Ready;
 }
 
 // Lines 10-12, with the move that MpgpOptions::expansion chooses; CG restarts from phi.
@@ -532,10 +554,11 @@ void Mpgp::refresh_gradient() {
   s_.recursive = false;
 }
 
-// The split of g at x, and p := phi, or its preconditioned image (line 15: CG restarts).
+// The split of g at x; CG restarts from phi, or its preconditioned image (line 15), when the next
+// step takes a direction (next_direction).
 void Mpgp::split_and_restart() {
   s_.split = kern_.split(s_.x, s_.g, s_.phi, s_.beta);
-  s_.p = cg_direction();
+  s_.direction = MpgpState::Direction::Restart;
 }
 
 // The direction of the CG steps (§4.2): phi, or with a preconditioner M, z = M phi restricted to
