@@ -728,8 +728,8 @@ void add_tfeti_keys(SolverKeys& b) {
            "which it keeps) or `\"dirichlet\"` (the same with each subdomain's Schur "
            "complement on those dofs: it keeps K_s and a factor of its interior, and a step "
            "costs two products with K_s and a solve with that factor; the default, because on "
-           "thin or graded meshes the others can need a hundred times its steps); theory.md "
-           "§8.5");
+           "meshes of flat elements `\"none\"` can need a hundred times its steps); "
+           "theory.md §8.5");
   tfeti_only();
 }
 

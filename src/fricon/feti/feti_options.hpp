@@ -25,8 +25,9 @@ enum class FetiPreconditioner {
 };
 
 /// solver.tfeti_preconditioner's default: the Dirichlet preconditioner. On the brick it saves
-/// products with F but not time; on a thin slab of flat elements the row scaling alone needed
-/// over a hundred times its products with F (docs/benchmarks.md), so it is the safe choice.
+/// products with F and about as much time as it costs (MPGP applies it for CG and expansion
+/// steps only); on a thin slab of flat elements the row scaling alone needed over a hundred
+/// times its products with F (docs/benchmarks.md), so it is the safe choice.
 inline constexpr FetiPreconditioner kDefaultPreconditioner = FetiPreconditioner::Dirichlet;
 
 /// The smallest subdomain_size a user may ask for [nodes].
