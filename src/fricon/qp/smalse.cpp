@@ -329,8 +329,10 @@ class SmalseM {
       c_.project(x);
     }
     b_base_ = b_;
-    data_norm_ = resisted_part(b_, c_).norm();
-    if (!opt_.projector) return;
+    if (!opt_.projector) {
+      data_norm_ = resisted_part(b_, c_).norm();
+      return;
+    }
     Eigen::VectorXd Ax(c_.size());
     A_(x_e_, Ax);
     b_base_ -= Ax;
@@ -364,6 +366,7 @@ class SmalseM {
   // of magnitude.
   void set_inner_options() {
     reference_ = std::max(data_norm_, rho_ * std::sqrt(eh2_));
+    rep_.reference_norm = reference_;
     rep_.equality_floor = equality_floor();
     const double eta = opt_.eta_factor * reference_;
     M_ = opt_.M_factor * norm_A_;
@@ -391,7 +394,6 @@ class SmalseM {
   bool outer_step(int k, const Operator& A_aug, Eigen::VectorXd& x, Eigen::VectorXd& mu) {
     rep_.outer_iterations = k + 1;
     const Eigen::VectorXd b_aug = b_base_ - Ga_.transpose() * mu + rho_ * x_e_;
-    rep_.reference_norm = reference_;
     const double eps_g = std::max(inner_.rel_tolerance * rep_.reference_norm, inner_.abs_tolerance);
     io_.abs_tolerance = std::min(eps_g, equality_floor_);
     const MpgpReport r = solve_mpgp(A_aug, b_aug, c_, io_, x);
