@@ -14,15 +14,18 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "common/fixtures.hpp"
+#include "fricon/contact/candidates.hpp"
 #include "fricon/core/error.hpp"
 #include "fricon/driver/model.hpp"
 #include "fricon/driver/run.hpp"
+#include "fricon/driver/run_steps.hpp"
 #include "fricon/driver/tfeti_solve.hpp"
 #include "fricon/feti/feti_operator.hpp"
 #include "fricon/io/problem_file.hpp"
@@ -261,6 +264,73 @@ TEST(Tfeti, TheWheelMovedWithoutTouchingGivesTheDirectAnswer) {
 
 TEST(Tfeti, TheHertzHemisphereGivesTheDirectAnswer) {
   expect_same_answer(example("examples/geometry/hertz-hemisphere.toml", {}), 8);
+}
+
+// The contact search under Total FETI (theory.md §2.7, §8.7): the hemisphere's far patches (gaps
+// of centimetres for an approach of a fraction of a millimetre) are left out, starting from the
+// displacement of the gluing alone, and the answer is still the direct one on every patch.
+TEST(Tfeti, TheContactSearchLeavesOutTheHemispheresFarPatches) {
+  const Problem p = example("examples/geometry/hertz-hemisphere.toml", {});
+  const RunResult direct = with_backend(p, "cholmod");
+  const RunResult feti = with_backend(p, "tfeti", 8);
+  ASSERT_EQ(feti.report.status, RunStatus::Converged) << feti.report.message;
+  const ContactReport& c = *feti.report.contact;
+  const Index n_patches = feti.contact->lambda.size() / 3;
+  EXPECT_GE(c.search_rounds, 1);
+  // The direct search keeps 223 of the 415 patches: the free body's penetration, which the
+  // gluing's displacement gives as K^-1 f does, to within the patches at its threshold.
+  EXPECT_LT(c.n_candidate_patches, 6 * n_patches / 10);
+  EXPECT_NEAR(static_cast<Real>(c.n_candidate_patches),
+              static_cast<Real>(direct.report.contact->n_candidate_patches), 3.0);
+  // The operator's contact rows are the last round's candidates'.
+  EXPECT_EQ(feti.report.feti->n_contact, 3 * c.n_candidate_patches);
+  EXPECT_NEAR(feti.report.max_displacement, direct.report.max_displacement,
+              kSameAnswer * direct.report.max_displacement);
+  EXPECT_NEAR(peak_pressure(feti), peak_pressure(direct), kSameAnswer * peak_pressure(direct));
+  // The total of the multipliers over every patch (zero on those left out).
+  EXPECT_NEAR(feti.contact->lambda.sum(), direct.contact->lambda.sum(),
+              kSameAnswer * direct.contact->lambda.cwiseAbs().sum());
+}
+
+// The contact search puts each set of candidates' rows into one operator
+// (FetiOperator::set_contact_rows, theory.md §8.7). Replaced rows make the operator of those
+// rows in every term the QP reads: h, G, e, products with F and with M_E, whatever rows it had
+// before (every patch, or none).
+TEST(Tfeti, ReplacedContactRowsMakeTheOperatorOfThoseRows) {
+  Problem p = example("examples/coulomb-brick.toml", {});
+  p.solver.backend = parallel::Backend::Tfeti;
+  p.solver.subdomains = 4;
+  RunResult r;
+  const std::optional<contact::ContactDiscretization> disc = build_factored_model(p, {}, r);
+  ASSERT_TRUE(disc);
+  ASSERT_GE(disc->n_patches(), 6);
+  const contact::ContactDiscretization part = contact::restrict_to_patches(*disc, {0, 2, 3, 5});
+  RunReport report;
+  const auto made = make_feti_operator(p, r.model, &part, {}, report);
+  const std::array<const contact::ContactDiscretization*, 2> rows_before = {&*disc, nullptr};
+  for (const contact::ContactDiscretization* before : rows_before) {
+    const auto replaced = make_feti_operator(p, r.model, before, {}, report);
+    replaced->set_contact_rows(part.B, part.offset);
+    ASSERT_EQ(replaced->size(), made->size());
+    ASSERT_EQ(replaced->n_contact(), part.B.rows());
+    const Real scale = made->h().norm();
+    EXPECT_LE((replaced->h() - made->h()).norm(), 1e-12 * scale);
+    EXPECT_LE((MatrixXd(replaced->G()) - MatrixXd(made->G())).norm(),
+              1e-12 * MatrixXd(made->G()).norm());
+    EXPECT_LE((replaced->e() - made->e()).norm(), 1e-12 * made->e().norm());
+    for (int trial = 0; trial < 3; ++trial) {
+      const VectorXd x = VectorXd::Random(made->size());
+      VectorXd y_made(x.size()), y_replaced(x.size());
+      made->apply(x, y_made);
+      replaced->apply(x, y_replaced);
+      EXPECT_LE((y_replaced - y_made).norm(), 1e-12 * y_made.norm());
+      const VectorXd x_E = VectorXd::Random(made->n_equality());
+      VectorXd m_made, m_replaced;
+      made->equality_preconditioner()(x_E, m_made);
+      replaced->equality_preconditioner()(x_E, m_replaced);
+      EXPECT_LE((m_replaced - m_made).norm(), 1e-12 * m_made.norm());
+    }
+  }
 }
 
 // A graded mesh (examples/obstacles/ball-block.toml: elements from 0.01 to 10 mm) cut into 32

@@ -340,14 +340,15 @@ VectorXd certify(const contact::ContactDiscretization& disc, const dual::DualOpe
 
 // The result on every patch of a contact search (theory.md §2.7): the patches left out with
 // zero multipliers and radii, the gradient g = c - B w of the whole QP through the displacement w
-// of the whole body, and the certificate over every patch.
+// of the whole body, and the certificate over every patch, relative to `data_scale` as certify's
+// (whole_data_scale: under Total FETI the data of the equality rows too, theory.md §8.6).
 struct WholeResult {
   VectorXd lambda, radius, g;
 };
 
 WholeResult cover_left_out(const Problem& problem, const Model& m, const PatchSelection& selection,
                            const dual::DualOperator& Q, const TrescaMap& map, const VectorXd& w,
-                           ContactReport& rep) {
+                           Real data_scale, ContactReport& rep) {
   const contact::ContactDiscretization& whole = selection.whole;
   const Index n = whole.n_patches();
   WholeResult r;
@@ -358,7 +359,8 @@ WholeResult cover_left_out(const Problem& problem, const Model& m, const PatchSe
   qp::SeparableConstraints c = qp::SeparableConstraints::contact_layout(n);
   c.set_disc_radii(r.radius);
   const qp::BlockScaling D = dual_scaling(problem, m, whole, c);
-  rep.kkt = qp::scaled_kkt_residuals(r.lambda, r.g, h, c, D, qp::StopReference::Resisted);
+  rep.kkt =
+      qp::scaled_kkt_residuals(r.lambda, r.g, h, c, D, qp::StopReference::Resisted, data_scale);
   rep.n_candidate_patches = rep.n_patches;
   rep.n_patches = n;
   rep.n_dual = whole.n_dual();
@@ -618,7 +620,9 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m,
   }
   const contact::ContactDiscretization& whole = selection ? selection->whole : disc;
   WholeResult result{map.lambda(), map.radius(), std::move(g)};
-  if (selection) result = cover_left_out(problem, m, *selection, Q, map, out.w, rep);
+  if (selection)
+    result = cover_left_out(problem, m, *selection, Q, map, out.w,
+                            whole_data_scale(Q, map, scaling), rep);
   {
     ScopedPhase phase(times, "postprocess");
     const auto whole_bounds = selection ? make_slip_bounds(problem, m.mesh, whole) : nullptr;

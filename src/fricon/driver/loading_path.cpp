@@ -14,6 +14,7 @@
 #include "fricon/driver/run.hpp"
 #include "fricon/driver/run_steps.hpp"
 #include "fricon/driver/tfeti_solve.hpp"
+#include "fricon/feti/feti_operator.hpp"
 #include "fricon/linalg/blas.hpp"
 
 namespace fricon::driver {
@@ -65,11 +66,30 @@ fe::NodalField owned_prescribed(const Problem& part, const std::vector<int>& own
   return u;
 }
 
-// u0 only with a factor of K: Total FETI's operator computes its own from the nodal loads.
-LoadBasis load_basis(const Problem& problem, Model& m, bool with_u0) {
+// How a path's u0 = K^-1 f is solved: with the factor of K; under Total FETI by the gluing alone
+// (solve_gluing on `feti`, its contact rows removed: the contact search's free displacement), or
+// not at all (`feti` null: its operator computes its own from the nodal loads).
+struct FreeSolver {
+  bool factor = true;
+  feti::FetiOperator* feti = nullptr;
+  const RunOptions* options = nullptr;
+};
+
+// The free displacement of load `part` (its f, and the model's prescribed values of it).
+VectorXd free_displacement(const Problem& part, const Model& m, const VectorXd& f,
+                           const FreeSolver& solver) {
+  if (solver.factor) return m.factor.solve(f);
+  if (!solver.feti) return {};
+  const fe::NodalField applied = applied_forces(part, m.mesh);
+  solver.feti->set_load(f, VectorXd(), nullptr, dual::NodalLoad{&applied, &m.prescribed});
+  return solve_gluing(*solver.feti, part, *solver.options).u;
+}
+
+LoadBasis load_basis(const Problem& problem, Model& m, const FreeSolver& solver) {
   const std::size_t n = path_loads(problem).size();
   std::vector<int> owner;
   (void)make_prescribed(problem, m.mesh, &owner);
+  if (solver.feti) solver.feti->set_contact_rows(SparseMatrix(0, m.dofs.n_free()), VectorXd());
   LoadBasis basis;
   for (std::size_t i = 0; i <= n; ++i) {
     std::vector<Real> alone(n, 0.0);
@@ -77,7 +97,7 @@ LoadBasis load_basis(const Problem& problem, Model& m, bool with_u0) {
     const Problem part = scaled_loads(problem, alone, i == 0 ? 1.0 : 0.0);
     m.prescribed = owned_prescribed(part, owner, m.mesh.n_nodes());
     basis.f.push_back(load_vector(part, m, Extent::Whole));
-    basis.u0.push_back(with_u0 ? m.factor.solve(basis.f.back()) : VectorXd());
+    basis.u0.push_back(free_displacement(part, m, basis.f.back(), solver));
   }
   return basis;
 }
@@ -239,16 +259,22 @@ std::unique_ptr<dual::DualOperator> make_path_operator(const Problem& problem,
   return dual::make_dual_operator(problem.solver.dual_operator, input);
 }
 
-// The step's contact solve on the path's operator, then its fields and self-check. The step's
-// load goes to Q as f and u0 over the free dofs and, for an operator on the subdomains (`nodal`),
-// as the applied forces and prescribed displacements at the nodes.
+// The step's load into Q with the contact rows' `offset`: f and u0 over the free dofs and, for an
+// operator on the subdomains (`nodal`), the applied forces and prescribed displacements at the
+// nodes.
+void set_step_load(const Problem& step_problem, const Model& m, const VectorXd& offset,
+                   const VectorXd& u0, bool nodal, dual::DualOperator& Q) {
+  const fe::NodalField applied = nodal ? applied_forces(step_problem, m.mesh) : fe::NodalField();
+  Q.set_load(m.f, offset, &u0,
+             nodal ? dual::NodalLoad{&applied, &m.prescribed} : dual::NodalLoad{});
+}
+
+// The step's contact solve on the path's operator, then its fields and self-check.
 VectorXd solve_step(const Problem& step_problem, const contact::ContactDiscretization& disc,
                     dual::DualOperator& Q, const VectorXd& u0, const PathState& state, bool nodal,
                     const RunOptions& options, RunResult& r) {
   Model& m = r.model;
-  const fe::NodalField applied = nodal ? applied_forces(step_problem, m.mesh) : fe::NodalField();
-  Q.set_load(m.f, disc.offset, &u0,
-             nodal ? dual::NodalLoad{&applied, &m.prescribed} : dual::NodalLoad{});
+  set_step_load(step_problem, m, disc.offset, u0, nodal, Q);
   const PathStep step{&state.history,
                       state.lambda.size() > 0 ? &state.lambda : nullptr,
                       state.predicted.size() > 0 ? &state.predicted : nullptr,
@@ -283,12 +309,23 @@ void relinearize_step(const contact::ContactDiscretization& relinearized, PathSt
 
 // The contact search along a path (theory.md §2.9): the candidates, carried from step to step
 // and only grown, the part of the discretization on them and its dual operator, rebuilt when
-// they grow; ||Q|| and ||D Q D|| of that operator once estimated (0: not yet).
+// they grow (under Total FETI the path's one operator, `feti`, whose contact rows are replaced,
+// theory.md §8.7); ||Q|| and ||D Q D|| of that operator once estimated (0: not yet).
 struct PathSearch {
   std::vector<Index> candidates;
   std::unique_ptr<contact::ContactDiscretization> part;
   std::unique_ptr<dual::DualOperator> Q;
+  feti::FetiOperator* feti = nullptr;
   Real norm_Q = 0.0, norm_Q_scaled = 0.0;
+
+  // The operator on the part (after prepare_part).
+  dual::DualOperator& op() const { return feti ? *feti : *Q; }
+  // Drops the part and its operator (the candidates grew, or the discretization changed).
+  void drop_part() {
+    Q.reset();
+    part.reset();
+    norm_Q = norm_Q_scaled = 0.0;
+  }
 };
 
 // Adds `more` (increasing) to the candidates; a set that grows drops its operator.
@@ -298,9 +335,7 @@ void grow_candidates(const std::vector<Index>& more, PathSearch& search) {
                       std::back_inserter(added));
   if (added.empty()) return;
   search.candidates = contact::merge_patches(search.candidates, added);
-  search.Q.reset();
-  search.part.reset();
-  search.norm_Q = search.norm_Q_scaled = 0.0;
+  search.drop_part();
 }
 
 // The part on the candidates at this step's loads: built with its operator when the set grew,
@@ -309,13 +344,17 @@ void grow_candidates(const std::vector<Index>& more, PathSearch& search) {
 void prepare_part(const Problem& problem, const contact::ContactDiscretization& disc,
                   const Model& m, const RunOptions& options, int steps_left, PathSearch& search) {
   contact::ContactDiscretization fresh = contact::restrict_to_patches(disc, search.candidates);
-  if (search.Q) {
+  if (search.part) {
     search.part->surface = std::move(fresh.surface);
     search.part->offset = std::move(fresh.offset);
     return;
   }
   search.part = std::make_unique<contact::ContactDiscretization>(std::move(fresh));
   const contact::ContactDiscretization& part = *search.part;
+  if (search.feti) {
+    search.feti->set_contact_rows(part.B, part.offset);
+    return;
+  }
   dual::DualInput input{m.factor, part.B, m.f, part.dofs, interrupt_poll(options), &part.offset};
   input.expected_recoveries = kOuterIterationsPerStep * steps_left;
   input.R = &m.floating.R;
@@ -352,7 +391,7 @@ VectorXd solve_step_with_search(const Problem& step_problem,
       ScopedPhase phase(r.report.times, "dual");
       prepare_part(step_problem, disc, m, options, steps_left, search);
     }
-    search.Q->set_load(m.f, search.part->offset, &u0);
+    set_step_load(step_problem, m, search.part->offset, u0, search.feti != nullptr, search.op());
     const VectorXd lambda = state.lambda.size() > 0
                                 ? restrict_multipliers(state.lambda, search.candidates)
                                 : VectorXd();
@@ -364,7 +403,7 @@ VectorXd solve_step_with_search(const Problem& step_problem,
                         state.lambda_scale};
     const PatchSelection selection{disc, search.candidates, round};
     phase_start(options, "outer loop");
-    ContactOutcome c = solve_contact(step_problem, m, *search.part, *search.Q, r.report.times,
+    ContactOutcome c = solve_contact(step_problem, m, *search.part, search.op(), r.report.times,
                                      options, &selection, &step);
     search.norm_Q = c.report.norm_Q;
     search.norm_Q_scaled = c.report.norm_Q_scaled;
@@ -425,11 +464,14 @@ class PathRun {
     // A floating body has no free displacement to start each step's search from (theory.md
     // §2.10).
     search_ = disc_ && search_applies(problem_, r_.model) && r_.model.floating.empty();
-    if (disc_ && !search_)
+    // Under Total FETI one operator for the whole path, whose contact rows the search replaces.
+    if (disc_ && (!search_ || tfeti_))
       Q_ = make_path_operator(problem_, *disc_, problem_.loading.steps, options_, r_, feti_);
+    if (search_) path_search_.feti = feti_;
     {
       ScopedPhase phase(r_.report.times, "solve");
-      basis_ = load_basis(problem_, r_.model, !tfeti_);
+      // Under Total FETI the search's free displacements are the gluing's (one solve per load).
+      basis_ = load_basis(problem_, r_.model, {!tfeti_, search_ ? feti_ : nullptr, &options_});
     }
     if (disc_) state_.tangential = VectorXd::Zero(disc_->n_dual());
   }
@@ -479,9 +521,7 @@ class PathRun {
         [&](const contact::ContactDiscretization& relinearized) {
           relinearize_step(relinearized, state_, r_.model, *disc_);
           if (search_) {
-            path_search_.Q.reset();
-            path_search_.part.reset();
-            path_search_.norm_Q = path_search_.norm_Q_scaled = 0.0;
+            path_search_.drop_part();
           } else {
             Q_ = make_path_operator(problem_, *disc_, steps_left, options_, r_, feti_);
           }

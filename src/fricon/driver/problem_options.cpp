@@ -611,9 +611,11 @@ void add_dual_problem_keys(SolverKeys& b) {
   b.choice("contact_search", &SolverOptions::contact_search,
            "which patches enter the dual QP: `\"gap\"` (those the free displacement K⁻¹f "
            "brings within `contact_search_margin` of closing, grown until no patch left out "
-           "penetrates; the certificate covers every patch) or `\"off\"` (every patch). Tresca "
-           "friction with a positive `slip_bound`, which acts without pressure, and `backend = "
-           "\"petsc\"` use every patch; theory.md §2.7");
+           "penetrates; the certificate covers every patch; under `backend = \"tfeti\"` the "
+           "free displacement is that of the gluing alone) or `\"off\"` (every patch). Tresca "
+           "friction with a positive `slip_bound`, which acts without pressure, `backend = "
+           "\"petsc\"`, and a floating body under `\"tfeti\"` use every patch; theory.md §2.7, "
+           "§8.7");
   b.number("contact_search_margin", &SolverOptions::contact_search_margin, non_negative(),
            "a patch is a first candidate when its mean gap at the free displacement is at "
            "most this many times the deepest free penetration (0: the patches the free body "

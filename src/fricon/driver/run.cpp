@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 #include "fricon/core/error.hpp"
+#include "fricon/driver/candidate_operators.hpp"
 #include "fricon/driver/run_steps.hpp"
 #include "fricon/driver/tfeti_solve.hpp"
 #include "fricon/fe/stress.hpp"
@@ -64,10 +65,11 @@ bool frictionless(const Problem& problem) {
 
 }  // namespace
 
-bool search_applies(const Problem& problem, const Model&) {
+bool search_applies(const Problem& problem, const Model& model) {
   if (problem.solver.contact_search == contact::ContactSearch::Off) return false;
-  // Total FETI has no free displacement K^-1 f to choose candidates from: every patch.
-  if (problem.solver.backend == parallel::Backend::Tfeti) return false;
+  // Total FETI starts the search from the gluing's displacement, which a floating body lacks,
+  // and has no refusal of candidates that cannot balance it (theory.md §8.7): every patch.
+  if (problem.solver.backend == parallel::Backend::Tfeti && !model.floating.empty()) return false;
   // A positive Tresca bound g F acts without pressure: every patch of such a pair resists
   // sliding, so none may be left out (theory.md §2.7).
   const bool tresca_with_friction =
@@ -95,18 +97,26 @@ std::vector<Index> closed_gaps(const VectorXd& penetration, Real margin) {
 
 }  // namespace
 
+std::unique_ptr<CandidateOperators> make_candidate_operators(const Problem& problem, const Model& m,
+                                                             const RunOptions& options,
+                                                             RunReport& report) {
+  return problem.solver.backend == parallel::Backend::Tfeti
+             ? make_feti_candidates(problem, m, options, report)
+             : make_factor_candidates(problem, m, options, report);
+}
+
 VectorXd solve_with_search(const Problem& problem, const contact::ContactDiscretization& disc,
                            const RunOptions& options, RunResult& r,
                            const std::vector<Index>* first_candidates) {
   const Model& m = r.model;
+  const std::unique_ptr<CandidateOperators> operators =
+      make_candidate_operators(problem, m, options, r.report);
   // @sect: the free displacement and the first candidates (theory.md §2.7); with a floating
   // body, whose free displacement does not exist, those of the closed gaps (theory.md §2.10).
-  VectorXd u0;
   std::vector<Index> candidates;
   Real tolerance = 0.0;
   {
-    ScopedPhase phase(r.report.times, "dual");
-    u0 = m.factor.solve(m.f);
+    const VectorXd& u0 = operators->free_displacement();
     const VectorXd free_penetration = contact::mean_penetration(
         disc, m.floating.empty() ? u0 : VectorXd(VectorXd::Zero(u0.size())));
     const Real margin = problem.solver.contact_search_margin;
@@ -121,7 +131,7 @@ VectorXd solve_with_search(const Problem& problem, const contact::ContactDiscret
   // @sect: solve on the candidates, add the left-out patches that penetrate, again until none
   // does (after kMaxSearchRounds growths, with every patch). The counts of the report are
   // those of every round (and of the solve for u0).
-  SearchRounds rounds(/*solves_before=*/1);  // the solve for u0
+  SearchRounds rounds(operators->free_displacement_solves());
   // Without friction every radius is 0 and the tangential multipliers stay 0: their rows of B
   // need not enter Q (a third of the rows to form); a dumped QP keeps them (a Q without zero
   // rows, for other solvers).
@@ -129,22 +139,14 @@ VectorXd solve_with_search(const Problem& problem, const contact::ContactDiscret
   const contact::PatchRows rows =
       normal_rows ? contact::PatchRows::Normal : contact::PatchRows::All;
   for (int round = 1;; ++round) {
-    phase_start(options, "dual");
     const contact::ContactDiscretization part =
         contact::restrict_to_patches(disc, candidates, rows);
-    std::unique_ptr<dual::DualOperator> Q;
-    {
-      ScopedPhase phase(r.report.times, "dual");
-      dual::DualInput input{m.factor,     part.B, m.f, part.dofs, interrupt_poll(options),
-                            &part.offset, &u0};
-      input.R = &m.floating.R;
-      Q = dual::make_dual_operator(problem.solver.dual_operator, input);
-    }
+    const dual::DualOperator& Q = operators->on_candidates(part);
     phase_start(options, "outer loop");
     const PatchSelection selection{disc, candidates, round};
     ContactOutcome c;
     try {
-      c = solve_contact(problem, m, part, *Q, r.report.times, options, &selection);
+      c = solve_contact(problem, m, part, Q, r.report.times, options, &selection);
     } catch (const UnbalancedLoad&) {
       // Candidates that cannot balance a floating body: again with every patch, which decides.
       if (static_cast<Index>(candidates.size()) == disc.n_patches()) throw;
@@ -153,7 +155,11 @@ VectorXd solve_with_search(const Problem& problem, const contact::ContactDiscret
     }
     const std::vector<Index> added =
         rounds.patches_to_add(disc, candidates, c, tolerance, round, options);
-    if (added.empty()) return rounds.adopt_answer(std::move(c), r);
+    if (added.empty()) {
+      VectorXd u = rounds.adopt_answer(std::move(c), r);
+      operators->record(r.report);
+      return u;
+    }
     candidates = contact::merge_patches(candidates, added);
   }
 }

@@ -66,7 +66,8 @@ class SearchRounds {
 /// off, and no patch resists without pressure (Tresca with a positive slip bound). With a
 /// floating body of `model` (theory.md §2.10) a static run starts the search from the closed
 /// gaps; a loading path, whose search starts each step from a free displacement, solves every
-/// patch.
+/// patch. Under Total FETI the search starts from the gluing's displacement (theory.md §8.7),
+/// and a floating body's static run solves every patch too.
 bool search_applies(const Problem& problem, const Model& model);
 
 /// Every patch of `disc`, 0 .. n_patches - 1.
@@ -75,7 +76,8 @@ std::vector<Index> all_patches(const contact::ContactDiscretization& disc);
 /// The outer loop of dual QPs on the patches of the contact search (theory.md §2.7): the first
 /// candidates (contact::initial_candidates of the free displacement, or `first_candidates` if
 /// given: increasing patch indices), then one more solve with the left-out patches that
-/// penetrate added, until none does. Builds the dual operator of each set (phase "dual"), fills
+/// penetrate added, until none does. Builds the dual operator of each set (phase "dual") on the
+/// backend's factor of K or its subdomains (driver/candidate_operators.hpp), fills
 /// the contact part of r.report (over every patch) and r.contact, and returns the displacement
 /// over the free dofs.
 VectorXd solve_with_search(const Problem& problem, const contact::ContactDiscretization& disc,

@@ -39,6 +39,7 @@ std::unique_ptr<feti::FetiOperator> make_feti_operator(const Problem& problem, c
 
 void record_feti_counts(const feti::FetiOperator& F, RunReport& report) {
   if (!report.feti) return;
+  report.feti->n_contact = F.n_contact();  // the contact search's last candidates
   report.feti->n_products = F.n_products();
   report.feti->products_s = F.products_seconds();
   report.feti->sums_s = F.sums_seconds();
@@ -54,6 +55,33 @@ void record_feti_counts(const feti::FetiOperator& F, RunReport& report) {
   }
 }
 
+GluingSolve solve_gluing(const feti::FetiOperator& F, const Problem& problem,
+                         const RunOptions& options) {
+  FRICON_CHECK(F.n_contact() == 0, "solve_gluing: F has " << F.n_contact() << " contact rows");
+  qp::SeparableConstraints free;
+  free.append_free(F.size());
+  qp::MpgpOptions inner = problem.solver.qp;
+  inner.rel_tolerance *= dual::kEqualityToleranceShare;
+  inner.power_tolerance = dual::kEqualityPowerTolerance;
+  inner.monitor = [&options](const qp::MpgpIteration&) { return !options.stop_was_requested(); };
+  inner.preconditioner = F.equality_preconditioner();  // every multiplier is an equality one
+  qp::SmalseOptions outer;
+  outer.rho_factor = dual::kEqualityPenaltyFactor;
+  outer.projected_norm = true;
+  outer.equality_tolerance = inner.rel_tolerance;
+  GluingSolve g;
+  VectorXd lambda = VectorXd::Zero(F.size()), mu;
+  g.qp =
+      qp::solve_smalse(F.as_qp_operator(), F.h(), free, {F.G(), F.e()}, outer, inner, lambda, mu);
+  if (g.qp.termination == qp::QpTermination::UserStopped)
+    throw Interrupted("interrupted during the Total FETI solve");
+  const VectorXd alpha = -mu;
+  g.u = F.displacement(lambda) + F.rigid_displacement(alpha);
+  g.gluing_residual = F.gluing_residual(lambda, alpha);
+  g.gluing_bound = kCertificateFactor * problem.solver.qp.rel_tolerance;
+  return g;
+}
+
 VectorXd solve_elastic_tfeti(const Problem& problem, const RunOptions& options, RunResult& r) {
   RunReport& rep = r.report;
   phase_start(options, "factorize");
@@ -61,41 +89,19 @@ VectorXd solve_elastic_tfeti(const Problem& problem, const RunOptions& options, 
       make_feti_operator(problem, r.model, nullptr, options, rep);
   phase_start(options, "solve");
   ScopedPhase phase(rep.times, "solve");
-  qp::SeparableConstraints free;
-  free.append_free(F->size());
-  qp::MpgpOptions inner = problem.solver.qp;
-  inner.rel_tolerance *= dual::kEqualityToleranceShare;
-  inner.power_tolerance = dual::kEqualityPowerTolerance;
-  inner.monitor = [&options](const qp::MpgpIteration&) { return !options.stop_was_requested(); };
-  inner.preconditioner = F->equality_preconditioner();  // every multiplier is an equality one
-  qp::SmalseOptions outer;
-  outer.rho_factor = dual::kEqualityPenaltyFactor;
-  outer.projected_norm = true;
-  outer.equality_tolerance = inner.rel_tolerance;
-  VectorXd lambda = VectorXd::Zero(F->size()), mu;
-  const qp::SmalseReport s = qp::solve_smalse(F->as_qp_operator(), F->h(), free, {F->G(), F->e()},
-                                              outer, inner, lambda, mu);
-  const VectorXd alpha = -mu;
-  const VectorXd u = F->displacement(lambda) + F->rigid_displacement(alpha);
-  rep.linear_residual = elastic_residual(r.model, u);
+  const GluingSolve g = solve_gluing(*F, problem, options);
+  rep.linear_residual = elastic_residual(r.model, g.u);
   feti::FetiReport& fr = *rep.feti;
-  fr.n_products = F->n_products();
-  fr.products_s = F->products_seconds();
-  fr.sums_s = F->sums_seconds();
-  fr.n_preconditioner = F->n_preconditioner();
-  fr.preconditioner_s = F->preconditioner_seconds();
-  fr.n_coarse_solves = s.n_coarse_solves;
-  fr.qp_iterations = s.iterations;
-  fr.smalse_outer_iterations = s.outer_iterations;
-  fr.gluing_residual = F->gluing_residual(lambda, alpha);
-  fr.gluing_bound = kCertificateFactor * problem.solver.qp.rel_tolerance;
-  feti::record_peak_memory(F->ranks(), fr);
-  if (s.termination == qp::QpTermination::UserStopped)
-    throw Interrupted("interrupted during the Total FETI solve");
-  if (s.termination != qp::QpTermination::Converged) {
+  record_feti_counts(*F, rep);
+  fr.n_coarse_solves = g.qp.n_coarse_solves;
+  fr.qp_iterations = g.qp.iterations;
+  fr.smalse_outer_iterations = g.qp.outer_iterations;
+  fr.gluing_residual = g.gluing_residual;
+  fr.gluing_bound = g.gluing_bound;
+  if (g.qp.termination != qp::QpTermination::Converged) {
     rep.status = RunStatus::NotConverged;
-    rep.message = fmt::format("the Total FETI QP did not converge: {}", s.message);
-  } else if (!(fr.gluing_residual <= fr.gluing_bound)) {
+    rep.message = fmt::format("the Total FETI QP did not converge: {}", g.qp.message);
+  } else if (!g.converged()) {
     rep.status = RunStatus::NotConverged;
     rep.message = fmt::format(
         "the certificate failed: the subdomains' copies of the nodes (and the Dirichlet values) "
@@ -106,7 +112,7 @@ VectorXd solve_elastic_tfeti(const Problem& problem, const RunOptions& options, 
         fmt::format("Total FETI on {} subdomains: {} products with F, gluing residual {:.2e}",
                     fr.n_subdomains, fr.n_products, fr.gluing_residual);
   }
-  return u;
+  return g.u;
 }
 
 }  // namespace fricon::driver

@@ -11,6 +11,7 @@
 #include "fricon/driver/problem.hpp"
 #include "fricon/driver/run.hpp"
 #include "fricon/feti/feti_operator.hpp"
+#include "fricon/qp/smalse.hpp"
 
 namespace fricon::driver {
 
@@ -28,6 +29,25 @@ std::unique_ptr<feti::FetiOperator> make_feti_operator(const Problem& problem, c
 /// After a contact solve with `F`: its products with F and coarse solves into report.feti, and
 /// the processes' peak memory (collective over F.ranks()).
 void record_feti_counts(const feti::FetiOperator& F, RunReport& report);
+
+/// The displacement of F's load with its subdomains held by the gluing and Dirichlet rows alone
+/// (no contact), and the certificate's figures of it.
+struct GluingSolve {
+  VectorXd u;  ///< over the model's free dofs [m]
+  qp::SmalseReport qp;
+  Real gluing_residual = 0.0;  ///< FetiOperator::gluing_residual
+  Real gluing_bound = 0.0;     ///< 100 qp_rtol: the certificate's bound on it
+  bool converged() const {
+    return qp.termination == qp::QpTermination::Converged && gluing_residual <= gluing_bound;
+  }
+};
+
+/// SMALSE-M on the equality multipliers of F, which must have no contact rows (free unknowns,
+/// with the equality G lambda = e), to kEqualityToleranceShare of solver.qp_rtol, then the
+/// displacement u = K^+ (f - B^T lambda) + R alpha. Collective over F.ranks(). Throws
+/// Interrupted when a stop is requested during the QP.
+GluingSolve solve_gluing(const feti::FetiOperator& F, const Problem& problem,
+                         const RunOptions& options);
 
 /// The displacement over the free dofs of a model without contact by Total FETI: SMALSE-M on the
 /// gluing and Dirichlet multipliers (free unknowns) with the equality G lambda = e (phase

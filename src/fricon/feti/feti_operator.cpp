@@ -56,12 +56,7 @@ FetiOperator::FetiOperator(std::vector<Subdomain> subdomains, TornRows rows,
       threads_(std::max(threads, 1)),
       ranks_(&ranks),
       block_(ranks.block(static_cast<Index>(subdomains_.size()))) {
-  torn_of_free_.assign(static_cast<size_t>(dofs.n_free()), -1);
-  for (Index a = 0; a < dofs.n_nodes(); ++a)
-    for (int c = 0; c < 3; ++c)
-      if (dofs.dof(a, c) >= 0)
-        torn_of_free_[static_cast<size_t>(dofs.dof(a, c))] =
-            owner_dof[static_cast<size_t>(3 * a + c)];
+  torn_of_free_ = torn_of_free(owner_dof, dofs);
   partial_.assign(static_cast<size_t>(threads_), VectorXd());
   G_ = coarse_rows(subdomains_, rows_.n_rows());
   compute_load_terms();
@@ -94,6 +89,13 @@ void FetiOperator::set_load(const VectorXd& f, const VectorXd& offset, const Vec
   compute_load_terms();
 }
 
+void FetiOperator::set_contact_rows(const SparseMatrix& B_contact, const VectorXd& offset) {
+  replace_contact_rows(rows_, torn_of_free_, B_contact, offset);
+  attach_rows(rows_.B, subdomains_);
+  G_ = coarse_rows(subdomains_, rows_.n_rows());
+  compute_h();
+}
+
 void FetiOperator::for_own_subdomains(
     const std::function<void(const Subdomain& s, Index i, int thread)>& body) const {
   const auto [first, last] = block_;
@@ -103,22 +105,25 @@ void FetiOperator::for_own_subdomains(
 }
 
 void FetiOperator::compute_load_terms() {
-  const Index n = rows_.n_rows();
   e_.resize(kSubdomainMotions * static_cast<Index>(subdomains_.size()));
   for (std::size_t i = 0; i < subdomains_.size(); ++i)
     e_.segment<kSubdomainMotions>(kSubdomainMotions * static_cast<Index>(i)) =
         subdomains_[i].R.transpose() * subdomains_[i].f;
-  VectorXd u0_torn = VectorXd::Zero(rows_.B.cols());
+  u0_torn_ = VectorXd::Zero(rows_.B.cols());
   for_own_subdomains([&](const Subdomain& s, Index, int) {
-    u0_torn.segment(s.first_dof, s.n_dofs()) = s.factor.solve(s.f);
+    u0_torn_.segment(s.first_dof, s.n_dofs()) = s.factor.solve(s.f);
   });
-  ranks_->sum(u0_torn);
-  h_ = VectorXd::Zero(n);
-  for (const Subdomain& s : subdomains_)
-    scatter_add(s.B * u0_torn.segment(s.first_dof, s.n_dofs()), s.rows, h_);
-  h_ -= rows_.c;
-  u0_ = to_free(u0_torn);
+  ranks_->sum(u0_torn_);
+  u0_ = to_free(u0_torn_);
   ++n_kinv_;
+  compute_h();
+}
+
+void FetiOperator::compute_h() {
+  h_ = VectorXd::Zero(rows_.n_rows());
+  for (const Subdomain& s : subdomains_)
+    scatter_add(s.B * u0_torn_.segment(s.first_dof, s.n_dofs()), s.rows, h_);
+  h_ -= rows_.c;
 }
 
 void FetiOperator::sum_over_subdomains(

@@ -51,6 +51,11 @@ class FetiOperator final : public dual::DualOperator {
   /// rows' `offset` [m^3]; h, e and u0 are recomputed (one solve per subdomain, collective).
   void set_load(const VectorXd& f, const VectorXd& offset, const VectorXd* u0 = nullptr,
                 const dual::NodalLoad& nodal = {}) override;
+  /// The contact rows replaced by B_contact [m^2] (over the model's free dofs; none: 0 rows) and
+  /// their offset c [m^3]: the rows of the contact search's candidates (theory.md §8.7). The
+  /// subdomains' factors, the equality rows and the preconditioner are kept; G and h are formed
+  /// again (no solve). The multipliers, hence size(), change with the rows.
+  void set_contact_rows(const SparseMatrix& B_contact, const VectorXd& offset);
   Index n_equality() const override { return rows_.n_equality(); }
   /// M_E of set_preconditioner, counted and timed; empty without one.
   qp::Operator equality_preconditioner() const override;
@@ -94,10 +99,13 @@ class FetiOperator final : public dual::DualOperator {
   VectorXd to_free(const VectorXd& torn) const;
   /// h = B K^+ f - c, u0 and e = R^T f from the subdomains' loads (one solve per subdomain).
   void compute_load_terms();
+  /// h = B K^+ f - c of the K^+ f already solved (no solve).
+  void compute_h();
 
   std::vector<Subdomain> subdomains_;
   TornRows rows_;
   std::vector<Index> torn_of_free_;  ///< the owner's torn dof of each free dof of the model
+  VectorXd u0_torn_;                 ///< K^+ f over the torn dofs [m]
   std::vector<Index> owner_dof_;     ///< the owner's torn dof of each component of each node
   int threads_ = 1;
   const Ranks* ranks_;

@@ -6,7 +6,7 @@
 namespace fricon::feti {
 
 InterfacePreconditioner::InterfacePreconditioner(const FetiOperator& F)
-    : F_(F), n_contact_(F.rows().n_contact), n_equality_(F.rows().n_equality()) {
+    : F_(F), n_equality_(F.rows().n_equality()) {
   const auto [first, last] = F.ranks().block(static_cast<Index>(F.subdomains().size()));
   for (Index i = first; i < last; ++i) {
     const Subdomain& s = F.subdomains()[static_cast<size_t>(i)];
@@ -14,7 +14,7 @@ InterfacePreconditioner::InterfacePreconditioner(const FetiOperator& F)
   }
   // The gluing and Dirichlet rows are independent (one row per link of a node's chain of copies,
   // one per fixed component): B_E B_E^T is positive definite.
-  const SparseMatrix B_E = F.rows().B.middleRows(n_contact_, n_equality_);
+  const SparseMatrix B_E = F.rows().B.middleRows(F.rows().n_contact, n_equality_);
   SparseMatrix gram = B_E * B_E.transpose();
   gram.makeCompressed();
   row_gram_.compute(gram);
@@ -26,7 +26,8 @@ void InterfacePreconditioner::apply(const VectorXd& x, VectorXd& y) const {
   FRICON_CHECK(x.size() == n_equality_, "M_E of " << x.size() << " for " << n_equality_);
   // t over all rows of B, zero on the contact rows, so that the sum over the subdomains is
   // B S B_E^T t_E; its equality rows are B_E S B_E^T t_E.
-  VectorXd t = VectorXd::Zero(n_contact_ + n_equality_), St;
+  // F's contact rows, which the contact search replaces (FetiOperator::set_contact_rows).
+  VectorXd t = VectorXd::Zero(F_.rows().n_contact + n_equality_), St;
   t.tail(n_equality_) = row_gram_.solve(x);
   double local_s = 0.0, sums_s = 0.0;
   F_.sum_over_subdomains(

@@ -42,7 +42,9 @@ class Preconditioner {
 /// the coarse problem.
 class InterfacePreconditioner : public Preconditioner {
  public:
-  /// Factors B_E B_E^T of F's rows; F must outlive it. Throws NumericalError if it is singular.
+  /// Factors B_E B_E^T of F's rows; F must outlive it, and may change its contact rows
+  /// (FetiOperator::set_contact_rows), not its equality rows. Throws NumericalError if B_E B_E^T
+  /// is singular.
   explicit InterfacePreconditioner(const FetiOperator& F);
   /// Two solves with B_E B_E^T and one sum over the subdomains of local() (collective).
   void apply(const VectorXd& x, VectorXd& y) const final;
@@ -54,7 +56,7 @@ class InterfacePreconditioner : public Preconditioner {
   const FetiOperator& F_;
 
  private:
-  Index n_contact_, n_equality_;
+  Index n_equality_;  ///< F's equality rows, which follow its contact rows
   Eigen::SimplicialLDLT<SparseMatrix> row_gram_;  ///< of B_E B_E^T
 };
 

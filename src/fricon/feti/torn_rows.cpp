@@ -42,7 +42,25 @@ VectorXd torn_diagonal(const std::vector<Subdomain>& subdomains, Index n_torn) {
   return d;
 }
 
+// The entries of B_contact (over the model's free dofs) at the owners' torn dofs, appended to
+// `entries` at B_contact's own row numbers.
+void append_contact_rows(const std::vector<Index>& torn_of_free, const SparseMatrix& B_contact,
+                         std::vector<Triplet>& entries) {
+  for (Index j = 0; j < B_contact.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(B_contact, j); it; ++it)
+      entries.emplace_back(it.row(), torn_of_free[static_cast<size_t>(j)], it.value());
+}
+
 }  // namespace
+
+std::vector<Index> torn_of_free(const std::vector<Index>& owner_dof, const fe::DofMap& dofs) {
+  std::vector<Index> torn(static_cast<size_t>(dofs.n_free()), -1);
+  for (Index a = 0; a < dofs.n_nodes(); ++a)
+    for (int c = 0; c < 3; ++c)
+      if (dofs.dof(a, c) >= 0)
+        torn[static_cast<size_t>(dofs.dof(a, c))] = owner_dof[static_cast<size_t>(3 * a + c)];
+  return torn;
+}
 
 std::vector<Index> owner_dofs(const std::vector<Subdomain>& subdomains,
                               const std::vector<Index>& owners, Index n_nodes) {
@@ -79,15 +97,7 @@ TornRows tear_rows(const std::vector<Subdomain>& subdomains, const std::vector<I
   TornRows rows;
   std::vector<Triplet> entries;
   // @sect: the contact rows, moved from the whole model's free dofs to the owners' copies.
-  std::vector<Index> torn_of_free(static_cast<size_t>(dofs.n_free()), -1);
-  for (Index a = 0; a < n_nodes; ++a)
-    for (int c = 0; c < 3; ++c)
-      if (dofs.dof(a, c) >= 0)
-        torn_of_free[static_cast<size_t>(dofs.dof(a, c))] =
-            owner_dof[static_cast<size_t>(3 * a + c)];
-  for (Index j = 0; j < B_contact.outerSize(); ++j)
-    for (SparseMatrix::InnerIterator it(B_contact, j); it; ++it)
-      entries.emplace_back(it.row(), torn_of_free[static_cast<size_t>(j)], it.value());
+  append_contact_rows(torn_of_free(owner_dof, dofs), B_contact, entries);
   rows.n_contact = B_contact.rows();
   std::vector<Real> c(c_contact.data(), c_contact.data() + c_contact.size());
 
@@ -123,6 +133,28 @@ TornRows tear_rows(const std::vector<Subdomain>& subdomains, const std::vector<I
   rows.B.makeCompressed();
   rows.c = Eigen::Map<const VectorXd>(c.data(), static_cast<Index>(c.size()));
   return rows;
+}
+
+void replace_contact_rows(TornRows& rows, const std::vector<Index>& torn_of_free,
+                          const SparseMatrix& B_contact, const VectorXd& c_contact) {
+  FRICON_CHECK(
+      B_contact.rows() == c_contact.size(),
+      "replace_contact_rows: " << B_contact.rows() << " rows, " << c_contact.size() << " offsets");
+  const Index n_contact = B_contact.rows(), n_equality = rows.n_equality();
+  std::vector<Triplet> entries;
+  entries.reserve(static_cast<size_t>(B_contact.nonZeros()));
+  append_contact_rows(torn_of_free, B_contact, entries);
+  const SparseMatrix equality = rows.B.middleRows(rows.n_contact, n_equality);
+  for (Index j = 0; j < equality.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(equality, j); it; ++it)
+      entries.emplace_back(n_contact + it.row(), j, it.value());
+  VectorXd c(n_contact + n_equality);
+  c << c_contact, rows.c.tail(n_equality);
+  rows.B.resize(n_contact + n_equality, rows.B.cols());
+  rows.B.setFromTriplets(entries.begin(), entries.end());
+  rows.B.makeCompressed();
+  rows.c = std::move(c);
+  rows.n_contact = n_contact;
 }
 
 void attach_rows(const SparseMatrix& B, std::vector<Subdomain>& subdomains) {

@@ -34,6 +34,10 @@ struct TornRows {
 std::vector<Index> owner_dofs(const std::vector<Subdomain>& subdomains,
                               const std::vector<Index>& owners, Index n_nodes);
 
+/// The owner's torn dof of each free dof of `dofs` (the whole model's): where a contact column
+/// or a displacement over the free dofs lives among the torn dofs. `owner_dof`: owner_dofs.
+std::vector<Index> torn_of_free(const std::vector<Index>& owner_dof, const fe::DofMap& dofs);
+
 /// B and c above: the contact rows B_contact (over the free dofs of `dofs`, the whole model's)
 /// with their offset c_contact, then the gluing rows of the subdomains' copies of the mesh's
 /// `n_nodes` nodes, then a Dirichlet row for every component `dofs` fixes, at the value
@@ -41,6 +45,12 @@ std::vector<Index> owner_dofs(const std::vector<Subdomain>& subdomains,
 TornRows tear_rows(const std::vector<Subdomain>& subdomains, const std::vector<Index>& owner_dof,
                    const fe::DofMap& dofs, const fe::NodalField& prescribed,
                    const SparseMatrix& B_contact, const VectorXd& c_contact, RowScaling scaling);
+
+/// `rows` with its contact block replaced by B_contact (over the model's free dofs, moved to the
+/// owners' copies by `torn_of_free`) and its offset c_contact [m^3]; the equality rows and their
+/// c are kept, after the new contact rows. The contact search's candidates (theory.md §8.7).
+void replace_contact_rows(TornRows& rows, const std::vector<Index>& torn_of_free,
+                          const SparseMatrix& B_contact, const VectorXd& c_contact);
 
 /// Stores in each subdomain the rows of B that act on it (Subdomain::B and rows).
 void attach_rows(const SparseMatrix& B, std::vector<Subdomain>& subdomains);

@@ -1,0 +1,66 @@
+// driver: the contact search's operators under Total FETI (driver/candidate_operators.hpp,
+// theory.md §8.7): the subdomains are factored once, without contact rows; u0 is the
+// displacement of the load held by the gluing and Dirichlet rows alone (solve_gluing), and each
+// set of candidates puts its contact rows into the same operator (set_contact_rows), so that no
+// subdomain is factored again.
+#include "fricon/driver/candidate_operators.hpp"
+#include "fricon/driver/run_steps.hpp"
+#include "fricon/driver/tfeti_solve.hpp"
+
+namespace fricon::driver {
+
+namespace {
+
+class FetiCandidates final : public CandidateOperators {
+ public:
+  FetiCandidates(const Problem& problem, const Model& m, const RunOptions& options,
+                 RunReport& report)
+      : problem_(problem), options_(options), report_(report) {
+    phase_start(options, "factorize");
+    F_ = make_feti_operator(problem, m, nullptr, options, report);
+  }
+
+  const VectorXd& free_displacement() override {
+    if (u0_.size() == 0) {
+      phase_start(options_, "dual");
+      ScopedPhase phase(report_.times, "dual");
+      const long before = F_->n_products();
+      const GluingSolve g = solve_gluing(*F_, problem_, options_);
+      // Not converged, u0 still chooses candidates: the last round checks every patch left out
+      // with the displacement of its own solve, which the certificate covers (theory.md §2.7).
+      u0_ = g.u;
+      products_ = F_->n_products() - before;
+    }
+    return u0_;
+  }
+
+  long free_displacement_solves() const override { return products_; }
+
+  const dual::DualOperator& on_candidates(const contact::ContactDiscretization& part) override {
+    (void)free_displacement();  // before any contact row enters F
+    phase_start(options_, "dual");
+    ScopedPhase phase(report_.times, "dual");
+    F_->set_contact_rows(part.B, part.offset);
+    return *F_;
+  }
+
+  void record(RunReport& report) const override { record_feti_counts(*F_, report); }
+
+ private:
+  const Problem& problem_;
+  const RunOptions& options_;
+  RunReport& report_;
+  std::unique_ptr<feti::FetiOperator> F_;
+  VectorXd u0_;
+  long products_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<CandidateOperators> make_feti_candidates(const Problem& problem, const Model& m,
+                                                         const RunOptions& options,
+                                                         RunReport& report) {
+  return std::make_unique<FetiCandidates>(problem, m, options, report);
+}
+
+}  // namespace fricon::driver
