@@ -5,8 +5,8 @@ scalability with the subdomain size fixed, and the direct solver against TFETI i
     /usr/bin/python3 bench/tfeti_bench.py build/apps/fricon/fricon \
         [--scalability 8 16 24 32] [--cells-per-subdomain 4] [--series 16 24 32] \
         [--series-subdomain-size 1000] [--series-tfeti-only 64] [--scaling] [--preconditioners] \
-        [--sizes N S1 S2 ...] [--weak N1 N2] [--mpirun MPIRUN] [--threads N] [--out DIR]
-        [--markdown]
+        [--sizes N S1 S2 ...] [--weak N1 N2] [--search [EXAMPLE ...]] [--mpirun MPIRUN]
+        [--threads N] [--out DIR] [--markdown]
 
 The problem is examples/paper-brick.toml (Tresca friction with the paper's F(s), 3n x n x n cubes
 of 5 tetrahedra, 4-node elements) with mesh.cells = [3n, n, n].
@@ -49,6 +49,12 @@ own clocks (report.json feti.products_s, sums_s, timings.qp) into a part per sub
 rank and parts per multiplier (the QP's own vector operations and coarse solves on every rank,
 and the sums). Its assumptions are printed with it.
 
+--search [EXAMPLE ...]: the contact search under Total FETI (theory.md §8.7): each example
+(a path under examples/ without .toml; by default five static ones on curved bodies) solved
+directly and by "tfeti" with solver.contact_search "gap" and "off" (every patch in the QP):
+patches in the QP, products, wall time, max |u|. Use with --scalability and --series given
+empty to run it alone.
+
 Every run must converge, or the script stops with exit code 1. Results go to --out DIR or to a
 temporary folder removed at the end. The header gives the machine's load average at the start:
 timings mean little on a busy machine.
@@ -70,6 +76,12 @@ def solve(fricon, folder, n, threads, sets=(), launcher=(), problem=BRICK):
     """One solve of the brick at n with the overrides `sets` (under `launcher`, e.g. mpirun -n 2,
     when given); its report with the peak memory of the process started (mpirun's own, under a
     launcher: the ranks' are in the report)."""
+    return solve_file(fricon, folder, problem, threads,
+                      [f"mesh.cells=[{3 * n},{n},{n}]"] + list(sets), launcher)
+
+
+def solve_file(fricon, folder, problem, threads, sets=(), launcher=()):
+    """One solve of the problem file `problem` with the overrides `sets`, as solve()."""
     import json
     import shutil
     import time
@@ -77,8 +89,8 @@ def solve(fricon, folder, n, threads, sets=(), launcher=(), problem=BRICK):
         shutil.rmtree(folder)
     folder.mkdir(parents=True)
     cmd = list(launcher) + [fricon] + (["--threads", str(threads)] if threads else []) + [
-        "solve", str(problem), "--set", f"mesh.cells=[{3 * n},{n},{n}]", "-o", str(folder),
-        "-q"] + [arg for s in sets for arg in ("--set", s)]
+        "solve", str(problem), "-o", str(folder), "-q"] + [
+        arg for s in sets for arg in ("--set", s)]
     log = folder / "fricon.log"
     start = time.perf_counter()
     with open(log, "w") as out:
@@ -340,6 +352,34 @@ def model(a, b, n_b):
     return lines + [hb.table(headers, rows, False), ""]
 
 
+SEARCH_EXAMPLES = ["geometry/hertz-hemisphere", "geometry/wheel", "obstacles/ball-block",
+                   "obstacles/cylinder-slab", "two-bodies/sphere-on-block"]
+
+
+def contact_search(fricon, out, examples, threads, markdown):
+    """The contact search under Total FETI (theory.md §8.7): each example of `examples` (paths
+    under examples/, without .toml) solved directly and by "tfeti" with solver.contact_search
+    "gap" and "off" (every patch): patches in the QP, products with Q or F, wall time, max |u|."""
+    headers = ["example", "backend", "contact_search", "subdomains", "patches in the QP",
+               "patches", "products", "time [s]", "max |u| [m]"]
+    rows = []
+    for name in examples:
+        problem = ROOT / "examples" / f"{name}.toml"
+        runs = [("cholmod", "gap"), ("tfeti", "gap"), ("tfeti", "off")]
+        for backend, search in runs:
+            tag = f"{name.replace('/', '-')}-{backend}-{search}"
+            rep = solve_file(fricon, out / tag, problem, threads,
+                             [f'solver.backend="{backend}"', f'solver.contact_search="{search}"'])
+            products = rep["feti"]["n_products"] if "feti" in rep else rep["n_mult"]
+            rows.append([name, backend, search,
+                         str(rep["feti"]["n_subdomains"]) if "feti" in rep else "-",
+                         str(rep["n_candidate_patches"]), str(rep["contact"]["n_patches"]), str(products),
+                         f"{rep['wall_s']:.1f}", f"{rep['max_displacement']:.6e}"])
+            print(f"  {rows[-1]}", file=sys.stderr, flush=True)
+    return ["The contact search: direct, and Total FETI with and without it (products: with Q "
+            "directly, with F under tfeti)", "", hb.table(headers, rows, markdown), ""]
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("fricon")
@@ -356,6 +396,7 @@ def main():
     ap.add_argument("--threads", type=int, default=0)
     ap.add_argument("--out", type=pathlib.Path)
     ap.add_argument("--markdown", action="store_true")
+    ap.add_argument("--search", nargs="*", default=None)
     a = ap.parse_args()
     out, tmp = hb.results_folder(a.out, "fricon-tfeti-bench-")
     load = os.getloadavg()[0]
@@ -380,6 +421,9 @@ def main():
         if a.weak:
             lines += weak_scaling(a.fricon, out, a.weak[0], a.weak[1], a.series_subdomain_size,
                                   a.mpirun, a.markdown)
+        if a.search is not None:
+            lines += contact_search(a.fricon, out, a.search or SEARCH_EXAMPLES, a.threads,
+                                    a.markdown)
         if a.series or a.series_tfeti_only:
             lines += series(a.fricon, out, a.series, a.series_tfeti_only,
                             a.series_subdomain_size, a.threads, a.markdown)
