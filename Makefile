@@ -81,7 +81,7 @@ bench: build
 	@echo "== bench/obstacle_bench.py"; /usr/bin/python3 bench/obstacle_bench.py $(BUILD)/apps/fricon/fricon
 	@echo "== bench/quadratic_bench.py"; /usr/bin/python3 bench/quadratic_bench.py $(BUILD)/apps/fricon/fricon
 	@echo "== bench/tfeti_bench.py"; /usr/bin/python3 bench/tfeti_bench.py $(BUILD)/apps/fricon/fricon \
-	  --scalability 8 16 --preconditioners --series 16 \
+	  --scalability 8 16 --preconditioners --series 16 --search \
 	  $$($(BUILD)/apps/fricon/fricon --version | grep -q petsc && echo --weak 16 20)
 	@if [ -n "$(BENCH_LARGE)" ]; then echo "== bench/tfeti_bench.py (large)"; \
 	  /usr/bin/python3 bench/tfeti_bench.py $(BUILD)/apps/fricon/fricon --scalability 8 16 24 32 \
