@@ -315,21 +315,26 @@ def model(a, b, n_b):
     held_b = b["rank_peak"] - b["rank_factor"]
     held_mib = max(held_b - held_a, 0.0) / (b["n_primal"] - a["n_primal"])
     # Time per product, from run b's own clocks: rank 0's subdomain solves per subdomain, and
-    # per multiplier the rest of the QP's time (every rank's vector operations and coarse
-    # solves) and the sums over the ranks (waiting for the slowest rank included).
+    # the preconditioner's applications (local solves with each subdomain's interior, counted
+    # per product) likewise; per multiplier the rest of the QP's time (every rank's vector
+    # operations and coarse solves) and the sums over the ranks (waiting for the slowest rank
+    # included).
     n_prod = fb["n_products"]
     c_s = fb["products_s"] / n_prod / b["per_rank_subdomains"]
+    c_pre = fb.get("preconditioner_s", 0.0) / n_prod / b["per_rank_subdomains"]
     c_sum = fb["sums_s"] / n_prod / b["n_multipliers"]
-    c_m = (b["timings"]["qp"] - fb["products_s"] - fb["sums_s"]) / n_prod / b["n_multipliers"]
+    c_m = (b["timings"]["qp"] - fb["products_s"] - fb["sums_s"] -
+           fb.get("preconditioner_s", 0.0)) / n_prod / b["n_multipliers"]
     products = fb["n_products"]
     lines = [f"Model for {MODEL_UNKNOWNS:.0e} unknowns (from the two runs above):",
              f"  per subdomain: factors {factor_mib:.3f} MiB, factorization {1e3 * factor_s:.1f} "
              f"ms; per million unknowns {1e6 * subdomains_per_unknown:.0f} subdomains and "
              f"{1e6 * multipliers_per_unknown:.0f} multipliers",
              f"  held whole by every rank: {1e6 * held_mib:.0f} MiB per million unknowns",
-             f"  time per product: {1e3 * c_s:.3f} ms per subdomain of the rank + "
-             f"{1e9 * c_m:.1f} ns per multiplier (the QP's own work) + {1e9 * c_sum:.1f} ns per "
-             "multiplier (the sums)",
+             f"  time per product: {1e3 * c_s:.3f} ms per subdomain of the rank (its solve) + "
+             f"{1e3 * c_pre:.3f} ms per subdomain of the rank (the preconditioner's "
+             f"applications, per product) + {1e9 * c_m:.1f} ns per multiplier (the QP's own "
+             f"work) + {1e9 * c_sum:.1f} ns per multiplier (the sums)",
              f"  assumed: products per run as at n = {n_b} "
              f"({products}, bounded for fixed H/h by theory.md §8.3; measured growth in the "
              "scalability table), one thread per rank, the sums' cost per multiplier as on "
@@ -343,11 +348,11 @@ def model(a, b, n_b):
         subdomains = subdomains_per_unknown * MODEL_UNKNOWNS
         per_rank = subdomains / ranks
         multipliers = multipliers_per_unknown * MODEL_UNKNOWNS
-        per_product = c_s * per_rank + (c_m + c_sum) * multipliers
+        per_product = (c_s + c_pre) * per_rank + (c_m + c_sum) * multipliers
         rows.append([str(ranks), f"{per_rank:.0f}", f"{multipliers:.3g}",
                      f"{per_rank * factor_mib:.0f}", f"{held_mib * MODEL_UNKNOWNS:.0f}",
                      f"{per_rank * factor_s:.1f}", f"{per_product:.3f}",
-                     f"{c_s * per_rank:.3f}", f"{c_m * multipliers:.3f}",
+                     f"{(c_s + c_pre) * per_rank:.3f}", f"{c_m * multipliers:.3f}",
                      f"{c_sum * multipliers:.3f}", f"{products * per_product:.0f}"])
     return lines + [hb.table(headers, rows, False), ""]
 
