@@ -5,9 +5,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <memory>
 #include <vector>
 
 #include "fricon/contact/candidates.hpp"
+#include "fricon/driver/candidate_operators.hpp"
 #include "fricon/driver/paper.hpp"
 #include "fricon/driver/run.hpp"
 #include "fricon/driver/run_steps.hpp"
@@ -55,7 +57,10 @@ RunResult run_search_from(const Problem& problem, const std::vector<Index>& firs
       discretize_contact(problem, r.model.mesh, r.model.dofs);
   factorize_model(r.model, dual::factorization_request(problem.solver.dual_operator, disc.dofs),
                   r.report.times);
-  const VectorXd u = solve_with_search(problem, disc, {}, r, &first);
+  const RunOptions options;
+  const std::unique_ptr<CandidateOperators> operators =
+      make_candidate_operators(problem, r.model, options, r.report);
+  const VectorXd u = solve_with_search(problem, disc, options, r, *operators, &first);
   finish_run(problem, u, r);
   return r;
 }

@@ -24,8 +24,9 @@ class CandidateOperators {
   /// the first call (phase "dual"), kept for the next.
   virtual const VectorXd& free_displacement() = 0;
   /// Solves with K (or rounds of solves with every subdomain's factor) that free_displacement
-  /// took, for the report's count.
-  virtual long free_displacement_solves() const = 0;
+  /// took, for the report's count: once, 0 after that (a search again on the same model, after
+  /// a geometric update, reuses u0).
+  virtual long take_free_displacement_solves() = 0;
   /// The dual operator of the contact rows of `part` (contact::restrict_to_patches of the
   /// problem's discretization), which must outlive it; valid until the next call (phase "dual").
   virtual const dual::DualOperator& on_candidates(const contact::ContactDiscretization& part) = 0;

@@ -1,6 +1,8 @@
 // driver: the contact search's operators on one factor of K (driver/candidate_operators.hpp):
 // u0 = K^-1 f, one solve, and for each set of candidates a dual operator of its rows, made on the
 // same factor with that u0 (theory.md §2.7).
+#include <utility>
+
 #include "fricon/driver/candidate_operators.hpp"
 #include "fricon/driver/run_steps.hpp"
 
@@ -18,11 +20,12 @@ class FactorCandidates final : public CandidateOperators {
     if (u0_.size() == 0) {
       ScopedPhase phase(report_.times, "dual");
       u0_ = m_.factor.solve(m_.f);
+      solves_ = 1;
     }
     return u0_;
   }
 
-  long free_displacement_solves() const override { return 1; }
+  long take_free_displacement_solves() override { return std::exchange(solves_, 0); }
 
   const dual::DualOperator& on_candidates(const contact::ContactDiscretization& part) override {
     const VectorXd& u0 = free_displacement();
@@ -42,6 +45,7 @@ class FactorCandidates final : public CandidateOperators {
   const RunOptions& options_;
   RunReport& report_;
   VectorXd u0_;
+  long solves_ = 0;  ///< of u0, not yet reported
   std::unique_ptr<dual::DualOperator> Q_;
 };
 

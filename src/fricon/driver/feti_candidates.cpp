@@ -3,6 +3,8 @@
 // displacement of the load held by the gluing and Dirichlet rows alone (solve_gluing), and each
 // set of candidates puts its contact rows into the same operator (set_contact_rows), so that no
 // subdomain is factored again.
+#include <utility>
+
 #include "fricon/driver/candidate_operators.hpp"
 #include "fricon/driver/run_steps.hpp"
 #include "fricon/driver/tfeti_solve.hpp"
@@ -29,12 +31,12 @@ class FetiCandidates final : public CandidateOperators {
       // Not converged, u0 still chooses candidates: the last round checks every patch left out
       // with the displacement of its own solve, which the certificate covers (theory.md §2.7).
       u0_ = g.u;
-      products_ = F_->n_products() - before;
+      products_ = F_->n_products() - before;  // not yet reported
     }
     return u0_;
   }
 
-  long free_displacement_solves() const override { return products_; }
+  long take_free_displacement_solves() override { return std::exchange(products_, 0); }
 
   const dual::DualOperator& on_candidates(const contact::ContactDiscretization& part) override {
     (void)free_displacement();  // before any contact row enters F

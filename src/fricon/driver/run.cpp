@@ -106,17 +106,15 @@ std::unique_ptr<CandidateOperators> make_candidate_operators(const Problem& prob
 }
 
 VectorXd solve_with_search(const Problem& problem, const contact::ContactDiscretization& disc,
-                           const RunOptions& options, RunResult& r,
+                           const RunOptions& options, RunResult& r, CandidateOperators& operators,
                            const std::vector<Index>* first_candidates) {
   const Model& m = r.model;
-  const std::unique_ptr<CandidateOperators> operators =
-      make_candidate_operators(problem, m, options, r.report);
   // @sect: the free displacement and the first candidates (theory.md §2.7); with a floating
   // body, whose free displacement does not exist, those of the closed gaps (theory.md §2.10).
   std::vector<Index> candidates;
   Real tolerance = 0.0;
   {
-    const VectorXd& u0 = operators->free_displacement();
+    const VectorXd& u0 = operators.free_displacement();
     const VectorXd free_penetration = contact::mean_penetration(
         disc, m.floating.empty() ? u0 : VectorXd(VectorXd::Zero(u0.size())));
     const Real margin = problem.solver.contact_search_margin;
@@ -131,7 +129,7 @@ VectorXd solve_with_search(const Problem& problem, const contact::ContactDiscret
   // @sect: solve on the candidates, add the left-out patches that penetrate, again until none
   // does (after kMaxSearchRounds growths, with every patch). The counts of the report are
   // those of every round (and of the solve for u0).
-  SearchRounds rounds(operators->free_displacement_solves());
+  SearchRounds rounds(operators.take_free_displacement_solves());
   // Without friction every radius is 0 and the tangential multipliers stay 0: their rows of B
   // need not enter Q (a third of the rows to form); a dumped QP keeps them (a Q without zero
   // rows, for other solvers).
@@ -141,7 +139,7 @@ VectorXd solve_with_search(const Problem& problem, const contact::ContactDiscret
   for (int round = 1;; ++round) {
     const contact::ContactDiscretization part =
         contact::restrict_to_patches(disc, candidates, rows);
-    const dual::DualOperator& Q = operators->on_candidates(part);
+    const dual::DualOperator& Q = operators.on_candidates(part);
     phase_start(options, "outer loop");
     const PatchSelection selection{disc, candidates, round};
     ContactOutcome c;
@@ -157,7 +155,7 @@ VectorXd solve_with_search(const Problem& problem, const contact::ContactDiscret
         rounds.patches_to_add(disc, candidates, c, tolerance, round, options);
     if (added.empty()) {
       VectorXd u = rounds.adopt_answer(std::move(c), r);
-      operators->record(r.report);
+      operators.record(r.report);
       return u;
     }
     candidates = contact::merge_patches(candidates, added);
@@ -234,11 +232,16 @@ VectorXd solve_with_contact(const Problem& problem, const contact::ContactDiscre
   return solve_with_operator(problem, disc, *Q, options, r);
 }
 
-// With contact: on every patch, or on those of the contact search.
+// With contact: on every patch, or on those of the contact search, whose operators (made at the
+// first call, kept in `operators`) serve the solves of the geometric updates too: the free
+// displacement does not depend on the contact rows, and under Total FETI no subdomain is
+// factored again.
 VectorXd solve_contact_problem(const Problem& problem, const contact::ContactDiscretization& disc,
-                               const RunOptions& options, RunResult& r) {
-  return search_applies(problem, r.model) ? solve_with_search(problem, disc, options, r)
-                                          : solve_with_contact(problem, disc, options, r);
+                               const RunOptions& options, RunResult& r,
+                               std::unique_ptr<CandidateOperators>& operators) {
+  if (!search_applies(problem, r.model)) return solve_with_contact(problem, disc, options, r);
+  if (!operators) operators = make_candidate_operators(problem, r.model, options, r.report);
+  return solve_with_search(problem, disc, options, r, *operators);
 }
 
 // The geometric updates of the pairs against curved rigid obstacles (theory.md §2.11): at most
@@ -488,13 +491,15 @@ RunResult run(const Problem& problem, const RunOptions& options) {
 
   // @sect: the displacement: one solve, or the outer loop of dual QPs.
   const bool tfeti = problem.solver.backend == parallel::Backend::Tfeti;
-  VectorXd u = disc    ? solve_contact_problem(problem, *disc, options, r)
+  std::unique_ptr<CandidateOperators> operators;  // the contact search's, for every solve
+  VectorXd u = disc    ? solve_contact_problem(problem, *disc, options, r, operators)
                : tfeti ? solve_elastic_tfeti(problem, options, r)
                        : solve_elastic(r);
   if (disc)
     u = update_geometry(problem, *disc, std::move(u), options, r,
                         [&](const contact::ContactDiscretization& relinearized) {
-                          return solve_contact_problem(problem, relinearized, options, r);
+                          return solve_contact_problem(problem, relinearized, options, r,
+                                                       operators);
                         });
 
   // @sect: fields and the self-check of the result.

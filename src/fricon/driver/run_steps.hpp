@@ -10,6 +10,8 @@
 
 namespace fricon::driver {
 
+class CandidateOperators;
+
 void phase_start(const RunOptions& options, const std::string& name);
 
 /// The poll of a dual operator while it forms Q: throws Interrupted when a stop was requested.
@@ -76,12 +78,12 @@ std::vector<Index> all_patches(const contact::ContactDiscretization& disc);
 /// The outer loop of dual QPs on the patches of the contact search (theory.md §2.7): the first
 /// candidates (contact::initial_candidates of the free displacement, or `first_candidates` if
 /// given: increasing patch indices), then one more solve with the left-out patches that
-/// penetrate added, until none does. Builds the dual operator of each set (phase "dual") on the
-/// backend's factor of K or its subdomains (driver/candidate_operators.hpp), fills
+/// penetrate added, until none does. Builds the dual operator of each set (phase "dual") by
+/// `operators` (make_candidate_operators: on the backend's factor of K or its subdomains), fills
 /// the contact part of r.report (over every patch) and r.contact, and returns the displacement
 /// over the free dofs.
 VectorXd solve_with_search(const Problem& problem, const contact::ContactDiscretization& disc,
-                           const RunOptions& options, RunResult& r,
+                           const RunOptions& options, RunResult& r, CandidateOperators& operators,
                            const std::vector<Index>* first_candidates = nullptr);
 
 /// Against curved rigid obstacles (theory.md §2.11): how far the linearized gap of `disc` is from
