@@ -10,6 +10,8 @@
 //     to 1e-6, with the default (Dirichlet) preconditioner and without one;
 //   - a loading path: the Coulomb brick's hysteresis, every step's forces to 1e-6, and an
 //     elastic path;
+//   - geometric updates against a ball with Tresca friction (every patch in the QP), static and
+//     along a path: the direct answer, with the subdomains factored once;
 //   - bad input: more subdomains than tetrahedra names solver.subdomains.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -24,6 +26,7 @@
 #include "fricon/contact/candidates.hpp"
 #include "fricon/core/error.hpp"
 #include "fricon/driver/model.hpp"
+#include "fricon/driver/paper.hpp"
 #include "fricon/driver/run.hpp"
 #include "fricon/driver/run_steps.hpp"
 #include "fricon/driver/tfeti_solve.hpp"
@@ -358,6 +361,72 @@ TEST(Tfeti, AThinSlabOfFlatElementsGivesTheDirectAnswer) {
   const Problem at_default =
       io::read_problem(test::source_path(file), {"solver.qp_max=5000", "solver.outer_tol=1e-8"});
   expect_same_answer(example(file, {}), at_default, 9);
+}
+
+// The paper's brick, its top pressed 2 cm down onto a ball of radius 5 m below it (a contact
+// radius of about 0.45 m), with the paper's Tresca friction: every patch enters the QP (no
+// contact search, theory.md §2.7), and the gap is linearized again at the solution until it is
+// the ball's distance there to 1e-9 of the normal displacement (theory.md §2.11).
+Problem brick_on_ball_with_tresca() {
+  Problem p = paper_problem(4, 6e4);
+  p.traction.clear();
+  p.dirichlet = {DirichletOptions{"z1", {true, true, true}, Vec3(0, 0, -2e-2)}};
+  ContactOptions& c = p.contact.front();
+  c.obstacle = ObstacleOptions{};
+  c.obstacle->kind = ObstacleKind::Sphere;
+  c.obstacle->center = Vec3(1.2, 0.5, -5.0);
+  c.obstacle->radius = 5.0;
+  c.geometry_updates = 5;
+  c.geometry_tolerance = 1e-9;
+  p.solver.qp.rel_tolerance = 1e-9;
+  p.solver.outer.tol = 1e-8;
+  p.solver.outer.max_iterations = 100;
+  return p;
+}
+
+int factorizations(const RunResult& r) {
+  const auto it = r.report.times.phases.find("factorize");
+  return it == r.report.times.phases.end() ? 0 : it->second.calls;
+}
+
+// Each geometric update replaces the contact rows of the one operator (theory.md §8.7) instead
+// of factoring the subdomains again (until commit 2c4ec54 it did, without the contact search).
+TEST(Tfeti, GeometricUpdatesWithoutTheSearchKeepTheSubdomainsFactored) {
+  const Problem p = brick_on_ball_with_tresca();
+  const RunResult direct = with_backend(p, "cholmod");
+  ASSERT_EQ(direct.report.status, RunStatus::Converged) << direct.report.message;
+  const RunResult feti = with_backend(p, "tfeti", 8);
+  ASSERT_EQ(feti.report.status, RunStatus::Converged) << feti.report.message;
+  ASSERT_GE(feti.report.contact->geometry_updates, 1);
+  EXPECT_EQ(feti.report.contact->geometry_updates, direct.report.contact->geometry_updates);
+  EXPECT_EQ(factorizations(feti), 1);
+  EXPECT_NEAR(feti.report.max_displacement, direct.report.max_displacement,
+              kSameAnswer * direct.report.max_displacement);
+  EXPECT_NEAR(peak_pressure(feti), peak_pressure(direct), kSameAnswer * peak_pressure(direct));
+}
+
+// The same along a path: the ball slides 0.3 m along x in two steps, each step updated.
+TEST(Tfeti, AGeometricUpdateOfAPathStepKeepsTheSubdomainsFactored) {
+  Problem p = brick_on_ball_with_tresca();
+  p.loading.steps = 2;
+  p.dirichlet.back().path = {1.0, 1.0};
+  p.contact.front().obstacle->displacement = Vec3(0.3, 0.0, 0.0);
+  p.contact.front().obstacle->path = {0.0, 0.0, 0.0, 1.0, 0.0, 0.0};
+  const RunResult direct = with_backend(p, "cholmod");
+  ASSERT_EQ(direct.report.status, RunStatus::Converged) << direct.report.message;
+  const RunResult feti = with_backend(p, "tfeti", 8);
+  ASSERT_EQ(feti.report.status, RunStatus::Converged) << feti.report.message;
+  ASSERT_GE(feti.report.contact->geometry_updates, 1);  // at the last step
+  EXPECT_EQ(factorizations(feti), 1);
+  ASSERT_EQ(feti.report.steps.size(), direct.report.steps.size());
+  for (std::size_t k = 0; k < direct.report.steps.size(); ++k) {
+    const StepReport& d = direct.report.steps[k];
+    const StepReport& f = feti.report.steps[k];
+    const Real scale = std::abs(d.normal_force);
+    EXPECT_NEAR(f.normal_force, d.normal_force, kSameAnswer * scale) << "step " << d.step;
+    EXPECT_LE((f.tangential_force - d.tangential_force).norm(), kSameAnswer * scale)
+        << "step " << d.step;
+  }
 }
 
 TEST(Tfeti, MoreSubdomainsThanTetrahedraIsRefusedByName) {

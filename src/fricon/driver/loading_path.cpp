@@ -237,8 +237,8 @@ void keep_worst_sliding(int k, PathState& state, ContactReport& c) {
 }
 
 // The path's dual operator for the discretization `disc` (phase "dual"): on the factor of K,
-// or, with backend "tfeti", Total FETI's on its subdomains (factored again for each
-// discretization; `feti` then points to it).
+// or, with backend "tfeti", Total FETI's on its subdomains (`feti` then points to it), factored
+// once for the path: a geometric update replaces its contact rows (renew_path_operator).
 std::unique_ptr<dual::DualOperator> make_path_operator(const Problem& problem,
                                                        const contact::ContactDiscretization& disc,
                                                        int steps_left, const RunOptions& options,
@@ -257,6 +257,20 @@ std::unique_ptr<dual::DualOperator> make_path_operator(const Problem& problem,
   input.expected_recoveries = kOuterIterationsPerStep * steps_left;
   input.R = &r.model.floating.R;
   return dual::make_dual_operator(problem.solver.dual_operator, input);
+}
+
+// The path's operator after a geometric update made `disc`: under Total FETI the same one with
+// `disc`'s contact rows (no subdomain is factored again, theory.md §8.7), else a new one.
+void renew_path_operator(const Problem& problem, const contact::ContactDiscretization& disc,
+                         int steps_left, const RunOptions& options, RunResult& r,
+                         std::unique_ptr<dual::DualOperator>& Q, feti::FetiOperator*& feti) {
+  if (feti) {
+    phase_start(options, "dual");
+    ScopedPhase phase(r.report.times, "dual");
+    feti->set_contact_rows(disc.B, disc.offset);
+    return;
+  }
+  Q = make_path_operator(problem, disc, steps_left, options, r, feti);
 }
 
 // The step's load into Q with the contact rows' `offset`: f and u0 over the free dofs and, for an
@@ -513,7 +527,8 @@ class PathRun {
   }
 
   // The step's geometric updates against curved obstacles (theory.md §2.11): each new
-  // linearization forms Q again and solves the step again; the last stays for the next steps.
+  // linearization renews Q (its contact rows) and solves the step again; the last stays for the
+  // next steps.
   VectorXd update_geometry_of_step(const Problem& step_problem, int k, int steps_left, VectorXd u) {
     const std::vector<Vec3> obstacles = obstacle_displacements(step_problem, k);
     return update_geometry(
@@ -523,7 +538,7 @@ class PathRun {
           if (search_) {
             path_search_.drop_part();
           } else {
-            Q_ = make_path_operator(problem_, *disc_, steps_left, options_, r_, feti_);
+            renew_path_operator(problem_, *disc_, steps_left, options_, r_, Q_, feti_);
           }
           return solve(step_problem, steps_left);
         },

@@ -208,17 +208,19 @@ VectorXd SearchRounds::adopt_answer(ContactOutcome&& c, RunResult& r) const {
 
 namespace {
 
-// The contact solve on the factored model: the dual operator (phase "dual"), then the outer
-// loop. Fills the report's contact part and returns the displacement over the free dofs.
+// The contact solve on every patch (no contact search): the dual operator (phase "dual"), then
+// the outer loop. Under Total FETI the operator is the kept one of `operators` (made at the first
+// call), whose contact rows a geometric update replaces, so that no subdomain is factored again
+// (theory.md §8.7); on one factor of K it is formed here. Fills the report's contact part and
+// returns the displacement over the free dofs.
 VectorXd solve_with_contact(const Problem& problem, const contact::ContactDiscretization& disc,
-                            const RunOptions& options, RunResult& r) {
+                            const RunOptions& options, RunResult& r,
+                            std::unique_ptr<CandidateOperators>& operators) {
   const Model& m = r.model;
   if (problem.solver.backend == parallel::Backend::Tfeti) {
-    phase_start(options, "factorize");
-    const std::unique_ptr<feti::FetiOperator> F =
-        make_feti_operator(problem, m, &disc, options, r.report);
-    VectorXd u = solve_with_operator(problem, disc, *F, options, r);
-    record_feti_counts(*F, r.report);
+    if (!operators) operators = make_candidate_operators(problem, m, options, r.report);
+    VectorXd u = solve_with_operator(problem, disc, operators->on_candidates(disc), options, r);
+    operators->record(r.report);
     return u;
   }
   phase_start(options, "dual");
@@ -232,14 +234,15 @@ VectorXd solve_with_contact(const Problem& problem, const contact::ContactDiscre
   return solve_with_operator(problem, disc, *Q, options, r);
 }
 
-// With contact: on every patch, or on those of the contact search, whose operators (made at the
+// With contact: on every patch, or on those of the contact search. The operators (made at the
 // first call, kept in `operators`) serve the solves of the geometric updates too: the free
 // displacement does not depend on the contact rows, and under Total FETI no subdomain is
 // factored again.
 VectorXd solve_contact_problem(const Problem& problem, const contact::ContactDiscretization& disc,
                                const RunOptions& options, RunResult& r,
                                std::unique_ptr<CandidateOperators>& operators) {
-  if (!search_applies(problem, r.model)) return solve_with_contact(problem, disc, options, r);
+  if (!search_applies(problem, r.model))
+    return solve_with_contact(problem, disc, options, r, operators);
   if (!operators) operators = make_candidate_operators(problem, r.model, options, r.report);
   return solve_with_search(problem, disc, options, r, *operators);
 }
@@ -491,7 +494,7 @@ RunResult run(const Problem& problem, const RunOptions& options) {
 
   // @sect: the displacement: one solve, or the outer loop of dual QPs.
   const bool tfeti = problem.solver.backend == parallel::Backend::Tfeti;
-  std::unique_ptr<CandidateOperators> operators;  // the contact search's, for every solve
+  std::unique_ptr<CandidateOperators> operators;  // kept for every solve (solve_contact_problem)
   VectorXd u = disc    ? solve_contact_problem(problem, *disc, options, r, operators)
                : tfeti ? solve_elastic_tfeti(problem, options, r)
                        : solve_elastic(r);
