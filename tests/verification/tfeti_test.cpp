@@ -299,6 +299,25 @@ TEST(Tfeti, TheContactSearchLeavesOutTheHemispheresFarPatches) {
 // (FetiOperator::set_contact_rows, theory.md §8.7). Replaced rows make the operator of those
 // rows in every term the QP reads: h, G, e, products with F and with M_E, whatever rows it had
 // before (every patch, or none).
+// The search's free displacement (the gluing alone) that does not converge still chooses the
+// first candidates, but not silently: report.feti says why, and the run's warnings repeat it.
+TEST(Tfeti, AFreeDisplacementThatDidNotConvergeIsReported) {
+  const Problem at_default =
+      io::read_problem(test::source_path("examples/geometry/hertz-hemisphere.toml"), {});
+  Problem p = at_default;
+  p.solver.qp.max_iterations = 5;
+  const RunResult r = with_backend(p, "tfeti", 8);
+  ASSERT_TRUE(r.report.feti);
+  EXPECT_THAT(r.report.feti->free_displacement_note, HasSubstr("max_iterations = 5"));
+  ASSERT_FALSE(r.report.warnings.empty());
+  EXPECT_THAT(r.report.warnings.front(), HasSubstr("free displacement under Total FETI"));
+  // At the default qp_max it converges, and nothing is said.
+  const RunResult converged = with_backend(at_default, "tfeti", 8);
+  ASSERT_EQ(converged.report.status, RunStatus::Converged) << converged.report.message;
+  EXPECT_EQ(converged.report.feti->free_displacement_note, "");
+  EXPECT_TRUE(converged.report.warnings.empty());
+}
+
 TEST(Tfeti, ReplacedContactRowsMakeTheOperatorOfThoseRows) {
   Problem p = example("examples/coulomb-brick.toml", {});
   p.solver.backend = parallel::Backend::Tfeti;

@@ -30,10 +30,7 @@ class FetiCandidates final : public CandidateOperators {
       // The load held by the gluing and Dirichlet rows alone (rows a call without the search
       // put in are taken out; the next call puts its own).
       if (F_->n_contact() > 0) F_->set_contact_rows(SparseMatrix(0, n_free_), VectorXd());
-      const GluingSolve g = solve_gluing(*F_, problem_, options_);
-      // Not converged, u0 still chooses candidates: the last round checks every patch left out
-      // with the displacement of its own solve, which the certificate covers (theory.md §2.7).
-      u0_ = g.u;
+      u0_ = gluing_free_displacement(*F_, problem_, options_, report_);
       products_ = F_->n_products() - before;  // not yet reported
     }
     return u0_;

@@ -66,30 +66,41 @@ fe::NodalField owned_prescribed(const Problem& part, const std::vector<int>& own
   return u;
 }
 
-// How a path's u0 = K^-1 f is solved: with the factor of K; under Total FETI by the gluing alone
-// (solve_gluing on `feti`, its contact rows removed: the contact search's free displacement), or
-// not at all (`feti` null: its operator computes its own from the nodal loads).
+// How a path's u0 = K^-1 f is solved: with the factor of K; under Total FETI with the contact
+// search by the gluing alone (its free displacement, theory.md §8.7, on the path's operator with
+// its contact rows removed); or not at all (Total FETI without the search: the operator computes
+// its own from the nodal loads).
+enum class FreeBy { Factor, Gluing, Nothing };
+
 struct FreeSolver {
-  bool factor = true;
-  feti::FetiOperator* feti = nullptr;
+  FreeBy by = FreeBy::Factor;
+  feti::FetiOperator* feti = nullptr;  ///< FreeBy::Gluing: the path's operator
   const RunOptions* options = nullptr;
+  RunReport* report = nullptr;  ///< FreeBy::Gluing: where a solve that did not converge says so
 };
 
 // The free displacement of load `part` (its f, and the model's prescribed values of it).
 VectorXd free_displacement(const Problem& part, const Model& m, const VectorXd& f,
                            const FreeSolver& solver) {
-  if (solver.factor) return m.factor.solve(f);
-  if (!solver.feti) return {};
+  switch (solver.by) {
+    case FreeBy::Factor:
+      return m.factor.solve(f);
+    case FreeBy::Nothing:
+      return {};
+    case FreeBy::Gluing:
+      break;
+  }
   const fe::NodalField applied = applied_forces(part, m.mesh);
   solver.feti->set_load(f, VectorXd(), nullptr, dual::NodalLoad{&applied, &m.prescribed});
-  return solve_gluing(*solver.feti, part, *solver.options).u;
+  return gluing_free_displacement(*solver.feti, part, *solver.options, *solver.report);
 }
 
 LoadBasis load_basis(const Problem& problem, Model& m, const FreeSolver& solver) {
   const std::size_t n = path_loads(problem).size();
   std::vector<int> owner;
   (void)make_prescribed(problem, m.mesh, &owner);
-  if (solver.feti) solver.feti->set_contact_rows(SparseMatrix(0, m.dofs.n_free()), VectorXd());
+  if (solver.by == FreeBy::Gluing)
+    solver.feti->set_contact_rows(SparseMatrix(0, m.dofs.n_free()), VectorXd());
   LoadBasis basis;
   for (std::size_t i = 0; i <= n; ++i) {
     std::vector<Real> alone(n, 0.0);
@@ -485,7 +496,7 @@ class PathRun {
     {
       ScopedPhase phase(r_.report.times, "solve");
       // Under Total FETI the search's free displacements are the gluing's (one solve per load).
-      basis_ = load_basis(problem_, r_.model, {!tfeti_, search_ ? feti_ : nullptr, &options_});
+      basis_ = load_basis(problem_, r_.model, free_solver());
     }
     if (disc_) state_.tangential = VectorXd::Zero(disc_->n_dual());
   }
@@ -513,6 +524,12 @@ class PathRun {
     VectorXd u = solve(step_problem, steps_left);
     if (disc_) u = update_geometry_of_step(step_problem, k, steps_left, std::move(u));
     return end_step(k, step_problem, u, step_clock.seconds());
+  }
+
+  FreeSolver free_solver() {
+    if (!tfeti_) return {FreeBy::Factor};
+    if (!search_) return {FreeBy::Nothing};
+    return {FreeBy::Gluing, feti_, &options_, &r_.report};
   }
 
   // The step's solve: elastic (on subdomains with backend "tfeti"), with the contact search, or

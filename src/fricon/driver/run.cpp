@@ -422,6 +422,12 @@ std::vector<std::string> result_warnings(const RunReport& report) {
   std::vector<std::string> w;
   if (!report.contact) return w;
   const ContactReport& c = *report.contact;
+  if (report.feti && !report.feti->free_displacement_note.empty())
+    w.push_back(fmt::format(
+        "the contact search's free displacement under Total FETI (the gluing alone) did not "
+        "converge: {}; it only chooses the first candidates; the search's rounds check every "
+        "patch left out with the displacement of their own solves (theory.md §8.7)",
+        report.feti->free_displacement_note));
   if (!c.partition_note.empty())
     w.push_back(fmt::format(
         "the contact partition failed condition (5.1) and was coarsened: {}; the patches are "

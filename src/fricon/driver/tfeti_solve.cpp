@@ -82,6 +82,17 @@ GluingSolve solve_gluing(const feti::FetiOperator& F, const Problem& problem,
   return g;
 }
 
+VectorXd gluing_free_displacement(const feti::FetiOperator& F, const Problem& problem,
+                                  const RunOptions& options, RunReport& report) {
+  GluingSolve g = solve_gluing(F, problem, options);
+  if (!g.converged() && report.feti && report.feti->free_displacement_note.empty())
+    report.feti->free_displacement_note =
+        g.qp.termination != qp::QpTermination::Converged
+            ? g.qp.message
+            : fmt::format("gluing residual {:.3e} above {:.1e}", g.gluing_residual, g.gluing_bound);
+  return std::move(g.u);
+}
+
 VectorXd solve_elastic_tfeti(const Problem& problem, const RunOptions& options, RunResult& r) {
   RunReport& rep = r.report;
   phase_start(options, "factorize");

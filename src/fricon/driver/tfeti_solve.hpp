@@ -49,6 +49,14 @@ struct GluingSolve {
 GluingSolve solve_gluing(const feti::FetiOperator& F, const Problem& problem,
                          const RunOptions& options);
 
+/// The contact search's free displacement under Total FETI (theory.md §8.7): solve_gluing's u,
+/// the load held by the gluing and Dirichlet rows alone (F must have no contact rows). A solve
+/// that did not converge still gives u, which only chooses the first candidates (the search's
+/// last round checks every patch with its own solve), and says why in
+/// report.feti->free_displacement_note, which the run's warnings repeat.
+VectorXd gluing_free_displacement(const feti::FetiOperator& F, const Problem& problem,
+                                  const RunOptions& options, RunReport& report);
+
 /// The displacement over the free dofs of a model without contact by Total FETI: SMALSE-M on the
 /// gluing and Dirichlet multipliers (free unknowns) with the equality G lambda = e (phase
 /// "solve"). Sets the report's status, message, linear residual and the gluing residual of the

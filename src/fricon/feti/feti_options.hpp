@@ -93,6 +93,9 @@ struct FetiReport {
   /// violation relative to that of the displacement, and its bound (100 qp_rtol).
   double gluing_residual = 0.0;
   double gluing_bound = 0.0;
+  /// Why the contact search's free displacement (the gluing alone, theory.md §8.7) did not
+  /// converge; empty when it did, or was not solved.
+  std::string free_displacement_note;
   /// Peak resident memory at the end [MiB], the largest over the processes.
   double peak_memory_mib = 0.0;
   int n_ranks = 1;               ///< processes (MPI ranks) that share the subdomains

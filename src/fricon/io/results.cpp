@@ -280,6 +280,7 @@ void add_feti_report(const feti::FetiReport& f, nlohmann::json& j) {
       {"smalse_outer_iterations", f.smalse_outer_iterations},
       {"gluing_residual", f.gluing_residual},
       {"gluing_bound", f.gluing_bound},
+      {"free_displacement_note", f.free_displacement_note},
       {"peak_memory_mib", f.peak_memory_mib},
       {"n_ranks", f.n_ranks},
       {"ranks", ranks}};
