@@ -69,9 +69,12 @@ void print_summary(const driver::RunResult& result, const std::filesystem::path&
         f.n_dirichlet, f.n_contact, f.n_coarse);
     fmt::print(
         "  factors       nnz = {:.0f} ({:.0f} MiB) in {:.3f} s ({:.3f} s summed over the "
-        "subdomains); {} products with F; peak memory {:.0f} MiB\n",
+        "subdomains); {} products with F in {:.3f} s; peak memory {:.0f} MiB\n",
         f.nnz_factors, f.factor_mib, f.factorization_s, f.factorization_cpu_s, f.n_products,
-        f.peak_memory_mib);
+        f.products_s, f.peak_memory_mib);
+    fmt::print(
+        "  coarse        G G^T of {} rows: {} solves in {:.3f} s, its decompositions included\n",
+        f.n_coarse, f.n_coarse_solves, f.coarse_s);
     if (f.preconditioner != "none")
       fmt::print("  preconditioner {} in face: {} applications in {:.3f} s\n", f.preconditioner,
                  f.n_preconditioner, f.preconditioner_s);
@@ -125,11 +128,13 @@ void print_summary(const driver::RunResult& result, const std::filesystem::path&
                enum_name(c.termination));
     for (double e : c.err_history)
       fmt::print(" {:.2e}", e);
+    // Under Total FETI the dual operator is F, and a solve is one with every subdomain's factor.
     fmt::print(
         "\n  dual QP       {} MPGP steps ({} CG, {} expansion, {} proportioning), n_mult = {} "
-        "products with Q ({}), {} solves with K\n",
+        "products with {} ({}), {} {}\n",
         c.qp_iterations, c.qp_steps.cg, c.qp_steps.expansion, c.qp_steps.proportioning, c.n_mult,
-        enum_name(c.dual_operator), c.n_kinv);
+        r.feti ? "F" : "Q", enum_name(c.dual_operator), c.n_kinv,
+        r.feti ? "rounds of solves with the subdomains' factors" : "solves with K");
     fmt::print(
         "  KKT           feasibility {:.1e}, stationarity {:.1e}, complementarity {:.1e}: max "
         "{:.1e} {} {:.1e} = 100 qp_rtol, certificate {}\n",

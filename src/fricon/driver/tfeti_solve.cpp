@@ -50,6 +50,7 @@ void record_feti_counts(const feti::FetiOperator& F, RunReport& report) {
     report.feti->qp_iterations = report.contact->qp_iterations;
     report.feti->smalse_outer_iterations = report.contact->smalse_outer_iterations;
     report.feti->n_coarse_solves = report.contact->coarse_solves;
+    report.feti->coarse_s = report.contact->coarse_s;
     report.feti->gluing_residual = report.contact->gluing_residual;
     report.feti->gluing_bound = report.contact->kkt_bound;
   }
@@ -105,6 +106,7 @@ VectorXd solve_elastic_tfeti(const Problem& problem, const RunOptions& options, 
   feti::FetiReport& fr = *rep.feti;
   record_feti_counts(*F, rep);
   fr.n_coarse_solves = g.qp.n_coarse_solves;
+  fr.coarse_s = g.qp.coarse_s;
   fr.qp_iterations = g.qp.iterations;
   fr.smalse_outer_iterations = g.qp.outer_iterations;
   fr.gluing_residual = g.gluing_residual;

@@ -87,6 +87,7 @@ struct FetiReport {
   double products_s = 0.0;           ///< their subdomain solves on this process, wall [s]
   double sums_s = 0.0;               ///< their sums over the processes, wall [s]
   long n_coarse_solves = 0;          ///< solves with G G^T (filled after the solve)
+  double coarse_s = 0.0;             ///< their wall time and that of G G^T's decompositions [s]
   long qp_iterations = 0;            ///< MPGP steps over all QPs (filled after the solve)
   long smalse_outer_iterations = 0;  ///< SMALSE-M's outer steps over all QPs
   /// The certificate's check of the gluing and Dirichlet rows: the root mean square of their

@@ -276,6 +276,7 @@ void add_feti_report(const feti::FetiReport& f, nlohmann::json& j) {
       {"products_s", f.products_s},
       {"sums_s", f.sums_s},
       {"n_coarse_solves", f.n_coarse_solves},
+      {"coarse_s", f.coarse_s},
       {"qp_iterations", f.qp_iterations},
       {"smalse_outer_iterations", f.smalse_outer_iterations},
       {"gluing_residual", f.gluing_residual},

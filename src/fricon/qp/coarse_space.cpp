@@ -8,6 +8,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "fricon/core/error.hpp"
+#include "fricon/core/timer.hpp"
 
 namespace fricon::qp {
 
@@ -18,6 +19,13 @@ constexpr double kRankTolerance = 1e-12;
 }  // namespace
 
 CoarseSpace::CoarseSpace(const SparseMatrix& G) : G_(G) {
+  const Stopwatch watch;
+  decompose();
+  seconds_ = watch.seconds();
+}
+
+// S = G G^T: its eigenvectors (dense path) or its factor (sparse path).
+void CoarseSpace::decompose() {
   const Index m = G_.rows();
   const SparseMatrix S = SparseMatrix(G_ * G_.transpose());
   if (m == 0) return;
@@ -73,8 +81,10 @@ VectorXd CoarseSpace::solve(const VectorXd& r) const {
   FRICON_CHECK(r.size() == rows(), "coarse solve of " << r.size() << " for " << rows() << " rows");
   ++n_solves_;
   if (rows() == 0) return VectorXd();
-  if (sparse_) return factor_.solve(r);
-  return W_ * (W_.transpose() * r);
+  const Stopwatch watch;
+  VectorXd x = sparse_ ? factor_.solve(r) : VectorXd(W_ * (W_.transpose() * r));
+  seconds_ += watch.seconds();
+  return x;
 }
 
 VectorXd CoarseSpace::onto_rows(const VectorXd& v) const {

@@ -49,8 +49,12 @@ class CoarseSpace {
   VectorXd onto_rows(const VectorXd& v) const;
   /// Solves with S so far.
   long n_solves() const { return n_solves_; }
+  /// Wall time of S's decomposition and of the solves so far [s].
+  double seconds() const { return seconds_; }
 
  private:
+  /// S = G G^T decomposed: decompose_scaled, or factored by CHOLMOD beyond kDenseCoarseLimit rows.
+  void decompose();
   /// The dense path: W_, null_ and rank_ from S.
   void decompose_scaled(const MatrixXd& S);
 
@@ -61,6 +65,7 @@ class CoarseSpace {
   MatrixXd null_;
   linalg::CholeskyFactor factor_;  ///< sparse: of S
   mutable long n_solves_ = 0;
+  mutable double seconds_ = 0.0;
 };
 
 }  // namespace fricon::qp

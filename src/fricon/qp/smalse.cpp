@@ -238,6 +238,7 @@ class SmalseM {
   }
 
   long n_coarse_solves() const { return rows_.n_solves(); }
+  double coarse_seconds() const { return rows_.seconds(); }
 
  private:
   // No load on the equality (e = 0) and none of b that the constraints resist (b_R = 0 to
@@ -539,6 +540,7 @@ SmalseReport solve_smalse(const Operator& A, const Eigen::VectorXd& b,
   SmalseM smalse(A, b, c, eq, opt, inner, rep);
   if (smalse.load_is_resisted()) smalse.solve(x, mu);
   rep.n_coarse_solves = smalse.n_coarse_solves();
+  rep.coarse_s = smalse.coarse_seconds();
   rep.seconds = watch.seconds();
   return rep;
 }

@@ -117,6 +117,7 @@ struct SmalseReport {
   Eigen::MatrixXd undetermined;
   MpgpReport last_inner;     ///< the report of the last inner MPGP solve
   long n_coarse_solves = 0;  ///< solves with the coarse problem G G^T (qp/coarse_space.hpp)
+  double coarse_s = 0.0;     ///< their wall time and that of its decomposition [s]
   double seconds = 0.0;
 };
 
