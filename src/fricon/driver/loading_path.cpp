@@ -526,6 +526,8 @@ class PathRun {
     return end_step(k, step_problem, u, step_clock.seconds());
   }
 
+  // How the load basis's free displacements are solved (FreeBy): only the search needs them
+  // under Total FETI.
   FreeSolver free_solver() {
     if (!tfeti_) return {FreeBy::Factor};
     if (!search_) return {FreeBy::Nothing};
