@@ -382,6 +382,20 @@ TEST(Tfeti, AThinSlabOfFlatElementsGivesTheDirectAnswer) {
   expect_same_answer(example(file, {}), at_default, 9);
 }
 
+// Every step of two runs of one path has the same normal and tangential force on the
+// contact, to kSameAnswer of the step's normal force.
+void expect_same_step_forces(const RunResult& direct, const RunResult& feti) {
+  ASSERT_EQ(feti.report.steps.size(), direct.report.steps.size());
+  for (std::size_t k = 0; k < direct.report.steps.size(); ++k) {
+    const StepReport& d = direct.report.steps[k];
+    const StepReport& f = feti.report.steps[k];
+    const Real scale = std::abs(d.normal_force);
+    EXPECT_NEAR(f.normal_force, d.normal_force, kSameAnswer * scale) << "step " << d.step;
+    EXPECT_LE((f.tangential_force - d.tangential_force).norm(), kSameAnswer * scale)
+        << "step " << d.step;
+  }
+}
+
 // The paper's brick, its top pressed 2 cm down onto a ball of radius 5 m below it (a contact
 // radius of about 0.45 m), with the paper's Tresca friction: every patch enters the QP (no
 // contact search, theory.md §2.7), and the gap is linearized again at the solution until it is
@@ -437,15 +451,7 @@ TEST(Tfeti, AGeometricUpdateOfAPathStepKeepsTheSubdomainsFactored) {
   ASSERT_EQ(feti.report.status, RunStatus::Converged) << feti.report.message;
   ASSERT_GE(feti.report.contact->geometry_updates, 1);  // at the last step
   EXPECT_EQ(factorizations(feti), 1);
-  ASSERT_EQ(feti.report.steps.size(), direct.report.steps.size());
-  for (std::size_t k = 0; k < direct.report.steps.size(); ++k) {
-    const StepReport& d = direct.report.steps[k];
-    const StepReport& f = feti.report.steps[k];
-    const Real scale = std::abs(d.normal_force);
-    EXPECT_NEAR(f.normal_force, d.normal_force, kSameAnswer * scale) << "step " << d.step;
-    EXPECT_LE((f.tangential_force - d.tangential_force).norm(), kSameAnswer * scale)
-        << "step " << d.step;
-  }
+  expect_same_step_forces(direct, feti);
 }
 
 TEST(Tfeti, MoreSubdomainsThanTetrahedraIsRefusedByName) {
@@ -468,15 +474,7 @@ TEST(Tfeti, TheHysteresisPathGivesTheDirectForcesAtEveryStep) {
   ASSERT_EQ(direct.report.status, RunStatus::Converged) << direct.report.message;
   const RunResult feti = with_backend(p, "tfeti", 8);
   ASSERT_EQ(feti.report.status, RunStatus::Converged) << feti.report.message;
-  ASSERT_EQ(feti.report.steps.size(), direct.report.steps.size());
-  for (std::size_t k = 0; k < direct.report.steps.size(); ++k) {
-    const StepReport& d = direct.report.steps[k];
-    const StepReport& f = feti.report.steps[k];
-    const Real scale = std::abs(d.normal_force);
-    EXPECT_NEAR(f.normal_force, d.normal_force, kSameAnswer * scale) << "step " << d.step;
-    EXPECT_LE((f.tangential_force - d.tangential_force).norm(), kSameAnswer * scale)
-        << "step " << d.step;
-  }
+  expect_same_step_forces(direct, feti);
   EXPECT_NEAR(peak_pressure(feti), peak_pressure(direct), kSameAnswer * peak_pressure(direct));
   EXPECT_NEAR(feti.report.max_displacement, direct.report.max_displacement,
               kSameAnswer * direct.report.max_displacement);
