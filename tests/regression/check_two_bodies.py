@@ -183,8 +183,9 @@ def check_sliding_path():
     steps = report["steps"]
     assert len(steps) == 3
     pressed = steps[1]["normal_force"]
-    # Released to zero: lambda = 0, to the accuracy of the example's tolerances (outer_tol 1e-4).
-    assert pressed > 0 and abs(steps[2]["normal_force"]) <= 1e-6 * pressed, steps
+    # Released to zero: lambda = 0, to the accuracy of the example's tolerances (qp_rtol 1e-6 of
+    # the QP's data, outer_tol 1e-4); the QP stops at a residual, not at 0 itself.
+    assert pressed > 0 and abs(steps[2]["normal_force"]) <= 1e-5 * pressed, steps
     assert steps[2]["patch_states"]["separated"] == pair_patches(report), steps[2]
     [pair] = report["pairs"]
     limit = 0.5 * pair["master_element_size"]

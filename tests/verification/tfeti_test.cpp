@@ -4,6 +4,7 @@
 // answers are the discrete problem's to far below the compared precision:
 //   - gluing: an elastic brick without contact, cut into 2 to 64 subdomains, equals the direct
 //     solve to 1e-8 of max |u|;
+//   - turned discs (theory.md §4.7) and held ones: the same answer, turned in fewer products;
 //   - the paper's brick (Tresca with F(s)), on 1 to 64 subdomains, the Coulomb brick, the
 //     quadratic brick, a floating block, two stacked bodies, the Hertz hemisphere and a ball
 //     pressed into a graded mesh and a thin slab of flat elements: the peak pressure and max |u|
@@ -224,6 +225,28 @@ TEST(Tfeti, ThePaperBrickOnOneToSixtyFourSubdomainsGivesTheDirectAnswer) {
 
 TEST(Tfeti, ThePaperBrickAtNEightGivesTheDirectAnswer) {
   expect_same_answer(example("examples/paper-brick.toml", {"mesh.cells=[24,8,8]"}), 16);
+}
+
+// Turned discs (theory.md §4.7): where most patches slip, CG steps that turn their friction
+// forces along the circles take the place of runs of proportioning steps. On the brick at n = 8
+// with a constant coefficient, cut into 8 subdomains, a run's defaults (turned discs, projected
+// CG expansions) and the paper's MPGP face (held discs, fixed expansions) both give the direct
+// answer, and turning needs fewer products with F and fewer proportioning steps.
+TEST(Tfeti, TurnedDiscsGiveTheDirectAnswerInFewerProducts) {
+  const Problem turned = example(
+      "examples/paper-brick.toml",
+      {"mesh.cells=[24,8,8]", "contact.friction.law=\"constant\"", "contact.friction.value=0.3"});
+  ASSERT_EQ(turned.solver.qp.active_discs, qp::MpgpDiscFace::Turned);  // the default
+  Problem held = turned;
+  held.solver.qp.active_discs = qp::MpgpDiscFace::Held;
+  held.solver.qp.expansion = qp::MpgpExpansion::Fixed;
+  expect_same_answer(turned, 8);
+  expect_same_answer(held, 8);
+  const RunResult t = with_backend(turned, "tfeti", 8);
+  const RunResult h = with_backend(held, "tfeti", 8);
+  ASSERT_TRUE(t.report.feti && h.report.feti);
+  EXPECT_LT(t.report.feti->n_products, h.report.feti->n_products);
+  EXPECT_LT(2 * t.report.contact->qp_steps.proportioning, h.report.contact->qp_steps.proportioning);
 }
 
 TEST(Tfeti, CoulombAndQuadraticBricksGiveTheDirectAnswer) {

@@ -202,6 +202,15 @@ struct ContactOptions {
   Real geometry_tolerance = kDefaultGeometryTolerance;
 };
 
+/// The MPGP options of a run before its [solver] keys: turned discs, projected CG expansions
+/// (theory.md §4.7).
+inline qp::MpgpOptions run_qp_defaults() {
+  qp::MpgpOptions o;
+  o.active_discs = qp::MpgpDiscFace::Turned;
+  o.expansion = qp::MpgpExpansion::ProjectedCG;
+  return o;
+}
+
 /// [solver] (driver/problem_options.cpp documents each key, its range and default).
 struct SolverOptions {
   /// The successive approximations (theory.md §5): [solver.outer_tol] tol, [solver.outer_max]
@@ -209,9 +218,11 @@ struct SolverOptions {
   /// they are.
   outer::OuterOptions outer;
   /// Each QP (theory.md §4): [solver.qp_rtol] rel_tolerance, [solver.qp_max] max_iterations,
-  /// [solver.qp_variant] variant, [solver.qp_expansion] expansion. Its other fields are settings
-  /// for code only; the driver sets norm_A and the monitor of each solve.
-  qp::MpgpOptions qp;
+  /// [solver.qp_variant] variant, [solver.qp_expansion] expansion, [solver.qp_active_discs]
+  /// active_discs. Its other fields are settings for code only; the driver sets norm_A and the
+  /// monitor of each solve. A run's defaults differ from MpgpOptions' (the paper's MPGP): the CG
+  /// steps turn active discs and the expansion is the projected CG step (theory.md §4.7).
+  qp::MpgpOptions qp = run_qp_defaults();
   bool warm_start = true;       ///< [solver.warm_start]
   Real certificate_tol = 1e-6;  ///< [solver.certificate_tol]
   dual::DualOperatorKind dual_operator = dual::DualOperatorKind::Auto;  ///< [solver.dual_operator]

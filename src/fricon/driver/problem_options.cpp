@@ -636,14 +636,24 @@ void add_iteration_keys(SolverKeys& b) {
            "inner QP algorithm: `\"bb\"` (MPGP with Barzilai-Borwein lengths for the "
            "expansion and proportioning steps; 5-8x fewer products with Q than `\"paper\"` on "
            "the paper's problems) or `\"paper\"` (the plain MPGP of the paper; `fricon paper` "
-           "uses it so that n_mult compares with the paper's); theory.md §4");
+           "runs it with `qp_expansion = \"fixed\"` and `qp_active_discs = \"hold\"`, so that "
+           "n_mult compares with the paper's); theory.md §4");
   b.choice("qp_expansion", at(&SolverOptions::qp, &qp::MpgpOptions::expansion),
            "the move of MPGP's expansion step: `\"fixed\"` (to the boundary along the CG "
            "direction, then a projected free-gradient step of the fixed length 1.95/‖Q‖, the "
            "paper's), `\"opt\"` (that step with PERMON's exact line-search length along the "
            "free gradient) or `\"projcg\"` (the full CG step past the boundary, projected). "
            "With the contact search the three need about the same products over whole runs "
-           "(theory.md §4.2); `\"projcg\"` is the default of `fricon dual solve`");
+           "on one factor of K; under `backend = \"tfeti\"` `\"projcg\"` needs the fewest "
+           "(theory.md §4.2, §4.7)");
+  b.choice("qp_active_discs", at(&SolverOptions::qp, &qp::MpgpOptions::active_discs),
+           "what MPGP's CG steps do with a patch whose friction force is on its circle (a "
+           "slipping patch): `\"turn\"` (they turn the force along the circle, with the "
+           "circle's curvature, and return it to the circle; a very tight circle is held) or "
+           "`\"hold\"` (the paper's: only the projected steps turn it, one steepest-descent "
+           "move at a time). `\"turn\"` needs fewer products where many patches slip, and "
+           "under `backend = \"tfeti\"` keeps their count nearly flat as the mesh grows "
+           "(theory.md §4.7)");
   b.choice("acceleration", at(&SolverOptions::outer, &outer::OuterOptions::acceleration),
            "`\"none\"`: the paper's successive approximations phi^k = Psi(phi^(k-1)); "
            "`\"anderson\"`: Anderson mixing of the last `anderson_depth` iterates (the "

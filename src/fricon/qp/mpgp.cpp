@@ -29,18 +29,20 @@ void MpgpOptions::validate() const {
   require("MpgpOptions::power_tolerance", power_tolerance, positive());
   require("MpgpOptions::active_tolerance", active_tolerance,
           Range{false, 0.0, 1e-3, false, false, {}});
-  if (!enum_is_valid(variant) || !enum_is_valid(expansion))
-    throw InputError(fmt::format("MpgpOptions: variant {} or expansion {} is not an enumerator",
-                                 static_cast<int>(variant), static_cast<int>(expansion)));
+  if (!enum_is_valid(variant) || !enum_is_valid(expansion) || !enum_is_valid(active_discs))
+    throw InputError(fmt::format(
+        "MpgpOptions: variant {}, expansion {} or active_discs {} is not an enumerator",
+        static_cast<int>(variant), static_cast<int>(expansion), static_cast<int>(active_discs)));
   require("MpgpOptions::expansion_length_factor", expansion_length_factor,
           Range{false, 0.0, 2.0, true, false, {}});
 }
 
 std::string MpgpReport::brief() const {
   // Paper with the Fixed expansion prints as before the expansion choice existed.
-  const std::string exp = expansion == MpgpExpansion::Fixed
-                              ? std::string()
-                              : fmt::format(", exp {}", enum_name(expansion));
+  const std::string exp =
+      (expansion == MpgpExpansion::Fixed ? std::string()
+                                         : fmt::format(", exp {}", enum_name(expansion))) +
+      (active_discs == MpgpDiscFace::Held ? "" : ", discs turned");
   const std::string exp_fallbacks = expansion == MpgpExpansion::Fixed
                                         ? std::string()
                                         : fmt::format("; {} exp fallback", n_expansion_fallbacks);
@@ -69,6 +71,7 @@ std::string MpgpReport::full() const {
   line("message", message);
   line("variant", std::string(enum_name(variant)));
   line("expansion", std::string(enum_name(expansion)));
+  line("active_discs", std::string(enum_name(active_discs)));
   line("iterations", std::to_string(iterations));
   line("n_cg", std::to_string(n_cg));
   line("n_expansion", std::to_string(n_expansion));
@@ -190,10 +193,12 @@ struct MpgpState {
   Eigen::VectorXd phi;      ///< the free gradient at x (docs/theory.md §4.1)
   Eigen::VectorXd beta;     ///< the chopped gradient at x
   Eigen::VectorXd z;        ///< the preconditioned free gradient (sized by the first use)
+  Eigen::VectorXd Dp;       ///< the turned discs' curvature times p (MpgpDiscFace::Turned)
   Eigen::VectorXd x_saved;  ///< x (and g_saved its g) before an expansion move that may fall back
   Eigen::VectorXd g_saved;
-  Eigen::VectorXd gr;  ///< the reduced free gradient (direction of the Optimal expansion)
-  Split split;         ///< ||g^P||^2, ||phi||^2, ||beta||^2 and phitilde^T phi at x
+  bool g_saved_exact = true;  ///< g_exact of g_saved
+  Eigen::VectorXd gr;         ///< the reduced free gradient (direction of the Optimal expansion)
+  Split split;                ///< ||g^P||^2, ||phi||^2, ||beta||^2 and phitilde^T phi at x
   /// True while g has been updated recursively (g -= a A p) since the last product A x and the
   /// stopping test must be certified with a recomputed g (BarzilaiBorwein; Paper accepts the
   /// recursive gradient, as [HL09] does).
@@ -202,10 +207,15 @@ struct MpgpState {
   /// the direction is formed only when a step takes it, so that a preconditioner is not applied
   /// for a proportioning step, which moves along g instead.
   enum class Direction { Ready, Restart, Conjugate } direction = Direction::Ready;
-  double pAp = 0.0;         ///< p^T A p of the last CG step (for Direction::Conjugate)
-  double q_prev = 0.0;      ///< q after the last step (for n_objective_increases)
-  bool stopped = false;     ///< the monitor returned false
-  SpectralLength spectral;  ///< the trial length of the spectral moves (BarzilaiBorwein)
+  double pAp = 0.0;     ///< p^T (A + D) p of the last CG step (for Direction::Conjugate; §4.7)
+  bool turned = false;  ///< the last CG step turned discs (its p^T A p includes D p; §4.7)
+  /// g = A x - b up to rounding: false from a turned discs' radial return (which g does not
+  /// follow, §4.7) until the next recomputation of g. q(x) = x^T (g - b) / 2 is then inexact.
+  bool g_exact = true;
+  bool q_prev_exact = true;  ///< g_exact when q_prev was recorded
+  double q_prev = 0.0;       ///< q after the last step (for n_objective_increases)
+  bool stopped = false;      ///< the monitor returned false
+  SpectralLength spectral;   ///< the trial length of the spectral moves (BarzilaiBorwein)
 };
 
 /// How the iteration ends.
@@ -243,7 +253,7 @@ class Mpgp {
  private:
   bool proportional() const;
   MpgpStep cg_or_expansion_step();
-  MpgpStep cg_step(double a_cg, double pAp);
+  MpgpStep cg_step(double a_cg, double pHp, double pAp);
   MpgpStep expansion_step(double a_f, double a_cg);
   MpgpStep fixed_expansion(double a_f);
   MpgpStep optimal_expansion(double a_f);
@@ -278,7 +288,7 @@ class Mpgp {
   const double x_scale_;    ///< the scale of x of the active-set and rounding tolerances
   const double threshold_;  ///< the stopping test: ||g^P|| <= threshold_
   const double gamma2_;     ///< Gamma^2 of the proportionality test
-  const Kernels kern_;
+  Kernels kern_;            ///< remembers the discs that the last split turned
   MpgpState s_;
 };
 
@@ -295,7 +305,7 @@ Mpgp::Mpgp(const Operator& A, const Eigen::VectorXd& b, const SeparableConstrain
           {x.lpNorm<Eigen::Infinity>(), c.max_radius(), rep.reference_norm / rep.norm_A_used})),
       threshold_(std::max(opt.rel_tolerance * rep.reference_norm, opt.abs_tolerance)),
       gamma2_(opt.gamma * opt.gamma),
-      kern_(c, opt.active_tolerance * x_scale_, opt.active_tolerance, abar_),
+      kern_(c, opt.active_tolerance * x_scale_, opt.active_tolerance, abar_, opt.active_discs),
       // The spectral trial lengths start from alpha_bar. Every such length lies in
       // [1/||A||, 1/lambda_min(A)]; the clamp only guards against rounding.
       s_(x, SpectralLength(abar_, 1e-3 / rep.norm_A_used, 1e12 / rep.norm_A_used)) {}
@@ -326,32 +336,45 @@ bool Mpgp::proportional() const {
 }
 
 // Lines 5-12: the CG step length a_cg along -p and the feasible one a_f decide between the CG
-// step and the expansion step (1 product, A p, shared by both).
+// step and the expansion step (1 product, A p, shared by both). Along turned discs the
+// curvature is that of A + D (§4.7).
 MpgpStep Mpgp::cg_or_expansion_step() {
   next_direction();
+  if (kern_.turns_discs() && !(s_.g.dot(s_.p) > 0.0)) {
+    // The conjugate direction, taken onto the new tangents, need not descend: restart.
+    s_.direction = MpgpState::Direction::Restart;
+    next_direction();
+  }
   multiply(s_.p, s_.Ap);
   const double pAp = s_.p.dot(s_.Ap);
-  const double a_cg = s_.g.dot(s_.p) / pAp;
-  if (!(pAp > 0.0) || !std::isfinite(pAp) || !(a_cg > 0.0) || !std::isfinite(a_cg)) {
+  const double pHp =
+      kern_.turns_discs() ? pAp + kern_.turn_curvature(s_.x, s_.g, s_.p, s_.Dp) : pAp;
+  const double a_cg = s_.g.dot(s_.p) / pHp;
+  if (!(pAp > 0.0) || !std::isfinite(pHp) || !(a_cg > 0.0) || !std::isfinite(a_cg)) {
     return failed('c', fmt::format("CG step: p^T A p = {:.3e}, step {:.3e}; A is not positive "
                                    "definite along p, or the direction is not a descent direction",
                                    pAp, a_cg));
   }
   const double a_f = kern_.max_feasible_step(s_.x, s_.p);
-  return a_cg <= a_f ? cg_step(a_cg, pAp) : expansion_step(a_f, a_cg);
+  return a_cg <= a_f ? cg_step(a_cg, pHp, pAp) : expansion_step(a_f, a_cg);
 }
 
 // Lines 7-8: the CG step inside the feasible set, g updated recursively; the next conjugate
-// direction p = z - beta_cg p follows if the next step takes it (next_direction).
-MpgpStep Mpgp::cg_step(double a_cg, double pAp) {
+// direction p = z - beta_cg p follows if the next step takes it (next_direction). The
+// projection removes rounding-level infeasibility when a_cg ~ a_f, and returns turned discs to
+// their circles (§4.7); their gradient is then updated to second order only, so that the
+// stopping test recomputes it.
+MpgpStep Mpgp::cg_step(double a_cg, double pHp, double pAp) {
   if (bb_) s_.spectral.update(s_.p.squaredNorm(), pAp, s_.Ap.squaredNorm());
+  s_.turned = kern_.turns_discs();
   s_.x.noalias() -= a_cg * s_.p;
   s_.g.noalias() -= a_cg * s_.Ap;
-  c_.project(s_.x);  // only removes rounding-level infeasibility when a_cg ~ a_f
+  c_.project(s_.x);
   s_.split = kern_.split(s_.x, s_.g, s_.phi, s_.beta);
-  s_.pAp = pAp;
+  s_.pAp = pHp;
   s_.direction = MpgpState::Direction::Conjugate;
-  s_.recursive = bb_;
+  s_.recursive = bb_ || s_.turned;
+  if (s_.turned) s_.g_exact = false;
   return taken('c', a_cg);
 }
 
@@ -365,8 +388,9 @@ void Mpgp::next_direction() {
     s_.p = cg_direction();
   } else if (s_.direction == Direction::Conjugate) {
     const Eigen::VectorXd& z = cg_direction();
-    const double beta_cg = z.dot(s_.Ap) / s_.pAp;
-    s_.p = z - beta_cg * s_.p;
+    const double zHp = s_.turned ? z.dot(s_.Ap) + z.dot(s_.Dp) : z.dot(s_.Ap);
+    s_.p = z - (zHp / s_.pAp) * s_.p;
+    if (kern_.turns_discs()) kern_.restrict_to_face(s_.x, s_.p);  // tangents of the new x
   }
   s_.direction = Direction::Ready;
 }
@@ -384,17 +408,25 @@ MpgpStep Mpgp::expansion_step(double a_f, double a_cg) {
   return fixed_expansion(a_f);
 }
 
-// Line 10: x := x - a_f p, on the boundary, g updated recursively, and the split there.
+// Line 10: x := x - a_f p, on the boundary, g updated recursively, and the split there. Turned
+// discs return to their circles (§4.7).
 void Mpgp::move_to_boundary(double a_f) {
   s_.x.noalias() -= a_f * s_.p;
   s_.g.noalias() -= a_f * s_.Ap;
+  if (kern_.turns_discs()) {
+    c_.project(s_.x);
+    s_.recursive = true;
+    s_.g_exact = false;
+  }
   s_.split = kern_.split(s_.x, s_.g, s_.phi, s_.beta);  // phi at the boundary point
 }
 
 // MpgpExpansion::Fixed, lines 10-12: to the boundary along -p (step a_f), then a projected move
-// along the free gradient there (1 more product).
+// along the free gradient there (1 more product), without the turned discs' tangents: the move
+// enlarges the active set, and along a chord of a circle it would not descend (§4.7).
 MpgpStep Mpgp::fixed_expansion(double a_f) {
   move_to_boundary(a_f);
+  if (kern_.turns_discs()) kern_.clear_active(s_.x, s_.phi);  // phi is formed again below
   if (!projected_gradient_move(s_.phi)) {
     return failed('e',
                   "expansion step: A is not positive definite along the projected "
@@ -438,6 +470,7 @@ MpgpStep Mpgp::optimal_expansion(double a_f) {
   } else {
     s_.x_saved = s_.x;
     s_.g_saved = s_.g;
+    s_.g_saved_exact = s_.g_exact;
     const double q_boundary = objective();
     s_.x.noalias() -= a * gr;
     c_.project(s_.x);
@@ -446,6 +479,7 @@ MpgpStep Mpgp::optimal_expansion(double a_f) {
       ++rep_.n_expansion_fallbacks;
       s_.x = s_.x_saved - abar_ * gr;
       s_.g = s_.g_saved - abar_ * Agr;
+      s_.g_exact = s_.g_saved_exact;
       c_.project(s_.x);  // only removes rounding-level infeasibility
       s_.recursive = bb_;
     }
@@ -462,6 +496,7 @@ MpgpStep Mpgp::projected_cg_expansion(double a_f, double a_cg) {
   s_.allocate_expansion_work();
   s_.x_saved = s_.x;
   s_.g_saved = s_.g;
+  s_.g_saved_exact = s_.g_exact;
   const double q_before = objective();
   s_.x.noalias() -= a_cg * s_.p;
   c_.project(s_.x);
@@ -470,6 +505,7 @@ MpgpStep Mpgp::projected_cg_expansion(double a_f, double a_cg) {
     ++rep_.n_expansion_fallbacks;
     s_.x = s_.x_saved;
     s_.g = s_.g_saved;
+    s_.g_exact = s_.g_saved_exact;
     return fixed_expansion(a_f);  // A p is still in s_.Ap
   }
   split_and_restart();
@@ -552,6 +588,7 @@ void Mpgp::refresh_gradient() {
   multiply(s_.x, s_.g);
   s_.g -= b_;
   s_.recursive = false;
+  s_.g_exact = true;
 }
 
 // The split of g at x; CG restarts from phi, or its preconditioned image (line 15), when the next
@@ -583,6 +620,7 @@ std::optional<Stop> Mpgp::stop_test() {
     refresh_gradient();
     split_and_restart();  // the free set is the same, phi has changed
     s_.q_prev = objective();
+    s_.q_prev_exact = true;
     ++rep_.n_refreshes;
   }
   const int done = steps();
@@ -635,8 +673,11 @@ void Mpgp::record(char kind, double alpha) {
   // With alpha_bar <= 2/||A|| no step increases q; count the increases beyond rounding.
   const double q_tolerance =
       1e-12 * std::max({std::abs(s_.q_prev), std::abs(it.objective), rep_.norm_b * x_scale_});
-  if (kind != 's' && it.objective > s_.q_prev + q_tolerance) ++rep_.n_objective_increases;
+  // Compared only where both values of q are exact (§4.7: not after turned discs' returns).
+  const bool comparable = kind != 's' && s_.q_prev_exact && s_.g_exact;
+  if (comparable && it.objective > s_.q_prev + q_tolerance) ++rep_.n_objective_increases;
   s_.q_prev = it.objective;
+  s_.q_prev_exact = s_.g_exact;
   if (opt_.record_history) rep_.history.push_back(it);
   if (opt_.monitor && !opt_.monitor(it)) s_.stopped = true;
 }
@@ -719,6 +760,7 @@ MpgpReport solve_mpgp(const Operator& A, const Eigen::VectorXd& b, const Separab
   MpgpReport rep;
   rep.variant = opt.variant;
   rep.expansion = opt.expansion;
+  rep.active_discs = opt.active_discs;
   rep.norm_b = b.norm();
   rep.reference_norm =
       opt.reference == StopReference::Whole ? rep.norm_b : resisted_part(b, c).norm();

@@ -147,6 +147,32 @@ FRICON_ENUM_NAMES(fricon::qp::MpgpExpansion, "solver.qp_expansion",
 
 namespace fricon::qp {
 
+/// What MPGP's CG steps may do with an active disc, one whose friction force lies on its circle
+/// (docs/theory.md §4.7).
+enum class MpgpDiscFace {
+  /// The paper's: an active disc is off the face, so only the projected moves (expansion and
+  /// proportioning) turn its force along the circle.
+  Held,
+  /// The CG steps turn it: the face keeps the disc's tangent, the CG curvature adds the
+  /// circle's (mu_i / rho_i, mu_i the normal force pushing the disc outward), and the point
+  /// returns radially to the circle after each step. A disc whose circle is too tight for that
+  /// (mu_i / rho_i > kTurnCurvature / alpha_bar) is held.
+  Turned,
+};
+
+/// The largest circle curvature mu_i / rho_i of a turned disc, times alpha_bar = 1.95 / ||A||:
+/// tighter circles (small radius, large normal force; in Coulomb's small pressures) are held.
+/// Measured on the paper's brick under Total FETI (docs/theory.md §4.7): 0.15 and 1 need more
+/// products than 0.3; without a limit, a disc of radius near 0 cuts every CG step to nothing.
+inline constexpr double kTurnCurvature = 0.3;
+
+}  // namespace fricon::qp
+
+FRICON_ENUM_NAMES(fricon::qp::MpgpDiscFace, "solver.qp_active_discs",
+                  {qp::MpgpDiscFace::Held, "hold"}, {qp::MpgpDiscFace::Turned, "turn"});
+
+namespace fricon::qp {
+
 /// One completed iteration (or the starting point, step 's'), as passed to the monitor.
 struct MpgpIteration {
   int iteration = 0;     ///< 0 for the starting point, then 1, 2, ...
@@ -166,6 +192,9 @@ struct MpgpOptions {
   /// The move of an expansion step after it reached the boundary (MpgpExpansion). Default Fixed
   /// (the algorithm as it was; ProjectedCG needs fewer products on single QPs, not in whole runs).
   MpgpExpansion expansion = MpgpExpansion::Fixed;
+  /// What the CG steps do with active discs (MpgpDiscFace). Default Held (the paper's MPGP;
+  /// `fricon solve` turns them).
+  MpgpDiscFace active_discs = MpgpDiscFace::Held;
   /// MpgpExpansion::Optimal: the multiple of the line-search length along the reduced free
   /// gradient (PERMON's alpha_user, whose default is 2). Default 1; range (0, 2] (with <= 2 a
   /// feasible move does not increase q).
@@ -235,6 +264,7 @@ struct MpgpReport {
   std::string message;                             ///< one sentence: why the solver stopped
   MpgpVariant variant = MpgpVariant::Paper;        ///< the algorithm that ran
   MpgpExpansion expansion = MpgpExpansion::Fixed;  ///< its expansion move
+  MpgpDiscFace active_discs = MpgpDiscFace::Held;  ///< what its CG steps did with active discs
   /// Steps taken = n_cg + n_expansion + n_proportioning.
   int iterations = 0;
   int n_cg = 0;

@@ -6,9 +6,25 @@
 
 namespace fricon::qp::detail {
 
+namespace {
+
+/// The unit tangent (-eta_2, eta_1) of a disc at x_i = (x1, x2) with ||x_i|| = nx > 0, and the
+/// component of v_i = (v1, v2) along it.
+struct Tangent {
+  double t1, t2;
+  double of(double v1, double v2) const { return t1 * v1 + t2 * v2; }
+};
+
+Tangent tangent_at(double x1, double x2, double nx) {
+  return {-x2 / nx, x1 / nx};
+}
+
+}  // namespace
+
 Split Kernels::split(const Eigen::VectorXd& x, const Eigen::VectorXd& g, Eigen::VectorXd& phi,
-                     Eigen::VectorXd& beta) const {
+                     Eigen::VectorXd& beta) {
   Split s;
+  n_turned_ = 0;
   const double abar = alpha_bar_;
   for (std::size_t k = 0; k < c_.blocks.size(); ++k) {
     const Index o = c_.blocks[k].offset;
@@ -46,11 +62,29 @@ Split Kernels::split(const Eigen::VectorXd& x, const Eigen::VectorXd& g, Eigen::
     const double x1 = x(o), x2 = x(o + 1);
     const double g1 = g(o), g2 = g(o + 1);
     const double nx = norm2(x1, x2);
+    turned_[k] = 0;
     if (rho == 0.0) {  // pinned block
       phi(o) = phi(o + 1) = beta(o) = beta(o + 1) = 0.0;
     } else if (nx >= (1.0 - tol_disc_) * rho) {  // active: nx > 0 here
       const double e1 = x1 / nx, e2 = x2 / nx;   // outward normal
-      const double gn = std::min(e1 * g1 + e2 * g2, 0.0);
+      const double mu = std::max(-(e1 * g1 + e2 * g2), 0.0);
+      if (mu <= turn_limit_ * rho) {  // turned (§4.7): the tangent is free, the inward part chopped
+        turned_[k] = 1;
+        ++n_turned_;
+        const Tangent t = tangent_at(x1, x2, nx);
+        const double gt = t.of(g1, g2);
+        const double gin = std::max(e1 * g1 + e2 * g2, 0.0);
+        phi(o) = gt * t.t1;
+        phi(o + 1) = gt * t.t2;
+        beta(o) = gin * e1;
+        beta(o + 1) = gin * e2;
+        s.gp2 += gt * gt + gin * gin;
+        s.phi2 += gt * gt;
+        s.phit_phi += gt * gt;  // the move x - abar phi returns to the circle: as if free
+        s.beta2 += gin * gin;
+        continue;
+      }
+      const double gn = -mu;
       const double b1 = g1 - gn * e1, b2 = g2 - gn * e2;
       phi(o) = phi(o + 1) = 0.0;
       beta(o) = b1;
@@ -134,6 +168,7 @@ double Kernels::max_feasible_step(const Eigen::VectorXd& x, const Eigen::VectorX
   for (std::size_t k = 0; k < c_.blocks.size(); ++k) {
     const Index o = c_.blocks[k].offset;
     if (c_.blocks[k].kind == BlockKind::Free) continue;  // no constraint: no limit
+    if (turned(k)) continue;                             // returns to its circle after the step
     if (c_.blocks[k].kind == BlockKind::Bound) {
       if (p(o) > 0.0) a = std::min(a, std::max(x(o), 0.0) / p(o));
       continue;
@@ -164,9 +199,49 @@ void Kernels::restrict_to_face(const Eigen::VectorXd& x, Eigen::VectorXd& v) con
       if (x(o) <= tol_bound_) v(o) = 0.0;
       continue;
     }
+    if (turned(k)) {  // only the tangential part
+      const Tangent t = tangent_at(x(o), x(o + 1), norm2(x(o), x(o + 1)));
+      const double vt = t.of(v(o), v(o + 1));
+      v(o) = vt * t.t1;
+      v(o + 1) = vt * t.t2;
+      continue;
+    }
     const double rho = c_.radius(static_cast<Index>(k));
     if (rho == 0.0 || norm2(x(o), x(o + 1)) >= (1.0 - tol_disc_) * rho) v(o) = v(o + 1) = 0.0;
   }
+}
+
+void Kernels::clear_active(const Eigen::VectorXd& x, Eigen::VectorXd& v) const {
+  for (std::size_t k = 0; k < c_.blocks.size(); ++k) {
+    const Index o = c_.blocks[k].offset;
+    if (c_.blocks[k].kind == BlockKind::Free) continue;  // never active
+    if (c_.blocks[k].kind == BlockKind::Bound) {
+      if (x(o) <= tol_bound_) v(o) = 0.0;
+      continue;
+    }
+    const double rho = c_.radius(static_cast<Index>(k));
+    if (rho == 0.0 || norm2(x(o), x(o + 1)) >= (1.0 - tol_disc_) * rho) v(o) = v(o + 1) = 0.0;
+  }
+}
+
+double Kernels::turn_curvature(const Eigen::VectorXd& x, const Eigen::VectorXd& g,
+                               const Eigen::VectorXd& p, Eigen::VectorXd& Dp) const {
+  Dp.setZero(x.size());
+  double pDp = 0.0;
+  if (n_turned_ == 0) return pDp;
+  for (std::size_t k = 0; k < c_.blocks.size(); ++k) {
+    if (!turned(k)) continue;
+    const Index o = c_.blocks[k].offset;
+    const double nx = norm2(x(o), x(o + 1));
+    const Tangent t = tangent_at(x(o), x(o + 1), nx);
+    const double mu = std::max(t.t1 * g(o + 1) - t.t2 * g(o), 0.0);  // -eta^T g, eta = (t2, -t1)
+    const double curvature = mu / c_.radius(static_cast<Index>(k));
+    const double pt = t.of(p(o), p(o + 1));
+    Dp(o) = curvature * pt * t.t1;
+    Dp(o + 1) = curvature * pt * t.t2;
+    pDp += curvature * pt * pt;
+  }
+  return pDp;
 }
 
 void SpectralLength::update(double ss, double sy, double yy) {

@@ -7,15 +7,19 @@
 //                               direction)
 //   Kernels::rounding_scale     the rounding level of g^T d for a projected direction d
 //   Kernels::max_feasible_step  the longest feasible step along -p (the CG step's a_f)
-//   Kernels::restrict_to_face   a vector with the active blocks cleared (preconditioning in face)
+//   Kernels::restrict_to_face   a vector restricted to the face (preconditioning in face; the
+//                               turned discs' tangents, MpgpDiscFace::Turned)
+//   Kernels::turn_curvature     the turned discs' circle curvature along a direction (§4.7)
 //   SpectralLength              the Barzilai-Borwein trial length of the bb variant (§4.3)
 
 #include <array>
+#include <vector>
 
 #include <Eigen/Core>
 
 #include "fricon/core/types.hpp"
 #include "fricon/qp/constraints.hpp"
+#include "fricon/qp/mpgp.hpp"
 
 namespace fricon::qp::detail {
 
@@ -28,21 +32,36 @@ struct Split {
   double phit_phi = 0.0;
 };
 
-/// Block-wise kernels of MPGP for fixed constraints and tolerances.
+/// Block-wise kernels of MPGP for fixed constraints and tolerances. With MpgpDiscFace::Turned
+/// they remember which active discs the last split() turned (docs/theory.md §4.7); the other
+/// kernels then take the x of that split.
 class Kernels {
  public:
-  Kernels(const SeparableConstraints& c, double tol_bound, double tol_disc, double alpha_bar)
-      : c_(c), tol_bound_(tol_bound), tol_disc_(tol_disc), alpha_bar_(alpha_bar) {}
+  Kernels(const SeparableConstraints& c, double tol_bound, double tol_disc, double alpha_bar,
+          MpgpDiscFace active_discs)
+      : c_(c),
+        tol_bound_(tol_bound),
+        tol_disc_(tol_disc),
+        alpha_bar_(alpha_bar),
+        turn_limit_(active_discs == MpgpDiscFace::Turned ? kTurnCurvature / alpha_bar : -1.0),
+        turned_(c.blocks.size(), 0) {}
 
   /// Fills phi (free gradient) and beta (chopped gradient) for g at x and returns the norms.
   /// Active: Bound x_i <= tol_bound; Disc ||x_i|| >= (1 - tol_disc) rho_i (always for rho_i = 0,
-  /// whose gradient parts are all 0); Free never (phi_i = g_i).
+  /// whose gradient parts are all 0); Free never (phi_i = g_i). An active disc is turned
+  /// (MpgpDiscFace::Turned, rho_i > 0 and mu_i / rho_i within the limit, mu_i the outward
+  /// normal force max(-eta_i^T g_i, 0)): phi_i is the tangential part of g_i, beta_i its inward
+  /// normal part.
   Split split(const Eigen::VectorXd& x, const Eigen::VectorXd& g, Eigen::VectorXd& phi,
-              Eigen::VectorXd& beta) const;
+              Eigen::VectorXd& beta);
+
+  /// True if the last split() turned some disc.
+  bool turns_discs() const { return n_turned_ > 0; }
 
   /// Fills gr with the reduced free gradient phitilde_{alpha_bar}(x) = (x - P(x - alpha_bar
   /// phi)) / alpha_bar for g at x (docs/theory.md §4.1), with the active sets of split(): 0 on
-  /// active blocks; x - t gr is feasible for t in [0, alpha_bar] and g^T gr >= ||gr||^2.
+  /// active blocks, turned discs included; x - t gr is feasible for t in [0, alpha_bar] and
+  /// g^T gr >= ||gr||^2.
   void reduced_free_gradient(const Eigen::VectorXd& x, const Eigen::VectorXd& g,
                              Eigen::VectorXd& gr) const;
 
@@ -50,19 +69,36 @@ class Kernels {
   /// projected direction d (each d_i is exact only to about eps ||x_i||).
   double rounding_scale(const Eigen::VectorXd& x, const Eigen::VectorXd& g) const;
 
-  /// Largest t >= 0 with x - t p in Omega (+inf if no block restricts; Free blocks never do); x
-  /// must be feasible up to rounding.
+  /// Largest t >= 0 with x - t p in Omega (+inf if no block restricts; Free blocks never do,
+  /// nor do turned discs, which return to their circles after the step: p must not move them
+  /// off their tangents); x must be feasible up to rounding.
   double max_feasible_step(const Eigen::VectorXd& x, const Eigen::VectorXd& p) const;
 
-  /// Clears v on the blocks that split() finds active at x (and on pinned discs): v restricted
-  /// to the face of x, where the preconditioned CG steps move (docs/theory.md §4.2).
+  /// Clears v on the blocks that split() finds held active at x (and on pinned discs), and
+  /// keeps only the tangential part of v on turned discs: v restricted to the face of x, where
+  /// the CG steps move (docs/theory.md §4.2, §4.7).
   void restrict_to_face(const Eigen::VectorXd& x, Eigen::VectorXd& v) const;
 
+  /// Clears v on every active block, turned discs included (the face of MpgpDiscFace::Held,
+  /// along which a projected move descends).
+  void clear_active(const Eigen::VectorXd& x, Eigen::VectorXd& v) const;
+
+  /// p^T D p, D the turned discs' circle curvature at x for the gradient g: mu_i / rho_i on each
+  /// turned disc's tangent, 0 elsewhere; Dp := D p. q along the circles is, to second order,
+  /// that of A + D (docs/theory.md §4.7).
+  double turn_curvature(const Eigen::VectorXd& x, const Eigen::VectorXd& g,
+                        const Eigen::VectorXd& p, Eigen::VectorXd& Dp) const;
+
  private:
+  bool turned(std::size_t k) const { return turned_[k] != 0; }
+
   const SeparableConstraints& c_;
   double tol_bound_;
   double tol_disc_;
   double alpha_bar_;
+  double turn_limit_;         ///< mu_i / rho_i of the tightest turned circle (< 0: Held)
+  std::vector<char> turned_;  ///< per block: the last split() turned this active disc
+  std::size_t n_turned_ = 0;  ///< how many it turned
 };
 
 /// The adaptive Barzilai-Borwein length "ABBmin" (Frassoldati, Zanghirati and Zanni, 2008) of

@@ -33,17 +33,20 @@ const std::vector<MpgpVariant> kVariants = {MpgpVariant::Paper, MpgpVariant::Bar
 const std::vector<MpgpExpansion> kExpansions = {MpgpExpansion::Fixed, MpgpExpansion::Optimal,
                                                 MpgpExpansion::ProjectedCG};
 
-// An algorithm of solve_mpgp: a variant with an expansion move.
+// An algorithm of solve_mpgp: a variant with an expansion move, its CG steps holding or turning
+// the active discs.
 struct Algorithm {
   MpgpVariant variant;
   MpgpExpansion expansion;
+  MpgpDiscFace active_discs = MpgpDiscFace::Held;
 };
 
 std::vector<Algorithm> all_algorithms() {
   std::vector<Algorithm> out;
   for (const auto v : kVariants)
     for (const auto e : kExpansions)
-      out.push_back({v, e});
+      for (const auto d : {MpgpDiscFace::Held, MpgpDiscFace::Turned})
+        out.push_back({v, e, d});
   return out;
 }
 
@@ -55,20 +58,24 @@ class MpgpVariants : public ::testing::TestWithParam<Algorithm> {
     MpgpOptions o;
     o.variant = GetParam().variant;
     o.expansion = GetParam().expansion;
+    o.active_discs = GetParam().active_discs;
     return o;
   }
   MpgpOptions tight() const {
-    MpgpOptions o = qp::tight();
-    o.variant = GetParam().variant;
-    o.expansion = GetParam().expansion;
+    MpgpOptions o = options();
+    o.rel_tolerance = qp::tight().rel_tolerance;
     return o;
   }
+  /// Turned discs make CG steps that are monotone to second order only (theory.md §4.7).
+  bool monotone() const { return GetParam().active_discs == MpgpDiscFace::Held; }
 };
 
 INSTANTIATE_TEST_SUITE_P(All, MpgpVariants, ::testing::ValuesIn(all_algorithms()),
                          [](const ::testing::TestParamInfo<Algorithm>& param_info) {
                            return std::string(enum_name(param_info.param.variant)) + "_" +
-                                  std::string(enum_name(param_info.param.expansion));
+                                  std::string(enum_name(param_info.param.expansion)) +
+                                  (param_info.param.active_discs == MpgpDiscFace::Turned ? "_turn"
+                                                                                         : "");
                          });
 
 SeparableConstraints all_bounds(Index n) {
@@ -893,7 +900,7 @@ TEST_P(MpgpVariants, ProductCountMatchesOperatorCalls) {
     EXPECT_GT(rep.n_expansion, 0);
     EXPECT_GT(rep.n_proportioning, 0);
     long expected = 1 + rep.n_cg + rep.n_expansion_products + rep.n_proportioning;
-    if (opt.variant == MpgpVariant::Paper) {
+    if (opt.variant == MpgpVariant::Paper && monotone()) {
       EXPECT_EQ(rep.n_fallbacks + rep.n_refreshes, 0);
     } else {
       expected += rep.n_refreshes;
@@ -933,8 +940,10 @@ TEST_P(MpgpVariants, ObjectiveDecreasesMonotonicallyAlongHistory) {
   for (std::size_t k = 1; k < rep.history.size(); ++k) {
     const auto& h = rep.history[k];
     EXPECT_EQ(h.iteration, static_cast<int>(k));
-    EXPECT_LE(h.objective, rep.history[k - 1].objective + 1e-13 * std::abs(h.objective))
-        << "step " << k << " (" << h.step << ")";
+    if (monotone()) {  // else the steps are not compared with exact values of q (§4.7)
+      EXPECT_LE(h.objective, rep.history[k - 1].objective + 1e-13 * std::abs(h.objective))
+          << "step " << k << " (" << h.step << ")";
+    }
     EXPECT_GT(h.alpha, 0.0);
     ASSERT_TRUE(h.step == 'c' || h.step == 'e' || h.step == 'p');
     ++counts[h.step == 'c' ? 0 : h.step == 'e' ? 1 : 2];
@@ -946,7 +955,9 @@ TEST_P(MpgpVariants, ObjectiveDecreasesMonotonicallyAlongHistory) {
   const double q = objective(p.M, p.b, x);
   EXPECT_NEAR(rep.history.back().objective, q, 1e-12 * std::abs(q));
   EXPECT_NEAR(rep.objective, q, 1e-12 * std::abs(q));
-  EXPECT_NEAR(rep.history.back().norm_gp, rep.norm_gp, 0.0);
+  // Turned discs: the last step's ||g^P|| is that of the recursive gradient, which the stopping
+  // test recomputed.
+  EXPECT_NEAR(rep.history.back().norm_gp, rep.norm_gp, monotone() ? 0.0 : 0.01 * rep.norm_gp);
 }
 
 TEST_P(MpgpVariants, MonitorReturningFalseStopsWithUserStopped) {
