@@ -20,6 +20,7 @@ struct DualSolveOptions {
   double tol = 1e-8;
   std::string variant{enum_name(driver::LocalSolveOptions{}.variant)};
   std::string expansion{enum_name(driver::LocalSolveOptions{}.expansion)};
+  std::string active_discs{enum_name(driver::LocalSolveOptions{}.active_discs)};
   bool no_scaling = false;
 };
 
@@ -33,6 +34,7 @@ int dual_solve(const DualSolveOptions& o) {
   so.merit_tol = o.tol;
   so.variant = parse_enum<qp::MpgpVariant>(o.variant);
   so.expansion = parse_enum<qp::MpgpExpansion>(o.expansion);
+  so.active_discs = parse_enum<qp::MpgpDiscFace>(o.active_discs);
   so.scaling = !o.no_scaling;
   if (p.is_coulomb())
     so.merit = [&p](const VectorXd& r, const VectorXd& u) { return io::fclib_merit(p, r, u); };
@@ -42,8 +44,8 @@ int dual_solve(const DualSolveOptions& o) {
              p.is_coulomb() ? "Coulomb" : "Tresca", p.n_contacts(), p.q.size(), p.W.nonZeros(),
              s.norm_W);
   fmt::print("  W           {}\n", driver::describe_symmetry(s));
-  fmt::print("  QP          MPGP {}, expansion {}, {}\n", enum_name(so.variant),
-             enum_name(so.expansion),
+  fmt::print("  QP          MPGP {}, expansion {}, active discs {}, {}\n", enum_name(so.variant),
+             enum_name(so.expansion), enum_name(so.active_discs),
              so.scaling ? fmt::format("scaled per contact (||D S D|| = {:.3e})", s.norm_W_scaled)
                         : std::string("not scaled"));
   fmt::print("  iterations  {} outer ({}), {} QP iterations, {} products with W\n",
@@ -87,6 +89,10 @@ std::vector<Command> define_dual(CLI::App& app) {
   cmd->add_option("--qp-expansion", o->expansion,
                   "MPGP expansion move: fixed, opt or projcg (theory.md §4.2)")
       ->check(CLI::IsMember(enum_names<qp::MpgpExpansion>()))
+      ->capture_default_str();
+  cmd->add_option("--qp-active-discs", o->active_discs,
+                  "MPGP's CG steps and the slipping contacts' discs: turn or hold (theory.md §4.7)")
+      ->check(CLI::IsMember(enum_names<qp::MpgpDiscFace>()))
       ->capture_default_str();
   cmd->add_flag("--no-scaling", o->no_scaling,
                 "Solve each QP in the given variables instead of scaled per contact");

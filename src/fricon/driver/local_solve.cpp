@@ -198,6 +198,7 @@ void attempt(const qp::LocalProblem& p, const Parts& parts, const qp::BlockScali
   qp::MpgpOptions o;
   o.variant = options.variant;
   o.expansion = options.expansion;
+  o.active_discs = options.active_discs;
   o.rel_tolerance = qp_rtol;
   o.max_iterations = options.qp_max;
   o.norm_A = s.norm_W_scaled;

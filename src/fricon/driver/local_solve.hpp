@@ -32,6 +32,9 @@ struct LocalSolveOptions {
   /// MPGP's expansion move. Default ProjectedCG: with bb the fewest products on the QPs of graded
   /// meshes and of the paper's brick (qp::MpgpExpansion, bench/expansion_bench.cpp).
   qp::MpgpExpansion expansion = qp::MpgpExpansion::ProjectedCG;
+  /// What MPGP's CG steps do with active discs. Default Turned, as in `fricon solve`
+  /// (qp::MpgpDiscFace, theory.md §4.7).
+  qp::MpgpDiscFace active_discs = qp::MpgpDiscFace::Turned;
   /// Solve each QP for y = D^-1 r with one factor per contact, d_a = 1 / sqrt(mean of the
   /// diagonal of contact a's 3 x 3 block of W) (1 where that mean is not positive): the scaled W
   /// has a diagonal of about 1. The QP's relative tolerance then refers to the scaled problem;
