@@ -229,9 +229,9 @@ TEST(Tfeti, ThePaperBrickAtNEightGivesTheDirectAnswer) {
 
 // Turned discs (theory.md §4.7): where most patches slip, CG steps that turn their friction
 // forces along the circles take the place of runs of proportioning steps. On the brick at n = 8
-// with a constant coefficient, cut into 8 subdomains, a run's defaults (turned discs, projected
-// CG expansions) and the paper's MPGP face (held discs, fixed expansions) both give the direct
-// answer, and turning needs fewer products with F and fewer proportioning steps.
+// with a constant coefficient, cut into 8 subdomains, a run's defaults under Total FETI (turned
+// discs, projected CG expansions) and the paper's MPGP face (held discs, fixed expansions) both
+// give the direct answer, and turning needs fewer products with F and fewer proportioning steps.
 TEST(Tfeti, TurnedDiscsGiveTheDirectAnswerInFewerProducts) {
   const Problem turned = example(
       "examples/paper-brick.toml",
@@ -239,7 +239,7 @@ TEST(Tfeti, TurnedDiscsGiveTheDirectAnswerInFewerProducts) {
   ASSERT_EQ(turned.solver.qp.active_discs, qp::MpgpDiscFace::Turned);  // the default
   Problem held = turned;
   held.solver.qp.active_discs = qp::MpgpDiscFace::Held;
-  held.solver.qp.expansion = qp::MpgpExpansion::Fixed;
+  held.solver.qp_expansion = qp::MpgpExpansion::Fixed;
   expect_same_answer(turned, 8);
   expect_same_answer(held, 8);
   const RunResult t = with_backend(turned, "tfeti", 8);

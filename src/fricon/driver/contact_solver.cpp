@@ -132,7 +132,7 @@ qp::BlockScaling with_equality_multipliers(const qp::BlockScaling& contact,
 qp::MpgpOptions qp_options(const SolverOptions& so, const dual::DualOperator& Q,
                            const qp::BlockScaling& scaling, Real norm_Q,
                            const RunOptions& options) {
-  qp::MpgpOptions o = so.qp;
+  qp::MpgpOptions o = so.mpgp();
   o.norm_A = norm_Q;
   o.preconditioner = dual::whole_preconditioner(Q, scaling.d());
   o.monitor = [&options](const qp::MpgpIteration& it) {

@@ -24,7 +24,7 @@ Problem paper_problem(Index n, Real param) {
   p.solver.outer.tol = 1e-4;
   p.solver.qp.rel_tolerance = 1e-6;
   p.solver.qp.variant = qp::MpgpVariant::Paper;  // the paper's plain MPGP, so that n_mult compares
-  p.solver.qp.expansion = qp::MpgpExpansion::Fixed;
+  p.solver.qp_expansion = qp::MpgpExpansion::Fixed;
   p.solver.qp.active_discs = qp::MpgpDiscFace::Held;
   p.output.dir = fmt::format("results/paper-n{}-param{:g}", n, param);
   return p;

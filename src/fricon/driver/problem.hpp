@@ -202,12 +202,10 @@ struct ContactOptions {
   Real geometry_tolerance = kDefaultGeometryTolerance;
 };
 
-/// The MPGP options of a run before its [solver] keys: turned discs, projected CG expansions
-/// (theory.md §4.7).
+/// The MPGP options of a run before its [solver] keys: turned discs (theory.md §4.7).
 inline qp::MpgpOptions run_qp_defaults() {
   qp::MpgpOptions o;
   o.active_discs = qp::MpgpDiscFace::Turned;
-  o.expansion = qp::MpgpExpansion::ProjectedCG;
   return o;
 }
 
@@ -218,11 +216,14 @@ struct SolverOptions {
   /// they are.
   outer::OuterOptions outer;
   /// Each QP (theory.md §4): [solver.qp_rtol] rel_tolerance, [solver.qp_max] max_iterations,
-  /// [solver.qp_variant] variant, [solver.qp_expansion] expansion, [solver.qp_active_discs]
-  /// active_discs. Its other fields are settings for code only; the driver sets norm_A and the
-  /// monitor of each solve. A run's defaults differ from MpgpOptions' (the paper's MPGP): the CG
-  /// steps turn active discs and the expansion is the projected CG step (theory.md §4.7).
+  /// [solver.qp_variant] variant, [solver.qp_active_discs] active_discs; its expansion is
+  /// qp_expansion's (mpgp()). Its other fields are settings for code only; the driver sets
+  /// norm_A and the monitor of each solve. A run's default differs from MpgpOptions' (the
+  /// paper's MPGP): the CG steps turn active discs (theory.md §4.7).
   qp::MpgpOptions qp = run_qp_defaults();
+  /// [solver.qp_expansion]; absent: the backend's, ProjectedCG under Total FETI, Fixed on one
+  /// factor of K (theory.md §4.7).
+  std::optional<qp::MpgpExpansion> qp_expansion;
   bool warm_start = true;       ///< [solver.warm_start]
   Real certificate_tol = 1e-6;  ///< [solver.certificate_tol]
   dual::DualOperatorKind dual_operator = dual::DualOperatorKind::Auto;  ///< [solver.dual_operator]
@@ -239,6 +240,16 @@ struct SolverOptions {
   feti::RowScaling tfeti_scaling = feti::RowScaling::Stiffness;        ///< [solver.tfeti_scaling]
   /// [solver.tfeti_preconditioner]
   feti::FetiPreconditioner tfeti_preconditioner = feti::kDefaultPreconditioner;
+
+  /// The options of this run's contact QPs: qp with the expansion of qp_expansion, or the
+  /// backend's where it is absent.
+  qp::MpgpOptions mpgp() const {
+    qp::MpgpOptions o = qp;
+    o.expansion =
+        qp_expansion.value_or(backend == parallel::Backend::Tfeti ? qp::MpgpExpansion::ProjectedCG
+                                                                  : qp::MpgpExpansion::Fixed);
+    return o;
+  }
 };
 
 /// The number of load steps of a path ([loading] steps).

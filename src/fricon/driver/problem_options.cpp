@@ -638,14 +638,16 @@ void add_iteration_keys(SolverKeys& b) {
            "the paper's problems) or `\"paper\"` (the plain MPGP of the paper; `fricon paper` "
            "runs it with `qp_expansion = \"fixed\"` and `qp_active_discs = \"hold\"`, so that "
            "n_mult compares with the paper's); theory.md §4");
-  b.choice("qp_expansion", at(&SolverOptions::qp, &qp::MpgpOptions::expansion),
+  b.choice("qp_expansion", &SolverOptions::qp_expansion,
            "the move of MPGP's expansion step: `\"fixed\"` (to the boundary along the CG "
            "direction, then a projected free-gradient step of the fixed length 1.95/‖Q‖, the "
            "paper's), `\"opt\"` (that step with PERMON's exact line-search length along the "
            "free gradient) or `\"projcg\"` (the full CG step past the boundary, projected). "
            "With the contact search the three need about the same products over whole runs "
-           "on one factor of K; under `backend = \"tfeti\"` `\"projcg\"` needs the fewest "
-           "(theory.md §4.2, §4.7)");
+           "on one factor of K, where `\"fixed\"` keeps Coulomb's successive approximations "
+           "contracting to tighter tolerances; under `backend = \"tfeti\"` `\"projcg\"` needs the "
+           "fewest (theory.md §4.2, §4.7)")
+      .show_default("\"projcg\" with backend \"tfeti\", else \"fixed\"");
   b.choice("qp_active_discs", at(&SolverOptions::qp, &qp::MpgpOptions::active_discs),
            "what MPGP's CG steps do with a patch whose friction force is on its circle (a "
            "slipping patch): `\"turn\"` (they turn the force along the circle, with the "
