@@ -192,6 +192,14 @@ double Kernels::max_feasible_step(const Eigen::VectorXd& x, const Eigen::VectorX
 }
 
 void Kernels::restrict_to_face(const Eigen::VectorXd& x, Eigen::VectorXd& v) const {
+  restrict(x, v, true);
+}
+
+void Kernels::clear_active(const Eigen::VectorXd& x, Eigen::VectorXd& v) const {
+  restrict(x, v, false);
+}
+
+void Kernels::restrict(const Eigen::VectorXd& x, Eigen::VectorXd& v, bool keep_tangents) const {
   for (std::size_t k = 0; k < c_.blocks.size(); ++k) {
     const Index o = c_.blocks[k].offset;
     if (c_.blocks[k].kind == BlockKind::Free) continue;  // never active
@@ -199,24 +207,11 @@ void Kernels::restrict_to_face(const Eigen::VectorXd& x, Eigen::VectorXd& v) con
       if (x(o) <= tol_bound_) v(o) = 0.0;
       continue;
     }
-    if (turned(k)) {  // only the tangential part
+    if (keep_tangents && turned(k)) {  // only the tangential part
       const Tangent t = tangent_at(x(o), x(o + 1), norm2(x(o), x(o + 1)));
       const double vt = t.of(v(o), v(o + 1));
       v(o) = vt * t.t1;
       v(o + 1) = vt * t.t2;
-      continue;
-    }
-    const double rho = c_.radius(static_cast<Index>(k));
-    if (rho == 0.0 || norm2(x(o), x(o + 1)) >= (1.0 - tol_disc_) * rho) v(o) = v(o + 1) = 0.0;
-  }
-}
-
-void Kernels::clear_active(const Eigen::VectorXd& x, Eigen::VectorXd& v) const {
-  for (std::size_t k = 0; k < c_.blocks.size(); ++k) {
-    const Index o = c_.blocks[k].offset;
-    if (c_.blocks[k].kind == BlockKind::Free) continue;  // never active
-    if (c_.blocks[k].kind == BlockKind::Bound) {
-      if (x(o) <= tol_bound_) v(o) = 0.0;
       continue;
     }
     const double rho = c_.radius(static_cast<Index>(k));

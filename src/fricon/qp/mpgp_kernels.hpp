@@ -91,6 +91,8 @@ class Kernels {
 
  private:
   bool turned(std::size_t k) const { return turned_[k] != 0; }
+  /// restrict_to_face (keep_tangents) or clear_active (not).
+  void restrict(const Eigen::VectorXd& x, Eigen::VectorXd& v, bool keep_tangents) const;
 
   const SeparableConstraints& c_;
   double tol_bound_;
