@@ -31,7 +31,9 @@
 #include "fricon/driver/run.hpp"
 #include "fricon/driver/run_steps.hpp"
 #include "fricon/driver/tfeti_solve.hpp"
+#include "fricon/fe/assembly.hpp"
 #include "fricon/feti/feti_operator.hpp"
+#include "fricon/feti/partition.hpp"
 #include "fricon/io/problem_file.hpp"
 
 namespace {
@@ -151,8 +153,9 @@ TEST(Tfeti, TheDirichletPreconditionerGluesTheElasticBrickInFewerStepsThanTheLum
 }
 
 // M_E of the Dirichlet preconditioner against its definition, formed densely from the subdomains'
-// stiffnesses: S_s = K_bb - K_bi K_ii^-1 K_ib over the dofs b on equality rows, and
-// M_E = (B_E B_E^T)^-1 B_E S B_E^T (B_E B_E^T)^-1, applied to a few vectors.
+// stiffnesses (assembled here again, from the same partition's tetrahedra): S_s = K_bb - K_bi
+// K_ii^-1 K_ib over the dofs b on equality rows, and M_E = (B_E B_E^T)^-1 B_E S B_E^T
+// (B_E B_E^T)^-1, applied to a few vectors.
 TEST(Tfeti, TheDirichletPreconditionerIsItsDefinition) {
   Problem p = example("examples/elastic-brick.toml", {"mesh.cells=[6,2,2]"});
   p.solver.backend = parallel::Backend::Tfeti;
@@ -168,8 +171,15 @@ TEST(Tfeti, TheDirichletPreconditionerIsItsDefinition) {
   const Index n_contact = F->rows().n_contact, n_equality = F->rows().n_equality();
   const MatrixXd B = MatrixXd(F->rows().B);
   MatrixXd BSBt = MatrixXd::Zero(B.rows(), B.rows());
-  for (const feti::Subdomain& s : F->subdomains()) {
-    const MatrixXd K = MatrixXd(s.K);
+  const feti::Partition partition = feti::partition_mesh(model.mesh, model.bodies, 4, "");
+  ASSERT_EQ(partition.n_subdomains, static_cast<Index>(F->subdomains().size()));
+  for (std::size_t n = 0; n < F->subdomains().size(); ++n) {
+    const feti::Subdomain& s = F->subdomains()[n];
+    std::vector<Index> nodes;
+    const mesh::TetMesh part = mesh::submesh(model.mesh, partition.tets[n], &nodes);
+    ASSERT_EQ(nodes, s.nodes);
+    const MatrixXd K =
+        MatrixXd(fe::assemble_stiffness(part, model.materials, fe::DofMap(part.n_nodes())));
     const MatrixXd Bs = MatrixXd(s.B);  // rows s.rows of B over the local dofs
     std::vector<Index> b, i;
     for (Index d = 0; d < s.n_dofs(); ++d) {

@@ -5,9 +5,13 @@
 //
 // the subdomains' stiffnesses themselves where F = B K^+ B^T has their generalized inverses. A
 // product costs one sparse product with every K_s of this process, reduced beforehand to the
-// entries between its dofs on equality rows (keep_interface_stiffness), besides the two solves
+// entries between its dofs on equality rows (all that B_E K B_E^T reads), besides the two solves
 // with B_E B_E^T of InterfacePreconditioner.
 
+#include <utility>
+
+#include "fricon/core/parallel_for.hpp"
+#include "fricon/feti/feti_operator.hpp"
 #include "fricon/feti/preconditioner.hpp"
 
 namespace fricon::feti {
@@ -16,18 +20,34 @@ namespace {
 
 class LumpedPreconditioner final : public InterfacePreconditioner {
  public:
-  using InterfacePreconditioner::InterfacePreconditioner;
+  LumpedPreconditioner(const FetiOperator& F, const StiffnessSource& stiffness)
+      : InterfacePreconditioner(F), K_(F.subdomains().size()) {
+    const auto [first, last] = F.ranks().block(static_cast<Index>(F.subdomains().size()));
+    parallel_for(last - first, F.threads(), [&](Index k, int) {
+      const Index i = first + k;
+      const Subdomain& s = F.subdomains()[static_cast<size_t>(i)];
+      const std::vector<bool> on_interface = equality_dofs(s, F.rows().n_contact);
+      SparseMatrix K = checked_stiffness(stiffness, s, i);
+      K.prune([&](Index r, Index c, Real) {
+        return on_interface[static_cast<size_t>(r)] && on_interface[static_cast<size_t>(c)];
+      });
+      K_[static_cast<size_t>(i)] = LocalMatrix(K);
+    });
+  }
 
  private:
-  void local(const Subdomain& s, Index, const VectorXd& v, VectorXd& out) const override {
-    out = s.K * v;
+  void local(const Subdomain&, Index i, const VectorXd& v, VectorXd& out) const override {
+    out = K_[static_cast<size_t>(i)] * v;
   }
+
+  std::vector<LocalMatrix> K_;  ///< per subdomain: K_bb; only this process's are filled
 };
 
 }  // namespace
 
-std::unique_ptr<const Preconditioner> make_lumped_preconditioner(const FetiOperator& F) {
-  return std::make_unique<LumpedPreconditioner>(F);
+std::unique_ptr<const Preconditioner> make_lumped_preconditioner(const FetiOperator& F,
+                                                                 const StiffnessSource& stiffness) {
+  return std::make_unique<LumpedPreconditioner>(F, stiffness);
 }
 
 }  // namespace fricon::feti

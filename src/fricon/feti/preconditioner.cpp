@@ -7,11 +7,6 @@ namespace fricon::feti {
 
 InterfacePreconditioner::InterfacePreconditioner(const FetiOperator& F)
     : F_(F), n_equality_(F.rows().n_equality()) {
-  const auto [first, last] = F.ranks().block(static_cast<Index>(F.subdomains().size()));
-  for (Index i = first; i < last; ++i) {
-    const Subdomain& s = F.subdomains()[static_cast<size_t>(i)];
-    FRICON_CHECK(s.K.rows() == s.n_dofs(), "the preconditioner needs K_s of subdomain " << i);
-  }
   // The gluing and Dirichlet rows are independent (one row per link of a node's chain of copies,
   // one per fixed component): B_E B_E^T is positive definite.
   const SparseMatrix B_E = F.rows().B.middleRows(F.rows().n_contact, n_equality_);
@@ -39,6 +34,14 @@ void InterfacePreconditioner::apply(const VectorXd& x, VectorXd& y) const {
   y = row_gram_.solve(VectorXd(St.tail(n_equality_)));
 }
 
+SparseMatrix checked_stiffness(const StiffnessSource& stiffness, const Subdomain& s, Index i) {
+  SparseMatrix K = stiffness(i);
+  FRICON_CHECK(K.rows() == s.n_dofs() && K.cols() == s.n_dofs(),
+               "K_s of subdomain " << i << " is " << K.rows() << " x " << K.cols() << " for "
+                                   << s.n_dofs() << " dofs");
+  return K;
+}
+
 std::vector<bool> equality_dofs(const Subdomain& s, Index n_contact) {
   std::vector<bool> on_equality(static_cast<size_t>(s.n_dofs()), false);
   const SparseMatrix Bt = s.B.transpose();  // column k: local row k of B_s
@@ -49,28 +52,14 @@ std::vector<bool> equality_dofs(const Subdomain& s, Index n_contact) {
   return on_equality;
 }
 
-void keep_interface_stiffness(std::vector<Subdomain>& subdomains, Index n_contact) {
-  for (Subdomain& s : subdomains) {
-    if (s.K.rows() == 0) continue;
-    const std::vector<bool> on_interface = equality_dofs(s, n_contact);
-    s.K.prune([&](Index i, Index j, Real) {
-      return on_interface[static_cast<size_t>(i)] && on_interface[static_cast<size_t>(j)];
-    });
-  }
-}
-
-void keep_stiffness_for(FetiPreconditioner kind, std::vector<Subdomain>& subdomains,
-                        Index n_contact) {
-  if (kind == FetiPreconditioner::Lumped) keep_interface_stiffness(subdomains, n_contact);
-}
-
 std::unique_ptr<const Preconditioner> make_preconditioner(FetiPreconditioner kind,
-                                                          const FetiOperator& F) {
+                                                          const FetiOperator& F,
+                                                          const StiffnessSource& stiffness) {
   switch (kind) {
     case FetiPreconditioner::Lumped:
-      return make_lumped_preconditioner(F);
+      return make_lumped_preconditioner(F, stiffness);
     case FetiPreconditioner::Dirichlet:
-      return make_dirichlet_preconditioner(F);
+      return make_dirichlet_preconditioner(F, stiffness);
     case FetiPreconditioner::None:
       break;
   }

@@ -40,8 +40,7 @@ Piece describe_subdomain(const mesh::TetMesh& mesh, const std::vector<Index>& te
 // dof of its nodes, regularized as a floating body (fe/floating.hpp) so that its solves are
 // K_s^+.
 void factor_subdomain(const mesh::TetMesh& mesh, fe::Materials materials,
-                      const std::vector<Index>& tets, Index index, bool keep_stiffness,
-                      Subdomain& s) {
+                      const std::vector<Index>& tets, Index index, Subdomain& s) {
   const Stopwatch watch;
   const Piece piece = describe_subdomain(mesh, tets, index, s);
   const SparseMatrix K = fe::assemble_stiffness(piece.mesh, materials, piece.dofs);
@@ -54,7 +53,6 @@ void factor_subdomain(const mesh::TetMesh& mesh, fe::Materials materials,
                     "motions is not positive definite: {}",
                     index, tets.size(), e.what()));
   }
-  if (keep_stiffness) s.K = K;
   s.factor_seconds = watch.seconds();
 }
 
@@ -101,7 +99,7 @@ std::vector<Index> node_owners(const mesh::TetMesh& mesh, const Partition& parti
 std::vector<Subdomain> make_subdomains(const mesh::TetMesh& mesh, fe::Materials materials,
                                        const Partition& partition, const std::vector<Index>& owners,
                                        const fe::NodalField& applied, int threads,
-                                       const Ranks& ranks, bool keep_stiffness) {
+                                       const Ranks& ranks) {
   const Index n = partition.n_subdomains;
   std::vector<Subdomain> subdomains(static_cast<size_t>(n));
   const auto [first, last] = ranks.block(n);
@@ -110,7 +108,7 @@ std::vector<Subdomain> make_subdomains(const mesh::TetMesh& mesh, fe::Materials 
       const std::vector<Index>& tets = partition.tets[static_cast<size_t>(i)];
       Subdomain& s = subdomains[static_cast<size_t>(i)];
       if (first <= i && i < last)
-        factor_subdomain(mesh, materials, tets, i, keep_stiffness, s);
+        factor_subdomain(mesh, materials, tets, i, s);
       else
         (void)describe_subdomain(mesh, tets, i, s);
     });
@@ -127,6 +125,12 @@ std::vector<Subdomain> make_subdomains(const mesh::TetMesh& mesh, fe::Materials 
   }
   share_diagonals(subdomains, ranks);
   return subdomains;
+}
+
+SparseMatrix subdomain_stiffness(const mesh::TetMesh& mesh, fe::Materials materials,
+                                 const std::vector<Index>& tets) {
+  const mesh::TetMesh part = mesh::submesh(mesh, tets, nullptr);
+  return fe::assemble_stiffness(part, materials, fe::DofMap(part.n_nodes()));
 }
 
 }  // namespace fricon::feti

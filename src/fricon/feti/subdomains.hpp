@@ -32,9 +32,6 @@ struct Subdomain {
   /// Of the regularized K_s, its solves K_s^+ [m/N]: only in the subdomains of this process
   /// (Ranks::block); empty in the others.
   linalg::CholeskyFactor factor;
-  /// K_s itself [N/m], both triangles, when asked for (the preconditioners): only in the
-  /// subdomains of this process; else empty.
-  SparseMatrix K;
   VectorXd f;                   ///< its share of the applied load [N] (at the nodes it owns)
   double factor_seconds = 0.0;  ///< the assembly and factorization of K_s [s]
 
@@ -55,13 +52,19 @@ std::vector<Index> node_owners(const mesh::TetMesh& mesh, const Partition& parti
 /// and factored after regularization, R_s, and the applied forces `applied` (3 x n_nodes [N],
 /// every component, fixed ones too) at the nodes it owns (`owners`, node_owners). Only the
 /// subdomains of this process's block (ranks.block) are factored; every process holds the
-/// others' nodes, R_s and (shared by `ranks`) stiffness diagonals; with `keep_stiffness` they
-/// keep K_s too (Subdomain::K). Runs on `threads` threads.
+/// others' nodes, R_s and (shared by `ranks`) stiffness diagonals. Runs on `threads` threads.
 /// Collective over `ranks`. Throws NumericalError, on every process, when a regularized K_s is
 /// not positive definite.
 std::vector<Subdomain> make_subdomains(const mesh::TetMesh& mesh, fe::Materials materials,
                                        const Partition& partition, const std::vector<Index>& owners,
                                        const fe::NodalField& applied, int threads,
-                                       const Ranks& ranks, bool keep_stiffness = false);
+                                       const Ranks& ranks);
+
+/// K_s [N/m] of the subdomain made of the tetrahedra `tets` of `mesh` (a Partition's), both
+/// triangles, over its local dofs as make_subdomains numbers them: assembled again, for what a
+/// preconditioner keeps of it (feti/preconditioner.hpp), so that no whole K_s has to stay
+/// beside the factors. Thread-safe.
+SparseMatrix subdomain_stiffness(const mesh::TetMesh& mesh, fe::Materials materials,
+                                 const std::vector<Index>& tets);
 
 }  // namespace fricon::feti

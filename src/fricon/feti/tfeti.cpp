@@ -1,6 +1,7 @@
 #include "fricon/feti/tfeti.hpp"
 
 #include <algorithm>
+#include <utility>
 
 #include <sys/resource.h>
 
@@ -91,8 +92,7 @@ std::unique_ptr<FetiOperator> make_tfeti(const mesh::TetMesh& mesh, const mesh::
   watch.restart();
   const std::vector<Index> owners = node_owners(mesh, partition);
   std::vector<Subdomain> subdomains =
-      make_subdomains(mesh, materials, partition, owners, applied, options.threads, ranks,
-                      options.preconditioner != FetiPreconditioner::None);
+      make_subdomains(mesh, materials, partition, owners, applied, options.threads, ranks);
   report.factorization_s = watch.seconds();
   describe_subdomains(subdomains, ranks, report);
 
@@ -101,7 +101,6 @@ std::unique_ptr<FetiOperator> make_tfeti(const mesh::TetMesh& mesh, const mesh::
   const std::vector<Index> owner_dof = owner_dofs(subdomains, owners, mesh.n_nodes());
   TornRows rows = tear_rows(subdomains, owner_dof, dofs, prescribed, B, offset, options.scaling);
   attach_rows(rows.B, subdomains);
-  keep_stiffness_for(options.preconditioner, subdomains, rows.n_contact);
   report.n_torn = rows.B.cols();
   report.n_contact = rows.n_contact;
   report.n_gluing = rows.n_gluing;
@@ -109,7 +108,11 @@ std::unique_ptr<FetiOperator> make_tfeti(const mesh::TetMesh& mesh, const mesh::
   report.n_coarse = kSubdomainMotions * report.n_subdomains;
   auto op = std::make_unique<FetiOperator>(std::move(subdomains), std::move(rows), owner_dof, dofs,
                                            options.threads, ranks);
-  op->set_preconditioner(make_preconditioner(options.preconditioner, *op));
+  // @sect: the preconditioner, from each K_s assembled again (one per thread alive at a time).
+  const StiffnessSource stiffness = [&](Index i) {
+    return subdomain_stiffness(mesh, materials, partition.tets[static_cast<size_t>(i)]);
+  };
+  op->set_preconditioner(make_preconditioner(options.preconditioner, *op, stiffness));
   report.operator_s = watch.seconds();
   record_peak_memory(ranks, report);
   return op;
