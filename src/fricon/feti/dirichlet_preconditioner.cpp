@@ -18,11 +18,8 @@
 // do not hold its rigid motions (K_ii singular: an interface on one line) keeps the lumped term
 // K_bb, as does one without interior dofs.
 
-#include <utility>
-
 #include <Eigen/SparseCholesky>
 
-#include "fricon/core/parallel_for.hpp"
 #include "fricon/feti/feti_operator.hpp"
 #include "fricon/feti/preconditioner.hpp"
 
@@ -87,16 +84,11 @@ void factor_interior(const Subdomain& s, Index n_contact, SparseMatrix& K, Inter
 class DirichletPreconditioner final : public InterfacePreconditioner {
  public:
   DirichletPreconditioner(const FetiOperator& F, const StiffnessSource& stiffness)
-      : InterfacePreconditioner(F), K_(F.subdomains().size()), interiors_(F.subdomains().size()) {
-    const auto [first, last] = F.ranks().block(static_cast<Index>(F.subdomains().size()));
-    parallel_for(last - first, F.threads(), [&](Index k, int) {
-      const Index i = first + k;
-      const Subdomain& s = F.subdomains()[static_cast<size_t>(i)];
-      SparseMatrix K = checked_stiffness(stiffness, s, i);
-      factor_interior(s, F.rows().n_contact, K, interiors_[static_cast<size_t>(i)]);
-      K_[static_cast<size_t>(i)] = LocalMatrix(K);
-    });
-  }
+      : InterfacePreconditioner(F),
+        interiors_(F.subdomains().size()),
+        K_(reduced_stiffness(stiffness, [&](const Subdomain& s, Index i, SparseMatrix& K) {
+          factor_interior(s, F.rows().n_contact, K, interiors_[static_cast<size_t>(i)]);
+        })) {}
 
  private:
   void local(const Subdomain& s, Index i, const VectorXd& v, VectorXd& out) const override {
@@ -117,8 +109,8 @@ class DirichletPreconditioner final : public InterfacePreconditioner {
       out(d) = 0.0;
   }
 
-  std::vector<LocalMatrix> K_;       ///< per subdomain: the entries of K_s that touch b
   std::vector<Interior> interiors_;  ///< per subdomain; only this process's are filled
+  std::vector<LocalMatrix> K_;       ///< per subdomain: the entries of K_s that touch b
 };
 
 }  // namespace

@@ -8,9 +8,6 @@
 // entries between its dofs on equality rows (all that B_E K B_E^T reads), besides the two solves
 // with B_E B_E^T of InterfacePreconditioner.
 
-#include <utility>
-
-#include "fricon/core/parallel_for.hpp"
 #include "fricon/feti/feti_operator.hpp"
 #include "fricon/feti/preconditioner.hpp"
 
@@ -21,19 +18,13 @@ namespace {
 class LumpedPreconditioner final : public InterfacePreconditioner {
  public:
   LumpedPreconditioner(const FetiOperator& F, const StiffnessSource& stiffness)
-      : InterfacePreconditioner(F), K_(F.subdomains().size()) {
-    const auto [first, last] = F.ranks().block(static_cast<Index>(F.subdomains().size()));
-    parallel_for(last - first, F.threads(), [&](Index k, int) {
-      const Index i = first + k;
-      const Subdomain& s = F.subdomains()[static_cast<size_t>(i)];
-      const std::vector<bool> on_interface = equality_dofs(s, F.rows().n_contact);
-      SparseMatrix K = checked_stiffness(stiffness, s, i);
-      K.prune([&](Index r, Index c, Real) {
-        return on_interface[static_cast<size_t>(r)] && on_interface[static_cast<size_t>(c)];
-      });
-      K_[static_cast<size_t>(i)] = LocalMatrix(K);
-    });
-  }
+      : InterfacePreconditioner(F),
+        K_(reduced_stiffness(stiffness, [&](const Subdomain& s, Index, SparseMatrix& K) {
+          const std::vector<bool> on_interface = equality_dofs(s, F.rows().n_contact);
+          K.prune([&](Index r, Index c, Real) {
+            return on_interface[static_cast<size_t>(r)] && on_interface[static_cast<size_t>(c)];
+          });
+        })) {}
 
  private:
   void local(const Subdomain&, Index i, const VectorXd& v, VectorXd& out) const override {

@@ -1,6 +1,7 @@
 #include "fricon/feti/preconditioner.hpp"
 
 #include "fricon/core/error.hpp"
+#include "fricon/core/parallel_for.hpp"
 #include "fricon/feti/feti_operator.hpp"
 
 namespace fricon::feti {
@@ -34,12 +35,22 @@ void InterfacePreconditioner::apply(const VectorXd& x, VectorXd& y) const {
   y = row_gram_.solve(VectorXd(St.tail(n_equality_)));
 }
 
-SparseMatrix checked_stiffness(const StiffnessSource& stiffness, const Subdomain& s, Index i) {
-  SparseMatrix K = stiffness(i);
-  FRICON_CHECK(K.rows() == s.n_dofs() && K.cols() == s.n_dofs(),
-               "K_s of subdomain " << i << " is " << K.rows() << " x " << K.cols() << " for "
-                                   << s.n_dofs() << " dofs");
-  return K;
+std::vector<LocalMatrix> InterfacePreconditioner::reduced_stiffness(
+    const StiffnessSource& stiffness,
+    const std::function<void(const Subdomain& s, Index i, SparseMatrix& K)>& reduce) const {
+  std::vector<LocalMatrix> reduced(F_.subdomains().size());
+  const auto [first, last] = F_.ranks().block(static_cast<Index>(F_.subdomains().size()));
+  parallel_for(last - first, F_.threads(), [&](Index k, int) {
+    const Index i = first + k;
+    const Subdomain& s = F_.subdomains()[static_cast<size_t>(i)];
+    SparseMatrix K = stiffness(i);
+    FRICON_CHECK(K.rows() == s.n_dofs() && K.cols() == s.n_dofs(),
+                 "K_s of subdomain " << i << " is " << K.rows() << " x " << K.cols() << " for "
+                                     << s.n_dofs() << " dofs");
+    reduce(s, i, K);
+    reduced[static_cast<size_t>(i)] = LocalMatrix(K);
+  });
+  return reduced;
 }
 
 std::vector<bool> equality_dofs(const Subdomain& s, Index n_contact) {

@@ -34,6 +34,16 @@ class Preconditioner {
   virtual void apply(const VectorXd& x, VectorXd& y) const = 0;
 };
 
+/// A sparse matrix over one subdomain's local dofs, which 32-bit indices address: what the
+/// preconditioners keep of K_s and their factors, at 12 rather than 16 bytes per non-zero.
+using LocalMatrix = Eigen::SparseMatrix<Real, Eigen::ColMajor, int>;
+
+/// K_s [N/m] of subdomain i of F, both triangles, over its local dofs (subdomain_stiffness of its
+/// tetrahedra). A preconditioner asks for it once per subdomain of this process, on the
+/// subdomain threads, and keeps only what it reads, so that at most one whole K_s per thread
+/// is alive beside the factors.
+using StiffnessSource = std::function<SparseMatrix(Index i)>;
+
 /// M_E = (B_E B_E^T)^-1 B_E S B_E^T (B_E B_E^T)^-1 with S = diag(S_s) given by local().
 /// (B_E B_E^T)^-1 on both sides makes M_E invariant to the scaling of the rows (a row scaled by w
 /// has F's entries times w and M_E's divided by w) and accounts for the chains of gluing rows at
@@ -54,22 +64,18 @@ class InterfacePreconditioner : public Preconditioner {
   /// out = S_s v for subdomain s (number i, one of this process's), v and out over its local
   /// dofs; v is zero off its equality rows' dofs. Called on the subdomain threads.
   virtual void local(const Subdomain& s, Index i, const VectorXd& v, VectorXd& out) const = 0;
+  /// Per subdomain of this process, stiffness(i) once `reduce(s, i, K)` has cut it to what
+  /// local() reads (and taken from it what else it needs), with 32-bit indices; empty for the
+  /// others'. Runs on the subdomain threads.
+  std::vector<LocalMatrix> reduced_stiffness(
+      const StiffnessSource& stiffness,
+      const std::function<void(const Subdomain& s, Index i, SparseMatrix& K)>& reduce) const;
   const FetiOperator& F_;
 
  private:
   Index n_equality_;  ///< F's equality rows, which follow its contact rows
   Eigen::SimplicialLDLT<SparseMatrix> row_gram_;  ///< of B_E B_E^T
 };
-
-/// A sparse matrix over one subdomain's local dofs, which 32-bit indices address: what the
-/// preconditioners keep of K_s and their factors, at 12 rather than 16 bytes per non-zero.
-using LocalMatrix = Eigen::SparseMatrix<Real, Eigen::ColMajor, int>;
-
-/// K_s [N/m] of subdomain i of F, both triangles, over its local dofs (subdomain_stiffness of its
-/// tetrahedra). A preconditioner asks for it once per subdomain of this process, on the
-/// subdomain threads, and keeps only what it reads, so that at most one whole K_s per thread
-/// is alive beside the factors.
-using StiffnessSource = std::function<SparseMatrix(Index i)>;
 
 /// The preconditioner `kind` of F (null for FetiPreconditioner::None), from the subdomains'
 /// stiffnesses `stiffness`; F must outlive it. The lumped one keeps of each K_s the entries
@@ -82,9 +88,6 @@ std::unique_ptr<const Preconditioner> make_preconditioner(FetiPreconditioner kin
 /// Which of subdomain s's local dofs are on equality rows (B_s's rows numbered from `n_contact`
 /// on, attach_rows): the dofs on which M_E's S_s acts.
 std::vector<bool> equality_dofs(const Subdomain& s, Index n_contact);
-
-/// stiffness(i) for subdomain s (number i), checked to be n_dofs x n_dofs (else InternalError).
-SparseMatrix checked_stiffness(const StiffnessSource& stiffness, const Subdomain& s, Index i);
 
 /// The lumped preconditioner (lumped_preconditioner.cpp).
 std::unique_ptr<const Preconditioner> make_lumped_preconditioner(const FetiOperator& F,
