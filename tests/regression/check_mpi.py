@@ -4,7 +4,7 @@ Usage: check_mpi.py FRICON MPIRUN CASE OUTDIR
 
 Every case runs `fricon solve` and reads back what it wrote (report.json, patches.csv,
 contact_nodes.csv). The truth of the distributed runs is the serial CHOLMOD run of the same
-discrete problem at tight tolerances (qp_rtol = 1e-12, outer_tol = 1e-10), a different
+discrete problem at tight tolerances (qp_rtol = 1e-12, outer_tol = 2.5e-10), a different
 factorization (CHOLMOD's supernodal Cholesky of K against MUMPS's multifrontal LDL^T of the
 augmented matrix) and a different dual operator:
   ranks1, ranks2, ranks3  the paper's brick on 1, 2 and 3 ranks
@@ -52,7 +52,10 @@ import time
 
 import common
 
-TIGHT = ["--set", "solver.qp_rtol=1e-12", "--set", "solver.outer_tol=1e-10"]
+# outer_tol sits between two err(k) of every case here, at least a factor 1.8 from each: at
+# 1e-10 the brick's err(13) (1.11e-10 to 1.16e-10 by rank count and operator) made the outer
+# iteration count of the serial and the distributed run differ by one on another machine.
+TIGHT = ["--set", "solver.qp_rtol=1e-12", "--set", "solver.outer_tol=2.5e-10"]
 PETSC = ["--set", "solver.backend=petsc"]
 TOL = 1e-8
 TIMEOUT_S = 240
