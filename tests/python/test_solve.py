@@ -144,7 +144,9 @@ def test_the_arrays_are_views_of_the_result_not_copies():
 
 def test_the_petsc_backend_in_the_interpreter_gives_the_serial_answer():
     """backend petsc from Python: a job of one rank in this process (docs/parallel.md)."""
-    tight = {"solver.qp_rtol": 1e-12, "solver.outer_tol": 1e-10}
+    # outer_tol a factor 1.8 or more from every err(k) of the brick (as check_mpi.py's): at 1e-10
+    # its err(13), 1.1e-10, lets rounding move the stop by one iteration.
+    tight = {"solver.qp_rtol": 1e-12, "solver.outer_tol": 2.5e-10}
     serial = fricon.solve(PAPER_BRICK, set=tight)
     try:
         distributed = fricon.solve(PAPER_BRICK, set={**tight, "solver.backend": "petsc"})
