@@ -275,6 +275,16 @@ void bind_solve(py::module_& m) {
           [](py::object self) { return vector_view(self.cast<PyResult&>().run->von_mises, self); },
           "(m,) von Mises stress per tetrahedron [Pa]")
       .def_property_readonly(
+          "subdomain",
+          [](const PyResult& r) -> py::object {
+            const auto& feti = r.run->report.feti;
+            if (!feti) return py::none();
+            return py::array_t<Index>(static_cast<py::ssize_t>(feti->subdomain_of_tet.size()),
+                                      feti->subdomain_of_tet.data());
+          },
+          "(m,) the subdomain of each tetrahedron with backend \"tfeti\" (solution.vtu's "
+          "\"subdomain\"), None with the other backends")
+      .def_property_readonly(
           "contact_nodes",
           [](const PyResult& r) -> py::object {
             if (!r.run->contact) return py::none();

@@ -4,6 +4,7 @@ import pathlib
 import signal
 import threading
 
+import meshio
 import numpy as np
 import pytest
 
@@ -56,6 +57,20 @@ def test_the_arrays_are_those_of_the_files(fricon_exe, tmp_path):
                 assert list(table[column]) == list(csv[column])
             else:
                 np.testing.assert_array_equal(table[column], csv[column])
+
+
+def test_the_subdomains_are_those_of_the_file(fricon_exe, tmp_path):
+    """Backend tfeti: Result.subdomain is solution.vtu's cell field; the other backends: None."""
+    tfeti = ["solver.backend=\"tfeti\"", "solver.subdomains=6"]
+    rc, cli = run_cli(fricon_exe, PAPER_BRICK, tmp_path / "cli", *tfeti)
+    assert rc == 0
+    r = fricon.solve(PAPER_BRICK, set={"solver.backend": "tfeti", "solver.subdomains": 6},
+                     threads=1)
+    grid = meshio.read(tmp_path / "cli" / "solution.vtu")
+    assert r.subdomain.shape == (r.report["n_tets"],)
+    np.testing.assert_array_equal(r.subdomain, grid.cell_data["subdomain"][0].ravel())
+    assert set(r.subdomain.tolist()) == set(range(cli["feti"]["n_subdomains"]))
+    assert fricon.solve(PAPER_BRICK, threads=1).subdomain is None
 
 
 def test_write_writes_the_files_of_the_command_line(fricon_exe, tmp_path):

@@ -5,7 +5,10 @@ Checks against independent facts, not against stored output:
   - the displacement vanishes on the clamped face x = 0 and nowhere else is exactly zero;
   - max |u| in the file equals the report's max_displacement;
   - von Mises per element agrees with the stress tensor written beside it;
-  - the --set override of mesh.cells changes the mesh as asked, and is recorded in the report.
+  - the --set override of mesh.cells changes the mesh as asked, and is recorded in the report;
+  - with backend "tfeti", the same mesh and displacement (to 1e-6), and the cell field
+    "subdomain" numbers every subdomain the report counts, each face-connected (theory.md
+    §8.1), with the report's smallest and largest node counts; the direct run has no such field.
 Usage: check_elastic_vtu.py FRICON PROBLEM.toml OUTDIR
 """
 import meshio
@@ -43,4 +46,44 @@ assert report["n_primal"] == 900  # the paper's n_p for n = 4
 report = common.solve(exe, problem, out / "coarse", "mesh.cells=[6,2,2]", quiet=False)
 check(out / "coarse", report, 6, 2, 2)
 assert report["overrides"] == ["mesh.cells=[6,2,2]"], report["overrides"]
+assert "subdomain" not in meshio.read(out / "default" / "solution.vtu").cell_data
+
+
+def face_connected(tets):
+    """True when the tetrahedra (rows of node indices) form one piece through shared faces."""
+    owner = {}
+    parent = list(range(len(tets)))
+
+    def root(i):
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+
+    for i, tet in enumerate(tets):
+        for skip in range(4):
+            face = tuple(sorted(int(v) for k, v in enumerate(tet) if k != skip))
+            if face in owner:
+                parent[root(i)] = root(owner[face])
+            else:
+                owner[face] = i
+    return len({root(i) for i in range(len(tets))}) == 1
+
+
+report = common.solve(exe, problem, out / "tfeti", "solver.backend=\"tfeti\"",
+                      "solver.subdomains=8", quiet=False)
+mesh = meshio.read(out / "tfeti" / "solution.vtu")
+direct = meshio.read(out / "default" / "solution.vtu")
+assert np.array_equal(mesh.cells_dict["tetra"], direct.cells_dict["tetra"])
+u, u_direct = mesh.point_data["displacement"], direct.point_data["displacement"]
+assert np.abs(u - u_direct).max() <= 1e-6 * np.abs(u_direct).max()  # the gluing's tolerance
+part = mesh.cell_data["subdomain"][0].ravel()
+tets = mesh.cells_dict["tetra"]
+feti = report["feti"]
+assert sorted(set(part.tolist())) == list(range(feti["n_subdomains"])), (set(part), feti)
+nodes = [len(np.unique(tets[part == s])) for s in range(feti["n_subdomains"])]
+assert (min(nodes), max(nodes)) == (feti["subdomain_nodes"]["min"],
+                                    feti["subdomain_nodes"]["max"]), (nodes, feti)
+for s in range(feti["n_subdomains"]):
+    assert face_connected(tets[part == s]), f"subdomain {s} is not face-connected"
 print("elastic brick: solution.vtu read back by meshio and checked")

@@ -67,6 +67,9 @@ struct FetiReport {
   std::string partition_note;  ///< how the partition was adjusted (empty: as asked)
   Index min_nodes = 0, max_nodes = 0;
   double mean_nodes = 0.0;
+  /// Per tetrahedron of the mesh, its subdomain 0 .. n_subdomains - 1 (solution.vtu's cell
+  /// field "subdomain").
+  std::vector<Index> subdomain_of_tet;
   Index n_torn = 0;                  ///< torn dofs (3 per copy of a node)
   Index n_contact = 0;               ///< contact multipliers
   Index n_gluing = 0;                ///< gluing multipliers (the interface)

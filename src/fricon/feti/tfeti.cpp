@@ -86,6 +86,7 @@ std::unique_ptr<FetiOperator> make_tfeti(const mesh::TetMesh& mesh, const mesh::
   const Partition partition = partition_mesh(mesh, bodies, wanted, options.key_context);
   report.n_split = partition.n_split;
   report.partition_note = partition.note;
+  report.subdomain_of_tet = partition.subdomain_of_tet;
   report.partition_s = watch.seconds();
 
   // @sect: each subdomain's K_s^+ and R_s, on the threads.

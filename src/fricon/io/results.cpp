@@ -554,8 +554,8 @@ Eigen::Matrix<Index, Eigen::Dynamic, Eigen::Dynamic> tet_cells(const mesh::TetMe
 }
 
 // The body: displacement and the stress recovered at the nodes with its von Mises equivalent per
-// node (every node, the edge nodes of a quadratic mesh too), stress, von Mises and region index
-// (report.json "regions" names them) per tetrahedron.
+// node (every node, the edge nodes of a quadratic mesh too), stress, von Mises, region index
+// (report.json "regions" names them), body and, for backend "tfeti", subdomain per tetrahedron.
 VtuGrid body_grid(const driver::RunResult& result) {
   const mesh::TetMesh& mesh = result.model.mesh;
   VtuGrid body;
@@ -576,6 +576,13 @@ VtuGrid body_grid(const driver::RunResult& result) {
   for (Index t = 0; t < mesh.n_tets(); ++t)
     body_index(0, t) = static_cast<Real>(result.model.bodies.tet_body[static_cast<size_t>(t)]);
   body.cell_data.push_back({"body", body_index, VtuType::Int32});
+  const std::optional<feti::FetiReport>& feti = result.report.feti;
+  if (feti && static_cast<Index>(feti->subdomain_of_tet.size()) == mesh.n_tets()) {
+    MatrixXd subdomain(1, mesh.n_tets());
+    for (Index t = 0; t < mesh.n_tets(); ++t)
+      subdomain(0, t) = static_cast<Real>(feti->subdomain_of_tet[static_cast<size_t>(t)]);
+    body.cell_data.push_back({"subdomain", subdomain, VtuType::Int32});
+  }
   return body;
 }
 
