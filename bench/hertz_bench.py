@@ -244,7 +244,8 @@ def order(e1, e2, h1, h2):
 # Tables
 
 def table(headers, rows, markdown):
-    if markdown:
+    if markdown:  # a "|" inside a cell (|u|) would end it
+        headers = [h.replace("|", "\\|") for h in headers]
         lines = ["| " + " | ".join(headers) + " |", "|" + "---|" * len(headers)]
         lines += ["| " + " | ".join(row) + " |" for row in rows]
     else:

@@ -5,7 +5,8 @@ scalability with the subdomain size fixed, and the direct solver against TFETI i
     /usr/bin/python3 bench/tfeti_bench.py build/apps/fricon/fricon \
         [--scalability 8 16 24 32] [--cells-per-subdomain 4] [--series 16 24 32] \
         [--series-subdomain-size 1000] [--series-tfeti-only 64] [--scaling] [--preconditioners] \
-        [--sizes N S1 S2 ...] [--weak N1 N2] [--search [EXAMPLE ...]] [--mpirun MPIRUN]
+        [--sizes N S1 S2 ...] [--counts N C1 C2 ...] [--weak N1 N2] [--search [EXAMPLE ...]]
+        [--mpirun MPIRUN]
         [--threads N] [--out DIR] [--markdown]
 
 The problem is examples/paper-brick.toml (Tresca friction with the paper's F(s), 3n x n x n cubes
@@ -27,6 +28,12 @@ run. --series-tfeti-only n...: sizes that only TFETI runs (the direct factor doe
 
 --sizes N S1 S2 ...: the brick at n = N with solver.subdomain_size = S1, S2, ...: the time, the
 products with F and the memory of each, from which the default subdomain_size is chosen.
+
+--counts N C1 C2 ...: the brick at n = N cut into C1, C2, ... subdomains (solver.subdomains):
+how much the products with F depend on the partition at one mesh. Per count: the products of the
+first QP and of the whole run, SMALSE-M's outer steps and penalty doublings (theory.md §4.6),
+max |u| and the peak pressure relative to the direct solver's on the same mesh; then the spread
+(largest over smallest) of the first QP's and the whole run's products.
 
 --preconditioners: in place of the scalability table, the --scalability sizes with
 solver.tfeti_preconditioner "none", "lumped" and "dirichlet" (theory.md §8.5), alternated: first
@@ -183,6 +190,30 @@ def subdomain_sizes(fricon, out, n, sizes, threads, markdown):
     return [f"Subdomain size at n = {n}", "",
             hb.table(["subdomain_size", "subdomains", "mean nodes", "gluing", "products with F",
                       "factors [MiB]", "time [s]", "peak RSS [MiB]"], rows, markdown), ""]
+
+
+def subdomain_counts(fricon, out, n, counts, threads, markdown):
+    direct = solve(fricon, out / "counts-direct", n, threads)
+    rows, first, whole = [], [], []
+    for count in counts:
+        rep = solve(fricon, out / f"count-{count}", n, threads,
+                    ['solver.backend="tfeti"', f"solver.subdomains={count}"])
+        f = rep["feti"]
+        first.append(rep["contact"]["history"][0]["qp_products"])
+        whole.append(f["n_products"])
+        du = abs(rep["max_displacement"] / direct["max_displacement"] - 1.0)
+        dl = abs(rep["max_lambda_n"] / direct["max_lambda_n"] - 1.0)
+        rows.append([str(count), str(f["n_subdomains"]), str(rep["outer_iterations"]),
+                     str(first[-1]), str(whole[-1]), str(f["smalse_outer_iterations"]),
+                     str(f.get("penalty_increases", "-")), f"{du:.1e}", f"{dl:.1e}"])
+        print(f"  count {count}: {rows[-1]}", file=sys.stderr, flush=True)
+    return [f"Subdomain counts at n = {n} (direct: {direct['n_mult']} products with Q)", "",
+            hb.table(["subdomains asked", "subdomains", "QPs", "first QP products",
+                      "products with F", "SMALSE-M outer steps", "penalty doublings",
+                      "max |u| vs direct", "peak lambda_n vs direct"], rows, markdown), "",
+            f"Spread (largest / smallest): first QP {max(first) / min(first):.2f}, whole run "
+            f"{max(whole) / min(whole):.2f}; first QP products in all {sum(first)}, whole runs "
+            f"{sum(whole)}.", ""]
 
 
 def row_scaling(fricon, out, n, c, threads, markdown):
@@ -410,6 +441,7 @@ def main():
     ap.add_argument("--series", type=int, nargs="*", default=[16, 24])
     ap.add_argument("--series-subdomain-size", type=int, default=1000)
     ap.add_argument("--sizes", type=int, nargs="*", default=[])
+    ap.add_argument("--counts", type=int, nargs="*", default=[])
     ap.add_argument("--series-tfeti-only", type=int, nargs="*", default=[])
     ap.add_argument("--scaling", action="store_true")
     ap.add_argument("--preconditioners", action="store_true")
@@ -440,6 +472,9 @@ def main():
         if len(a.sizes) > 1:
             lines += subdomain_sizes(a.fricon, out, a.sizes[0], a.sizes[1:], a.threads,
                                      a.markdown)
+        if len(a.counts) > 1:
+            lines += subdomain_counts(a.fricon, out, a.counts[0], a.counts[1:], a.threads,
+                                      a.markdown)
         if a.weak:
             lines += weak_scaling(a.fricon, out, a.weak[0], a.weak[1], a.series_subdomain_size,
                                   a.mpirun, a.markdown)
