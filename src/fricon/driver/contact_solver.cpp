@@ -199,7 +199,6 @@ outer::OuterReport successive_approximations(TrescaMap& map, VectorXd& phi,
     rep.qp_steps += q.steps();
     rep.n_objective_increases += q.n_objective_increases;
     rep.smalse_outer_iterations += map.last_smalse().outer_iterations;
-    rep.smalse_penalty_increases += map.last_smalse().rho_increases;
     rep.coarse_solves += map.last_smalse().n_coarse_solves;
     rep.coarse_s += map.last_smalse().coarse_s;
     rep.history.push_back(it);

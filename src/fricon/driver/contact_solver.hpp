@@ -172,7 +172,6 @@ struct ContactReport {
   Real equality_residual = 0.0;
   Real equality_bound = 0.0;
   long smalse_outer_iterations = 0;
-  long smalse_penalty_increases = 0;  ///< SMALSE-M's penalty doublings over all QPs
   long coarse_solves = 0;  ///< solves with the coarse problem G G^T over all QPs (SMALSE-M)
   double coarse_s = 0.0;   ///< their wall time and that of its decompositions [s]
   /// Backend "tfeti" (theory.md §8.6): the violation of the gluing and Dirichlet rows by the

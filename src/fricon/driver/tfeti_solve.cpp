@@ -49,7 +49,6 @@ void record_feti_counts(const feti::FetiOperator& F, RunReport& report) {
   if (report.contact) {
     report.feti->qp_iterations = report.contact->qp_iterations;
     report.feti->smalse_outer_iterations = report.contact->smalse_outer_iterations;
-    report.feti->penalty_increases = report.contact->smalse_penalty_increases;
     report.feti->n_coarse_solves = report.contact->coarse_solves;
     report.feti->coarse_s = report.contact->coarse_s;
     report.feti->gluing_residual = report.contact->gluing_residual;

@@ -115,7 +115,6 @@ void TrescaMap::solve_with_equality(int k) {
   options.equality_tolerance = kEqualityShare * qp_.rel_tolerance;
   if (Q_.n_equality() > 0) {
     options.rho_factor = dual::kEqualityPenaltyFactor;
-    options.rho_growth_ratio = dual::kEqualityPenaltyGrowthRatio;
     options.projected_norm = true;
   }
   if (!warm_start_) mu_.resize(0);

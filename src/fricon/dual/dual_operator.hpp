@@ -75,11 +75,6 @@ inline constexpr Real kEqualityToleranceShare = 1e-1;
 /// the norm of P Q P; on the paper's brick it needed fewer products than the floating bodies' 0.3.
 inline constexpr Real kEqualityPenaltyFactor = 1.0;
 
-/// SMALSE-M's penalty growth for a QP with equality multipliers (qp::SmalseOptions::
-/// rho_growth_ratio; Total FETI, theory.md §4.6): rho doubles after an outer step that left
-/// ||G x - e|| above 0.3 of the last one's (bench/tfeti_bench.py --counts, docs/benchmarks.md).
-inline constexpr Real kEqualityPenaltyGrowthRatio = 0.3;
-
 /// The relative change at which the power iterations stop for a QP with equality multipliers
 /// (Total FETI; qp::MpgpOptions::power_tolerance): ||P Q P||, from which SMALSE-M takes its
 /// penalty and step length (an estimate low by 1e-3 still leaves the step 1.95/||P Q P|| below

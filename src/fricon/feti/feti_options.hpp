@@ -93,7 +93,6 @@ struct FetiReport {
   double coarse_s = 0.0;             ///< their wall time and that of G G^T's decompositions [s]
   long qp_iterations = 0;            ///< MPGP steps over all QPs (filled after the solve)
   long smalse_outer_iterations = 0;  ///< SMALSE-M's outer steps over all QPs
-  long penalty_increases = 0;  ///< SMALSE-M's penalty doublings over all QPs (theory.md §4.6)
   /// The certificate's check of the gluing and Dirichlet rows: the root mean square of their
   /// violation relative to that of the displacement, and its bound (100 qp_rtol).
   double gluing_residual = 0.0;

@@ -279,7 +279,6 @@ void add_feti_report(const feti::FetiReport& f, nlohmann::json& j) {
       {"coarse_s", f.coarse_s},
       {"qp_iterations", f.qp_iterations},
       {"smalse_outer_iterations", f.smalse_outer_iterations},
-      {"penalty_increases", f.penalty_increases},
       {"gluing_residual", f.gluing_residual},
       {"gluing_bound", f.gluing_bound},
       {"free_displacement_note", f.free_displacement_note},

@@ -20,8 +20,6 @@ namespace {
 // factor in kStagnantSteps consecutive outer steps (a feasible equality is met at a linear rate).
 constexpr double kStagnation = 0.9;
 constexpr int kStagnantSteps = 2;
-// The factor by which SmalseOptions::rho_growth_ratio grows the penalty.
-constexpr double kPenaltyGrowth = 2.0;
 // Phase one: min 1/2 ||G x - e||^2 + delta/2 ||x||^2 over Omega (G with orthonormal rows), delta
 // this small against ||G^T G|| = 1 (it only makes the Hessian definite) ...
 constexpr double kPhaseOneRegularization = 1e-12;
@@ -181,11 +179,6 @@ void SmalseOptions::validate() const {
   require("SmalseOptions::eta_factor", eta_factor, positive());
   require("SmalseOptions::equality_tolerance", equality_tolerance, positive());
   require("SmalseOptions::max_outer", max_outer, integer_at_least(1));
-  if (rho_growth_ratio != 0.0) {
-    require("SmalseOptions::rho_growth_ratio", rho_growth_ratio, open_interval(0.0, 1.0));
-    require("SmalseOptions::rho_max_factor", rho_max_factor,
-            open_interval(rho_factor, std::numeric_limits<double>::infinity()));
-  }
 }
 
 namespace {
@@ -380,7 +373,8 @@ class SmalseM {
     M_ = opt_.M_factor * norm_A_;
     io_ = inner_;
     io_.rel_tolerance = 0.0;
-    io_.norm_A = augmented_norm();
+    // ||Gh^T Gh|| = 1; with the projector the two terms act on orthogonal subspaces.
+    io_.norm_A = opt_.projector ? std::max(norm_A_, rho_) : norm_A_ + rho_;
     // Preconditioning in face: with the projector the Hessian is P A P + rho Q on complementary
     // subspaces, so M approximating A^-1 gives P M P + Q / rho (theory.md §4.6).
     if (inner_.preconditioner && opt_.projector)
@@ -423,11 +417,9 @@ class SmalseM {
           r.norm_gp, eps_g, rep_.equality_residual, opt_.equality_tolerance, k + 1);
       return true;
     }
-    grow_penalty_if_slow(std::sqrt(res2));
     if (found_infeasible(std::sqrt(res2), x)) return true;
     tighten_for_equality(res2);
     update_multiplier(k, r.objective, S_res, res2, mu);
-    apply_penalty();
     if (k + 1 < opt_.max_outer) return false;
     rep_.termination = QpTermination::MaxIterations;
     rep_.message =
@@ -480,30 +472,6 @@ class SmalseM {
     equality_floor_ = std::min(equality_floor_, needed);
   }
 
-  // The residual ||Gh x - eh|| fell by less than rho_growth_ratio since the last outer step: the
-  // next inner solve takes kPenaltyGrowth times rho (up to rho_max_factor ||A||), once mu has
-  // been updated with the rho that made x (theory.md §4.6).
-  void grow_penalty_if_slow(double res_norm) {
-    if (opt_.rho_growth_ratio > 0.0 && res_norm > opt_.rho_growth_ratio * residual_prev_)
-      next_rho_ = std::min(kPenaltyGrowth * rho_, opt_.rho_max_factor * norm_A_);
-  }
-
-  // The grown penalty into the augmented Hessian (read through rho_) and MPGP's norm.
-  void apply_penalty() {
-    if (!(next_rho_ > rho_)) return;
-    M_ *= next_rho_ / rho_;
-    rho_ = next_rho_;
-    rep_.rho = rho_;
-    ++rep_.rho_increases;
-    io_.norm_A = augmented_norm();
-  }
-
-  // ||A + rho Gh^T Gh|| (||Gh^T Gh|| = 1); with the projector the two terms act on orthogonal
-  // subspaces.
-  double augmented_norm() const {
-    return opt_.projector ? std::max(norm_A_, rho_) : norm_A_ + rho_;
-  }
-
   // mu += rho S^+ (G_a x - e), then the semi-monotonic update of M: divided by beta when
   // L(x_k, mu_k+1) did not increase by rho/2 ||Gh x - eh||^2.
   void update_multiplier(int k, double objective, const Eigen::VectorXd& S_res, double res2,
@@ -534,7 +502,7 @@ class SmalseM {
   const Eigen::VectorXd e_;        ///< e as solved (kept_load)
   const EqualityConstraint kept_;  ///< G_a x = e_
   const double eh2_;               ///< ||eh||^2
-  double norm_A_ = 0.0, rho_ = 0.0, next_rho_ = 0.0;
+  double norm_A_ = 0.0, rho_ = 0.0;
   Eigen::VectorXd x_e_, b_base_;
   double reference_ = 0.0;  ///< the reference of the gradient test
   double data_norm_ = 0.0;  ///< the resisted data's size (projected_resisted_norm)

@@ -48,14 +48,6 @@ struct SmalseOptions {
   /// on examples/floating, bench/floating_bench.py, theory.md §4.6; Total FETI takes 1,
   /// dual::kEqualityPenaltyFactor); range > 0.
   double rho_factor = 0.3;
-  /// Penalty growth: after an outer step that left ||G x - e|| above rho_growth_ratio times the
-  /// last step's, rho is doubled for the next inner solve, up to rho_max_factor ||A|| (with the
-  /// projector ||P A P||). Where the active bounds and discs hold the rows' directions, the
-  /// residual falls slowly at a fixed rho (theory.md §4.6). 0 (default): rho stays; range
-  /// (0, 1).
-  double rho_growth_ratio = 0.0;
-  /// The cap of the grown penalty over ||A||. Default 8; range > rho_factor.
-  double rho_max_factor = 8.0;
   /// M_0 = M_factor ||A||, the initial ratio of the inner precision to ||G x - e||. Default 0.3
   /// (measured likewise); range > 0.
   double M_factor = 0.3;
@@ -107,8 +99,7 @@ struct SmalseReport {
   MpgpSteps steps;              ///< the same by kind
   long n_products = 0;          ///< products with A over all inner solves (power method excluded)
   long n_preconditioner = 0;    ///< applications of the inner preconditioner, over all inner solves
-  double rho = 0.0;             ///< the penalty used (the last, where it grew)
-  int rho_increases = 0;        ///< times rho was doubled (SmalseOptions::rho_growth_ratio)
+  double rho = 0.0;             ///< the penalty used
   double norm_projected = 0.0;  ///< ||P A P|| used with the projector (0 without)
   double equality_residual = 0.0;  ///< qp::equality_residual at the end
   /// The floor of the residual's scale (qp::equality_residual's `floor`, in the units of e): the
