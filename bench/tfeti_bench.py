@@ -31,8 +31,7 @@ products with F and the memory of each, from which the default subdomain_size is
 
 --counts N C1 C2 ...: the brick at n = N cut into C1, C2, ... subdomains (solver.subdomains):
 how much the products with F depend on the partition at one mesh. Per count: the products of the
-first QP and of the whole run, SMALSE-M's outer steps and penalty doublings (theory.md §4.6),
-max |u| and the peak pressure relative to the direct solver's on the same mesh; then the spread
+first QP and of the whole run, SMALSE-M's outer steps (theory.md §4.6), max |u| and the peak pressure relative to the direct solver's on the same mesh; then the spread
 (largest over smallest) of the first QP's and the whole run's products.
 
 --preconditioners: in place of the scalability table, the --scalability sizes with
@@ -205,12 +204,11 @@ def subdomain_counts(fricon, out, n, counts, threads, markdown):
         dl = abs(rep["max_lambda_n"] / direct["max_lambda_n"] - 1.0)
         rows.append([str(count), str(f["n_subdomains"]), str(rep["outer_iterations"]),
                      str(first[-1]), str(whole[-1]), str(f["smalse_outer_iterations"]),
-                     str(f.get("penalty_increases", "-")), f"{du:.1e}", f"{dl:.1e}"])
+                     f"{du:.1e}", f"{dl:.1e}"])
         print(f"  count {count}: {rows[-1]}", file=sys.stderr, flush=True)
     return [f"Subdomain counts at n = {n} (direct: {direct['n_mult']} products with Q)", "",
             hb.table(["subdomains asked", "subdomains", "QPs", "first QP products",
-                      "products with F", "SMALSE-M outer steps", "penalty doublings",
-                      "max |u| vs direct", "peak lambda_n vs direct"], rows, markdown), "",
+                      "products with F", "SMALSE-M outer steps", "max |u| vs direct", "peak lambda_n vs direct"], rows, markdown), "",
             f"Spread (largest / smallest): first QP {max(first) / min(first):.2f}, whole run "
             f"{max(whole) / min(whole):.2f}; first QP products in all {sum(first)}, whole runs "
             f"{sum(whole)}.", ""]
