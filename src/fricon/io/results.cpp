@@ -553,6 +553,15 @@ Eigen::Matrix<Index, Eigen::Dynamic, Eigen::Dynamic> tet_cells(const mesh::TetMe
   return cells;
 }
 
+// An integer per tetrahedron, value(t) for t = 0 .. n_tets - 1, as a cell field written as Int32.
+template <class Value>
+VtuField integer_per_tet(const char* name, Index n_tets, Value value) {
+  MatrixXd field(1, n_tets);
+  for (Index t = 0; t < n_tets; ++t)
+    field(0, t) = static_cast<Real>(value(t));
+  return {name, field, VtuType::Int32};
+}
+
 // The body: displacement and the stress recovered at the nodes with its von Mises equivalent per
 // node (every node, the edge nodes of a quadratic mesh too), stress, von Mises, region index
 // (report.json "regions" names them), body and, for backend "tfeti", subdomain per tetrahedron.
@@ -568,21 +577,16 @@ VtuGrid body_grid(const driver::RunResult& result) {
   }
   body.cell_data.push_back({"stress", result.stress});
   body.cell_data.push_back({"von_mises", result.von_mises.transpose()});
-  MatrixXd region(1, mesh.n_tets());
-  for (Index t = 0; t < mesh.n_tets(); ++t)
-    region(0, t) = mesh.region(t);
-  body.cell_data.push_back({"region", region, VtuType::Int32});
-  MatrixXd body_index(1, mesh.n_tets());
-  for (Index t = 0; t < mesh.n_tets(); ++t)
-    body_index(0, t) = static_cast<Real>(result.model.bodies.tet_body[static_cast<size_t>(t)]);
-  body.cell_data.push_back({"body", body_index, VtuType::Int32});
+  body.cell_data.push_back(
+      integer_per_tet("region", mesh.n_tets(), [&](Index t) { return mesh.region(t); }));
+  body.cell_data.push_back(integer_per_tet("body", mesh.n_tets(), [&](Index t) {
+    return result.model.bodies.tet_body[static_cast<size_t>(t)];
+  }));
   const std::optional<feti::FetiReport>& feti = result.report.feti;
-  if (feti && static_cast<Index>(feti->subdomain_of_tet.size()) == mesh.n_tets()) {
-    MatrixXd subdomain(1, mesh.n_tets());
-    for (Index t = 0; t < mesh.n_tets(); ++t)
-      subdomain(0, t) = static_cast<Real>(feti->subdomain_of_tet[static_cast<size_t>(t)]);
-    body.cell_data.push_back({"subdomain", subdomain, VtuType::Int32});
-  }
+  if (feti && static_cast<Index>(feti->subdomain_of_tet.size()) == mesh.n_tets())
+    body.cell_data.push_back(integer_per_tet("subdomain", mesh.n_tets(), [&](Index t) {
+      return feti->subdomain_of_tet[static_cast<size_t>(t)];
+    }));
   return body;
 }
 
