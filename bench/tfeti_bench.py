@@ -30,9 +30,13 @@ run. --series-tfeti-only n...: sizes that only TFETI runs (the direct factor doe
 products with F and the memory of each, from which the default subdomain_size is chosen.
 
 --counts N C1 C2 ...: the brick at n = N cut into C1, C2, ... subdomains (solver.subdomains):
-how much the products with F depend on the partition at one mesh. Per count: the products of the
-first QP and of the whole run, SMALSE-M's outer steps (theory.md §4.6), max |u| and the peak pressure relative to the direct solver's on the same mesh; then the spread
-(largest over smallest) of the first QP's and the whole run's products.
+how much the products with F depend on the partition at one mesh, first with METIS's partition
+as it comes (solver.tfeti_neck_cuts = 0), then with the subdomains joined by a neck cut again (the
+default, theory.md §8.9). Per count: how many times the softest subdomain is softer than the
+median (report.json feti.softness.ratio, after the cuts), the subdomains cut again, the products
+of the first QP and of the whole run, SMALSE-M's outer steps (theory.md §4.6), max |u| and the
+peak pressure relative to the direct solver's on the same mesh; then the spread (largest over
+smallest) of the first QP's and the whole run's products.
 
 --preconditioners: in place of the scalability table, the --scalability sizes with
 solver.tfeti_preconditioner "none", "lumped" and "dirichlet" (theory.md §8.5), alternated: first
@@ -193,25 +197,37 @@ def subdomain_sizes(fricon, out, n, sizes, threads, markdown):
 
 def subdomain_counts(fricon, out, n, counts, threads, markdown):
     direct = solve(fricon, out / "counts-direct", n, threads)
-    rows, first, whole = [], [], []
-    for count in counts:
-        rep = solve(fricon, out / f"count-{count}", n, threads,
-                    ['solver.backend="tfeti"', f"solver.subdomains={count}"])
-        f = rep["feti"]
-        first.append(rep["contact"]["history"][0]["qp_products"])
-        whole.append(f["n_products"])
-        du = abs(rep["max_displacement"] / direct["max_displacement"] - 1.0)
-        dl = abs(rep["max_lambda_n"] / direct["max_lambda_n"] - 1.0)
-        rows.append([str(count), str(f["n_subdomains"]), str(rep["outer_iterations"]),
-                     str(first[-1]), str(whole[-1]), str(f["smalse_outer_iterations"]),
-                     f"{du:.1e}", f"{dl:.1e}"])
-        print(f"  count {count}: {rows[-1]}", file=sys.stderr, flush=True)
-    return [f"Subdomain counts at n = {n} (direct: {direct['n_mult']} products with Q)", "",
-            hb.table(["subdomains asked", "subdomains", "QPs", "first QP products",
-                      "products with F", "SMALSE-M outer steps", "max |u| vs direct", "peak lambda_n vs direct"], rows, markdown), "",
-            f"Spread (largest / smallest): first QP {max(first) / min(first):.2f}, whole run "
-            f"{max(whole) / min(whole):.2f}; first QP products in all {sum(first)}, whole runs "
-            f"{sum(whole)}.", ""]
+    lines = [f"Subdomain counts at n = {n} (direct: {direct['n_mult']} products with Q)", ""]
+    # METIS's partition as it comes (no neck cuts), then the default (theory.md §8.9).
+    for cuts, title in ((0, "METIS's partition as it comes (solver.tfeti_neck_cuts = 0)"),
+                        (None, "with the necked subdomains cut again (the default)")):
+        rows, first, whole = [], [], []
+        for count in counts:
+            sets = ['solver.backend="tfeti"', f"solver.subdomains={count}"]
+            if cuts is not None:
+                sets.append(f"solver.tfeti_neck_cuts={cuts}")
+            tag = "plain" if cuts == 0 else "cut"
+            rep = solve(fricon, out / f"count-{count}-{tag}", n, threads, sets)
+            f = rep["feti"]
+            soft = f["softness"]
+            first.append(rep["contact"]["history"][0]["qp_products"])
+            whole.append(f["n_products"])
+            du = abs(rep["max_displacement"] / direct["max_displacement"] - 1.0)
+            dl = abs(rep["max_lambda_n"] / direct["max_lambda_n"] - 1.0)
+            rows.append([str(count), str(f["n_subdomains"]), f"{soft['ratio']:.1f}",
+                         str(soft["n_recut"]), str(rep["outer_iterations"]), str(first[-1]),
+                         str(whole[-1]), str(f["smalse_outer_iterations"]), f"{du:.1e}",
+                         f"{dl:.1e}"])
+            print(f"  count {count} ({tag}): {rows[-1]}", file=sys.stderr, flush=True)
+        lines += [title, "",
+                  hb.table(["subdomains asked", "subdomains", "softest / median", "re-cut",
+                            "QPs", "first QP products", "products with F",
+                            "SMALSE-M outer steps", "max |u| vs direct",
+                            "peak lambda_n vs direct"], rows, markdown), "",
+                  f"Spread (largest / smallest): first QP {max(first) / min(first):.2f}, whole "
+                  f"run {max(whole) / min(whole):.2f}; first QP products in all {sum(first)}, "
+                  f"whole runs {sum(whole)}.", ""]
+    return lines
 
 
 def row_scaling(fricon, out, n, c, threads, markdown):

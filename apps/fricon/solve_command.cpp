@@ -14,6 +14,7 @@
 #include "fricon/core/error.hpp"
 #include "fricon/core/timer.hpp"
 #include "fricon/driver/run.hpp"
+#include "fricon/feti/softness.hpp"
 #include "fricon/io/dual_dump.hpp"
 #include "fricon/io/problem_file.hpp"
 #include "fricon/io/results.hpp"
@@ -54,6 +55,22 @@ void print_warnings(const driver::RunReport& r, std::FILE* to, const char* prefi
     fmt::print(to, "{}{}\n", prefix, w);
 }
 
+// The softest subdomain against the median (feti/softness.hpp), and what to do when some are
+// joined by necks.
+void print_softness(const feti::FetiReport& f) {
+  if (f.softest_subdomain < 0) return;
+  fmt::print(
+      "  softness      lambda_7(K_s) / mean diag(K_s): median {:.2e}, softest {:.2e} (subdomain "
+      "{}), {:.1f} times below\n",
+      f.median_relative, f.softest_relative, f.softest_subdomain, f.softness_ratio);
+  if (f.necked.empty()) return;
+  fmt::print(
+      "  warning       {} subdomain(s) at least {:.0f} times softer than the median, parts joined "
+      "by a neck (theory.md §8.9): the QPs may take several times their usual products; another "
+      "solver.subdomain_size or solver.subdomains gives another partition\n",
+      f.necked.size(), feti::kNeckRatio);
+}
+
 void print_summary(const driver::RunResult& result, const std::filesystem::path& dir) {
   const auto& r = result.report;
   fmt::print("fricon {}: {}\n", FRICON_VERSION, enum_name(r.status));
@@ -79,6 +96,7 @@ void print_summary(const driver::RunResult& result, const std::filesystem::path&
       fmt::print("  preconditioner {} in face: {} applications in {:.3f} s\n", f.preconditioner,
                  f.n_preconditioner, f.preconditioner_s);
     if (!f.partition_note.empty()) fmt::print("  partition     {}\n", f.partition_note);
+    print_softness(f);
     if (f.n_ranks > 1) {
       fmt::print("  ranks         {} (tfeti), subdomains / factor MiB / peak memory MiB per rank:",
                  f.n_ranks);

@@ -240,6 +240,7 @@ struct SolverOptions {
   feti::RowScaling tfeti_scaling = feti::RowScaling::Stiffness;        ///< [solver.tfeti_scaling]
   /// [solver.tfeti_preconditioner]
   feti::FetiPreconditioner tfeti_preconditioner = feti::kDefaultPreconditioner;
+  int tfeti_neck_cuts = static_cast<int>(feti::kDefaultNeckCuts);  ///< [solver.tfeti_neck_cuts]
 
   /// The options of this run's contact QPs: qp with the expansion of qp_expansion, or the
   /// backend's where it is absent.

@@ -745,6 +745,13 @@ void add_tfeti_keys(SolverKeys& b) {
            "meshes of flat elements `\"none\"` can need a hundred times its steps); "
            "theory.md §8.5");
   tfeti_only();
+  b.number("tfeti_neck_cuts", &SolverOptions::tfeti_neck_cuts, integer_at_least(0),
+           "with `backend = \"tfeti\"`: rounds of cutting again, with their neighbours, the "
+           "subdomains whose softest deformation is 20 or more times softer than the median "
+           "subdomain's (a part joined by a neck, which can double the products with F); each "
+           "round factors every subdomain again. 0 keeps METIS's partition as it comes; "
+           "theory.md §8.9");
+  tfeti_only();
 }
 
 }  // namespace

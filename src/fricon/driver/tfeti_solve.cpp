@@ -22,6 +22,7 @@ std::unique_ptr<feti::FetiOperator> make_feti_operator(const Problem& problem, c
   o.subdomain_size = problem.solver.subdomain_size;
   o.scaling = problem.solver.tfeti_scaling;
   o.preconditioner = problem.solver.tfeti_preconditioner;
+  o.neck_cuts = problem.solver.tfeti_neck_cuts;
   // The subdomains are the parallelism: one BLAS thread inside each of their solves.
   o.threads = loop_threads(linalg::threads());
   linalg::set_threads(1);

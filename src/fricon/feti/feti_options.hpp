@@ -41,14 +41,19 @@ bool metis_available();
 /// bench/tfeti_bench.py (docs/benchmarks.md).
 inline constexpr Index kDefaultSubdomainSize = 1000;
 
+/// solver.tfeti_neck_cuts's default: rounds of cutting again the subdomains joined by a neck
+/// (theory.md §8.9), each of which factors every subdomain again.
+inline constexpr Index kDefaultNeckCuts = 3;
+
 struct FetiOptions {
   /// The number of subdomains over all bodies (> 0), or 0 to take it from subdomain_size.
   Index subdomains = 0;
   Index subdomain_size = kDefaultSubdomainSize;  ///< target nodes per subdomain (> 0)
   RowScaling scaling = RowScaling::Stiffness;
   FetiPreconditioner preconditioner = kDefaultPreconditioner;
-  int threads = 1;          ///< threads of the subdomains' factorizations and solves
-  std::string key_context;  ///< where solver.subdomains was given, for messages
+  Index neck_cuts = kDefaultNeckCuts;  ///< rounds of cutting necked subdomains again (>= 0)
+  int threads = 1;                     ///< threads of the subdomains' factorizations and solves
+  std::string key_context;             ///< where solver.subdomains was given, for messages
 };
 
 /// One process's share of the subdomains (feti/ranks.hpp).
@@ -70,21 +75,34 @@ struct FetiReport {
   /// Per tetrahedron of the mesh, its subdomain 0 .. n_subdomains - 1 (solution.vtu's cell
   /// field "subdomain").
   std::vector<Index> subdomain_of_tet;
-  Index n_torn = 0;                  ///< torn dofs (3 per copy of a node)
-  Index n_contact = 0;               ///< contact multipliers
-  Index n_gluing = 0;                ///< gluing multipliers (the interface)
-  Index n_dirichlet = 0;             ///< Dirichlet multipliers
-  Index n_coarse = 0;                ///< rows of G: 6 per subdomain
-  std::string row_scaling;           ///< "stiffness" or "uniform"
-  std::string preconditioner;        ///< "none", "lumped" or "dirichlet"
-  long n_preconditioner = 0;         ///< its applications (filled after the solve)
-  double preconditioner_s = 0.0;     ///< their wall time [s], collective (filled after the solve)
-  int threads = 1;                   ///< threads of the subdomain loops
-  double nnz_factors = 0.0;          ///< non-zeros of all the subdomains' factors
-  double factor_mib = 0.0;           ///< their memory, 8 bytes per non-zero [MiB]
-  double partition_s = 0.0;          ///< the graph partition [s]
-  double factorization_s = 0.0;      ///< assembly and factorization of every K_s, wall [s]
+  /// The softest subdomain beyond its rigid motions (feti/softness.hpp, theory.md §8.9): its
+  /// number, its lambda_7(K_s) / mean(diag K_s), the median of that over the subdomains, how many
+  /// times below the median it is, and the subdomains kNeckRatio or more times below it.
+  Index softest_subdomain = -1;
+  double softest_relative = 0.0;
+  double median_relative = 0.0;
+  double softness_ratio = 1.0;
+  std::vector<Index> necked;
+  Index n_recut = 0;        ///< necked subdomains cut again with their neighbours, over the rounds
+  Index recut_rounds = 0;   ///< rounds of such cuts (at most FetiOptions::neck_cuts)
+  Index n_torn = 0;         ///< torn dofs (3 per copy of a node)
+  Index n_contact = 0;      ///< contact multipliers
+  Index n_gluing = 0;       ///< gluing multipliers (the interface)
+  Index n_dirichlet = 0;    ///< Dirichlet multipliers
+  Index n_coarse = 0;       ///< rows of G: 6 per subdomain
+  std::string row_scaling;  ///< "stiffness" or "uniform"
+  std::string preconditioner;     ///< "none", "lumped" or "dirichlet"
+  long n_preconditioner = 0;      ///< its applications (filled after the solve)
+  double preconditioner_s = 0.0;  ///< their wall time [s], collective (filled after the solve)
+  int threads = 1;                ///< threads of the subdomain loops
+  double nnz_factors = 0.0;       ///< non-zeros of all the subdomains' factors
+  double factor_mib = 0.0;        ///< their memory, 8 bytes per non-zero [MiB]
+  double partition_s = 0.0;       ///< the graph partition [s]
+  /// Assembly and factorization of every K_s, with the softness and any neck cuts (which factor
+  /// them again), wall [s].
+  double factorization_s = 0.0;
   double factorization_cpu_s = 0.0;  ///< the same, summed over the subdomains [s]
+  double softness_s = 0.0;           ///< the subdomains' softness (feti/softness.hpp), wall [s]
   double operator_s = 0.0;           ///< the torn rows, G, h and e [s]
   long n_products = 0;               ///< products with F (filled after the solve)
   double products_s = 0.0;           ///< their subdomain solves on this process, wall [s]

@@ -23,6 +23,8 @@ namespace {
 
 // The key whose value n_subdomains is, for messages.
 constexpr const char* kKey = "solver.subdomains";
+// The round of METIS's first partition; a re-cut in round r seeds METIS with kMetisSeed + r.
+constexpr Index kFirstRound = 0;
 // A body given this many subdomains stays whole: it needs no graph partitioner.
 constexpr Index kWholeBody = 1;
 // The METIS part of every tetrahedron of a body that stays whole.
@@ -248,10 +250,11 @@ MetisGraph metis_graph(const BodyView& body, const DualGraph& graph,
 
 // METIS_PartGraphKway of the body's graph into n_parts parts (edge cut minimised), contiguous
 // parts asked for when `contiguous`; returns METIS's status and the part of each tetrahedron.
-int call_metis(MetisGraph& g, idx_t n_parts, bool contiguous, std::vector<idx_t>& part) {
+int call_metis(MetisGraph& g, idx_t n_parts, bool contiguous, idx_t seed,
+               std::vector<idx_t>& part) {
   idx_t options[METIS_NOPTIONS];
   METIS_SetDefaultOptions(options);
-  options[METIS_OPTION_SEED] = kMetisSeed;
+  options[METIS_OPTION_SEED] = seed;
   options[METIS_OPTION_NUMBERING] = 0;
   options[METIS_OPTION_CONTIG] = contiguous ? 1 : 0;
   idx_t n_vertices = static_cast<idx_t>(g.xadj.size()) - 1;
@@ -270,13 +273,14 @@ int call_metis(MetisGraph& g, idx_t n_parts, bool contiguous, std::vector<idx_t>
 // Contiguous parts are asked for when the body is face-connected (METIS refuses the option on a
 // graph that is not, with a message on stderr), and asked again without if METIS fails with it.
 std::vector<Index> metis_parts(const BodyView& body, const DualGraph& graph, Index n_parts,
-                               const std::string& key_context) {
+                               const std::string& key_context, Index round) {
   MetisGraph g = metis_graph(body, graph, key_context);
   const idx_t parts = to_idx(n_parts, body, key_context);
   const bool connected = count_face_connected_pieces(body, graph) == 1;
+  const auto seed = static_cast<idx_t>(kMetisSeed + round);
   std::vector<idx_t> part;
-  int status = call_metis(g, parts, connected, part);
-  if (status != METIS_OK && connected) status = call_metis(g, parts, false, part);
+  int status = call_metis(g, parts, connected, seed, part);
+  if (status != METIS_OK && connected) status = call_metis(g, parts, false, seed, part);
   if (status != METIS_OK)
     throw Error(fmt::format(
         "partitioning body {} ({} tetrahedra) into {} subdomains: METIS_PartGraphKway failed "
@@ -291,7 +295,7 @@ std::vector<Index> metis_parts(const BodyView& body, const DualGraph& graph, Ind
 #else
 
 std::vector<Index> metis_parts(const BodyView& body, const DualGraph&, Index n_parts,
-                               const std::string& key_context) {
+                               const std::string& key_context, Index) {
   throw InputError(fmt::format(
       "{}: {}: backend \"tfeti\" needs METIS to cut body {} into {} subdomains, and this fricon "
       "was built without it: install the Debian package libmetis-dev and build fricon again "
@@ -307,7 +311,7 @@ std::vector<Index> body_parts(const BodyView& body, const DualGraph& graph, Inde
                               const std::string& key_context) {
   if (n_parts == kWholeBody)
     return std::vector<Index>(static_cast<size_t>(body.n_tets()), kOnlyPart);
-  return metis_parts(body, graph, n_parts, key_context);
+  return metis_parts(body, graph, n_parts, key_context, kFirstRound);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -408,6 +412,111 @@ Partition partition_mesh(const mesh::TetMesh& mesh, const mesh::Bodies& bodies, 
   partition.n_split = adjust.n_split;
   partition.note = adjustment_note(n_subdomains, bodies.n_bodies(), partition.n_subdomains, adjust);
   return partition;
+}
+
+namespace {
+
+// The subdomains of `partition` that share a face with subdomain s (s excluded), ascending.
+std::vector<Index> face_neighbours(const Partition& partition, const DualGraph& graph, Index s) {
+  std::vector<Index> next;
+  for (Index t : partition.tets[static_cast<size_t>(s)])
+    for (Index q = graph.begin(t); q < graph.end(t); ++q) {
+      const Index other = partition.subdomain_of_tet[static_cast<size_t>(graph.neighbour(q))];
+      if (other != s) next.push_back(other);
+    }
+  std::sort(next.begin(), next.end());
+  next.erase(std::unique(next.begin(), next.end()), next.end());
+  return next;
+}
+
+// The regions to cut again: each necked subdomain with its face neighbours, regions that share a
+// subdomain merged (union-find over the subdomains). Per subdomain its region's root, -1 outside.
+std::vector<Index> recut_regions(const Partition& partition, const DualGraph& graph,
+                                 const std::vector<Index>& necked) {
+  std::vector<Index> root(static_cast<size_t>(partition.n_subdomains), -1);
+  const auto find = [&root](Index s) {
+    while (root[static_cast<size_t>(s)] != s)
+      s = root[static_cast<size_t>(s)] = root[static_cast<size_t>(root[static_cast<size_t>(s)])];
+    return s;
+  };
+  for (Index s : necked) {
+    if (root[static_cast<size_t>(s)] < 0) root[static_cast<size_t>(s)] = s;
+    for (Index other : face_neighbours(partition, graph, s)) {
+      if (root[static_cast<size_t>(other)] < 0) root[static_cast<size_t>(other)] = other;
+      root[static_cast<size_t>(find(other))] = find(s);
+    }
+  }
+  for (Index s = 0; s < partition.n_subdomains; ++s)
+    if (root[static_cast<size_t>(s)] >= 0) root[static_cast<size_t>(s)] = find(s);
+  return root;
+}
+
+}  // namespace
+
+Partition recut_necked(const mesh::TetMesh& mesh, const mesh::Bodies& bodies,
+                       const Partition& partition, const std::vector<Index>& necked, Index round,
+                       const std::string& key_context) {
+  if (necked.empty()) return partition;
+  const DualGraph graph = dual_graph(mesh);
+  const std::vector<Index> region_of = recut_regions(partition, graph, necked);
+  // @sect: the subdomains outside every region stay as they are.
+  std::vector<std::vector<Index>> kept_or_new;
+  std::vector<Index> roots;
+  for (Index s = 0; s < partition.n_subdomains; ++s) {
+    const Index r = region_of[static_cast<size_t>(s)];
+    if (r < 0)
+      kept_or_new.push_back(partition.tets[static_cast<size_t>(s)]);
+    else if (r == s)
+      roots.push_back(r);
+  }
+  // @sect: each region cut by METIS into as many parts as it had, with another seed. A region
+  // lies in one body (subdomains of two bodies share no face), which BodyView's "body" stands
+  // for here: the region's root.
+  std::vector<Index> tet_region(static_cast<size_t>(mesh.n_tets()), -1);
+  for (Index t = 0; t < mesh.n_tets(); ++t)
+    tet_region[static_cast<size_t>(t)] =
+        region_of[static_cast<size_t>(partition.subdomain_of_tet[static_cast<size_t>(t)])];
+  std::vector<Index> local(static_cast<size_t>(mesh.n_tets()), -1);
+  Partition result;
+  result.n_split = partition.n_split;
+  std::vector<Index> piece_part;
+  for (Index r : roots) {
+    std::vector<Index> tets;
+    Index n_parts = 0;
+    for (Index s = 0; s < partition.n_subdomains; ++s)
+      if (region_of[static_cast<size_t>(s)] == r) {
+        ++n_parts;
+        tets.insert(tets.end(), partition.tets[static_cast<size_t>(s)].begin(),
+                    partition.tets[static_cast<size_t>(s)].end());
+      }
+    if (n_parts == kWholeBody) {  // alone in its body: no neighbour to share the cut with
+      kept_or_new.push_back(std::move(tets));
+      continue;
+    }
+    std::sort(tets.begin(), tets.end());
+    for (size_t i = 0; i < tets.size(); ++i)
+      local[static_cast<size_t>(tets[i])] = static_cast<Index>(i);
+    const BodyView region{r, tets, local, tet_region};
+    const std::vector<Index> part = metis_parts(region, graph, n_parts, key_context, round);
+    for (std::vector<Index>& piece : face_connected_pieces(region, graph, part, piece_part))
+      kept_or_new.push_back(std::move(piece));
+    Adjustments adjust;
+    count_adjustments(piece_part, n_parts, adjust);
+    result.n_split += adjust.n_split;
+  }
+  // @sect: numbered as partition_mesh numbers them: body by body, then by first tetrahedron.
+  const auto order = [&bodies](const std::vector<Index>& tets) {
+    return std::make_pair(bodies.tet_body[static_cast<size_t>(tets.front())], tets.front());
+  };
+  std::sort(kept_or_new.begin(), kept_or_new.end(),
+            [&order](const std::vector<Index>& a, const std::vector<Index>& b) {
+              return order(a) < order(b);
+            });
+  result.subdomain_of_tet.assign(static_cast<size_t>(mesh.n_tets()), -1);
+  for (std::vector<Index>& tets : kept_or_new)
+    add_subdomain(result, std::move(tets));
+  result.note = partition.note;
+  return result;
 }
 
 }  // namespace fricon::feti

@@ -68,4 +68,16 @@ Index subdomains_for_size(const mesh::TetMesh& mesh, Index subdomain_size);
 Partition partition_mesh(const mesh::TetMesh& mesh, const mesh::Bodies& bodies, Index n_subdomains,
                          const std::string& key_context);
 
+/// `partition` with each subdomain of `necked` (joined by a neck: feti/softness.hpp) cut again
+/// together with the subdomains that share a face with it: the union of them (regions that share
+/// a subdomain merged) is partitioned by METIS into as many parts as it had, contiguous, seeded
+/// for round `round` (>= 1; partition_mesh's partition is round 0), a part that is not
+/// face-connected split into its pieces (counted in n_split). The other subdomains keep their
+/// tetrahedra; all are numbered as partition_mesh numbers them, and `note` is kept. A necked
+/// subdomain alone in its body is kept. theory.md §8.9. Throws as partition_mesh does, naming
+/// `key_context`.
+Partition recut_necked(const mesh::TetMesh& mesh, const mesh::Bodies& bodies,
+                       const Partition& partition, const std::vector<Index>& necked, Index round,
+                       const std::string& key_context);
+
 }  // namespace fricon::feti

@@ -1,13 +1,17 @@
 #include "fricon/feti/tfeti.hpp"
 
 #include <algorithm>
+#include <string>
 #include <utility>
 
 #include <sys/resource.h>
 
+#include <fmt/format.h>
+
 #include "fricon/core/timer.hpp"
 #include "fricon/feti/partition.hpp"
 #include "fricon/feti/preconditioner.hpp"
+#include "fricon/feti/softness.hpp"
 #include "fricon/feti/subdomains.hpp"
 
 namespace fricon::feti {
@@ -55,6 +59,25 @@ void describe_subdomains(const std::vector<Subdomain>& subdomains, const Ranks& 
   report.factor_mib = report.nnz_factors * kBytesPerEntry / kBytesPerMib;
 }
 
+// The partition's note, and what the re-cuts of necked subdomains did.
+std::string partition_note(const Partition& partition, const FetiReport& report) {
+  if (report.n_recut == 0) return partition.note;
+  return fmt::format(
+      "{}{}{} subdomain{} joined by a neck cut again with {} neighbours in {} "
+      "round{} (theory.md §8.9){}.",
+      partition.note, partition.note.empty() ? "" : " ", report.n_recut,
+      report.n_recut == 1 ? "" : "s", report.n_recut == 1 ? "its" : "their", report.recut_rounds,
+      report.recut_rounds == 1 ? "" : "s", report.necked.empty() ? "" : "; some still are");
+}
+
+void record_softness(const Softness& soft, FetiReport& report) {
+  report.softest_subdomain = soft.softest;
+  if (soft.softest >= 0) report.softest_relative = soft.relative[static_cast<size_t>(soft.softest)];
+  report.median_relative = soft.median;
+  report.softness_ratio = soft.ratio;
+  report.necked = soft.necked;
+}
+
 }  // namespace
 
 void record_peak_memory(const Ranks& ranks, FetiReport& report) {
@@ -83,18 +106,35 @@ std::unique_ptr<FetiOperator> make_tfeti(const mesh::TetMesh& mesh, const mesh::
   Stopwatch watch;
   const Index wanted = options.subdomains > 0 ? options.subdomains
                                               : subdomains_for_size(mesh, options.subdomain_size);
-  const Partition partition = partition_mesh(mesh, bodies, wanted, options.key_context);
-  report.n_split = partition.n_split;
-  report.partition_note = partition.note;
-  report.subdomain_of_tet = partition.subdomain_of_tet;
+  Partition partition = partition_mesh(mesh, bodies, wanted, options.key_context);
   report.partition_s = watch.seconds();
 
-  // @sect: each subdomain's K_s^+ and R_s, on the threads.
+  // @sect: each subdomain's K_s^+ and R_s, on the threads, and how soft it is beyond its rigid
+  // motions; the subdomains joined by a neck cut again with their neighbours (theory.md §8.9).
   watch.restart();
-  const std::vector<Index> owners = node_owners(mesh, partition);
+  std::vector<Index> owners = node_owners(mesh, partition);
   std::vector<Subdomain> subdomains =
       make_subdomains(mesh, materials, partition, owners, applied, options.threads, ranks);
+  Stopwatch softness_watch;
+  Softness soft = subdomain_softness(subdomains, options.threads, ranks);
+  report.softness_s = softness_watch.seconds();
+  for (Index round = 1; round <= options.neck_cuts && !soft.necked.empty(); ++round) {
+    report.n_recut += static_cast<Index>(soft.necked.size());
+    report.recut_rounds = round;
+    partition = recut_necked(mesh, bodies, partition, soft.necked, round, options.key_context);
+    std::vector<Subdomain>().swap(subdomains);  // the old factors go before the new ones come
+    owners = node_owners(mesh, partition);
+    subdomains =
+        make_subdomains(mesh, materials, partition, owners, applied, options.threads, ranks);
+    softness_watch.restart();
+    soft = subdomain_softness(subdomains, options.threads, ranks);
+    report.softness_s += softness_watch.seconds();
+  }
   report.factorization_s = watch.seconds();
+  record_softness(soft, report);
+  report.n_split = partition.n_split;
+  report.partition_note = partition_note(partition, report);
+  report.subdomain_of_tet = partition.subdomain_of_tet;
   describe_subdomains(subdomains, ranks, report);
 
   // @sect: the rows of B over the torn dofs, each subdomain's share, and F, h, G, e.
