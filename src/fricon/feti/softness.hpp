@@ -19,9 +19,9 @@ namespace fricon::feti {
 /// two of the softest eigenvalue, and to within a few per cent where a neck sets it far apart from
 /// the next one (the case it is for). Each costs one solve with the subdomain's factor.
 inline constexpr int kSoftnessSteps = 16;
-/// A subdomain is joined by a neck when its measure is this many times below the run's median:
-/// the METIS partitions of the paper's brick whose inner solves were long had a subdomain 36 to
-/// 137 times below it (docs/benchmarks.md, "Subdomains joined by a neck").
+/// A subdomain is joined by a neck when its measure is this many times below the run's median.
+/// On the paper's brick the METIS partitions with long inner solves had 36.5 to 78.4, the others
+/// 1.6 to 12.7 (docs/benchmarks.md, "Subdomains joined by a neck").
 inline constexpr Real kNeckRatio = 20.0;
 
 struct Softness {
