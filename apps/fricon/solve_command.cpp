@@ -57,18 +57,19 @@ void print_warnings(const driver::RunReport& r, std::FILE* to, const char* prefi
 
 // The softest subdomain against the median (feti/softness.hpp), and what to do when some are
 // joined by necks.
-void print_softness(const feti::FetiReport& f) {
-  if (f.softest_subdomain < 0) return;
+void print_softness(const feti::Softness& s) {
+  if (s.softest < 0) return;
   fmt::print(
       "  softness      lambda_7(K_s) / mean diag(K_s): median {:.2e}, softest {:.2e} (subdomain "
       "{}), {:.1f} times below\n",
-      f.median_relative, f.softest_relative, f.softest_subdomain, f.softness_ratio);
-  if (f.necked.empty()) return;
+      s.median, s.softest_relative(), s.softest, s.ratio);
+  if (s.necked.empty()) return;
   fmt::print(
       "  warning       {} subdomain(s) at least {:.0f} times softer than the median, parts joined "
-      "by a neck (theory.md §8.9): the QPs may take several times their usual products; another "
+      "by a neck (theory.md §8.9): the QPs may take several times their usual products; "
+      "solver.tfeti_neck_cuts (default {}) cuts such subdomains again, and another "
       "solver.subdomain_size or solver.subdomains gives another partition\n",
-      f.necked.size(), feti::kNeckRatio);
+      s.necked.size(), feti::kNeckRatio, feti::kDefaultNeckCuts);
 }
 
 void print_summary(const driver::RunResult& result, const std::filesystem::path& dir) {
@@ -96,7 +97,7 @@ void print_summary(const driver::RunResult& result, const std::filesystem::path&
       fmt::print("  preconditioner {} in face: {} applications in {:.3f} s\n", f.preconditioner,
                  f.n_preconditioner, f.preconditioner_s);
     if (!f.partition_note.empty()) fmt::print("  partition     {}\n", f.partition_note);
-    print_softness(f);
+    print_softness(f.softness);
     if (f.n_ranks > 1) {
       fmt::print("  ranks         {} (tfeti), subdomains / factor MiB / peak memory MiB per rank:",
                  f.n_ranks);

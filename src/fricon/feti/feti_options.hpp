@@ -65,6 +65,26 @@ struct RankShare {
   double peak_memory_mib = 0.0;      ///< its peak resident memory [MiB]
 };
 
+/// How soft each subdomain is beyond its rigid motions (feti/softness.hpp, theory.md §8.9).
+struct Softness {
+  /// Per subdomain: lambda_7(K_s) / mean(diag K_s), its smallest eigenvalue beyond the six of its
+  /// rigid motions relative to its typical stiffness [dimensionless]; estimated from above.
+  std::vector<Real> relative;
+  Index softest = -1;  ///< the subdomain of the smallest value (-1: none)
+  Real median = 0.0;   ///< the median of `relative`
+  /// median / relative[softest]: how many times softer than a typical subdomain the softest one
+  /// is (1 with one subdomain).
+  Real ratio = 1.0;
+  /// The subdomains whose value is kNeckRatio (feti/softness.hpp) or more times below the
+  /// median, ascending.
+  std::vector<Index> necked;
+
+  /// relative[softest], 0 without subdomains.
+  Real softest_relative() const {
+    return softest >= 0 ? relative[static_cast<size_t>(softest)] : 0.0;
+  }
+};
+
 /// What the decomposition is: sizes, the interface, the coarse problem, times and memory.
 struct FetiReport {
   Index n_subdomains = 0;
@@ -75,14 +95,7 @@ struct FetiReport {
   /// Per tetrahedron of the mesh, its subdomain 0 .. n_subdomains - 1 (solution.vtu's cell
   /// field "subdomain").
   std::vector<Index> subdomain_of_tet;
-  /// The softest subdomain beyond its rigid motions (feti/softness.hpp, theory.md §8.9): its
-  /// number, its lambda_7(K_s) / mean(diag K_s), the median of that over the subdomains, how many
-  /// times below the median it is, and the subdomains kNeckRatio or more times below it.
-  Index softest_subdomain = -1;
-  double softest_relative = 0.0;
-  double median_relative = 0.0;
-  double softness_ratio = 1.0;
-  std::vector<Index> necked;
+  Softness softness;        ///< after the neck cuts, if any
   Index n_recut = 0;        ///< necked subdomains cut again with their neighbours, over the rounds
   Index recut_rounds = 0;   ///< rounds of such cuts (at most FetiOptions::neck_cuts)
   Index n_torn = 0;         ///< torn dofs (3 per copy of a node)

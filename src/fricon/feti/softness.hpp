@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "fricon/core/types.hpp"
+#include "fricon/feti/feti_options.hpp"
 #include "fricon/feti/ranks.hpp"
 #include "fricon/feti/subdomains.hpp"
 
@@ -23,19 +24,6 @@ inline constexpr int kSoftnessSteps = 16;
 /// On the paper's brick the METIS partitions with long inner solves had 36.5 to 78.4, the others
 /// 1.6 to 12.7 (docs/benchmarks.md, "Subdomains joined by a neck").
 inline constexpr Real kNeckRatio = 20.0;
-
-struct Softness {
-  /// Per subdomain: lambda_7(K_s) / mean(diag K_s), its smallest eigenvalue beyond the six of its
-  /// rigid motions relative to its typical stiffness [dimensionless]; estimated from above.
-  std::vector<Real> relative;
-  Index softest = -1;  ///< the subdomain of the smallest value (-1: none)
-  Real median = 0.0;   ///< the median of `relative`
-  /// median / relative[softest]: how many times softer than a typical subdomain the softest one
-  /// is (1 with one subdomain).
-  Real ratio = 1.0;
-  /// The subdomains whose value is kNeckRatio or more times below the median, ascending.
-  std::vector<Index> necked;
-};
 
 /// The softness of every subdomain of `subdomains` (each with its factor of the regularized K_s
 /// and R_s: make_subdomains), by kSoftnessSteps power steps with P K_s^+ P, P the orthogonal

@@ -67,15 +67,8 @@ std::string partition_note(const Partition& partition, const FetiReport& report)
       "round{} (theory.md §8.9){}.",
       partition.note, partition.note.empty() ? "" : " ", report.n_recut,
       report.n_recut == 1 ? "" : "s", report.n_recut == 1 ? "its" : "their", report.recut_rounds,
-      report.recut_rounds == 1 ? "" : "s", report.necked.empty() ? "" : "; some still are");
-}
-
-void record_softness(const Softness& soft, FetiReport& report) {
-  report.softest_subdomain = soft.softest;
-  if (soft.softest >= 0) report.softest_relative = soft.relative[static_cast<size_t>(soft.softest)];
-  report.median_relative = soft.median;
-  report.softness_ratio = soft.ratio;
-  report.necked = soft.necked;
+      report.recut_rounds == 1 ? "" : "s",
+      report.softness.necked.empty() ? "" : "; some still are");
 }
 
 }  // namespace
@@ -121,8 +114,8 @@ std::unique_ptr<FetiOperator> make_tfeti(const mesh::TetMesh& mesh, const mesh::
   for (Index round = 1; round <= options.neck_cuts && !soft.necked.empty(); ++round) {
     report.n_recut += static_cast<Index>(soft.necked.size());
     report.recut_rounds = round;
+    std::vector<Subdomain>().swap(subdomains);  // the old factors go before the cut and the new
     partition = recut_necked(mesh, bodies, partition, soft.necked, round, options.key_context);
-    std::vector<Subdomain>().swap(subdomains);  // the old factors go before the new ones come
     owners = node_owners(mesh, partition);
     subdomains =
         make_subdomains(mesh, materials, partition, owners, applied, options.threads, ranks);
@@ -131,7 +124,7 @@ std::unique_ptr<FetiOperator> make_tfeti(const mesh::TetMesh& mesh, const mesh::
     report.softness_s += softness_watch.seconds();
   }
   report.factorization_s = watch.seconds();
-  record_softness(soft, report);
+  report.softness = std::move(soft);
   report.n_split = partition.n_split;
   report.partition_note = partition_note(partition, report);
   report.subdomain_of_tet = partition.subdomain_of_tet;

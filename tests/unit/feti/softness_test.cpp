@@ -112,7 +112,8 @@ TEST(Softness, ANeckIsFoundAndCutAway) {
   EXPECT_GE(before.ratio, kNeckRatio);
   ASSERT_EQ(before.necked, std::vector<Index>{0});
 
-  const Partition cut = recut_necked(n.mesh, bodies, n.partition, before.necked, 1, kWhereSubdomains);
+  const Partition cut =
+      recut_necked(n.mesh, bodies, n.partition, before.necked, 1, kWhereSubdomains);
   // Every tetrahedron in one subdomain, the lists and the labels agreeing.
   Index assigned = 0;
   for (Index s = 0; s < cut.n_subdomains; ++s)
