@@ -351,7 +351,8 @@ void follow_path(const driver::Problem& problem, const std::filesystem::path& di
                      steps = problem.loading.steps](const driver::RunResult& r) {
     if (!is_rank_zero()) return;  // (backend tfeti on MPI ranks: rank 0 writes)
     const int step = r.report.steps.back().step;
-    if (io::step_files_wanted(output, step, steps) && !io::write_step(dir, r).empty())
+    if (io::step_files_wanted(output, step, steps) &&
+        !io::write_step(dir, r, output.vtu_encoding).empty())
       written->push_back(step);
     if (verbosity == Verbosity::Quiet) return;
     const driver::StepReport& s = r.report.steps.back();

@@ -315,7 +315,8 @@ void bind_solve(py::module_& m) {
             std::vector<std::string> written;
             std::vector<int> steps;
             for (const io::StepFiles& files : *r.step_files) {
-              for (const auto& path : io::write_step_files(dir, files))
+              for (const auto& path :
+                   io::write_step_files(dir, files, r.problem->output.vtu_encoding))
                 written.push_back(path.string());
               steps.push_back(files.step);
             }

@@ -27,6 +27,7 @@
 #include "fricon/dual/dual_operator_kind.hpp"
 #include "fricon/fe/material.hpp"
 #include "fricon/feti/feti_options.hpp"
+#include "fricon/io/vtu_encoding.hpp"
 #include "fricon/outer/outer_loop.hpp"
 #include "fricon/parallel/backend.hpp"
 #include "fricon/qp/mpgp.hpp"
@@ -275,6 +276,9 @@ struct OutputOptions {
   /// [output.step_files] along a loading path: the steps whose files are written (strictly
   /// increasing, 1 ... loading.steps; the last step's always); empty: step_files_every decides.
   std::vector<int> step_files;
+  /// [output.vtu_encoding] how the .vtu files store their arrays: binary (appended raw, exact)
+  /// or ASCII text.
+  io::VtuEncoding vtu_encoding = io::VtuEncoding::Binary;
 };
 
 struct Problem {

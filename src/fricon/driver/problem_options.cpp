@@ -811,6 +811,11 @@ const OptionTable& output_table() {
              "at most [loading] steps), and those of the last step always; absent: "
              "`step_files_every` decides")
         .show_default("absent");
+    b.choice(
+        "vtu_encoding", &OutputOptions::vtu_encoding,
+        "how solution.vtu, contact.vtu and obstacle.vtu (and the step files) store their "
+        "arrays: `\"binary\"`, VTK's appended raw data (exact, less than half the size of "
+        "the text, read by ParaView and meshio), or `\"ascii\"`, text with round-trip precision");
     b.check(check_output);
     return b.build();
   }();

@@ -867,17 +867,17 @@ std::optional<StepFiles> step_files(const driver::RunResult& result) {
 }
 
 std::vector<std::filesystem::path> write_step_files(const std::filesystem::path& dir,
-                                                    const StepFiles& files) {
+                                                    const StepFiles& files, VtuEncoding encoding) {
   std::vector<std::filesystem::path> written;
   written.push_back(dir / step_file("solution", files.step, ".vtu"));
-  write_vtu(written.back(), files.body);
+  write_vtu(written.back(), files.body, encoding);
   if (files.contact) {
     written.push_back(dir / step_file("contact", files.step, ".vtu"));
-    write_vtu(written.back(), *files.contact);
+    write_vtu(written.back(), *files.contact, encoding);
   }
   if (files.obstacle) {
     written.push_back(dir / step_file("obstacle", files.step, ".vtu"));
-    write_vtu(written.back(), *files.obstacle);
+    write_vtu(written.back(), *files.obstacle, encoding);
   }
   if (files.patches) {
     written.push_back(dir / step_file("patches", files.step, ".csv"));
@@ -887,9 +887,10 @@ std::vector<std::filesystem::path> write_step_files(const std::filesystem::path&
 }
 
 std::vector<std::filesystem::path> write_step(const std::filesystem::path& dir,
-                                              const driver::RunResult& result) {
+                                              const driver::RunResult& result,
+                                              VtuEncoding encoding) {
   const std::optional<StepFiles> files = step_files(result);
-  return files ? write_step_files(dir, *files) : std::vector<std::filesystem::path>{};
+  return files ? write_step_files(dir, *files, encoding) : std::vector<std::filesystem::path>{};
 }
 
 std::vector<std::filesystem::path> write_results(const std::filesystem::path& dir,
@@ -906,9 +907,10 @@ std::vector<std::filesystem::path> write_results(const std::filesystem::path& di
     written.push_back(result_path(dir, base, ext, converged));
     return written.back();
   };
+  const VtuEncoding encoding = problem.output.vtu_encoding;
   try {
     std::vector<std::string> parts;
-    write_vtu(path("solution", ".vtu"), body_grid(result));
+    write_vtu(path("solution", ".vtu"), body_grid(result), encoding);
     parts.push_back(written.back().filename().string());
     if (result.contact) {
       write_csv(path("contact_nodes", ".csv"),
@@ -916,10 +918,11 @@ std::vector<std::filesystem::path> write_results(const std::filesystem::path& di
       write_csv(path("patches", ".csv"), patch_table(*result.contact));
       const driver::ContactReport* report =
           result.report.contact ? &*result.report.contact : nullptr;
-      write_vtu(path("contact", ".vtu"), contact_grid(result.model.mesh, *result.contact, report));
+      write_vtu(path("contact", ".vtu"), contact_grid(result.model.mesh, *result.contact, report),
+                encoding);
       parts.push_back(written.back().filename().string());
       if (const auto obstacle = obstacle_grid(result.model.mesh, *result.contact, report)) {
-        write_vtu(path("obstacle", ".vtu"), *obstacle);
+        write_vtu(path("obstacle", ".vtu"), *obstacle, encoding);
         parts.push_back(written.back().filename().string());
       }
     }

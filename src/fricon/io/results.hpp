@@ -103,16 +103,19 @@ struct StepFiles {
 /// run has no steps or that step did not converge.
 std::optional<StepFiles> step_files(const driver::RunResult& result);
 
-/// Writes `files` into `dir` (each atomically); returns the paths written.
+/// Writes `files` into `dir` (each atomically), the .vtu files in `encoding` ([output]
+/// vtu_encoding); returns the paths written.
 std::vector<std::filesystem::path> write_step_files(const std::filesystem::path& dir,
-                                                    const StepFiles& files);
+                                                    const StepFiles& files, VtuEncoding encoding);
 
 /// write_step_files of step_files(result): the files of a loading path's last step, if it
 /// converged; returns the paths written (none otherwise).
 std::vector<std::filesystem::path> write_step(const std::filesystem::path& dir,
-                                              const driver::RunResult& result);
+                                              const driver::RunResult& result,
+                                              VtuEncoding encoding);
 
-/// Writes every result file of the run into `dir` (created if needed); returns the paths written.
+/// Writes every result file of the run into `dir` (created if needed), the .vtu files in
+/// problem.output.vtu_encoding; returns the paths written.
 /// Result files of an earlier run are removed first. Along a loading path also steps.csv (every
 /// step), and solution.pvd is the time series of `written_steps`, the steps whose files this
 /// run wrote into `dir` (write_step_files, increasing); without them the step files in steps/

@@ -1,14 +1,15 @@
 #pragma once
 // io: VTK XML unstructured grids (.vtu) that ParaView and meshio open, for the body (tetrahedra)
 // and for surfaces (triangles), linear or quadratic (theory.md §2.12: 10-node tetrahedra and
-// 6-node triangles, which ParaView draws curved). Values are written in ASCII with round-trip
-// precision.
+// 6-node triangles, which ParaView draws curved). The arrays are written in binary (VTK's
+// appended raw data) or in ASCII with round-trip precision (io/vtu_encoding.hpp).
 
 #include <filesystem>
 #include <string>
 #include <vector>
 
 #include "fricon/core/types.hpp"
+#include "fricon/io/vtu_encoding.hpp"
 
 namespace fricon::io {
 
@@ -51,8 +52,9 @@ struct VtuGrid {
   std::vector<VtuField> field_data;
 };
 
-/// Writes `grid` to `path` atomically. Throws fricon::Error on I/O failure or inconsistent sizes.
-void write_vtu(const std::filesystem::path& path, const VtuGrid& grid);
+/// Writes `grid` to `path` atomically, its arrays in `encoding` (the dataset's FieldData always
+/// as text). Throws fricon::Error on I/O failure or inconsistent sizes.
+void write_vtu(const std::filesystem::path& path, const VtuGrid& grid, VtuEncoding encoding);
 
 /// One dataset of a ParaView collection: its time, its part (the body 0, the contact surface 1)
 /// and its file (relative to the .pvd's folder).

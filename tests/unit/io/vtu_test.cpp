@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <numeric>
 #include <sstream>
@@ -57,11 +59,11 @@ std::vector<std::string> data_array(const std::string& text, const std::string& 
 
 class WriteVtu : public test::TempDirTest {
  protected:
-  // `grid` written to a file of dir_, read back as text.
-  std::string written(const VtuGrid& grid) const {
+  // `grid` written to a file of dir_, read back as text (or bytes).
+  std::string written(const VtuGrid& grid, VtuEncoding encoding = VtuEncoding::Ascii) const {
     const std::filesystem::path path = dir_.path() / "grid.vtu";
-    write_vtu(path, grid);
-    std::ifstream in(path);
+    write_vtu(path, grid, encoding);
+    std::ifstream in(path, std::ios::binary);
     std::stringstream text;
     text << in.rdbuf();
     return text.str();
@@ -101,6 +103,72 @@ TEST_F(WriteVtu, LinearCellsAreAsTheyWere) {
   EXPECT_EQ(data_array(text, "connectivity"), (std::vector<std::string>{"0 1 2 3", "3 2 1 0"}));
   EXPECT_EQ(data_array(text, "offsets"), (std::vector<std::string>{"4", "8"}));
   EXPECT_EQ(data_array(text, "types"), (std::vector<std::string>{"10", "10"}));
+}
+
+// The binary encoding, read back by a reader of VTK's appended raw layout written here from the
+// format's description (each array: its offset after the '_' that opens <AppendedData>, a
+// UInt64 byte count, then the values, little endian), against the grid itself, bit for bit.
+template <typename T>
+std::vector<T> appended_array(const std::string& text, const std::string& name) {
+  const std::size_t tag = text.find("Name=\"" + name + "\"");
+  EXPECT_NE(tag, std::string::npos) << name;
+  if (tag == std::string::npos) return {};
+  const std::size_t end_of_tag = text.find('>', tag);
+  const std::string element = text.substr(tag, end_of_tag - tag);
+  EXPECT_NE(element.find("format=\"appended\""), std::string::npos) << element;
+  const std::size_t at = element.find("offset=\"");
+  const std::size_t offset = std::stoul(element.substr(at + 8));
+  const std::size_t data = text.find("<AppendedData encoding=\"raw\">");
+  EXPECT_NE(data, std::string::npos);
+  const std::size_t start = text.find('_', data) + 1 + offset;
+  std::uint64_t bytes = 0;
+  std::memcpy(&bytes, text.data() + start, sizeof bytes);
+  EXPECT_EQ(bytes % sizeof(T), 0u) << name;
+  std::vector<T> values(bytes / sizeof(T));
+  std::memcpy(values.data(), text.data() + start + sizeof bytes, bytes);
+  return values;
+}
+
+TEST_F(WriteVtu, TheBinaryEncodingHoldsEveryValueExactly) {
+  VtuGrid grid = one_cell(10);
+  grid.cells.conservativeResize(10, 2);
+  grid.cells.col(1) = grid.cells.col(0).reverse();
+  grid.points.row(0) *= 1.0 / 3.0;  // values that text would round without round-trip care
+  grid.point_data.push_back({"displacement", MatrixXd::Random(3, 10)});
+  grid.cell_data.push_back({"region", MatrixXd(MatrixXd::Constant(1, 2, 7.0)), VtuType::Int32});
+  grid.field_data.push_back({"centre", Eigen::Vector3d(1.0, 2.0, 3.0)});
+  const std::string text = written(grid, VtuEncoding::Binary);
+
+  const auto points = appended_array<double>(text, "Points");
+  ASSERT_EQ(points.size(), 30u);
+  EXPECT_TRUE(std::equal(points.begin(), points.end(), grid.points.data()));
+  const auto u = appended_array<double>(text, "displacement");
+  ASSERT_EQ(u.size(), 30u);
+  EXPECT_TRUE(std::equal(u.begin(), u.end(), grid.point_data[0].values.data()));
+  EXPECT_EQ(appended_array<std::int32_t>(text, "region"), (std::vector<std::int32_t>{7, 7}));
+  // VTK's node order (nodes 8 and 9 swapped), the offsets and the types, as in ASCII.
+  EXPECT_EQ(
+      appended_array<std::int64_t>(text, "connectivity"),
+      (std::vector<std::int64_t>{0, 1, 2, 3, 4, 5, 6, 7, 9, 8, 9, 8, 7, 6, 5, 4, 3, 2, 0, 1}));
+  EXPECT_EQ(appended_array<std::int64_t>(text, "offsets"), (std::vector<std::int64_t>{10, 20}));
+  EXPECT_EQ(appended_array<std::uint8_t>(text, "types"), (std::vector<std::uint8_t>{24, 24}));
+  // The dataset's values stay text.
+  EXPECT_EQ(data_array(text, "centre"), std::vector<std::string>{"1 2 3"});
+}
+
+TEST_F(WriteVtu, TheTwoEncodingsDescribeTheSameArrays) {
+  VtuGrid grid = one_cell(4);
+  grid.cell_data.push_back({"von_mises", MatrixXd::Constant(1, 1, 2.5)});
+  const std::string ascii = written(grid, VtuEncoding::Ascii);
+  const std::string binary = written(grid, VtuEncoding::Binary);
+  EXPECT_EQ(ascii.find("AppendedData"), std::string::npos);
+  EXPECT_EQ(binary.find("format=\"ascii\""), std::string::npos);
+  for (const std::string name : {"Points", "connectivity", "offsets", "types", "von_mises"}) {
+    EXPECT_NE(ascii.find("Name=\"" + name + "\""), std::string::npos) << name;
+    EXPECT_NE(binary.find("Name=\"" + name + "\""), std::string::npos) << name;
+  }
+  EXPECT_EQ(appended_array<double>(binary, "von_mises"), std::vector<double>{2.5});
+  EXPECT_EQ(data_array(ascii, "von_mises"), std::vector<std::string>{"2.5"});
 }
 
 }  // namespace
