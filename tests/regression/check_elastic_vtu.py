@@ -48,6 +48,23 @@ check(out / "coarse", report, 6, 2, 2)
 assert report["overrides"] == ["mesh.cells=[6,2,2]"], report["overrides"]
 assert "subdomain" not in meshio.read(out / "default" / "solution.vtu").cell_data
 
+# The text encoding: the same run, every value equal to the binary file's (both are exact: raw
+# doubles, and text with round-trip precision), and the binary file the smaller.
+common.solve(exe, problem, out / "ascii", 'output.vtu_encoding="ascii"', quiet=False)
+binary, text = (meshio.read(out / f / "solution.vtu") for f in ("default", "ascii"))
+assert b'format="ascii"' not in (out / "default" / "solution.vtu").read_bytes()
+assert b"AppendedData" not in (out / "ascii" / "solution.vtu").read_bytes()
+assert np.array_equal(binary.points, text.points)
+assert np.array_equal(binary.cells_dict["tetra"], text.cells_dict["tetra"])
+for name in binary.point_data:
+    assert np.array_equal(binary.point_data[name], text.point_data[name]), name
+for name in binary.cell_data:
+    assert np.array_equal(binary.cell_data[name][0], text.cell_data[name][0]), name
+assert set(binary.point_data) == set(text.point_data)
+assert set(binary.cell_data) == set(text.cell_data)
+sizes = [(out / f / "solution.vtu").stat().st_size for f in ("default", "ascii")]
+assert sizes[0] < 0.5 * sizes[1], sizes
+
 
 def face_connected(tets):
     """True when the tetrahedra (rows of node indices) form one piece through shared faces."""
