@@ -95,15 +95,18 @@ struct FetiReport {
   /// Per tetrahedron of the mesh, its subdomain 0 .. n_subdomains - 1 (solution.vtu's cell
   /// field "subdomain").
   std::vector<Index> subdomain_of_tet;
-  Softness softness;        ///< after the neck cuts, if any
-  Index n_recut = 0;        ///< necked subdomains cut again with their neighbours, over the rounds
-  Index recut_rounds = 0;   ///< rounds of such cuts (at most FetiOptions::neck_cuts)
-  Index n_torn = 0;         ///< torn dofs (3 per copy of a node)
-  Index n_contact = 0;      ///< contact multipliers
-  Index n_gluing = 0;       ///< gluing multipliers (the interface)
-  Index n_dirichlet = 0;    ///< Dirichlet multipliers
-  Index n_coarse = 0;       ///< rows of G: 6 per subdomain
-  std::string row_scaling;  ///< "stiffness" or "uniform"
+  Softness softness;       ///< after the neck cuts, if any
+  Index n_recut = 0;       ///< necked subdomains cut again with their neighbours, over the rounds
+  Index recut_rounds = 0;  ///< rounds of such cuts (at most FetiOptions::neck_cuts)
+  /// Subdomains that the cuts left as they were and that kept their factors (in the last round,
+  /// summed over the processes).
+  Index n_kept_factors = 0;
+  Index n_torn = 0;               ///< torn dofs (3 per copy of a node)
+  Index n_contact = 0;            ///< contact multipliers
+  Index n_gluing = 0;             ///< gluing multipliers (the interface)
+  Index n_dirichlet = 0;          ///< Dirichlet multipliers
+  Index n_coarse = 0;             ///< rows of G: 6 per subdomain
+  std::string row_scaling;        ///< "stiffness" or "uniform"
   std::string preconditioner;     ///< "none", "lumped" or "dirichlet"
   long n_preconditioner = 0;      ///< its applications (filled after the solve)
   double preconditioner_s = 0.0;  ///< their wall time [s], collective (filled after the solve)

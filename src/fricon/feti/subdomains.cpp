@@ -96,15 +96,23 @@ std::vector<Index> node_owners(const mesh::TetMesh& mesh, const Partition& parti
   return owner;
 }
 
-std::vector<Subdomain> make_subdomains(const mesh::TetMesh& mesh, fe::Materials materials,
-                                       const Partition& partition, const std::vector<Index>& owners,
-                                       const fe::NodalField& applied, int threads,
-                                       const Ranks& ranks) {
+namespace {
+
+// The subdomains of `partition` from `subdomains` (one per subdomain, in its order): those marked
+// in `made` are complete already (nodes, R_s, the factor of this process's, stiffness diagonal);
+// the others are described and, in this process's block, factored. Then the torn dofs' numbering,
+// the loads and the shared diagonals, for all.
+std::vector<Subdomain> complete_subdomains(const mesh::TetMesh& mesh, fe::Materials materials,
+                                           const Partition& partition,
+                                           const std::vector<Index>& owners,
+                                           const fe::NodalField& applied, int threads,
+                                           const Ranks& ranks, std::vector<Subdomain> subdomains,
+                                           const std::vector<char>& made) {
   const Index n = partition.n_subdomains;
-  std::vector<Subdomain> subdomains(static_cast<size_t>(n));
   const auto [first, last] = ranks.block(n);
   ranks.collectively([&] {
     parallel_for(n, threads, [&](Index i, int) {
+      if (made[static_cast<size_t>(i)]) return;
       const std::vector<Index>& tets = partition.tets[static_cast<size_t>(i)];
       Subdomain& s = subdomains[static_cast<size_t>(i)];
       if (first <= i && i < last)
@@ -125,6 +133,53 @@ std::vector<Subdomain> make_subdomains(const mesh::TetMesh& mesh, fe::Materials 
   }
   share_diagonals(subdomains, ranks);
   return subdomains;
+}
+
+}  // namespace
+
+std::vector<Subdomain> make_subdomains(const mesh::TetMesh& mesh, fe::Materials materials,
+                                       const Partition& partition, const std::vector<Index>& owners,
+                                       const fe::NodalField& applied, int threads,
+                                       const Ranks& ranks) {
+  const auto n = static_cast<size_t>(partition.n_subdomains);
+  return complete_subdomains(mesh, materials, partition, owners, applied, threads, ranks,
+                             std::vector<Subdomain>(n), std::vector<char>(n, 0));
+}
+
+std::vector<Subdomain> remake_subdomains(const mesh::TetMesh& mesh, fe::Materials materials,
+                                         const Partition& partition,
+                                         const std::vector<Index>& owners,
+                                         const fe::NodalField& applied, int threads,
+                                         const Ranks& ranks, const Partition& before,
+                                         std::vector<Subdomain>&& previous, Index* n_kept) {
+  // @sect: the earlier subdomains by their first tetrahedron (a tetrahedron is in one subdomain).
+  std::vector<Index> earlier_by_tet(static_cast<size_t>(mesh.n_tets()), -1);
+  for (Index j = 0; j < before.n_subdomains; ++j)
+    earlier_by_tet[static_cast<size_t>(before.tets[static_cast<size_t>(j)].front())] = j;
+  // @sect: a subdomain of the same tetrahedra, factored by this process before and in its block
+  // now, is kept whole; its stiffness diagonal is this process's alone again, for the sum.
+  const Index n = partition.n_subdomains;
+  const auto [first, last] = ranks.block(n);
+  std::vector<Subdomain> subdomains(static_cast<size_t>(n));
+  std::vector<char> made(static_cast<size_t>(n), 0);
+  Index kept = 0;
+  for (Index i = first; i < last; ++i) {
+    const std::vector<Index>& tets = partition.tets[static_cast<size_t>(i)];
+    const Index j = earlier_by_tet[static_cast<size_t>(tets.front())];
+    if (j < 0 || before.tets[static_cast<size_t>(j)] != tets) continue;
+    Subdomain& old = previous[static_cast<size_t>(j)];
+    if (old.factor.size() == 0) continue;  // another process's
+    subdomains[static_cast<size_t>(i)] = std::move(old);
+    Subdomain& s = subdomains[static_cast<size_t>(i)];
+    s.B = SparseMatrix();
+    s.rows.clear();
+    made[static_cast<size_t>(i)] = 1;
+    ++kept;
+  }
+  std::vector<Subdomain>().swap(previous);  // the re-cut ones' factors go before the new ones
+  if (n_kept) *n_kept = kept;
+  return complete_subdomains(mesh, materials, partition, owners, applied, threads, ranks,
+                             std::move(subdomains), made);
 }
 
 SparseMatrix subdomain_stiffness(const mesh::TetMesh& mesh, fe::Materials materials,

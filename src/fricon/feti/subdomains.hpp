@@ -60,6 +60,21 @@ std::vector<Subdomain> make_subdomains(const mesh::TetMesh& mesh, fe::Materials 
                                        const fe::NodalField& applied, int threads,
                                        const Ranks& ranks);
 
+/// As make_subdomains for `partition`, a re-cut of `before` (recut_necked, theory.md §8.9) whose
+/// subdomains `previous` were made by make_subdomains (or this) on the same mesh, materials and
+/// ranks: a subdomain of the same tetrahedra as one of `before`, which this process factored and
+/// whose index falls in its block again, takes that one's nodes, R_s, factor and diagonal instead
+/// of being assembled and factored again. `previous` is emptied (the other factors freed) before
+/// the new subdomains are factored. `n_kept`, if given, receives the number of subdomains this
+/// process kept. Collective over `ranks`; throws as make_subdomains.
+std::vector<Subdomain> remake_subdomains(const mesh::TetMesh& mesh, fe::Materials materials,
+                                         const Partition& partition,
+                                         const std::vector<Index>& owners,
+                                         const fe::NodalField& applied, int threads,
+                                         const Ranks& ranks, const Partition& before,
+                                         std::vector<Subdomain>&& previous,
+                                         Index* n_kept = nullptr);
+
 /// K_s [N/m] of the subdomain made of the tetrahedra `tets` of `mesh` (a Partition's), both
 /// triangles, over its local dofs as make_subdomains numbers them: assembled again, for what a
 /// preconditioner keeps of it (feti/preconditioner.hpp), so that no whole K_s has to stay

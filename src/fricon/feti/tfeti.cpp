@@ -1,6 +1,7 @@
 #include "fricon/feti/tfeti.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <utility>
 
@@ -64,11 +65,11 @@ std::string partition_note(const Partition& partition, const FetiReport& report)
   if (report.n_recut == 0) return partition.note;
   return fmt::format(
       "{}{}{} subdomain{} joined by a neck cut again with {} neighbours in {} "
-      "round{} (theory.md §8.9){}.",
+      "round{} (theory.md §8.9){}; {} others kept their factors.",
       partition.note, partition.note.empty() ? "" : " ", report.n_recut,
       report.n_recut == 1 ? "" : "s", report.n_recut == 1 ? "its" : "their", report.recut_rounds,
-      report.recut_rounds == 1 ? "" : "s",
-      report.softness.necked.empty() ? "" : "; some still are");
+      report.recut_rounds == 1 ? "" : "s", report.softness.necked.empty() ? "" : "; some still are",
+      report.n_kept_factors);
 }
 
 }  // namespace
@@ -114,11 +115,15 @@ std::unique_ptr<FetiOperator> make_tfeti(const mesh::TetMesh& mesh, const mesh::
   for (Index round = 1; round <= options.neck_cuts && !soft.necked.empty(); ++round) {
     report.n_recut += static_cast<Index>(soft.necked.size());
     report.recut_rounds = round;
-    std::vector<Subdomain>().swap(subdomains);  // the old factors go before the cut and the new
-    partition = recut_necked(mesh, bodies, partition, soft.necked, round, options.key_context);
-    owners = node_owners(mesh, partition);
-    subdomains =
-        make_subdomains(mesh, materials, partition, owners, applied, options.threads, ranks);
+    Partition cut = recut_necked(mesh, bodies, partition, soft.necked, round, options.key_context);
+    owners = node_owners(mesh, cut);
+    Index kept = 0;
+    subdomains = remake_subdomains(mesh, materials, cut, owners, applied, options.threads, ranks,
+                                   partition, std::move(subdomains), &kept);
+    VectorXd kept_count = VectorXd::Constant(1, static_cast<Real>(kept));
+    ranks.sum(kept_count);
+    report.n_kept_factors = std::lround(kept_count(0));
+    partition = std::move(cut);
     softness_watch.restart();
     soft = subdomain_softness(subdomains, options.threads, ranks);
     report.softness_s += softness_watch.seconds();

@@ -264,6 +264,7 @@ void add_feti_report(const feti::FetiReport& f, nlohmann::json& j) {
         {"necked", f.softness.necked},
         {"n_recut", f.n_recut},
         {"recut_rounds", f.recut_rounds},
+        {"n_kept_factors", f.n_kept_factors},
         {"seconds", f.softness_s}}},
       {"n_torn", f.n_torn},
       {"n_contact", f.n_contact},

@@ -1,7 +1,7 @@
 // feti::subdomain_softness, how soft each subdomain is beyond its rigid motions, against the
 // eigenvalues of K_s computed here by a dense eigensolver; and feti::recut_necked on a subdomain
 // given a neck by hand: a lobe of three cubes joined to a block by a chain of three tetrahedra
-// (theory.md §8.9).
+// (theory.md §8.9); and feti::remake_subdomains after a cut against subdomains made afresh.
 #include "fricon/feti/softness.hpp"
 
 #include <gtest/gtest.h>
@@ -129,3 +129,52 @@ TEST(Softness, ANeckIsFoundAndCutAway) {
 }
 
 }  // namespace
+
+// After a cut, the subdomains outside the cut region keep their factors, and every subdomain is
+// what make_subdomains makes of the new partition afresh: the same nodes, torn dofs, loads,
+// diagonals, rigid motions and solves.
+TEST(Softness, AReCutKeepsTheFactorsOfTheSubdomainsItLeaves) {
+  if (!metis_available()) GTEST_SKIP() << "fricon built without METIS (libmetis-dev)";
+  const mesh::TetMesh m = mesh::make_brick({{3.0, 1.0, 1.0}, {12, 4, 4}});
+  const mesh::Bodies bodies = mesh::find_bodies(m);
+  const Partition before = partition_mesh(m, bodies, 12, kWhereSubdomains);
+  const Partition cut = recut_necked(m, bodies, before, {0}, 1, kWhereSubdomains);
+  fe::NodalField applied = fe::NodalField::Random(3, m.n_nodes());
+  const std::vector<Index> owners = node_owners(m, cut);
+
+  std::vector<Subdomain> previous =
+      make_subdomains(m, kSteel, before, node_owners(m, before), applied, 2, this_process());
+  std::vector<double> seconds_before;  // by first tetrahedron: what the kept ones must show
+  std::vector<Index> unchanged;        // the subdomains of `cut` equal to one of `before`
+  for (Index i = 0; i < cut.n_subdomains; ++i)
+    for (Index j = 0; j < before.n_subdomains; ++j)
+      if (cut.tets[static_cast<size_t>(i)] == before.tets[static_cast<size_t>(j)]) {
+        unchanged.push_back(i);
+        seconds_before.push_back(previous[static_cast<size_t>(j)].factor_seconds);
+      }
+  ASSERT_GT(unchanged.size(), 0u) << "subdomains outside the region";
+  ASSERT_LT(static_cast<Index>(unchanged.size()), cut.n_subdomains) << "the region is cut";
+
+  Index kept = -1;
+  const std::vector<Subdomain> remade = remake_subdomains(
+      m, kSteel, cut, owners, applied, 2, this_process(), before, std::move(previous), &kept);
+  const std::vector<Subdomain> fresh =
+      make_subdomains(m, kSteel, cut, owners, applied, 2, this_process());
+  EXPECT_EQ(kept, static_cast<Index>(unchanged.size()));
+  for (size_t k = 0; k < unchanged.size(); ++k)
+    EXPECT_EQ(remade[static_cast<size_t>(unchanged[k])].factor_seconds, seconds_before[k])
+        << "subdomain " << unchanged[k] << " was factored again";
+  ASSERT_EQ(remade.size(), fresh.size());
+  for (size_t i = 0; i < fresh.size(); ++i) {
+    const Subdomain& a = remade[i];
+    const Subdomain& b = fresh[i];
+    EXPECT_EQ(a.nodes, b.nodes) << i;
+    EXPECT_EQ(a.first_dof, b.first_dof) << i;
+    EXPECT_EQ(a.f, b.f) << i;
+    EXPECT_EQ(a.stiffness_diagonal, b.stiffness_diagonal) << i;
+    EXPECT_LE((a.R - b.R).norm(), 1e-12 * b.R.norm()) << i;
+    const VectorXd x = VectorXd::Random(b.n_dofs());
+    const VectorXd ya = a.factor.solve(x), yb = b.factor.solve(x);
+    EXPECT_LE((ya - yb).norm(), 1e-10 * yb.norm()) << i;
+  }
+}
