@@ -40,34 +40,19 @@ const std::array<CellLayout, 4>& cell_layouts() {
   return layouts;
 }
 
-// The scalar types of the arrays fricon writes, by their VTK names and sizes.
+// The scalar types of the arrays fricon writes, with their VTK names and sizes (kScalars).
 enum class Scalar { Float64, Int64, Int32, UInt8 };
 
-const char* vtk_name(Scalar s) {
-  switch (s) {
-    case Scalar::Float64:
-      return "Float64";
-    case Scalar::Int64:
-      return "Int64";
-    case Scalar::Int32:
-      return "Int32";
-    case Scalar::UInt8:
-      return "UInt8";
-  }
-  return "";
-}
+struct ScalarType {
+  const char* vtk_name;
+  std::size_t bytes;
+};
 
-std::size_t bytes_of(Scalar s) {
-  switch (s) {
-    case Scalar::Float64:
-    case Scalar::Int64:
-      return 8;
-    case Scalar::Int32:
-      return 4;
-    case Scalar::UInt8:
-      return 1;
-  }
-  return 0;
+constexpr std::array<ScalarType, 4> kScalars{
+    {{"Float64", 8}, {"Int64", 8}, {"Int32", 4}, {"UInt8", 1}}};
+
+const ScalarType& scalar_type(Scalar s) {
+  return kScalars[static_cast<std::size_t>(s)];
 }
 
 // One DataArray: `count` values in file order, value(k) each (integral for the integer types),
@@ -108,13 +93,13 @@ class ArrayWriter {
   ArrayWriter(std::ostream& out, VtuEncoding encoding) : out_(out), encoding_(encoding) {}
 
   void write(DataArray array) {
-    fmt::print(out_, "        <DataArray type=\"{}\" Name=\"{}\"", vtk_name(array.scalar),
-               array.name);
+    fmt::print(out_, "        <DataArray type=\"{}\" Name=\"{}\"",
+               scalar_type(array.scalar).vtk_name, array.name);
     if (array.components > 0) fmt::print(out_, " NumberOfComponents=\"{}\"", array.components);
     if (encoding_ == VtuEncoding::Binary) {
       fmt::print(out_, " format=\"appended\" offset=\"{}\"/>\n", offset_);
-      offset_ +=
-          sizeof(std::uint64_t) + bytes_of(array.scalar) * static_cast<std::size_t>(array.count);
+      offset_ += sizeof(std::uint64_t) +
+                 scalar_type(array.scalar).bytes * static_cast<std::size_t>(array.count);
       appended_.push_back(std::move(array));
       return;
     }
@@ -164,7 +149,7 @@ class ArrayWriter {
   }
 
   void write_bytes(const DataArray& a) {
-    const std::uint64_t n = bytes_of(a.scalar) * static_cast<std::uint64_t>(a.count);
+    const std::uint64_t n = scalar_type(a.scalar).bytes * static_cast<std::uint64_t>(a.count);
     out_.write(reinterpret_cast<const char*>(&n), sizeof n);
     switch (a.scalar) {
       case Scalar::Float64:
