@@ -56,9 +56,11 @@ subdomains, factor memory and peak memory. Then a model of a run of 10^8 unknown
 per unknown (what every rank holds whole: mesh, model, multipliers; the growth of a rank's
 memory besides its factors between the two runs), and the time of a product split by the run's
 own clocks (report.json feti.products_s, sums_s, coarse_s, timings.qp) into a part per
-subdomain of the rank, parts per multiplier (the QP's own vector operations on every rank, and
-the sums) and the coarse problem's (its decompositions and solves on every rank, grown with its
-rows as a sparse 3D factor's solves, rows^(4/3)). Its assumptions are printed with it.
+subdomain of the rank, a part per multiplier of the rank (the QP's own vector operations on its
+share of the multipliers, theory.md §8.8), the exchanges with the neighbouring ranks (grown with
+the surface of a rank's block of subdomains, (subdomains per rank)^(2/3)) and the coarse
+problem's (its decompositions and solves on every rank, grown with its rows as a sparse 3D
+factor's solves, rows^(4/3)). Its assumptions are printed with it.
 
 --search [EXAMPLE ...]: the contact search under Total FETI (theory.md §8.7): each example
 (a path under examples/ without .toml; by default five static ones on curved bodies) solved
@@ -363,13 +365,15 @@ def model(a, b, n_b):
     held_mib = max(held_b - held_a, 0.0) / (b["n_primal"] - a["n_primal"])
     # Time per product, from run b's own clocks: rank 0's subdomain solves per subdomain, and
     # the preconditioner's applications (local solves with each subdomain's interior, counted
-    # per product) likewise; per multiplier the rest of the QP's time (every rank's vector
-    # operations and coarse solves) and the sums over the ranks (waiting for the slowest rank
-    # included).
+    # per product) likewise; per multiplier of the rank the rest of the QP's time (its vector
+    # operations on its share, theory.md §8.8, and their reductions); the exchanges with the
+    # neighbours (waiting for the slowest rank included) per product, grown with the surface of
+    # a rank's block of subdomains.
     n_prod = fb["n_products"]
+    ranks_b = len(fb["ranks"])
     c_s = fb["products_s"] / n_prod / b["per_rank_subdomains"]
     c_pre = fb.get("preconditioner_s", 0.0) / n_prod / b["per_rank_subdomains"]
-    c_sum = fb["sums_s"] / n_prod / b["n_multipliers"]
+    exchange_b = fb["sums_s"] / n_prod
     # The coarse problem (report.json feti.coarse_s: G G^T's decompositions and solves, on every
     # rank) per product at run b's rows, grown to the model's rows as a sparse factor of a 3D
     # graph's matrix is solved: nnz(L), hence a solve, as rows^(4/3) (nested dissection). The
@@ -379,8 +383,8 @@ def model(a, b, n_b):
     rows_a, rows_b = a["feti"]["n_coarse"], fb["n_coarse"]
     measured_exponent = (math.log(coarse_b / coarse_a) / math.log(rows_b / rows_a)
                          if coarse_a > 0.0 and coarse_b > 0.0 and rows_b != rows_a else float("nan"))
-    c_m = (b["timings"]["qp"] - fb["products_s"] - fb["sums_s"] -
-           fb.get("preconditioner_s", 0.0) - fb.get("coarse_s", 0.0)) / n_prod / b["n_multipliers"]
+    c_m = (b["timings"]["qp"] - fb["products_s"] - fb["sums_s"] - fb.get("preconditioner_s", 0.0) -
+           fb.get("coarse_s", 0.0)) / n_prod / (b["n_multipliers"] / ranks_b)
     products = fb["n_products"]
     lines = [f"Model for {MODEL_UNKNOWNS:.0e} unknowns (from the two runs above):",
              f"  per subdomain: factors {factor_mib:.3f} MiB, factorization {1e3 * factor_s:.1f} "
@@ -389,18 +393,20 @@ def model(a, b, n_b):
              f"  held whole by every rank: {1e6 * held_mib:.0f} MiB per million unknowns",
              f"  time per product: {1e3 * c_s:.3f} ms per subdomain of the rank (its solve) + "
              f"{1e3 * c_pre:.3f} ms per subdomain of the rank (the preconditioner's "
-             f"applications, per product) + {1e9 * c_m:.1f} ns per multiplier (the QP's own "
-             f"work) + {1e9 * c_sum:.1f} ns per multiplier (the sums) + the coarse problem, "
+             f"applications, per product) + {1e9 * c_m:.1f} ns per multiplier of the rank (the "
+             f"QP's own work on its share) + the exchanges with the neighbours, "
+             f"{1e3 * exchange_b:.3f} ms at {b['per_rank_subdomains']} subdomains per rank, as "
+             f"(subdomains per rank)^(2/3) + the coarse problem, "
              f"{1e3 * coarse_b:.3f} ms at {rows_b} rows, as rows^(4/3) (the two runs: "
              f"{1e3 * coarse_a:.3f} ms at {rows_a} rows, exponent {measured_exponent:.2f})",
              f"  assumed: products per run as at n = {n_b} "
              f"({products}, bounded for fixed H/h by theory.md §8.3; measured growth in the "
-             "scalability table), one thread per rank, the sums' cost per multiplier as on "
-             "one machine (no network), the coarse problem solved redundantly on every rank "
-             "(theory.md §8.8)", ""]
+             "scalability table), one thread per rank, the exchanges and the QP's reductions "
+             "as on one machine (no network latency), the coarse problem solved redundantly on "
+             "every rank (theory.md §8.8)", ""]
     headers = ["ranks", "subdomains / rank", "multipliers", "factors / rank [MiB]",
                "held whole / rank [MiB]", "factorization [s]", "time per product [s]",
-               "subdomains' part [s]", "QP's own part [s]", "sums' part [s]",
+               "subdomains' part [s]", "QP's own part [s]", "exchanges [s]",
                "coarse rows", "coarse part [s]", "QPs' time [s]"]
     rows = []
     for ranks in MODEL_RANKS:
@@ -409,12 +415,13 @@ def model(a, b, n_b):
         multipliers = multipliers_per_unknown * MODEL_UNKNOWNS
         coarse_rows = rows_b / fb["n_subdomains"] * subdomains
         coarse = coarse_b * (coarse_rows / rows_b) ** (4.0 / 3.0)
-        per_product = (c_s + c_pre) * per_rank + (c_m + c_sum) * multipliers + coarse
+        exchange = exchange_b * (per_rank / b["per_rank_subdomains"]) ** (2.0 / 3.0)
+        per_product = (c_s + c_pre) * per_rank + c_m * multipliers / ranks + exchange + coarse
         rows.append([str(ranks), f"{per_rank:.0f}", f"{multipliers:.3g}",
                      f"{per_rank * factor_mib:.0f}", f"{held_mib * MODEL_UNKNOWNS:.0f}",
                      f"{per_rank * factor_s:.1f}", f"{per_product:.3f}",
-                     f"{(c_s + c_pre) * per_rank:.3f}", f"{c_m * multipliers:.3f}",
-                     f"{c_sum * multipliers:.3f}", f"{coarse_rows:.3g}", f"{coarse:.3f}",
+                     f"{(c_s + c_pre) * per_rank:.3f}", f"{c_m * multipliers / ranks:.3f}",
+                     f"{exchange:.3f}", f"{coarse_rows:.3g}", f"{coarse:.3f}",
                      f"{products * per_product:.0f}"])
     return lines + [hb.table(headers, rows, False), ""]
 

@@ -129,12 +129,10 @@ qp::BlockScaling with_equality_multipliers(const qp::BlockScaling& contact,
   return qp::BlockScaling::per_block(layout, d);
 }
 
-qp::MpgpOptions qp_options(const SolverOptions& so, const dual::DualOperator& Q,
-                           const qp::BlockScaling& scaling, Real norm_Q,
-                           const RunOptions& options) {
+// The QP's options; with equality multipliers, dual::solve_shared_smalse adds the preconditioner.
+qp::MpgpOptions qp_options(const SolverOptions& so, Real norm_Q, const RunOptions& options) {
   qp::MpgpOptions o = so.mpgp();
   o.norm_A = norm_Q;
-  o.preconditioner = dual::whole_preconditioner(Q, scaling.d());
   o.monitor = [&options](const qp::MpgpIteration& it) {
     if (options.stop_was_requested()) return false;
     return options.on_qp_iteration ? options.on_qp_iteration(it) : true;
@@ -592,8 +590,8 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m,
   }
   const auto bounds = make_slip_bounds(problem, m.mesh, disc);
   TrescaMap map(m.dofs, disc, Q, *bounds, qp_scaling,
-                qp_options(problem.solver, Q, qp_scaling, rep.norm_Q_scaled, options),
-                problem.solver.warm_start, times);
+                qp_options(problem.solver, rep.norm_Q_scaled, options), problem.solver.warm_start,
+                times);
   if (options.keep_first_dual) out.first_dual = first_dual_problem(problem, disc, Q, map);
   map.set_infeasibility_handler([&](const qp::Infeasibility& certificate) {
     refuse_unbalanced_load(problem, m, certificate);

@@ -66,15 +66,15 @@ GluingSolve solve_gluing(const feti::FetiOperator& F, const Problem& problem,
   inner.rel_tolerance *= dual::kEqualityToleranceShare;
   inner.power_tolerance = dual::kEqualityPowerTolerance;
   inner.monitor = [&options](const qp::MpgpIteration&) { return !options.stop_was_requested(); };
-  inner.preconditioner = F.equality_preconditioner();  // every multiplier is an equality one
   qp::SmalseOptions outer;
   outer.rho_factor = dual::kEqualityPenaltyFactor;
   outer.projected_norm = true;
   outer.equality_tolerance = inner.rel_tolerance;
   GluingSolve g;
   VectorXd lambda = VectorXd::Zero(F.size()), mu;
-  g.qp =
-      qp::solve_smalse(F.as_qp_operator(), F.h(), free, {F.G(), F.e()}, outer, inner, lambda, mu);
+  // On the multipliers this process holds, with the share's preconditioner (theory.md §8.8).
+  g.qp = dual::solve_shared_smalse(F, free, qp::BlockScaling::identity(F.size()), {F.G(), F.e()},
+                                   outer, inner, lambda, mu);
   if (g.qp.termination == qp::QpTermination::UserStopped)
     throw Interrupted("interrupted during the Total FETI solve");
   const VectorXd alpha = -mu;

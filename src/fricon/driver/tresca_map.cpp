@@ -122,8 +122,10 @@ void TrescaMap::solve_with_equality(int k) {
   const auto pinned = static_cast<Index>((radius_.array() == 0.0).count());
   if (pinned != pinned_) norm_projected_ = 0.0;
   options.norm_projected = norm_projected_;
-  last_smalse_ = qp::solve_smalse_scaled(apply_Q_, Q_.h(), constraints_, scaling_, {Q_.G(), Q_.e()},
-                                         options, qp_, all_lambda_, mu_);
+  // On the multipliers this process holds (all of them but under Total FETI's MPI, theory.md
+  // §8.8).
+  last_smalse_ = dual::solve_shared_smalse(Q_, constraints_, scaling_, {Q_.G(), Q_.e()}, options,
+                                           qp_, all_lambda_, mu_);
   alpha_ = -mu_;
   norm_projected_ = last_smalse_.norm_projected;
   pinned_ = pinned;

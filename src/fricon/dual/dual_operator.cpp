@@ -103,18 +103,9 @@ qp::Operator DualOperator::as_qp_operator() const {
   return [this](const VectorXd& x, VectorXd& y) { apply(x, y); };
 }
 
-qp::Operator whole_preconditioner(const DualOperator& Q, const VectorXd& d) {
-  qp::Operator equality = Q.equality_preconditioner();
-  if (!equality || Q.n_equality() == 0) return {};  // the identity of the scaled QP: none
-  FRICON_CHECK(d.size() == Q.size(), "a scaling of " << d.size() << " for " << Q.size());
-  const Index n_contact = Q.n_contact(), n_equality = Q.n_equality();
-  return [equality = std::move(equality), d2 = VectorXd(d.head(n_contact).array().square()),
-          n_contact, n_equality](const VectorXd& x, VectorXd& y) {
-    VectorXd y_E(n_equality);
-    equality(x.tail(n_equality), y_E);
-    y.head(n_contact) = d2.cwiseProduct(x.head(n_contact));
-    y.tail(n_equality) = y_E;
-  };
+const DualShare& DualOperator::share() const {
+  if (!whole_share_) whole_share_ = std::make_unique<WholeShare>(*this);
+  return *whole_share_;
 }
 
 std::unique_ptr<DualOperator> make_dual_operator(DualOperatorKind kind, const DualInput& input) {

@@ -16,6 +16,7 @@
 
 #include "fricon/core/types.hpp"
 #include "fricon/dual/dual_operator_kind.hpp"
+#include "fricon/dual/dual_share.hpp"
 #include "fricon/linalg/cholesky.hpp"
 #include "fricon/qp/operator.hpp"
 
@@ -116,11 +117,11 @@ class DualOperator {
   virtual void set_load(const VectorXd& f, const VectorXd& offset, const VectorXd* u0 = nullptr,
                         const NodalLoad& nodal = {});
 
-  /// M_E, an approximation of the inverse of Q's block on the equality multipliers (n_equality()
-  /// entries in and out), for MPGP's preconditioning in face (Total FETI's lumped
-  /// preconditioner, theory.md §8.5; whole_preconditioner makes the QP's of it), or empty: none
-  /// (the default). Collective, as apply().
-  virtual qp::Operator equality_preconditioner() const { return {}; }
+  /// The multipliers as this process holds them for the QP, with their products (dual/
+  /// dual_share.hpp): all of them here (WholeShare), unless the operator shares them out over
+  /// processes (Total FETI, theory.md §8.8), whose share also carries the preconditioner M_E of
+  /// its equality multipliers (theory.md §8.5).
+  virtual const DualShare& share() const;
   /// Q as a dense matrix: dense() if formed, else n_dual products with unit vectors.
   MatrixXd to_dense() const;
   /// The operator as the QP layer applies it.
@@ -170,6 +171,9 @@ class DualOperator {
   VectorXd e_;
   const SparseMatrix* R_ = nullptr;
   mutable long n_kinv_ = 0;
+
+ private:
+  mutable std::unique_ptr<DualShare> whole_share_;  ///< share()'s default, made at the first call
 };
 
 /// The operators on a CHOLMOD factor of K (implicit, forward, schur): u0 and the displacement
@@ -188,13 +192,6 @@ class FactorDualOperator : public DualOperator {
   DualInput in_;
   VectorXd f_;  ///< the load [N] (in_.f until set_load)
 };
-
-/// The preconditioner of the whole dual QP (qp::MpgpOptions::preconditioner, in the variables of
-/// Q) when Q has an equality preconditioner M_E, else empty. `d` is the factor of each multiplier
-/// in the QP's change of variables (qp::BlockScaling::d(), theory.md §4.5): the contact
-/// multipliers get d^2, the identity in the scaled variables, where the diagonal blocks of the
-/// scaled Q are about 1; the equality ones M_E (theory.md §8.5).
-qp::Operator whole_preconditioner(const DualOperator& Q, const VectorXd& d);
 
 /// The operator of `kind` (Auto resolved by resolve()). Throws Error if the factor was not built
 /// with factorization_request(kind), and whatever `poll` throws.

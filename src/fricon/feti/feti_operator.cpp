@@ -1,5 +1,7 @@
 #include "fricon/feti/feti_operator.hpp"
 
+#include <memory>
+
 #include <algorithm>
 #include <cmath>
 
@@ -47,6 +49,27 @@ SparseMatrix coarse_rows(const std::vector<Subdomain>& subdomains, Index n_dual)
 
 }  // namespace
 
+// The QP's view of the operator's share of the rows (dual::DualShare).
+class FetiOperator::Share final : public dual::DualShare {
+ public:
+  explicit Share(const FetiOperator& F) : F_(F) {}
+  const qp::DualSpace& space() const override { return F_.space_; }
+  Index size() const override { return F_.dual_rows_->n_local(); }
+  Index n_contact() const override { return F_.dual_rows_->n_local_contact(); }
+  VectorXd restrict(const VectorXd& whole) const override { return F_.dual_rows_->restrict(whole); }
+  SparseMatrix restrict_columns(const SparseMatrix& G) const override {
+    return F_.dual_rows_->restrict_columns(G);
+  }
+  VectorXd assemble(const VectorXd& part) const override { return F_.dual_rows_->assemble(part); }
+  void apply(const VectorXd& x, VectorXd& y) const override { F_.apply_share(x, y); }
+  qp::Operator equality_preconditioner() const override { return F_.equality_preconditioner(); }
+
+ private:
+  const FetiOperator& F_;
+};
+
+FetiOperator::~FetiOperator() = default;
+
 FetiOperator::FetiOperator(std::vector<Subdomain> subdomains, TornRows rows,
                            const std::vector<Index>& owner_dof, const fe::DofMap& dofs, int threads,
                            const Ranks& ranks)
@@ -55,7 +78,10 @@ FetiOperator::FetiOperator(std::vector<Subdomain> subdomains, TornRows rows,
       owner_dof_(owner_dof),
       threads_(std::max(threads, 1)),
       ranks_(&ranks),
-      block_(ranks.block(static_cast<Index>(subdomains_.size()))) {
+      block_(ranks.block(static_cast<Index>(subdomains_.size()))),
+      dual_rows_(std::make_unique<DualRows>(subdomains_, rows_, ranks)),
+      space_(ranks),
+      share_(std::make_unique<Share>(*this)) {
   torn_of_free_ = torn_of_free(owner_dof, dofs);
   partial_.assign(static_cast<size_t>(threads_), VectorXd());
   G_ = coarse_rows(subdomains_, rows_.n_rows());
@@ -92,8 +118,13 @@ void FetiOperator::set_load(const VectorXd& f, const VectorXd& offset, const Vec
 void FetiOperator::set_contact_rows(const SparseMatrix& B_contact, const VectorXd& offset) {
   replace_contact_rows(rows_, torn_of_free_, B_contact, offset);
   attach_rows(rows_.B, subdomains_);
+  dual_rows_ = std::make_unique<DualRows>(subdomains_, rows_, *ranks_);
   G_ = coarse_rows(subdomains_, rows_.n_rows());
   compute_h();
+}
+
+const dual::DualShare& FetiOperator::share() const {
+  return *share_;
 }
 
 void FetiOperator::for_own_subdomains(
@@ -130,25 +161,37 @@ void FetiOperator::sum_over_subdomains(
     const VectorXd& x, VectorXd& y,
     const std::function<void(const Subdomain& s, Index i, const VectorXd& v, VectorXd& out)>& local,
     double* local_s, double* sums_s) const {
+  FRICON_CHECK(x.size() == dual_rows_->n_local(),
+               "a share of " << x.size() << " rows for " << dual_rows_->n_local());
   Stopwatch watch;
-  const Index n = x.size();
+  dual_rows_->fetch_ghosts(x, extended_);
+  *sums_s += watch.seconds();
+  watch.restart();
+  const Index n = dual_rows_->n_extended();
   for (VectorXd& p : partial_)
     p.setZero(n);
   for_own_subdomains([&](const Subdomain& s, Index i, int thread) {
+    const std::vector<Index>& rows = dual_rows_->extended_rows(i);
     VectorXd out;
-    local(s, i, VectorXd(s.B.transpose() * gather(x, s.rows)), out);
-    scatter_add(s.B * out, s.rows, partial_[static_cast<size_t>(thread)]);
+    local(s, i, VectorXd(s.B.transpose() * gather(extended_, rows)), out);
+    scatter_add(s.B * out, rows, partial_[static_cast<size_t>(thread)]);
   });
-  y = partial_[0];
   for (std::size_t t = 1; t < partial_.size(); ++t)
-    y += partial_[t];
+    partial_[0] += partial_[t];
   *local_s += watch.seconds();
   watch.restart();
-  ranks_->sum(y);
+  dual_rows_->return_ghosts(partial_[0], y);
   *sums_s += watch.seconds();
 }
 
 void FetiOperator::apply(const VectorXd& x, VectorXd& y) const {
+  FRICON_CHECK(x.size() == size(), "F x of " << x.size() << " for " << size());
+  VectorXd y_share;
+  apply_share(dual_rows_->restrict(x), y_share);
+  y = dual_rows_->assemble(y_share);
+}
+
+void FetiOperator::apply_share(const VectorXd& x, VectorXd& y) const {
   sum_over_subdomains(
       x, y,
       [](const Subdomain& s, Index, const VectorXd& v, VectorXd& out) { out = s.factor.solve(v); },

@@ -122,7 +122,7 @@ struct FetiReport {
   double operator_s = 0.0;           ///< the torn rows, G, h and e [s]
   long n_products = 0;               ///< products with F (filled after the solve)
   double products_s = 0.0;           ///< their subdomain solves on this process, wall [s]
-  double sums_s = 0.0;               ///< their sums over the processes, wall [s]
+  double sums_s = 0.0;               ///< their exchanges with other processes (§8.8), wall [s]
   long n_coarse_solves = 0;          ///< solves with G G^T (filled after the solve)
   double coarse_s = 0.0;             ///< their wall time and that of G G^T's decompositions [s]
   long qp_iterations = 0;            ///< MPGP steps over all QPs (filled after the solve)

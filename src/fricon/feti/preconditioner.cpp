@@ -6,11 +6,19 @@
 
 namespace fricon::feti {
 
-InterfacePreconditioner::InterfacePreconditioner(const FetiOperator& F)
-    : F_(F), n_equality_(F.rows().n_equality()) {
+InterfacePreconditioner::InterfacePreconditioner(const FetiOperator& F) : F_(F) {
+  // This process's equality rows (they follow its contact rows, DualRows): the groups of rows
+  // that share a dof are whole on one process, so that B_E B_E^T, block diagonal over them, is.
   // The gluing and Dirichlet rows are independent (one row per link of a node's chain of copies,
   // one per fixed component): B_E B_E^T is positive definite.
-  const SparseMatrix B_E = F.rows().B.middleRows(F.rows().n_contact, n_equality_);
+  const DualRows& share = F.dual_rows();
+  n_equality_ = share.n_local() - share.n_local_contact();
+  std::vector<Eigen::Triplet<Real, SparseIndex>> pick;
+  for (Index k = 0; k < n_equality_; ++k)
+    pick.emplace_back(k, share.owned()[static_cast<size_t>(share.n_local_contact() + k)], 1.0);
+  SparseMatrix P(n_equality_, F.rows().n_rows());
+  P.setFromTriplets(pick.begin(), pick.end());
+  const SparseMatrix B_E = P * F.rows().B;
   SparseMatrix gram = B_E * B_E.transpose();
   gram.makeCompressed();
   row_gram_.compute(gram);
@@ -20,10 +28,11 @@ InterfacePreconditioner::InterfacePreconditioner(const FetiOperator& F)
 
 void InterfacePreconditioner::apply(const VectorXd& x, VectorXd& y) const {
   FRICON_CHECK(x.size() == n_equality_, "M_E of " << x.size() << " for " << n_equality_);
-  // t over all rows of B, zero on the contact rows, so that the sum over the subdomains is
-  // B S B_E^T t_E; its equality rows are B_E S B_E^T t_E.
-  // F's contact rows, which the contact search replaces (FetiOperator::set_contact_rows).
-  VectorXd t = VectorXd::Zero(F_.rows().n_contact + n_equality_), St;
+  // t over this process's rows, zero on the contact rows, so that the sum over the subdomains is
+  // B S B_E^T t_E; its equality rows are B_E S B_E^T t_E. (The contact rows are F's current
+  // ones, which the contact search replaces: FetiOperator::set_contact_rows.)
+  const DualRows& share = F_.dual_rows();
+  VectorXd t = VectorXd::Zero(share.n_local()), St;
   t.tail(n_equality_) = row_gram_.solve(x);
   double local_s = 0.0, sums_s = 0.0;
   F_.sum_over_subdomains(

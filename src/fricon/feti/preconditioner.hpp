@@ -29,7 +29,8 @@ class FetiOperator;
 class Preconditioner {
  public:
   virtual ~Preconditioner() = default;
-  /// y = M_E x; x and y have F.n_equality() entries (y is overwritten). Collective over the
+  /// y = M_E x; x and y over this process's equality multipliers (F.dual_rows(): its rows after
+  /// its contact rows; y is overwritten). Collective over the
   /// processes that share the subdomains, as a product with F.
   virtual void apply(const VectorXd& x, VectorXd& y) const = 0;
 };
@@ -49,8 +50,8 @@ using StiffnessSource = std::function<SparseMatrix(Index i)>;
 /// has F's entries times w and M_E's divided by w) and accounts for the chains of gluing rows at
 /// a node of three or more copies, which are not orthogonal. B_E B_E^T is block diagonal, one
 /// small block per node and component (its chain of gluing rows and its Dirichlet row), so that
-/// its sparse LDL^T (Eigen's, minimum degree) has no fill; every process holds it, as it holds
-/// the coarse problem.
+/// its sparse LDL^T (Eigen's, minimum degree) has no fill; each process holds the blocks of its
+/// own rows (feti/dual_rows.hpp keeps a block on one process).
 class InterfacePreconditioner : public Preconditioner {
  public:
   /// Factors B_E B_E^T of F's rows; F must outlive it, and may change its contact rows
@@ -73,7 +74,7 @@ class InterfacePreconditioner : public Preconditioner {
   const FetiOperator& F_;
 
  private:
-  Index n_equality_;  ///< F's equality rows, which follow its contact rows
+  Index n_equality_ = 0;  ///< this process's equality rows, which follow its contact rows
   Eigen::SimplicialLDLT<SparseMatrix> row_gram_;  ///< of B_E B_E^T
 };
 

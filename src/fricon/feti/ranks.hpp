@@ -1,10 +1,11 @@
 #pragma once
 // feti: the processes that share the subdomains of a Total FETI run (docs/theory.md §8.8). Each
-// process factors, and solves with, its own block of consecutive subdomains; everything else
-// (the mesh, the partition, the rows of B, the coarse problem, the multipliers and the QP) every
-// process holds whole and computes the same, step by step. A product with F is a sum over the
-// subdomains, so the processes meet only to add up their parts (sum), the same bits on each, so
-// that every process takes the same decisions afterwards. One process alone is the default
+// process factors, and solves with, its own block of consecutive subdomains, and holds its share
+// of the multipliers in the QP (feti/dual_rows.hpp); the mesh, the partition, the rows of B and
+// the coarse problem every process holds whole. A product with F exchanges the multipliers that
+// neighbouring processes' subdomains share (exchange); the QP's inner products and norms are
+// sums over the processes (sum), the same bits on each, so that every process takes the same
+// decisions afterwards. One process alone is the default
 // (this_process()); the ranks of an MPI job are parallel/mpi's (feti_ranks.hpp).
 
 #include <functional>
@@ -29,6 +30,18 @@ class Ranks {
 
   /// `value` of every process, in rank order, on every process. Collective.
   virtual std::vector<double> gather(double value) const { return {value}; }
+
+  /// The `local` vectors of every process, one after another in rank order, on every process
+  /// (their sizes may differ). Collective.
+  virtual VectorXd concat(const VectorXd& local) const { return local; }
+
+  /// Messages between the processes: out[q] goes to process q, and in[q] receives what process q
+  /// sent to this one, for every q (size() entries each; this process's own entry included). The
+  /// caller sizes in[q] to what q sends (a process knows what its neighbours need of it: theory.md
+  /// §8.8). Collective.
+  virtual void exchange(const std::vector<VectorXd>& out, std::vector<VectorXd>& in) const {
+    in.at(0) = out.at(0);
+  }
 
   /// Runs `step`, which must not meet the other processes, on every process; when it failed on
   /// any, every process throws the error of the lowest failing one (as its own). Collective.

@@ -18,7 +18,7 @@ namespace {
 constexpr double kRankTolerance = 1e-12;
 }  // namespace
 
-CoarseSpace::CoarseSpace(const SparseMatrix& G) : G_(G) {
+CoarseSpace::CoarseSpace(const SparseMatrix& G, const DualSpace& space) : G_(G), space_(&space) {
   const Stopwatch watch;
   decompose();
   seconds_ = watch.seconds();
@@ -27,8 +27,8 @@ CoarseSpace::CoarseSpace(const SparseMatrix& G) : G_(G) {
 // S = G G^T: its eigenvectors (dense path) or its factor (sparse path).
 void CoarseSpace::decompose() {
   const Index m = G_.rows();
-  const SparseMatrix S = SparseMatrix(G_ * G_.transpose());
   if (m == 0) return;
+  const SparseMatrix S = gram();
   if (m > kDenseCoarseLimit) {
     sparse_ = true;
     rank_ = m;
@@ -44,6 +44,31 @@ void CoarseSpace::decompose() {
     return;
   }
   decompose_scaled(MatrixXd(S));
+}
+
+SparseMatrix CoarseSpace::gram() const {
+  SparseMatrix S = SparseMatrix(G_ * G_.transpose());
+  if (!space_->distributed()) return S;
+  // Each process's entries as (row, column, value) triples, added up in rank order: the same
+  // sums on every process (indices below 2^53 are exact as doubles).
+  VectorXd mine(3 * S.nonZeros());
+  Index k = 0;
+  for (Index j = 0; j < S.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(S, j); it; ++it) {
+      mine(k++) = static_cast<double>(it.row());
+      mine(k++) = static_cast<double>(it.col());
+      mine(k++) = it.value();
+    }
+  const VectorXd all = space_->concat(mine);
+  std::vector<Eigen::Triplet<Real, SparseIndex>> entries;
+  entries.reserve(static_cast<size_t>(all.size() / 3));
+  for (Index t = 0; t + 2 < all.size(); t += 3)
+    entries.emplace_back(static_cast<SparseIndex>(all(t)), static_cast<SparseIndex>(all(t + 1)),
+                         all(t + 2));
+  S.setZero();
+  S.setFromTriplets(entries.begin(), entries.end());
+  S.makeCompressed();
+  return S;
 }
 
 // S = D^{1/2} S_s D^{1/2}, D = diag(S): the rank is decided on S_s, whose diagonal is 1, so that
@@ -87,8 +112,14 @@ VectorXd CoarseSpace::solve(const VectorXd& r) const {
   return x;
 }
 
+VectorXd CoarseSpace::times(const VectorXd& v) const {
+  VectorXd Gv = G_ * v;
+  space_->sum(Gv);
+  return Gv;
+}
+
 VectorXd CoarseSpace::onto_rows(const VectorXd& v) const {
-  return G_.transpose() * solve(G_ * v);
+  return transpose_times(solve(times(v)));
 }
 
 void CoarseSpace::project(VectorXd& v) const {

@@ -15,6 +15,7 @@
 
 #include "fricon/core/types.hpp"
 #include "fricon/linalg/cholesky.hpp"
+#include "fricon/qp/dual_space.hpp"
 
 namespace fricon::qp {
 
@@ -24,15 +25,22 @@ inline constexpr Index kDenseCoarseLimit = 1200;
 
 class CoarseSpace {
  public:
-  /// The row space of G (m x n). Throws NumericalError when m > kDenseCoarseLimit and G G^T is
-  /// not positive definite (rows that are dependent, or that act on no unknown free to move): the
-  /// message names the coarse problem.
-  explicit CoarseSpace(const SparseMatrix& G);
+  /// The row space of G (m x n): G's columns of the unknowns this process holds in `space` (all
+  /// of them by default); G G^T is summed over the processes, every one decomposes it whole.
+  /// Collective there, as are times() and every method that applies it. Throws NumericalError
+  /// when m > kDenseCoarseLimit and G G^T is not positive definite (rows that are dependent, or
+  /// that act on no unknown free to move): the message names the coarse problem.
+  explicit CoarseSpace(const SparseMatrix& G, const DualSpace& space = whole_space());
 
   Index rows() const { return G_.rows(); }
   /// The rank of G (m on the sparse path).
   Index rank() const { return rank_; }
+  /// G's columns of this process.
   const SparseMatrix& G() const { return G_; }
+  /// G v over the m rows, v this process's part of the unknowns (summed over the processes).
+  VectorXd times(const VectorXd& v) const;
+  /// G^T r over this process's unknowns, r over the m rows.
+  VectorXd transpose_times(const VectorXd& r) const { return G_.transpose() * r; }
   /// Orthonormal directions of the m rows on which G vanishes (m x (m - rank)): loads along them
   /// act on no unknown. None on the sparse path.
   const MatrixXd& null() const { return null_; }
@@ -55,10 +63,13 @@ class CoarseSpace {
  private:
   /// S = G G^T decomposed: decompose_scaled, or factored by CHOLMOD beyond kDenseCoarseLimit rows.
   void decompose();
+  /// S = G G^T, summed over the processes.
+  SparseMatrix gram() const;
   /// The dense path: W_, null_ and rank_ from S.
   void decompose_scaled(const MatrixXd& S);
 
   SparseMatrix G_;
+  const DualSpace* space_;
   Index rank_ = 0;
   bool sparse_ = false;
   MatrixXd W_;  ///< dense: S^+ = W W^T (decompose_scaled)

@@ -118,9 +118,9 @@ Eigen::VectorXd resisted_part(const Eigen::VectorXd& b, const SeparableConstrain
 // Power method
 
 double estimate_norm(const Operator& A, Index n, int max_iterations, double tolerance,
-                     long* n_products) {
+                     long* n_products, const DualSpace& space) {
   FRICON_CHECK(n >= 0, "n = " << n);
-  if (n == 0 || max_iterations <= 0) return 0.0;
+  if (space.size(n) == 0 || max_iterations <= 0) return 0.0;
   Eigen::VectorXd v(n);
   Eigen::VectorXd w(n);
   // Deterministic, non-symmetric start vector with entries in [0.5, 1.5) (a 64-bit mix of i), so
@@ -132,14 +132,14 @@ double estimate_norm(const Operator& A, Index n, int max_iterations, double tole
     z ^= z >> 31;
     v(i) = 0.5 + static_cast<double>(z >> 11) * 0x1.0p-53;
   }
-  v.normalize();
+  v /= space.norm(v);
   double est = 0.0;
   for (int k = 1; k <= max_iterations; ++k) {
     A(v, w);
     if (n_products) ++*n_products;
     FRICON_CHECK(w.size() == n,
                  "operator returned a vector of size " << w.size() << ", expected " << n);
-    const double nw = w.norm();
+    const double nw = space.norm(w);
     if (!std::isfinite(nw)) {
       throw NumericalError(
           fmt::format("power iteration: ||A v|| = {} at step {} (n = {})", nw, k, n));
@@ -276,12 +276,13 @@ class Mpgp {
   int steps() const { return rep_.n_cg + rep_.n_expansion + rep_.n_proportioning; }
   double norm_gp() const { return std::sqrt(s_.split.gp2); }
   /// q(x) = x^T (g - b) / 2.
-  double objective() const { return 0.5 * (s_.x.dot(s_.g) - s_.x.dot(b_)); }
+  double objective() const { return 0.5 * (space_.dot(s_.x, s_.g) - space_.dot(s_.x, b_)); }
 
   const Operator& A_;
   const Eigen::VectorXd& b_;
   const SeparableConstraints& c_;
   const MpgpOptions& opt_;
+  const DualSpace& space_;  ///< where the vectors live: every reduction goes through it
   MpgpReport& rep_;
   const bool bb_;           ///< variant BarzilaiBorwein: spectral moves, certified stopping test
   const double abar_;       ///< the fixed step length alpha_bar
@@ -298,14 +299,16 @@ Mpgp::Mpgp(const Operator& A, const Eigen::VectorXd& b, const SeparableConstrain
       b_(b),
       c_(c),
       opt_(opt),
+      space_(opt.vectors()),
       rep_(rep),
       bb_(opt.variant == MpgpVariant::BarzilaiBorwein),
       abar_(rep.alpha_bar_used),
       x_scale_(std::max(
-          {x.lpNorm<Eigen::Infinity>(), c.max_radius(), rep.reference_norm / rep.norm_A_used})),
+          {space_.max_abs(x), space_.max(c.max_radius()), rep.reference_norm / rep.norm_A_used})),
       threshold_(std::max(opt.rel_tolerance * rep.reference_norm, opt.abs_tolerance)),
       gamma2_(opt.gamma * opt.gamma),
-      kern_(c, opt.active_tolerance * x_scale_, opt.active_tolerance, abar_, opt.active_discs),
+      kern_(c, opt.active_tolerance * x_scale_, opt.active_tolerance, abar_, opt.active_discs,
+            space_),
       // The spectral trial lengths start from alpha_bar. Every such length lies in
       // [1/||A||, 1/lambda_min(A)]; the clamp only guards against rounding.
       s_(x, SpectralLength(abar_, 1e-3 / rep.norm_A_used, 1e12 / rep.norm_A_used)) {}
@@ -340,16 +343,16 @@ bool Mpgp::proportional() const {
 // curvature is that of A + D (§4.7).
 MpgpStep Mpgp::cg_or_expansion_step() {
   next_direction();
-  if (kern_.turns_discs() && !(s_.g.dot(s_.p) > 0.0)) {
+  if (kern_.turns_discs() && !(space_.dot(s_.g, s_.p) > 0.0)) {
     // The conjugate direction, taken onto the new tangents, need not descend: restart.
     s_.direction = MpgpState::Direction::Restart;
     next_direction();
   }
   multiply(s_.p, s_.Ap);
-  const double pAp = s_.p.dot(s_.Ap);
+  const double pAp = space_.dot(s_.p, s_.Ap);
   const double pHp =
       kern_.turns_discs() ? pAp + kern_.turn_curvature(s_.x, s_.g, s_.p, s_.Dp) : pAp;
-  const double a_cg = s_.g.dot(s_.p) / pHp;
+  const double a_cg = space_.dot(s_.g, s_.p) / pHp;
   if (!(pAp > 0.0) || !std::isfinite(pHp) || !(a_cg > 0.0) || !std::isfinite(a_cg)) {
     return failed('c', fmt::format("CG step: p^T A p = {:.3e}, step {:.3e}; A is not positive "
                                    "definite along p, or the direction is not a descent direction",
@@ -365,7 +368,7 @@ MpgpStep Mpgp::cg_or_expansion_step() {
 // their circles (§4.7); their gradient is then updated to second order only, so that the
 // stopping test recomputes it.
 MpgpStep Mpgp::cg_step(double a_cg, double pHp, double pAp) {
-  if (bb_) s_.spectral.update(s_.p.squaredNorm(), pAp, s_.Ap.squaredNorm());
+  if (bb_) s_.spectral.update(space_.squared_norm(s_.p), pAp, space_.squared_norm(s_.Ap));
   s_.turned = kern_.turns_discs();
   s_.x.noalias() -= a_cg * s_.p;
   s_.g.noalias() -= a_cg * s_.Ap;
@@ -388,7 +391,8 @@ void Mpgp::next_direction() {
     s_.p = cg_direction();
   } else if (s_.direction == Direction::Conjugate) {
     const Eigen::VectorXd& z = cg_direction();
-    const double zHp = s_.turned ? z.dot(s_.Ap) + z.dot(s_.Dp) : z.dot(s_.Ap);
+    const double zHp =
+        s_.turned ? space_.dot(z, s_.Ap) + space_.dot(z, s_.Dp) : space_.dot(z, s_.Ap);
     s_.p = z - (zHp / s_.pAp) * s_.p;
     if (kern_.turns_discs()) kern_.restrict_to_face(s_.x, s_.p);  // tangents of the new x
   }
@@ -450,13 +454,13 @@ MpgpStep Mpgp::optimal_expansion(double a_f) {
   Eigen::VectorXd& gr = s_.gr;
   Eigen::VectorXd& Agr = s_.Ap;  // A p is no longer needed
   kern_.reduced_free_gradient(s_.x, s_.g, gr);
-  const double g_gr = s_.g.dot(gr);  // >= ||gr||^2
-  if (!(g_gr > 0.0)) {               // gr = 0: no free block left to move
+  const double g_gr = space_.dot(s_.g, gr);  // >= ||gr||^2
+  if (!(g_gr > 0.0)) {                       // gr = 0: no free block left to move
     split_and_restart();
     return taken('e', a_f);
   }
   multiply(gr, Agr);
-  const double grAgr = gr.dot(Agr);
+  const double grAgr = space_.dot(gr, Agr);
   if (!(grAgr > 0.0) || !std::isfinite(grAgr)) {
     return failed('e',
                   "expansion step: A is not positive definite along the reduced free gradient");
@@ -557,21 +561,21 @@ std::optional<double> Mpgp::spectral_move(const Eigen::VectorXd& v) {
   d = s_.x - a * v;
   c_.project(d);
   d -= s_.x;
-  const double gd = s_.g.dot(d);
+  const double gd = space_.dot(s_.g, d);
   if (!(gd < -kRoundingFactor * std::numeric_limits<double>::epsilon() *
                  kern_.rounding_scale(s_.x, s_.g))) {
     ++rep_.n_fallbacks;
     return fixed_length_move(v);
   }
   multiply(d, s_.Ap);
-  const double dAd = d.dot(s_.Ap);
+  const double dAd = space_.dot(d, s_.Ap);
   if (!(dAd > 0.0) || !std::isfinite(dAd)) return std::nullopt;
   const double t = std::min(1.0, -gd / dAd);
   s_.x.noalias() += t * d;
   s_.g.noalias() += t * s_.Ap;
   c_.project(s_.x);  // only removes rounding-level infeasibility (x + t d is a convex combination)
   s_.recursive = true;
-  s_.spectral.update(d.squaredNorm(), dAd, s_.Ap.squaredNorm());
+  s_.spectral.update(space_.squared_norm(d), dAd, space_.squared_norm(s_.Ap));
   return t * a;
 }
 
@@ -710,23 +714,24 @@ void check_inputs(const Operator& A, const Eigen::VectorXd& b, const SeparableCo
 // b^T x <= 0 (b_i <= 0 on the bounds, x_i >= 0; b = 0 on the discs that are not pinned and on the
 // Free blocks), and 0 is feasible, so x = 0, checked by one product.
 void solve_zero_rhs(const Operator& A, const Eigen::VectorXd& b, const SeparableConstraints& c,
-                    Eigen::VectorXd& x, MpgpReport& rep) {
+                    const DualSpace& space, Eigen::VectorXd& x, MpgpReport& rep) {
   x.setZero();
   Eigen::VectorXd g(x.size());
   A(x, g);
   ++rep.n_products;
   FRICON_CHECK(g.size() == x.size(),
                "operator returned a vector of size " << g.size() << ", expected " << x.size());
-  if (g.norm() != 0.0) {
+  const double norm_A0 = space.norm(g);
+  if (norm_A0 != 0.0) {
     rep.termination = QpTermination::NumericalFailure;
-    rep.message = fmt::format("A 0 has norm {}: A is not linear", g.norm());
-    rep.norm_gp = rep.rel_gp = g.norm();
+    rep.message = fmt::format("A 0 has norm {}: A is not linear", norm_A0);
+    rep.norm_gp = rep.rel_gp = norm_A0;
     return;
   }
   g -= b;
   // At x = 0 a bound is active with g_i = -b_i >= 0, a disc is pinned or has g_i = 0, and so has
   // a Free block: g^P = b_R = 0.
-  rep.norm_gp = resisted_part(b, c).norm();
+  rep.norm_gp = space.norm(resisted_part(b, c));
   rep.rel_gp = rep.norm_gp;
   rep.objective = 0.0;
   rep.termination = QpTermination::Converged;
@@ -740,8 +745,8 @@ void set_step_length(const Operator& A, Index n, const MpgpOptions& opt, MpgpRep
     rep.norm_A_used = opt.norm_A;
   } else {
     rep.norm_A_estimated = true;
-    rep.norm_A_used =
-        estimate_norm(A, n, opt.power_iterations, opt.power_tolerance, &rep.n_power_products);
+    rep.norm_A_used = estimate_norm(A, n, opt.power_iterations, opt.power_tolerance,
+                                    &rep.n_power_products, opt.vectors());
   }
   if (!(rep.norm_A_used > 0.0) || !std::isfinite(rep.norm_A_used)) {
     throw NumericalError(
@@ -761,11 +766,12 @@ MpgpReport solve_mpgp(const Operator& A, const Eigen::VectorXd& b, const Separab
   rep.variant = opt.variant;
   rep.expansion = opt.expansion;
   rep.active_discs = opt.active_discs;
-  rep.norm_b = b.norm();
+  const DualSpace& space = opt.vectors();
+  rep.norm_b = space.norm(b);
   rep.reference_norm =
-      opt.reference == StopReference::Whole ? rep.norm_b : resisted_part(b, c).norm();
+      opt.reference == StopReference::Whole ? rep.norm_b : space.norm(resisted_part(b, c));
   if (rep.reference_norm == 0.0) {
-    solve_zero_rhs(A, b, c, x, rep);
+    solve_zero_rhs(A, b, c, space, x, rep);
   } else {
     set_step_length(A, c.size(), opt, rep);
     c.project(x);  // line 1: start from the projection of the initial guess

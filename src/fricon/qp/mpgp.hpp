@@ -38,6 +38,7 @@
 #include "fricon/core/enum_names.hpp"
 #include "fricon/core/types.hpp"
 #include "fricon/qp/constraints.hpp"
+#include "fricon/qp/dual_space.hpp"
 #include "fricon/qp/operator.hpp"
 
 namespace fricon::qp {
@@ -240,6 +241,14 @@ struct MpgpOptions {
   std::function<bool(const MpgpIteration&)> monitor;
   /// Store every MpgpIteration (starting point included) in MpgpReport::history. Default false.
   bool record_history = false;
+  /// Where the vectors live (qp/dual_space.hpp): x, b, the constraints and the operator's
+  /// vectors are this process's part of the whole, and every inner product, norm and maximum is
+  /// taken over the processes (each must call the solver with the same options). Null (default):
+  /// whole_space(), every unknown here. Must outlive the solve.
+  const DualSpace* space = nullptr;
+
+  /// *space, or whole_space() when it is null.
+  const DualSpace& vectors() const { return space ? *space : whole_space(); }
 
   /// Throws fricon::InputError naming the first field out of range, its value and the range.
   void validate() const;
@@ -326,9 +335,10 @@ MpgpReport solve_mpgp(const Operator& A, const Eigen::VectorXd& b, const Separab
 /// Estimate of ||A||_2 for SPD A by power iteration from a fixed (deterministic) start vector:
 /// returns ||A v_k|| for the last unit iterate v_k, a lower bound of ||A|| that increases to it.
 /// Stops after max_iterations products or when the estimate changes by <= tolerance relative.
-/// Adds the number of products to *n_products if given. Returns 0 for n = 0 or A v = 0.
+/// Adds the number of products to *n_products if given. Returns 0 for n = 0 or A v = 0. n is
+/// this process's part of the unknowns in `space` (collective there; 0 alone means none).
 double estimate_norm(const Operator& A, Index n, int max_iterations, double tolerance,
-                     long* n_products = nullptr);
+                     long* n_products = nullptr, const DualSpace& space = whole_space());
 
 /// The power iteration for the norm of a contact solve's dual Hessian (theory.md §4.2), fricon's
 /// problems and FCLIB's alike: at most this many products, to this relative change (the settings

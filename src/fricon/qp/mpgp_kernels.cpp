@@ -111,7 +111,15 @@ Split Kernels::split(const Eigen::VectorXd& x, const Eigen::VectorXd& g, Eigen::
       }
     }
   }
-  return s;
+  return reduced(s);
+}
+
+Split Kernels::reduced(Split s) {
+  Eigen::Matrix<double, 5, 1> sums;
+  sums << s.gp2, s.phi2, s.beta2, s.phit_phi, static_cast<double>(n_turned_);
+  space_.sum(Eigen::Ref<Eigen::VectorXd>(sums));
+  any_turned_ = sums(4) > 0.0;
+  return {.gp2 = sums(0), .phi2 = sums(1), .beta2 = sums(2), .phit_phi = sums(3)};
 }
 
 void Kernels::reduced_free_gradient(const Eigen::VectorXd& x, const Eigen::VectorXd& g,
@@ -160,7 +168,7 @@ double Kernels::rounding_scale(const Eigen::VectorXd& x, const Eigen::VectorXd& 
       sum += norm2(g(o), g(o + 1)) * norm2(x(o), x(o + 1));
     }
   }
-  return sum;
+  return space_.sum(sum);
 }
 
 double Kernels::max_feasible_step(const Eigen::VectorXd& x, const Eigen::VectorXd& p) const {
@@ -188,7 +196,7 @@ double Kernels::max_feasible_step(const Eigen::VectorXd& x, const Eigen::VectorX
     const double t = xp >= 0.0 ? (xp + sq) / pp : (sq > xp ? slack / (sq - xp) : 0.0);
     a = std::min(a, t);
   }
-  return a;
+  return space_.min(a);
 }
 
 void Kernels::restrict_to_face(const Eigen::VectorXd& x, Eigen::VectorXd& v) const {
@@ -223,7 +231,7 @@ double Kernels::turn_curvature(const Eigen::VectorXd& x, const Eigen::VectorXd& 
                                const Eigen::VectorXd& p, Eigen::VectorXd& Dp) const {
   Dp.setZero(x.size());
   double pDp = 0.0;
-  if (n_turned_ == 0) return pDp;
+  if (n_turned_ == 0) return space_.sum(pDp);
   for (std::size_t k = 0; k < c_.blocks.size(); ++k) {
     if (!turned(k)) continue;
     const Index o = c_.blocks[k].offset;
@@ -236,7 +244,7 @@ double Kernels::turn_curvature(const Eigen::VectorXd& x, const Eigen::VectorXd& 
     Dp(o + 1) = curvature * pt * t.t2;
     pDp += curvature * pt * pt;
   }
-  return pDp;
+  return space_.sum(pDp);
 }
 
 void SpectralLength::update(double ss, double sy, double yy) {

@@ -19,6 +19,7 @@
 
 #include "fricon/core/types.hpp"
 #include "fricon/qp/constraints.hpp"
+#include "fricon/qp/dual_space.hpp"
 #include "fricon/qp/mpgp.hpp"
 
 namespace fricon::qp::detail {
@@ -37,9 +38,13 @@ struct Split {
 /// kernels then take the x of that split.
 class Kernels {
  public:
+  /// The kernels of `c`, this process's blocks of the unknowns in `space`: the scalars they
+  /// return (norms, sums, the feasible step, whether a disc turned) are those of the whole, and
+  /// every call that returns one is collective there.
   Kernels(const SeparableConstraints& c, double tol_bound, double tol_disc, double alpha_bar,
-          MpgpDiscFace active_discs)
+          MpgpDiscFace active_discs, const DualSpace& space = whole_space())
       : c_(c),
+        space_(space),
         tol_bound_(tol_bound),
         tol_disc_(tol_disc),
         alpha_bar_(alpha_bar),
@@ -55,8 +60,8 @@ class Kernels {
   Split split(const Eigen::VectorXd& x, const Eigen::VectorXd& g, Eigen::VectorXd& phi,
               Eigen::VectorXd& beta);
 
-  /// True if the last split() turned some disc.
-  bool turns_discs() const { return n_turned_ > 0; }
+  /// True if the last split() turned some disc (of any process).
+  bool turns_discs() const { return any_turned_; }
 
   /// Fills gr with the reduced free gradient phitilde_{alpha_bar}(x) = (x - P(x - alpha_bar
   /// phi)) / alpha_bar for g at x (docs/theory.md §4.1), with the active sets of split(): 0 on
@@ -91,16 +96,20 @@ class Kernels {
 
  private:
   bool turned(std::size_t k) const { return turned_[k] != 0; }
+  /// The split's sums, and whether a disc turned, over the processes (n_turned_ is this one's).
+  Split reduced(Split s);
   /// restrict_to_face (keep_tangents) or clear_active (not).
   void restrict(const Eigen::VectorXd& x, Eigen::VectorXd& v, bool keep_tangents) const;
 
   const SeparableConstraints& c_;
+  const DualSpace& space_;
   double tol_bound_;
   double tol_disc_;
   double alpha_bar_;
   double turn_limit_;         ///< mu_i / rho_i of the tightest turned circle (< 0: Held)
   std::vector<char> turned_;  ///< per block: the last split() turned this active disc
-  std::size_t n_turned_ = 0;  ///< how many it turned
+  std::size_t n_turned_ = 0;  ///< how many it turned here
+  bool any_turned_ = false;   ///< it turned some on some process
 };
 
 /// The adaptive Barzilai-Borwein length "ABBmin" (Frassoldati, Zanghirati and Zanni, 2008) of

@@ -61,14 +61,15 @@ Eigen::VectorXd phase_one(const CoarseSpace& rows, const Eigen::VectorXd& e,
     y = rows.onto_rows(v) + kPhaseOneRegularization * v;
   };
   MpgpOptions o;
+  o.space = inner.space;
   o.variant = inner.variant;
   o.rel_tolerance = kPhaseOneTolerance;
   o.reference = StopReference::Whole;
   o.norm_A = 1.0 + kPhaseOneRegularization;
   o.max_iterations = inner.max_iterations;
-  const MpgpReport r = solve_mpgp(GtG, rows.G().transpose() * rows.solve(e), c, o, x1);
+  const MpgpReport r = solve_mpgp(GtG, rows.transpose_times(rows.solve(e)), c, o, x1);
   if (r.termination != QpTermination::Converged) return {};
-  return e - rows.G() * x1;
+  return e - rows.times(x1);
 }
 
 // A load along a row direction that acts on no free multiplier (rows.null()): the first such
@@ -99,7 +100,7 @@ std::optional<Infeasibility> phase_one_certificate(const CoarseSpace& rows,
   const double length = std::sqrt(std::max(r.dot(d), 0.0));
   if (!(length > tolerance * std::sqrt(std::max(rows.norm2(e), 0.0)))) return std::nullopt;
   // d^T e - d^T G x1 = r^T S^+ r > 0, and d^T G x1 is the most Omega gives along d.
-  return Infeasibility{d, d.dot(e), d.dot(rows.G() * x1)};
+  return Infeasibility{d, d.dot(e), d.dot(rows.times(x1))};
 }
 
 // sup { g^T x : x in Omega }: per disc its radius times ||g_i||, per bound 0 when g_i <= 0,
@@ -120,16 +121,23 @@ double support(const Eigen::VectorXd& g, const SeparableConstraints& c) {
 // A certificate along one row of G (one of the motions as they are numbered) rather than the
 // phase one's direction, whose metric is that of the orthonormal rows: the row whose load most
 // exceeds what Omega gives along it, if one does (then the figures are those of that motion
-// alone, e.g. a push against mu N); else `found` as it is.
+// alone, e.g. a push against mu N); else `found` as it is. What Omega gives along a row is a sum
+// over the unknowns: over the processes of `space` (collective).
 Infeasibility along_one_row(const SparseMatrix& Ga, const Eigen::VectorXd& e,
-                            const SeparableConstraints& c, Infeasibility found) {
+                            const SeparableConstraints& c, Infeasibility found,
+                            const DualSpace& space = whole_space()) {
   const SparseMatrix Gt = Ga.transpose();
+  Eigen::VectorXd carried_by_row = Eigen::VectorXd::Zero(Ga.rows());
+  for (Index j = 0; j < Ga.rows(); ++j)
+    if (e(j) != 0.0)
+      carried_by_row(j) = support((e(j) > 0.0 ? 1.0 : -1.0) * Eigen::VectorXd(Gt.col(j)), c);
+  space.sum(carried_by_row);
   double best = 0.0;
   for (Index j = 0; j < Ga.rows(); ++j) {
     if (e(j) == 0.0) continue;
     const double sign = e(j) > 0.0 ? 1.0 : -1.0;
     const double applied = std::abs(e(j));
-    const double carried = support(sign * Eigen::VectorXd(Gt.col(j)), c);
+    const double carried = carried_by_row(j);
     const double excess = (applied - carried) / applied;
     if (excess > kRowExcess && excess > best) {
       best = excess;
@@ -163,11 +171,14 @@ std::optional<Infeasibility> balance_certificate(const EqualityConstraint& eq,
   return along_one_row(rows.G(), eq.e, c, *certificate);
 }
 
-double equality_residual(const EqualityConstraint& eq, const Eigen::VectorXd& x, double floor) {
-  const Eigen::VectorXd Gx = eq.G * x;
+double equality_residual(const EqualityConstraint& eq, const Eigen::VectorXd& x, double floor,
+                         const DualSpace& space) {
+  Eigen::VectorXd Gx = eq.G * x;
   // The magnitudes of the terms of G x, which cancel where the equality holds: a load-free
   // equality (e = 0, a body driven by prescribed displacements) is measured against them.
-  const Eigen::VectorXd magnitudes = eq.G.cwiseAbs() * x.cwiseAbs();
+  Eigen::VectorXd magnitudes = eq.G.cwiseAbs() * x.cwiseAbs();
+  space.sum(Gx);
+  space.sum(magnitudes);
   const double scale = std::max({eq.e.norm(), magnitudes.norm(), floor});
   return scale > 0.0 ? (Gx - eq.e).norm() / scale : 0.0;
 }
@@ -202,8 +213,9 @@ class SmalseM {
         eq_(eq),
         opt_(opt),
         inner_(inner),
+        space_(inner.vectors()),
         rep_(rep),
-        rows_(active_columns(eq.G, c)),
+        rows_(active_columns(eq.G, c), space_),
         Ga_(rows_.G()),
         e_(kept_load()),
         kept_{Ga_, e_},
@@ -248,7 +260,7 @@ class SmalseM {
   // approaches 0 would be measured against itself.
   bool data_vanish() const {
     if (!e_.isZero(0.0)) return false;
-    return resisted_part(b_, c_).norm() <= kVanishingData * b_.norm();
+    return space_.norm(resisted_part(b_, c_)) <= kVanishingData * space_.norm(b_);
   }
 
   void accept_zero(Eigen::VectorXd& x, Eigen::VectorXd& mu) {
@@ -268,7 +280,7 @@ class SmalseM {
 
   // ||Gh v - eh||^2
   double residual2(const Eigen::VectorXd& v) const {
-    return std::max(rows_.norm2(Ga_ * v - e_), 0.0);
+    return std::max(rows_.norm2(rows_.times(v) - e_), 0.0);
   }
 
   // rho = rho_factor ||A||, with ||P A P|| in place of ||A|| where the options ask for it.
@@ -281,15 +293,16 @@ class SmalseM {
         rows_.project(y);
       };
       long products = 0;
-      norm_A_ = opt_.norm_projected > 0.0 ? opt_.norm_projected
-                                          : estimate_norm(PAP, c_.size(), inner_.power_iterations,
-                                                          inner_.power_tolerance, &products);
+      norm_A_ = opt_.norm_projected > 0.0
+                    ? opt_.norm_projected
+                    : estimate_norm(PAP, c_.size(), inner_.power_iterations, inner_.power_tolerance,
+                                    &products, space_);
       rep_.n_products += products;
       rep_.norm_projected = norm_A_;
     } else {
-      norm_A_ = inner_.norm_A > 0.0
-                    ? inner_.norm_A
-                    : estimate_norm(A_, c_.size(), inner_.power_iterations, inner_.power_tolerance);
+      norm_A_ = inner_.norm_A > 0.0 ? inner_.norm_A
+                                    : estimate_norm(A_, c_.size(), inner_.power_iterations,
+                                                    inner_.power_tolerance, nullptr, space_);
     }
     if (!(norm_A_ > 0.0) || !std::isfinite(norm_A_))
       throw NumericalError(fmt::format("solve_smalse: ||A|| = {}", norm_A_));
@@ -323,15 +336,15 @@ class SmalseM {
   // Omega (feasible for a load that pressure alone balances). With the projector the linear term
   // is P (b - A x_e), and a warm start's mu is moved to the projected problem's.
   void start(Eigen::VectorXd& x, Eigen::VectorXd& mu) {
-    x_e_ = Ga_.transpose() * rows_.solve(e_);
-    const bool cold = x.isZero(0.0);
+    x_e_ = rows_.transpose_times(rows_.solve(e_));
+    const bool cold = space_.max_abs(x) == 0.0;
     if (cold) {
       x = x_e_;
       c_.project(x);
     }
     b_base_ = b_;
     if (!opt_.projector) {
-      data_norm_ = resisted_part(b_, c_).norm();
+      data_norm_ = space_.norm(resisted_part(b_, c_));
       return;
     }
     Eigen::VectorXd Ax(c_.size());
@@ -342,7 +355,7 @@ class SmalseM {
     ++rep_.n_products;
     if (!cold) {
       A_(x, Ax);
-      mu += rows_.solve(Ga_ * (Ax - b_));
+      mu += rows_.solve(rows_.times(Ax - b_));
       ++rep_.n_products;
     }
   }
@@ -355,7 +368,7 @@ class SmalseM {
   double projected_resisted_norm(const Eigen::VectorXd& d) const {
     Eigen::VectorXd kept = resisted_part(d, c_);
     rows_.project(kept);
-    return resisted_part(kept, c_).norm();
+    return space_.norm(resisted_part(kept, c_));
   }
 
   // The inner MPGP's options: its norm, the preconditioner in face and the adaptive precision
@@ -394,19 +407,19 @@ class SmalseM {
   // equality found infeasible, the steps used up) or update mu and M. Returns true to stop.
   bool outer_step(int k, const Operator& A_aug, Eigen::VectorXd& x, Eigen::VectorXd& mu) {
     rep_.outer_iterations = k + 1;
-    const Eigen::VectorXd b_aug = b_base_ - Ga_.transpose() * mu + rho_ * x_e_;
+    const Eigen::VectorXd b_aug = b_base_ - rows_.transpose_times(mu) + rho_ * x_e_;
     const double eps_g = std::max(inner_.rel_tolerance * rep_.reference_norm, inner_.abs_tolerance);
     io_.abs_tolerance = std::min(eps_g, equality_floor_);
     const MpgpReport r = solve_mpgp(A_aug, b_aug, c_, io_, x);
     accumulate(r, rep_);
     rep_.norm_gp = r.norm_gp;
-    rep_.equality_residual = equality_residual(kept_, x, rep_.equality_floor);
+    rep_.equality_residual = equality_residual(kept_, x, rep_.equality_floor, space_);
     if (r.termination != QpTermination::Converged) {
       rep_.termination = r.termination;
       rep_.message = fmt::format("inner solve {}: {}", k + 1, r.message);
       return true;
     }
-    const Eigen::VectorXd res = Ga_ * x - e_;
+    const Eigen::VectorXd res = rows_.times(x) - e_;
     const Eigen::VectorXd S_res = rows_.solve(res);
     const double res2 = std::max(res.dot(S_res), 0.0);  // ||Gh x - eh||^2
     if (r.norm_gp <= eps_g && rep_.equality_residual <= opt_.equality_tolerance) {
@@ -439,7 +452,7 @@ class SmalseM {
                                              std::max(kInfeasibleShare, opt_.equality_tolerance));
     if (!certificate) return false;
     rep_.infeasible = true;
-    rep_.infeasibility = along_one_row(Ga_, eq_.e, c_, std::move(*certificate));
+    rep_.infeasibility = along_one_row(Ga_, eq_.e, c_, std::move(*certificate), space_);
     rep_.termination = QpTermination::NumericalFailure;
     rep_.message = fmt::format(
         "the equality constraint cannot be met in Omega: along the certificate direction the "
@@ -454,9 +467,10 @@ class SmalseM {
   // patches, which the projector spreads over the free multipliers) and after it (without the
   // rigid parts that a generalized inverse leaves in b).
   double equality_floor() const {
-    const auto n = static_cast<double>(c_.size());
-    const double r = std::min(reference_, resisted_part(b_, c_).norm());
-    const Eigen::VectorXd spread = Ga_.cwiseAbs() * Eigen::VectorXd::Ones(c_.size());
+    const auto n = static_cast<double>(space_.size(c_.size()));
+    const double r = std::min(reference_, space_.norm(resisted_part(b_, c_)));
+    Eigen::VectorXd spread = Ga_.cwiseAbs() * Eigen::VectorXd::Ones(c_.size());
+    space_.sum(spread);
     return spread.norm() * r / (norm_A_ * std::sqrt(n));
   }
 
@@ -487,7 +501,7 @@ class SmalseM {
     Eigen::VectorXd Ax(c_.size());
     A_(x, Ax);
     ++rep_.n_products;
-    mu -= rows_.solve(Ga_ * (Ax - b_));
+    mu -= rows_.solve(rows_.times(Ax - b_));
   }
 
   const Operator& A_;
@@ -496,6 +510,7 @@ class SmalseM {
   const EqualityConstraint& eq_;
   const SmalseOptions& opt_;
   const MpgpOptions& inner_;
+  const DualSpace& space_;  ///< where x, b and the columns of G live (inner.space)
   SmalseReport& rep_;
   const CoarseSpace rows_;
   const SparseMatrix& Ga_;

@@ -124,9 +124,10 @@ struct SmalseReport {
 /// ||G x - e|| / max(||e||, || |G| |x| ||, floor) (0 when all are 0): relative to the load and to
 /// the magnitudes of the terms of G x, so that a load-free equality (e = 0) is measured too, and
 /// at least to `floor` (>= 0, SmalseReport::equality_floor), so that an x that tends to 0 is not
-/// measured against itself alone.
-double equality_residual(const EqualityConstraint& eq, const Eigen::VectorXd& x,
-                         double floor = 0.0);
+/// measured against itself alone. x and G's columns are this process's part in `space`
+/// (collective there).
+double equality_residual(const EqualityConstraint& eq, const Eigen::VectorXd& x, double floor = 0.0,
+                         const DualSpace& space = whole_space());
 
 /// Whether G x = e can be met for some x in Omega, decided without A (the rows of G made
 /// orthonormal over the multipliers free to move, then phase one, as solve_smalse does when it
@@ -139,7 +140,9 @@ std::optional<Infeasibility> balance_certificate(const EqualityConstraint& eq,
 /// multipliers of the equality (m entries, or empty for zero); out, the last ones, in the rows
 /// of G as given (so that the gradient of the Lagrangian is A x - b + G^T mu). `inner` are the
 /// MPGP options (its tolerance is the gradient test; its norm_A must be ||A|| > 0 or 0 to
-/// estimate it). Throws InputError on bad sizes or options.
+/// estimate it). With inner.space, b, x, c and the columns of G are this process's part of the
+/// unknowns and e and mu are whole on every process: collective there. Throws InputError on bad
+/// sizes or options.
 SmalseReport solve_smalse(const Operator& A, const Eigen::VectorXd& b,
                           const SeparableConstraints& c, const EqualityConstraint& eq,
                           const SmalseOptions& opt, const MpgpOptions& inner, Eigen::VectorXd& x,

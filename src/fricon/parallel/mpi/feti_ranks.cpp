@@ -69,4 +69,47 @@ std::vector<double> MpiRanks::gather(double value) const {
   return all;
 }
 
+VectorXd MpiRanks::concat(const VectorXd& local) const {
+  join();
+  const int mine = static_cast<int>(local.size());
+  std::vector<int> counts(static_cast<std::size_t>(size_)), offsets(counts.size(), 0);
+  check_mpi(MPI_Allgather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, comm_), "MPI_Allgather");
+  for (std::size_t q = 1; q < counts.size(); ++q)
+    offsets[q] = offsets[q - 1] + counts[q - 1];
+  VectorXd all(offsets.back() + counts.back());
+  check_mpi(MPI_Allgatherv(local.data(), mine, MPI_DOUBLE, all.data(), counts.data(),
+                           offsets.data(), MPI_DOUBLE, comm_),
+            "MPI_Allgatherv");
+  return all;
+}
+
+void MpiRanks::exchange(const std::vector<VectorXd>& out, std::vector<VectorXd>& in) const {
+  join();
+  test_fault("products");
+  const auto n = static_cast<std::size_t>(size_);
+  FRICON_CHECK(out.size() == n && in.size() == n, "exchange: " << out.size() << " and " << in.size()
+                                                               << " messages for " << n
+                                                               << " ranks");
+  // Messages only between neighbours (non-empty ones), in both directions at once; between two
+  // ranks they arrive in the order sent (MPI's non-overtaking rule), so one tag does.
+  constexpr int kTag = 37;
+  std::vector<MPI_Request> requests;
+  for (std::size_t q = 0; q < n; ++q) {
+    if (q == static_cast<std::size_t>(rank_) || in[q].size() == 0) continue;
+    requests.emplace_back();
+    check_mpi(MPI_Irecv(in[q].data(), static_cast<int>(in[q].size()), MPI_DOUBLE,
+                        static_cast<int>(q), kTag, comm_, &requests.back()),
+              "MPI_Irecv");
+  }
+  for (std::size_t q = 0; q < n; ++q) {
+    if (q == static_cast<std::size_t>(rank_) || out[q].size() == 0) continue;
+    requests.emplace_back();
+    check_mpi(MPI_Isend(out[q].data(), static_cast<int>(out[q].size()), MPI_DOUBLE,
+                        static_cast<int>(q), kTag, comm_, &requests.back()),
+              "MPI_Isend");
+  }
+  check_mpi(MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE),
+            "MPI_Waitall");
+}
+
 }  // namespace fricon::parallel

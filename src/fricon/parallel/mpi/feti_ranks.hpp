@@ -31,6 +31,8 @@ class MpiRanks final : public feti::Ranks {
   int size() const override { return size_; }
   void sum(VectorXd& x) const override;
   std::vector<double> gather(double value) const override;
+  VectorXd concat(const VectorXd& local) const override;
+  void exchange(const std::vector<VectorXd>& out, std::vector<VectorXd>& in) const override;
   void collectively(const std::function<void()>& step) const override;
 
   /// The stop request the ranks agreed on at their last sum: the same on every rank.

@@ -1,0 +1,224 @@
+#include "fricon/feti/dual_rows.hpp"
+
+#include <algorithm>
+#include <limits>
+#include <numeric>
+
+#include "fricon/core/error.hpp"
+
+namespace fricon::feti {
+
+namespace {
+
+constexpr Index kNone = std::numeric_limits<Index>::max();
+
+// The process of each subdomain: the one whose block (Ranks::block) holds it.
+std::vector<int> subdomain_processes(Index n, int n_processes) {
+  std::vector<int> process(static_cast<size_t>(n), 0);
+  for (int r = 0; r < n_processes; ++r)
+    for (Index i = n * r / n_processes; i < n * (r + 1) / n_processes; ++i)
+      process[static_cast<size_t>(i)] = r;
+  return process;
+}
+
+// Groups of rows by union: a row's group is named by its root.
+class Groups {
+ public:
+  explicit Groups(Index n) : parent_(static_cast<size_t>(n)) {
+    std::iota(parent_.begin(), parent_.end(), Index{0});
+  }
+  Index root(Index i) {
+    while (parent_[static_cast<size_t>(i)] != i) {
+      Index& p = parent_[static_cast<size_t>(i)];
+      p = parent_[static_cast<size_t>(p)];  // halve the path
+      i = p;
+    }
+    return i;
+  }
+  void join(Index a, Index b) {
+    a = root(a);
+    b = root(b);
+    if (a != b) parent_[static_cast<size_t>(std::max(a, b))] = std::min(a, b);
+  }
+
+ private:
+  std::vector<Index> parent_;
+};
+
+// The owner of every row (theory.md §8.8): process 0 for a contact row; for an equality row the
+// process of the lowest subdomain that a row of its group (the equality rows sharing a torn dof,
+// transitively) touches.
+std::vector<int> row_owners(const std::vector<Subdomain>& subdomains, const TornRows& rows,
+                            int n_processes) {
+  const Index n_rows = rows.n_rows(), n_contact = rows.n_contact;
+  std::vector<Index> lowest(static_cast<size_t>(n_rows), kNone);
+  for (std::size_t i = 0; i < subdomains.size(); ++i)
+    for (Index r : subdomains[i].rows)
+      lowest[static_cast<size_t>(r)] =
+          std::min(lowest[static_cast<size_t>(r)], static_cast<Index>(i));
+  Groups groups(n_rows);
+  for (Index j = 0; j < rows.B.outerSize(); ++j) {
+    Index first = -1;
+    for (SparseMatrix::InnerIterator it(rows.B, j); it; ++it) {
+      if (it.row() < n_contact) continue;
+      if (first < 0)
+        first = it.row();
+      else
+        groups.join(first, it.row());
+    }
+  }
+  std::vector<Index> group_lowest(static_cast<size_t>(n_rows), kNone);
+  for (Index r = n_contact; r < n_rows; ++r) {
+    Index& g = group_lowest[static_cast<size_t>(groups.root(r))];
+    g = std::min(g, lowest[static_cast<size_t>(r)]);
+  }
+  const std::vector<int> process =
+      subdomain_processes(static_cast<Index>(subdomains.size()), n_processes);
+  std::vector<int> owner(static_cast<size_t>(n_rows), 0);
+  for (Index r = n_contact; r < n_rows; ++r) {
+    const Index s = group_lowest[static_cast<size_t>(groups.root(r))];
+    owner[static_cast<size_t>(r)] = s == kNone ? 0 : process[static_cast<size_t>(s)];
+  }
+  return owner;
+}
+
+// The rows that the subdomains [first, last) act on, ascending.
+std::vector<Index> rows_read(const std::vector<Subdomain>& subdomains, Index first, Index last) {
+  std::vector<Index> read;
+  for (Index i = first; i < last; ++i) {
+    const std::vector<Index>& r = subdomains[static_cast<size_t>(i)].rows;
+    read.insert(read.end(), r.begin(), r.end());
+  }
+  std::sort(read.begin(), read.end());
+  read.erase(std::unique(read.begin(), read.end()), read.end());
+  return read;
+}
+
+}  // namespace
+
+DualRows::DualRows(const std::vector<Subdomain>& subdomains, const TornRows& rows,
+                   const Ranks& ranks)
+    : ranks_(&ranks), rank_(ranks.rank()) {
+  const int P = ranks.size();
+  const auto n = static_cast<Index>(subdomains.size());
+  const std::vector<int> owner = row_owners(subdomains, rows, P);
+  owned_.assign(static_cast<size_t>(P), {});
+  for (Index r = 0; r < rows.n_rows(); ++r)
+    owned_[static_cast<size_t>(owner[static_cast<size_t>(r)])].push_back(r);
+  n_local_contact_ = rank_ == 0 ? rows.n_contact : 0;
+
+  // The extended index of every row this process reads: its own first, then the ghosts by owner.
+  std::vector<Index> extended(static_cast<size_t>(rows.n_rows()), -1);
+  for (std::size_t k = 0; k < owned().size(); ++k)
+    extended[static_cast<size_t>(owned()[k])] = static_cast<Index>(k);
+  const auto [first, last] = ranks.block(n);
+  const std::vector<Index> mine = rows_read(subdomains, first, last);
+  recv_count_.assign(static_cast<size_t>(P), 0);
+  recv_offset_.assign(static_cast<size_t>(P), 0);
+  Index next = n_local();
+  for (int q = 0; q < P; ++q) {
+    recv_offset_[static_cast<size_t>(q)] = next;
+    if (q == rank_) continue;
+    for (Index r : mine)
+      if (owner[static_cast<size_t>(r)] == q) extended[static_cast<size_t>(r)] = next++;
+    recv_count_[static_cast<size_t>(q)] = next - recv_offset_[static_cast<size_t>(q)];
+  }
+  n_ghosts_ = next - n_local();
+
+  // What every other process reads of this one's rows: sent before a product, returned after.
+  send_.assign(static_cast<size_t>(P), {});
+  for (int q = 0; q < P; ++q) {
+    if (q == rank_) continue;
+    const auto [q_first, q_last] = std::pair<Index, Index>{n * q / P, n * (q + 1) / P};
+    for (Index r : rows_read(subdomains, q_first, q_last))
+      if (owner[static_cast<size_t>(r)] == rank_)
+        send_[static_cast<size_t>(q)].push_back(extended[static_cast<size_t>(r)]);
+  }
+
+  first_subdomain_ = first;
+  extended_rows_.resize(static_cast<size_t>(last - first));
+  for (Index i = first; i < last; ++i) {
+    std::vector<Index>& e = extended_rows_[static_cast<size_t>(i - first)];
+    for (Index r : subdomains[static_cast<size_t>(i)].rows)
+      e.push_back(extended[static_cast<size_t>(r)]);
+  }
+}
+
+VectorXd DualRows::restrict(const VectorXd& whole) const {
+  VectorXd local(n_local());
+  for (std::size_t k = 0; k < owned().size(); ++k)
+    local(static_cast<Index>(k)) = whole(owned()[k]);
+  return local;
+}
+
+SparseMatrix DualRows::restrict_columns(const SparseMatrix& G) const {
+  if (owned_.size() == 1) return G;
+  SparseMatrix part(G.rows(), n_local());
+  std::vector<Eigen::Triplet<Real, SparseIndex>> entries;
+  for (std::size_t k = 0; k < owned().size(); ++k)
+    for (SparseMatrix::InnerIterator it(G, owned()[k]); it; ++it)
+      entries.emplace_back(it.row(), static_cast<Index>(k), it.value());
+  part.setFromTriplets(entries.begin(), entries.end());
+  part.makeCompressed();
+  return part;
+}
+
+VectorXd DualRows::assemble(const VectorXd& local) const {
+  FRICON_CHECK(local.size() == n_local(),
+               "assemble: " << local.size() << " entries for " << n_local());
+  if (owned_.size() == 1) return local;
+  const VectorXd all = ranks_->concat(local);
+  Index total = 0;
+  for (const std::vector<Index>& rows : owned_)
+    total += static_cast<Index>(rows.size());
+  VectorXd whole(total);
+  Index k = 0;
+  for (const std::vector<Index>& rows : owned_)
+    for (Index r : rows)
+      whole(r) = all(k++);
+  return whole;
+}
+
+void DualRows::fetch_ghosts(const VectorXd& local, VectorXd& extended) const {
+  extended.resize(n_extended());
+  extended.head(n_local()) = local;
+  if (owned_.size() == 1) return;
+  std::vector<VectorXd> out(owned_.size()), in(owned_.size());
+  for (std::size_t q = 0; q < owned_.size(); ++q) {
+    out[q].resize(static_cast<Index>(send_[q].size()));
+    for (std::size_t k = 0; k < send_[q].size(); ++k)
+      out[q](static_cast<Index>(k)) = local(send_[q][k]);
+    in[q].resize(recv_count_[q]);
+  }
+  ranks_->exchange(out, in);
+  for (std::size_t q = 0; q < owned_.size(); ++q)
+    extended.segment(recv_offset_[q], recv_count_[q]) = in[q];
+}
+
+void DualRows::return_ghosts(const VectorXd& extended, VectorXd& local) const {
+  local = extended.head(n_local());
+  if (owned_.size() == 1) return;
+  std::vector<VectorXd> out(owned_.size()), in(owned_.size());
+  for (std::size_t q = 0; q < owned_.size(); ++q) {
+    out[q] = extended.segment(recv_offset_[q], recv_count_[q]);
+    in[q].resize(static_cast<Index>(send_[q].size()));
+  }
+  ranks_->exchange(out, in);
+  for (std::size_t q = 0; q < owned_.size(); ++q)
+    for (std::size_t k = 0; k < send_[q].size(); ++k)
+      local(send_[q][k]) += in[q](static_cast<Index>(k));
+}
+
+void RanksSpace::sum(Eigen::Ref<Eigen::VectorXd> v) const {
+  VectorXd x = v;  // every process takes part, alone too: the stop request rides on the sums
+  ranks_->sum(x);
+  v = x;
+}
+
+double RanksSpace::max(double value) const {
+  if (ranks_->size() == 1) return value;
+  const std::vector<double> all = ranks_->gather(value);
+  return *std::max_element(all.begin(), all.end());
+}
+
+}  // namespace fricon::feti
