@@ -24,6 +24,10 @@ pressure (max lambda_n) and max |u| to 1e-6, and the same status:
   path2                   a loading path (the Coulomb brick's friction hysteresis, 21 steps) on 8
                           subdomains and 2 ranks: every step's forces to 1e-6 of its normal force
   dump_dual2              --dump-dual (the contact QP alone) is refused once on 2 ranks, exit 1
+  unbalanced2             the free block pushed beyond friction's limit (F = 0.1: 4000 N against
+                          mu N = 2000 N): the QP's certificate, found on every rank's share of
+                          the multipliers, refuses it once, exit 1, naming both forces; nothing
+                          written
   stop_signal             SIGUSR1 to mpirun during the QPs: every rank stops at the same step,
                           rank 0 writes the last iterate (*.not-converged.*), exit code 2
   fault-PHASE-RANK-KIND   a fault injected on one rank (FRICON_TEST_FAULT, test only): every rank
@@ -177,6 +181,14 @@ def main():
         check_mpi.expect_error(cmd, ["--dump-dual", "tfeti", "solver.backend"],
                                "--dump-dual with tfeti on 2 ranks is refused once")
         check_mpi.nothing_written(out / "d")
+    elif case == "unbalanced2":
+        cmd = check_mpi.mpirun(mpi, 2) + [fricon, "solve", str(examples / "floating" /
+                                                            "free-block.toml"), *TFETI,
+                                          "--set", "contact.friction.value=0.1", "-q", "-o",
+                                          str(out / "u")]
+        check_mpi.expect_error(cmd, ["floats", "is 4000 N", "at most 2000 N"],
+                               "a push beyond friction's limit on 2 ranks is refused once")
+        check_mpi.nothing_written(out / "u")
     elif case == "stop_signal":
         stop_signal(fricon, mpi, brick, out / "s")
     elif case.startswith("fault-") and case[len("fault-"):] in FAULTS:

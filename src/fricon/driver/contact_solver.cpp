@@ -14,6 +14,7 @@
 #include "fricon/core/error.hpp"
 #include "fricon/driver/floating_bodies.hpp"
 #include "fricon/driver/tresca_map.hpp"
+#include "fricon/feti/ranks.hpp"
 #include "fricon/qp/friction_cone.hpp"
 #include "fricon/qp/mpgp.hpp"
 
@@ -593,8 +594,11 @@ ContactOutcome solve_contact(const Problem& problem, const Model& m,
                 qp_options(problem.solver, rep.norm_Q_scaled, options), problem.solver.warm_start,
                 times);
   if (options.keep_first_dual) out.first_dual = first_dual_problem(problem, disc, Q, map);
+  // Every process of a Total FETI run finds the same certificate (the QP's decisions are the
+  // same on all): the refusal is an error they agree on, not one process's failure.
   map.set_infeasibility_handler([&](const qp::Infeasibility& certificate) {
-    refuse_unbalanced_load(problem, m, certificate);
+    const feti::Ranks& ranks = options.feti_ranks ? *options.feti_ranks : feti::this_process();
+    ranks.collectively([&] { refuse_unbalanced_load(problem, m, certificate); });
   });
 
   // @sect: successive approximations (theory.md §5), from the zero state (phi = 0, and for

@@ -22,10 +22,10 @@ driver::RunResult run_distributed(const driver::Problem& problem,
 
 /// Backend "tfeti" under mpirun (docs/parallel.md, "Total FETI on ranks"): driver::run on every
 /// rank of MPI_COMM_WORLD, the subdomains shared out in blocks (parallel/mpi/feti_ranks.hpp),
-/// each rank factoring its own, every rank holding the multipliers and running the same QPs.
-/// Collective. Every rank returns the whole result (rank 0 writes it). An error that every rank
-/// raises (bad input, a subdomain that cannot be factored, a stop) ends every rank the same; one
-/// rank failing alone in a step of collective calls ends the job (MPI_Abort, exit code 3).
+/// each rank factoring its own and holding its share of the multipliers in the QPs (theory.md
+/// §8.8). Collective. Every rank returns the whole result (rank 0 writes it). An error that every
+/// rank raises (bad input, a subdomain that cannot be factored, a stop) ends every rank the same;
+/// one rank failing alone in a step of collective calls ends the job (MPI_Abort, exit code 3).
 /// Threads per rank: the run's, at most the cores of the node shared by the ranks on it. A
 /// process not started by mpirun (or a fricon built without MPI) runs driver::run alone.
 driver::RunResult run_tfeti_on_ranks(const driver::Problem& problem,

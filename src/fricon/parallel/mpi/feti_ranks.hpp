@@ -1,9 +1,11 @@
 #pragma once
 // parallel/mpi: the ranks of an MPI job as the processes of a Total FETI run (feti/ranks.hpp,
-// docs/theory.md §8.8, docs/parallel.md "Total FETI on ranks"). Every rank runs the same run on
-// the same numbers; the only data that crosses ranks are the sums of the subdomains' parts
-// (MPI_Reduce to rank 0, then MPI_Bcast, so that every rank has rank 0's bits) and a few figures
-// for the report. Two more things ride on every sum:
+// docs/theory.md §8.8, docs/parallel.md "Total FETI on ranks"). Every rank runs the same run and
+// takes the same decisions; what crosses ranks are the sums of the QP's reductions (MPI_Reduce to
+// rank 0, then MPI_Bcast, so that every rank has rank 0's bits), the messages between neighbouring
+// ranks in a product with F (exchange: MPI_Isend/MPI_Irecv of the rows their subdomains share,
+// theory.md §8.8), the gathering of the multipliers once per QP (concat) and a few figures for
+// the report. Two more things ride on every sum:
 //   - the stop request (a signal reaches the ranks at different moments): a rank whose request
 //     is set adds 1, and after the sum every rank sees the same agreed_stop(), so all stop at the
 //     same step;
