@@ -168,7 +168,8 @@ TEST(TfetiShare, EveryRowIsOneProcesssAndRowsSharingADofStayTogether) {
   const Problem p =
       example("examples/elastic-brick.toml", {"mesh.cells=[8,4,4]", "solver.subdomains=12"});
   const Model model = model_of(p);
-  const SparseMatrix& B = operator_of(p, model, feti::this_process())->rows().B;
+  const auto whole = operator_of(p, model, feti::this_process());
+  const SparseMatrix& B = whole->rows().B;
   const std::vector<std::vector<Index>> owned =
       on_processes<std::vector<Index>>(3, [&](const feti::Ranks& ranks) {
         const auto F = operator_of(p, model, ranks);
