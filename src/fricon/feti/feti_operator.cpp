@@ -1,9 +1,8 @@
 #include "fricon/feti/feti_operator.hpp"
 
-#include <memory>
-
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 #include "fricon/core/error.hpp"
 #include "fricon/core/parallel_for.hpp"
