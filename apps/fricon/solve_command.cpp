@@ -99,10 +99,13 @@ void print_summary(const driver::RunResult& result, const std::filesystem::path&
     if (!f.partition_note.empty()) fmt::print("  partition     {}\n", f.partition_note);
     print_softness(f.softness);
     if (f.n_ranks > 1) {
-      fmt::print("  ranks         {} (tfeti), subdomains / factor MiB / peak memory MiB per rank:",
-                 f.n_ranks);
+      fmt::print(
+          "  ranks         {} (tfeti), subdomains / multipliers / ghosts / factor MiB / peak "
+          "memory MiB per rank:",
+          f.n_ranks);
       for (const feti::RankShare& rank : f.ranks)
-        fmt::print(" {}/{:.0f}/{:.0f}", rank.n_subdomains, rank.factor_mib, rank.peak_memory_mib);
+        fmt::print(" {}/{}/{}/{:.0f}/{:.0f}", rank.n_subdomains, rank.n_multipliers, rank.n_ghosts,
+                   rank.factor_mib, rank.peak_memory_mib);
       fmt::print("\n");
     }
   } else {

@@ -88,6 +88,13 @@ def check_shares(report, ranks):
             sum(s["n_tets"] for s in shares) != report["n_tets"]:
         sys.exit(f"FAIL: the ranks' shares {shares} do not add up to {f['n_subdomains']} "
                  f"subdomains and {report['n_tets']} tetrahedra")
+    # Every multiplier on one rank (theory.md §8.8), and ghosts only where a rank has neighbours.
+    multipliers = f["n_contact"] + f["n_gluing"] + f["n_dirichlet"]
+    if sum(s["n_multipliers"] for s in shares) != multipliers:
+        sys.exit(f"FAIL: the ranks hold {[s['n_multipliers'] for s in shares]} multipliers, "
+                 f"not {multipliers} in all")
+    if (ranks == 1) != all(s["n_ghosts"] == 0 for s in shares):
+        sys.exit(f"FAIL: ghosts {[s['n_ghosts'] for s in shares]} on {ranks} rank(s)")
     if any(s["n_subdomains"] > 0 and not (s["factor_mib"] > 0 and s["peak_memory_mib"] > 0)
            for s in shares):
         sys.exit(f"FAIL: a rank's figures are missing: {shares}")

@@ -47,6 +47,7 @@ void record_feti_counts(const feti::FetiOperator& F, RunReport& report) {
   report.feti->n_preconditioner = F.n_preconditioner();
   report.feti->preconditioner_s = F.preconditioner_seconds();
   feti::record_peak_memory(F.ranks(), *report.feti);
+  feti::record_shares(F, *report.feti);
   if (report.contact) {
     report.feti->qp_iterations = report.contact->qp_iterations;
     report.feti->smalse_outer_iterations = report.contact->smalse_outer_iterations;

@@ -52,6 +52,8 @@ class DualRows {
   void return_ghosts(const VectorXd& extended, VectorXd& local) const;
   /// Own rows and ghosts: the size of an extended vector.
   Index n_extended() const { return n_local() + n_ghosts_; }
+  /// The rows of this process's subdomains that other processes hold.
+  Index n_ghosts() const { return n_ghosts_; }
   /// The extended index of each row of this process's subdomain i (its Subdomain::rows).
   const std::vector<Index>& extended_rows(Index i) const {
     return extended_rows_[static_cast<size_t>(i - first_subdomain_)];

@@ -63,6 +63,10 @@ struct RankShare {
   double factor_mib = 0.0;           ///< their factors, 8 bytes per non-zero [MiB]
   double factorization_cpu_s = 0.0;  ///< their assembly and factorization, summed [s]
   double peak_memory_mib = 0.0;      ///< its peak resident memory [MiB]
+  /// The multipliers it holds in the QP at the end of the run (feti/dual_rows.hpp), and the
+  /// rows of its subdomains that neighbours hold, exchanged in every product (ghosts).
+  Index n_multipliers = 0;
+  Index n_ghosts = 0;
 };
 
 /// How soft each subdomain is beyond its rigid motions (feti/softness.hpp, theory.md §8.9).

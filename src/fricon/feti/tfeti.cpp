@@ -81,6 +81,16 @@ void record_peak_memory(const Ranks& ranks, FetiReport& report) {
     report.ranks[r].peak_memory_mib = peaks[r];
 }
 
+void record_shares(const FetiOperator& F, FetiReport& report) {
+  const std::vector<double> held = F.ranks().gather(static_cast<double>(F.dual_rows().n_local()));
+  const std::vector<double> ghosts =
+      F.ranks().gather(static_cast<double>(F.dual_rows().n_ghosts()));
+  for (std::size_t r = 0; r < report.ranks.size() && r < held.size(); ++r) {
+    report.ranks[r].n_multipliers = std::llround(held[r]);
+    report.ranks[r].n_ghosts = std::llround(ghosts[r]);
+  }
+}
+
 double peak_memory_mib() {
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);

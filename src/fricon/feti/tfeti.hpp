@@ -40,4 +40,8 @@ double peak_memory_mib();
 /// Collective over `ranks`.
 void record_peak_memory(const Ranks& ranks, FetiReport& report);
 
+/// Every process's share of F's multipliers, and its ghosts (RankShare::n_multipliers,
+/// n_ghosts), into `report`. Collective over F's ranks.
+void record_shares(const FetiOperator& F, FetiReport& report);
+
 }  // namespace fricon::feti

@@ -249,7 +249,9 @@ void add_feti_report(const feti::FetiReport& f, nlohmann::json& j) {
                      {"n_tets", r.n_tets},
                      {"factor_mib", r.factor_mib},
                      {"factorization_cpu_s", r.factorization_cpu_s},
-                     {"peak_memory_mib", r.peak_memory_mib}});
+                     {"peak_memory_mib", r.peak_memory_mib},
+                     {"n_multipliers", r.n_multipliers},
+                     {"n_ghosts", r.n_ghosts}});
   j["feti"] = {
       {"backend", "tfeti"},
       {"n_subdomains", f.n_subdomains},
