@@ -46,16 +46,20 @@ class Groups {
 };
 
 // The owner of every row (theory.md §8.8): process 0 for a contact row; for an equality row the
-// process of the lowest subdomain that a row of its group (the equality rows sharing a torn dof,
-// transitively) touches.
+// process of the lowest or, for every other group, the highest subdomain that a row of its group
+// (the equality rows sharing a torn dof, transitively) touches: two neighbouring processes share
+// the groups between them about evenly.
 std::vector<int> row_owners(const std::vector<Subdomain>& subdomains, const TornRows& rows,
                             int n_processes) {
   const Index n_rows = rows.n_rows(), n_contact = rows.n_contact;
-  std::vector<Index> lowest(static_cast<size_t>(n_rows), kNone);
+  std::vector<Index> lowest(static_cast<size_t>(n_rows), kNone), highest(lowest.size(), -1);
   for (std::size_t i = 0; i < subdomains.size(); ++i)
-    for (Index r : subdomains[i].rows)
+    for (Index r : subdomains[i].rows) {
       lowest[static_cast<size_t>(r)] =
           std::min(lowest[static_cast<size_t>(r)], static_cast<Index>(i));
+      highest[static_cast<size_t>(r)] =
+          std::max(highest[static_cast<size_t>(r)], static_cast<Index>(i));
+    }
   Groups groups(n_rows);
   for (Index j = 0; j < rows.B.outerSize(); ++j) {
     Index first = -1;
@@ -67,17 +71,27 @@ std::vector<int> row_owners(const std::vector<Subdomain>& subdomains, const Torn
         groups.join(first, it.row());
     }
   }
-  std::vector<Index> group_lowest(static_cast<size_t>(n_rows), kNone);
+  std::vector<Index> group_lowest(static_cast<size_t>(n_rows), kNone),
+      group_highest(group_lowest.size(), -1);
   for (Index r = n_contact; r < n_rows; ++r) {
-    Index& g = group_lowest[static_cast<size_t>(groups.root(r))];
-    g = std::min(g, lowest[static_cast<size_t>(r)]);
+    const auto g = static_cast<size_t>(groups.root(r));
+    group_lowest[g] = std::min(group_lowest[g], lowest[static_cast<size_t>(r)]);
+    group_highest[g] = std::max(group_highest[g], highest[static_cast<size_t>(r)]);
   }
   const std::vector<int> process =
       subdomain_processes(static_cast<Index>(subdomains.size()), n_processes);
+  // The groups in the order of their first rows, the even ones to their lowest subdomain's
+  // process, the odd ones to their highest's.
+  std::vector<Index> chosen(static_cast<size_t>(n_rows), kNone);
+  Index n_groups = 0;
+  for (Index r = n_contact; r < n_rows; ++r)
+    if (groups.root(r) == r)
+      chosen[static_cast<size_t>(r)] = n_groups++ % 2 == 0 ? group_lowest[static_cast<size_t>(r)]
+                                                           : group_highest[static_cast<size_t>(r)];
   std::vector<int> owner(static_cast<size_t>(n_rows), 0);
   for (Index r = n_contact; r < n_rows; ++r) {
-    const Index s = group_lowest[static_cast<size_t>(groups.root(r))];
-    owner[static_cast<size_t>(r)] = s == kNone ? 0 : process[static_cast<size_t>(s)];
+    const Index s = chosen[static_cast<size_t>(groups.root(r))];
+    owner[static_cast<size_t>(r)] = s == kNone || s < 0 ? 0 : process[static_cast<size_t>(s)];
   }
   return owner;
 }

@@ -5,8 +5,9 @@
 //     against the gluing rows);
 //   - the equality rows fall into groups that share a torn dof (a node's chain of gluing rows
 //     and its Dirichlet row, per component), and a group is owned by the process of the lowest
-//     subdomain its rows touch, so that B_E B_E^T, block diagonal over the groups, is local
-//     (the preconditioners solve with it).
+//     subdomain its rows touch or, every other group, of the highest (so that neighbouring
+//     processes share their interface about evenly); B_E B_E^T, block diagonal over the groups,
+//     is then local (the preconditioners solve with it).
 // A product with F needs, besides a process's own rows, the rows of its subdomains that another
 // owns (ghosts): fetched from their owners before the local solves, and their sums returned to
 // them after (Ranks::exchange), instead of a sum over all the multipliers. Every process computes
