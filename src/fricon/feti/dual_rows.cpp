@@ -12,12 +12,14 @@ namespace {
 
 constexpr Index kNone = std::numeric_limits<Index>::max();
 
-// The process of each subdomain: the one whose block (Ranks::block) holds it.
-std::vector<int> subdomain_processes(Index n, int n_processes) {
+// The process of each of the n subdomains: the one whose block (Ranks::block_of) holds it.
+std::vector<int> subdomain_processes(Index n, const Ranks& ranks) {
   std::vector<int> process(static_cast<size_t>(n), 0);
-  for (int r = 0; r < n_processes; ++r)
-    for (Index i = n * r / n_processes; i < n * (r + 1) / n_processes; ++i)
-      process[static_cast<size_t>(i)] = r;
+  for (int q = 0; q < ranks.size(); ++q) {
+    const auto [first, last] = ranks.block_of(q, n);
+    for (Index i = first; i < last; ++i)
+      process[static_cast<size_t>(i)] = q;
+  }
   return process;
 }
 
@@ -50,7 +52,7 @@ class Groups {
 // (the equality rows sharing a torn dof, transitively) touches: two neighbouring processes share
 // the groups between them about evenly.
 std::vector<int> row_owners(const std::vector<Subdomain>& subdomains, const TornRows& rows,
-                            int n_processes) {
+                            const Ranks& ranks) {
   const Index n_rows = rows.n_rows(), n_contact = rows.n_contact;
   std::vector<Index> lowest(static_cast<size_t>(n_rows), kNone), highest(lowest.size(), -1);
   for (std::size_t i = 0; i < subdomains.size(); ++i)
@@ -79,7 +81,7 @@ std::vector<int> row_owners(const std::vector<Subdomain>& subdomains, const Torn
     group_highest[g] = std::max(group_highest[g], highest[static_cast<size_t>(r)]);
   }
   const std::vector<int> process =
-      subdomain_processes(static_cast<Index>(subdomains.size()), n_processes);
+      subdomain_processes(static_cast<Index>(subdomains.size()), ranks);
   // The groups in the order of their first rows, the even ones to their lowest subdomain's
   // process, the odd ones to their highest's.
   std::vector<Index> chosen(static_cast<size_t>(n_rows), kNone);
@@ -113,49 +115,69 @@ std::vector<Index> rows_read(const std::vector<Subdomain>& subdomains, Index fir
 DualRows::DualRows(const std::vector<Subdomain>& subdomains, const TornRows& rows,
                    const Ranks& ranks)
     : ranks_(&ranks), rank_(ranks.rank()) {
-  const int P = ranks.size();
-  const auto n = static_cast<Index>(subdomains.size());
-  const std::vector<int> owner = row_owners(subdomains, rows, P);
-  owned_.assign(static_cast<size_t>(P), {});
-  for (Index r = 0; r < rows.n_rows(); ++r)
-    owned_[static_cast<size_t>(owner[static_cast<size_t>(r)])].push_back(r);
-  n_local_contact_ = rank_ == 0 ? rows.n_contact : 0;
+  const std::vector<int> owner = row_owners(subdomains, rows, ranks);
+  share_rows(owner, rows.n_contact);
+  std::vector<Index> extended = number_ghosts(subdomains, owner);
+  plan_sends(subdomains, owner, extended);
+  map_subdomain_rows(subdomains, extended);
+}
 
-  // The extended index of every row this process reads: its own first, then the ghosts by owner.
-  std::vector<Index> extended(static_cast<size_t>(rows.n_rows()), -1);
+// Every process's rows, ascending.
+void DualRows::share_rows(const std::vector<int>& owner, Index n_contact) {
+  owned_.assign(static_cast<size_t>(ranks_->size()), {});
+  for (std::size_t r = 0; r < owner.size(); ++r)
+    owned_[static_cast<size_t>(owner[r])].push_back(static_cast<Index>(r));
+  n_local_contact_ = rank_ == 0 ? n_contact : 0;
+}
+
+// The extended index of every row this process's subdomains read (-1 for the others): its own
+// rows first, then the ghosts, by owner and ascending.
+std::vector<Index> DualRows::number_ghosts(const std::vector<Subdomain>& subdomains,
+                                           const std::vector<int>& owner) {
+  std::vector<Index> extended(owner.size(), -1);
   for (std::size_t k = 0; k < owned().size(); ++k)
     extended[static_cast<size_t>(owned()[k])] = static_cast<Index>(k);
-  const auto [first, last] = ranks.block(n);
-  const std::vector<Index> mine = rows_read(subdomains, first, last);
-  recv_count_.assign(static_cast<size_t>(P), 0);
-  recv_offset_.assign(static_cast<size_t>(P), 0);
+  const auto [first, last] = ranks_->block(static_cast<Index>(subdomains.size()));
+  const std::vector<Index> read = rows_read(subdomains, first, last);
+  const auto P = static_cast<size_t>(ranks_->size());
+  recv_count_.assign(P, 0);
+  recv_offset_.assign(P, 0);
   Index next = n_local();
-  for (int q = 0; q < P; ++q) {
-    recv_offset_[static_cast<size_t>(q)] = next;
-    if (q == rank_) continue;
-    for (Index r : mine)
-      if (owner[static_cast<size_t>(r)] == q) extended[static_cast<size_t>(r)] = next++;
-    recv_count_[static_cast<size_t>(q)] = next - recv_offset_[static_cast<size_t>(q)];
+  for (std::size_t q = 0; q < P; ++q) {
+    recv_offset_[q] = next;
+    if (static_cast<int>(q) == rank_) continue;
+    for (Index r : read)
+      if (owner[static_cast<size_t>(r)] == static_cast<int>(q))
+        extended[static_cast<size_t>(r)] = next++;
+    recv_count_[q] = next - recv_offset_[q];
   }
   n_ghosts_ = next - n_local();
+  return extended;
+}
 
-  // What every other process reads of this one's rows: sent before a product, returned after.
-  send_.assign(static_cast<size_t>(P), {});
-  for (int q = 0; q < P; ++q) {
+// What every other process's subdomains read of this one's rows: sent before a product, and
+// their sums returned after, in ascending row order.
+void DualRows::plan_sends(const std::vector<Subdomain>& subdomains, const std::vector<int>& owner,
+                          const std::vector<Index>& extended) {
+  send_.assign(static_cast<size_t>(ranks_->size()), {});
+  for (int q = 0; q < ranks_->size(); ++q) {
     if (q == rank_) continue;
-    const auto [q_first, q_last] = std::pair<Index, Index>{n * q / P, n * (q + 1) / P};
-    for (Index r : rows_read(subdomains, q_first, q_last))
+    const auto [first, last] = ranks_->block_of(q, static_cast<Index>(subdomains.size()));
+    for (Index r : rows_read(subdomains, first, last))
       if (owner[static_cast<size_t>(r)] == rank_)
         send_[static_cast<size_t>(q)].push_back(extended[static_cast<size_t>(r)]);
   }
+}
 
+// The extended index of each row of each of this process's subdomains.
+void DualRows::map_subdomain_rows(const std::vector<Subdomain>& subdomains,
+                                  const std::vector<Index>& extended) {
+  const auto [first, last] = ranks_->block(static_cast<Index>(subdomains.size()));
   first_subdomain_ = first;
-  extended_rows_.resize(static_cast<size_t>(last - first));
-  for (Index i = first; i < last; ++i) {
-    std::vector<Index>& e = extended_rows_[static_cast<size_t>(i - first)];
+  extended_rows_.assign(static_cast<size_t>(last - first), {});
+  for (Index i = first; i < last; ++i)
     for (Index r : subdomains[static_cast<size_t>(i)].rows)
-      e.push_back(extended[static_cast<size_t>(r)]);
-  }
+      extended_rows_[static_cast<size_t>(i - first)].push_back(extended[static_cast<size_t>(r)]);
 }
 
 VectorXd DualRows::restrict(const VectorXd& whole) const {

@@ -61,6 +61,15 @@ class DualRows {
   }
 
  private:
+  // The steps of the constructor (theory.md §8.8), in order.
+  void share_rows(const std::vector<int>& owner, Index n_contact);
+  std::vector<Index> number_ghosts(const std::vector<Subdomain>& subdomains,
+                                   const std::vector<int>& owner);
+  void plan_sends(const std::vector<Subdomain>& subdomains, const std::vector<int>& owner,
+                  const std::vector<Index>& extended);
+  void map_subdomain_rows(const std::vector<Subdomain>& subdomains,
+                          const std::vector<Index>& extended);
+
   const Ranks* ranks_;
   int rank_ = 0;
   Index n_local_contact_ = 0;

@@ -2,8 +2,8 @@
 
 namespace fricon::feti {
 
-std::pair<Index, Index> Ranks::block(Index n) const {
-  const auto r = static_cast<Index>(rank()), p = static_cast<Index>(size());
+std::pair<Index, Index> Ranks::block_of(int q, Index n) const {
+  const auto r = static_cast<Index>(q), p = static_cast<Index>(size());
   return {n * r / p, n * (r + 1) / p};
 }
 

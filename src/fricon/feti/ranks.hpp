@@ -49,7 +49,9 @@ class Ranks {
 
   /// The subdomains this process works on, of `n` numbered 0 .. n - 1: [first, second), a
   /// block of consecutive ones, the blocks of the processes differing by at most one subdomain.
-  std::pair<Index, Index> block(Index n) const;
+  std::pair<Index, Index> block(Index n) const { return block_of(rank(), n); }
+  /// The block of process `q` (0 <= q < size()).
+  std::pair<Index, Index> block_of(int q, Index n) const;
   /// Whether subdomain `i` of `n` is in this process's block.
   bool owns(Index i, Index n) const;
 };

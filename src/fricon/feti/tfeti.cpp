@@ -49,8 +49,8 @@ void describe_subdomains(const std::vector<Subdomain>& subdomains, const Ranks& 
   report.ranks.assign(static_cast<size_t>(ranks.size()), {});
   for (std::size_t r = 0; r < report.ranks.size(); ++r) {
     RankShare& share = report.ranks[r];
-    share.n_subdomains =
-        n * static_cast<Index>(r + 1) / ranks.size() - n * static_cast<Index>(r) / ranks.size();
+    const auto [its_first, its_last] = ranks.block_of(static_cast<int>(r), n);
+    share.n_subdomains = its_last - its_first;
     share.n_tets = static_cast<Index>(rank_tets[r]);
     share.factor_mib = rank_nnz[r] * kBytesPerEntry / kBytesPerMib;
     share.factorization_cpu_s = rank_cpu_s[r];
