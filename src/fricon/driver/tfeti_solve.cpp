@@ -58,6 +58,12 @@ void record_feti_counts(const feti::FetiOperator& F, RunReport& report) {
   }
 }
 
+void record_run_peak_memory(const RunOptions& options, RunReport& report) {
+  if (!report.feti) return;
+  feti::record_peak_memory(options.feti_ranks ? *options.feti_ranks : feti::this_process(),
+                           *report.feti);
+}
+
 GluingSolve solve_gluing(const feti::FetiOperator& F, const Problem& problem,
                          const RunOptions& options) {
   FRICON_CHECK(F.n_contact() == 0, "solve_gluing: F has " << F.n_contact() << " contact rows");

@@ -30,6 +30,11 @@ std::unique_ptr<feti::FetiOperator> make_feti_operator(const Problem& problem, c
 /// the processes' peak memory (collective over F.ranks()).
 void record_feti_counts(const feti::FetiOperator& F, RunReport& report);
 
+/// At the end of a run with backend "tfeti" (report.feti set; otherwise nothing): the processes'
+/// peak memory over the whole run, the fields and the self-check included, into report.feti.
+/// Collective over options.feti_ranks (this process alone when null).
+void record_run_peak_memory(const RunOptions& options, RunReport& report);
+
 /// The displacement of F's load with its subdomains held by the gluing and Dirichlet rows alone
 /// (no contact), and the certificate's figures of it.
 struct GluingSolve {
