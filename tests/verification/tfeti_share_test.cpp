@@ -57,8 +57,8 @@ class ThreadRanks final : public feti::Ranks {
   int rank() const override { return rank_; }
   int size() const override { return size_; }
 
-  void sum(VectorXd& x) const override {
-    const std::vector<VectorXd> all = post_to_all(x);
+  void sum(Eigen::Ref<VectorXd> x) const override {
+    const std::vector<VectorXd> all = post_to_all(VectorXd(x));
     x.setZero();
     for (const VectorXd& part : all)
       x += part;  // rank order on every process: the same bits

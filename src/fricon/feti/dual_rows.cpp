@@ -246,9 +246,7 @@ void DualRows::return_ghosts(const VectorXd& extended, VectorXd& local) const {
 }
 
 void RanksSpace::sum(Eigen::Ref<Eigen::VectorXd> v) const {
-  VectorXd x = v;  // every process takes part, alone too: the stop request rides on the sums
-  ranks_->sum(x);
-  v = x;
+  ranks_->sum(v);  // every process takes part, alone too: the stop request rides on the sums
 }
 
 double RanksSpace::max(double value) const {

@@ -26,7 +26,7 @@ class Ranks {
 
   /// x <- the sum of x over the processes, bit for bit the same on every one. Collective: every
   /// process calls it with a vector of the same size.
-  virtual void sum(VectorXd& x) const { (void)x; }
+  virtual void sum(Eigen::Ref<VectorXd> x) const { (void)x; }
 
   /// `value` of every process, in rank order, on every process. Collective.
   virtual std::vector<double> gather(double value) const { return {value}; }

@@ -36,7 +36,7 @@ void MpiRanks::collectively(const std::function<void()>& step) const {
       comm_);
 }
 
-void MpiRanks::sum(VectorXd& x) const {
+void MpiRanks::sum(Eigen::Ref<VectorXd> x) const {
   join();
   test_fault("products");
   const Index n = x.size();

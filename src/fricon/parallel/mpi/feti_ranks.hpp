@@ -31,7 +31,7 @@ class MpiRanks final : public feti::Ranks {
 
   int rank() const override { return rank_; }
   int size() const override { return size_; }
-  void sum(VectorXd& x) const override;
+  void sum(Eigen::Ref<VectorXd> x) const override;
   std::vector<double> gather(double value) const override;
   VectorXd concat(const VectorXd& local) const override;
   void exchange(const std::vector<VectorXd>& out, std::vector<VectorXd>& in) const override;
