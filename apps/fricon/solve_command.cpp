@@ -381,6 +381,7 @@ int solve(const std::string& file, const SolveOptions& so, const std::string& co
   const driver::Problem problem = read_problem_on_every_rank(file, so, dir);
   driver::RunOptions options = progress_options(so.verbosity, clock);
   options.keep_first_dual = !so.dump_dual.empty();
+  options.fields = is_rank_zero();  // (the other ranks of backend tfeti write nothing)
   options.stop_requested = &stop_requested;
   // From the outer loop on, a signal stops the run at its next QP step with an iterate to save.
   options.on_phase_start = [progress = options.on_phase_start](const std::string& phase) {

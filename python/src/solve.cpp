@@ -218,8 +218,22 @@ PyResult solve(const PyProblem& p, const py::object& progress, std::optional<int
                   io::RunContext{p.edits, "python: fricon.solve"}, step_files};
 }
 
+/// The run's whole result: every process's but that of a rank other than 0 of backend "petsc"
+/// under mpirun, which served rank 0's solves and holds none (its status is rank 0's). Throws
+/// Error there, so that nothing hollow is read or written.
+const driver::RunResult& held(const PyResult& r) {
+  const auto& parallel = r.run->report.parallel;
+  if (parallel && parallel->rank != 0)
+    throw Error(fmt::format(
+        "this is rank {} of {} of a backend \"petsc\" run under mpirun: the ranks other than 0 "
+        "serve rank 0's solves and hold no result (only `converged` and `message`); read and "
+        "write it on rank 0 (docs/python.md, \"Under mpirun\")",
+        parallel->rank, parallel->n_ranks));
+  return *r.run;
+}
+
 std::string report_text(const PyResult& r) {
-  return io::report_json(*r.problem, *r.run, r.context).dump();
+  return io::report_json(*r.problem, held(r), r.context).dump();
 }
 
 }  // namespace
@@ -254,30 +268,32 @@ void bind_solve(py::module_& m) {
       .def_property_readonly(
           "points",
           [](py::object self) {
-            return rows_view(self.cast<PyResult&>().run->model.mesh.nodes, self);
+            return rows_view(held(self.cast<PyResult&>()).model.mesh.nodes, self);
           },
           "(n, 3) node coordinates [m]")
       .def_property_readonly(
           "tets",
-          [](py::object self) { return tet_rows(self.cast<PyResult&>().run->model.mesh, self); },
+          [](py::object self) { return tet_rows(held(self.cast<PyResult&>()).model.mesh, self); },
           "(m, 4) node indices, or (m, 10) of a quadratic mesh (corners, then edges 01, 12, 20, "
           "30, 32, 31)")
       .def_property_readonly(
           "displacement",
-          [](py::object self) { return rows_view(self.cast<PyResult&>().run->displacement, self); },
+          [](py::object self) {
+            return rows_view(held(self.cast<PyResult&>()).displacement, self);
+          },
           "(n, 3) displacement [m]")
       .def_property_readonly(
           "stress",
-          [](py::object self) { return rows_view(self.cast<PyResult&>().run->stress, self); },
+          [](py::object self) { return rows_view(held(self.cast<PyResult&>()).stress, self); },
           "(m, 6) stress per tetrahedron [Pa], Voigt order 11, 22, 33, 23, 13, 12")
       .def_property_readonly(
           "von_mises",
-          [](py::object self) { return vector_view(self.cast<PyResult&>().run->von_mises, self); },
+          [](py::object self) { return vector_view(held(self.cast<PyResult&>()).von_mises, self); },
           "(m,) von Mises stress per tetrahedron [Pa]")
       .def_property_readonly(
           "subdomain",
           [](const PyResult& r) -> py::object {
-            const auto& feti = r.run->report.feti;
+            const auto& feti = held(r).report.feti;
             if (!feti) return py::none();
             return py::array_t<Index>(static_cast<py::ssize_t>(feti->subdomain_of_tet.size()),
                                       feti->subdomain_of_tet.data());
@@ -287,22 +303,22 @@ void bind_solve(py::module_& m) {
       .def_property_readonly(
           "contact_nodes",
           [](const PyResult& r) -> py::object {
-            if (!r.run->contact) return py::none();
-            return table_dict(io::contact_node_table(r.run->model.mesh, *r.run->contact));
+            if (!held(r).contact) return py::none();
+            return table_dict(io::contact_node_table(held(r).model.mesh, *held(r).contact));
           },
           "the columns of contact_nodes.csv as numpy arrays (None without contact)")
       .def_property_readonly(
           "patches",
           [](const PyResult& r) -> py::object {
-            if (!r.run->contact) return py::none();
-            return table_dict(io::patch_table(*r.run->contact));
+            if (!held(r).contact) return py::none();
+            return table_dict(io::patch_table(*held(r).contact));
           },
           "the columns of patches.csv as numpy arrays (None without contact)")
       .def_property_readonly(
           "steps",
           [](const PyResult& r) -> py::object {
-            if (r.run->report.steps.empty()) return py::none();
-            return table_dict(io::steps_table(*r.problem, r.run->report));
+            if (held(r).report.steps.empty()) return py::none();
+            return table_dict(io::steps_table(*r.problem, held(r).report));
           },
           "the columns of steps.csv as numpy arrays: one row per step of a loading path "
           "([loading] steps > 1; None for a static run)")
@@ -311,6 +327,7 @@ void bind_solve(py::module_& m) {
           [](const PyResult& r, const std::string& dir) {
             // As `fricon solve`: the folder checked and cleared of an earlier run's results,
             // per-step files and figures; then the chosen steps' files and the results.
+            const driver::RunResult& run = held(r);
             io::prepare_results(dir);
             std::vector<std::string> written;
             std::vector<int> steps;
@@ -320,7 +337,7 @@ void bind_solve(py::module_& m) {
                 written.push_back(path.string());
               steps.push_back(files.step);
             }
-            for (const auto& path : io::write_results(dir, *r.problem, *r.run, r.context, steps))
+            for (const auto& path : io::write_results(dir, *r.problem, run, r.context, steps))
               written.push_back(path.string());
             return written;
           },
@@ -330,8 +347,15 @@ void bind_solve(py::module_& m) {
           "figures there; along a loading path also the files of the steps that [output] "
           "step_files_every / step_files choose (steps/). Returns their paths. Raises OSError "
           "when dir is not a writable folder (or a file cannot be written), fricon.InputError "
-          "for an empty path.")
+          "for an empty path, RuntimeError on a rank that holds no result (backend \"petsc\" "
+          "under mpirun, ranks other than 0).")
       .def("__repr__", [](const PyResult& r) {
+        const auto& parallel = r.run->report.parallel;
+        if (parallel && parallel->rank != 0)
+          return fmt::format(
+              "fricon.Result({}, rank {} of {}: the result is rank 0's)",
+              r.run->report.status == driver::RunStatus::Converged ? "converged" : "NOT converged",
+              parallel->rank, parallel->n_ranks);
         return fmt::format(
             "fricon.Result({}, {} nodes{})",
             r.run->report.status == driver::RunStatus::Converged ? "converged" : "NOT converged",

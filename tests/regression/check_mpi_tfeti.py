@@ -30,11 +30,17 @@ pressure (max lambda_n) and max |u| to 1e-6, and the same status:
                           written
   stop_signal             SIGUSR1 to mpirun during the QPs: every rank stops at the same step,
                           rank 0 writes the last iterate (*.not-converged.*), exit code 2
+  python2                 fricon.solve from a script under `mpirun -n 2 python3` (docs/python.md,
+                          "Under mpirun"): with tfeti both ranks return the whole result (the
+                          direct solver's max |u| to 1e-6, stresses on every tetrahedron, 2 ranks
+                          in the report); with petsc rank 1 holds none, and its report, arrays and
+                          write raise RuntimeError, writing nothing
   fault-PHASE-RANK-KIND   a fault injected on one rank (FRICON_TEST_FAULT, test only): every rank
                           ends within check_mpi.FAULT_TIMEOUT_S with the message, as FAULTS says
 """
 import os
 import pathlib
+import shutil
 import sys
 
 import check_mpi
@@ -152,6 +158,71 @@ def injected_fault(fricon, mpi, brick, out, fault):
     print(f"ok   {value}: {FAULTS[fault]}, every rank ended, exit code {code}: {lines[0]}")
 
 
+# Run by every rank: the same problem solved by tfeti and petsc on the ranks, then by cholmod on
+# each rank alone (the truth); what each rank holds goes to OUT/rank-R.json.
+PYTHON_SCRIPT = """
+import json, os, sys
+import fricon
+rank = int(os.environ["OMPI_COMM_WORLD_RANK"])
+out = sys.argv[2]
+def solved(backend):
+    p = fricon.load(sys.argv[1])
+    p.update({"mesh.cells": [24, 8, 8], "solver.backend": backend, "solver.qp_rtol": 1e-9,
+              "solver.outer_tol": 1e-8})
+    return fricon.solve(p)
+def attempt(f):
+    try:
+        f()
+        return "ok"
+    except RuntimeError as e:
+        return "RuntimeError: " + str(e)
+t = solved("tfeti")
+seen = {"tfeti": {"converged": t.converged, "max_u": t.report["max_displacement"],
+                  "n_ranks": t.report["feti"]["n_ranks"], "stress_rows": len(t.stress),
+                  "n_tets": len(t.tets)}}
+p = solved("petsc")
+seen["petsc"] = {"converged": p.converged, "repr": repr(p),
+                 "report": attempt(lambda: p.report), "stress": attempt(lambda: p.stress),
+                 "write": attempt(lambda: p.write(os.path.join(out, f"petsc-{rank}")))}
+seen["direct"] = {"max_u": solved("cholmod").report["max_displacement"]}
+with open(os.path.join(out, f"rank-{rank}.json"), "w") as f:
+    json.dump(seen, f)
+"""
+
+
+def python_on_ranks(mpi, brick, out):
+    shutil.rmtree(out)  # (an earlier run's folders)
+    out.mkdir(parents=True)
+    script = out / "script.py"
+    script.write_text(PYTHON_SCRIPT)
+    check_mpi.run(check_mpi.mpirun(mpi, 2) + ["/usr/bin/python3", str(script), str(brick),
+                                              str(out)])
+    seen = [common.read_report(out, f"rank-{r}.json") for r in (0, 1)]
+    problems = []
+    for r, s in enumerate(seen):
+        t = s["tfeti"]
+        gap = abs(t["max_u"] - s["direct"]["max_u"]) / s["direct"]["max_u"]
+        if not t["converged"] or t["n_ranks"] != 2 or gap > TOL or \
+                t["stress_rows"] != t["n_tets"]:
+            problems.append(f"rank {r} tfeti: {t}, direct {s['direct']}, relative gap {gap:.1e}")
+    if seen[0]["tfeti"] != seen[1]["tfeti"]:
+        problems.append(f"the ranks' tfeti results differ: {seen[0]['tfeti']} {seen[1]['tfeti']}")
+    p0, p1 = seen[0]["petsc"], seen[1]["petsc"]
+    if not p0["converged"] or any(p0[k] != "ok" for k in ("report", "stress", "write")):
+        problems.append(f"rank 0 petsc: {p0}")
+    if p1["converged"] != p0["converged"] or "rank 1 of 2" not in p1["repr"] or \
+            any(not p1[k].startswith("RuntimeError") or "hold no result" not in p1[k]
+                for k in ("report", "stress", "write")):
+        problems.append(f"rank 1 petsc: {p1}")
+    if (out / "petsc-1").exists():
+        problems.append("rank 1 wrote a petsc results folder")
+    if problems:
+        sys.exit("FAIL: fricon.solve under mpirun:\n" + "\n".join(problems))
+    print(f"ok   fricon.solve under mpirun -n 2: tfeti max |u| {seen[0]['tfeti']['max_u']:.9e} on "
+          f"both ranks (direct {seen[0]['direct']['max_u']:.9e}); petsc's rank 1 holds no "
+          "result and says so")
+
+
 def main():
     fricon, mpi, case, out = sys.argv[1], sys.argv[2], sys.argv[3], pathlib.Path(sys.argv[4])
     examples = common.EXAMPLES
@@ -196,6 +267,8 @@ def main():
         check_mpi.expect_error(cmd, ["floats", "is 4000 N", "at most 2000 N"],
                                "a push beyond friction's limit on 2 ranks is refused once")
         check_mpi.nothing_written(out / "u")
+    elif case == "python2":
+        python_on_ranks(mpi, brick, out)
     elif case == "stop_signal":
         stop_signal(fricon, mpi, brick, out / "s")
     elif case.startswith("fault-") and case[len("fault-"):] in FAULTS:

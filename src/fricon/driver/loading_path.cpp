@@ -505,7 +505,7 @@ class PathRun {
     for (int k = 1; k <= problem_.loading.steps; ++k)
       if (run_step(k)) break;
     if (feti_) record_feti_counts(*feti_, r_.report);
-    if (writes_fields(options_) && r_.stress.cols() != r_.model.mesh.n_tets())
+    if (options_.fields && r_.stress.cols() != r_.model.mesh.n_tets())
       compute_stresses(r_);  // a failed step's
     return std::move(r_);
   }
@@ -572,7 +572,7 @@ class PathRun {
     if (disc_ && rep.contact && rep.status == RunStatus::Converged) worst_.keep(*rep.contact);
     // The stresses of a step only for whom watches the steps, and for the result.
     const bool last = k == problem_.loading.steps;
-    finish_run(step_problem, u, r_, (options_.on_step || last) && writes_fields(options_));
+    finish_run(step_problem, u, r_, (options_.on_step || last) && options_.fields);
     const bool failed = rep.status != RunStatus::Converged;
     if (failed)
       rep.message = fmt::format("step {} of {} of the loading path failed: {}", k,

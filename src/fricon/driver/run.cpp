@@ -413,10 +413,6 @@ void compute_stresses(RunResult& r) {
   r.nodal_von_mises = std::move(s.nodal_von_mises);
 }
 
-bool writes_fields(const RunOptions& options) {
-  return options.feti_ranks == nullptr || options.feti_ranks->rank() == 0;
-}
-
 void finish_run(const Problem& problem, const VectorXd& u, RunResult& r, bool with_stresses) {
   postprocess(problem, u, r, with_stresses);
   r.report.warnings = result_warnings(r.report);
@@ -518,7 +514,7 @@ RunResult run(const Problem& problem, const RunOptions& options) {
   // @sect: fields and the self-check of the result, without the operators (Total FETI's
   // subdomain factors), which the fields do not need: the peak memory is the larger of the two.
   operators.reset();
-  finish_run(problem, u, r, writes_fields(options));
+  finish_run(problem, u, r, options.fields);
   record_run_peak_memory(options, rep);
   rep.time_s = total.seconds();
   return r;

@@ -53,6 +53,10 @@ struct RunOptions {
   /// them running this run the same; null: this process alone (parallel/tfeti_run.hpp sets it
   /// under mpirun).
   const feti::Ranks* feti_ranks = nullptr;
+  /// Whether the run computes the result's fields (the stresses): a process that neither writes
+  /// nor reads them may go without (`fricon solve` on the ranks other than 0 of backend "tfeti"
+  /// under mpirun, which write nothing). The status and the report are the same either way.
+  bool fields = true;
 
   /// Whether a stop was requested (stop_requested is set and true).
   bool stop_was_requested() const { return stop_requested != nullptr && stop_requested->load(); }

@@ -122,9 +122,4 @@ void finish_run(const Problem& problem, const VectorXd& u, RunResult& r, bool wi
 /// The stresses and von Mises stresses of r.displacement, into r.
 void compute_stresses(RunResult& r);
 
-/// Whether this process computes the result's fields (the stresses), which only the process
-/// that writes the results needs: every run but those of the ranks other than 0 of Total FETI
-/// under MPI, which return the same status and report without them.
-bool writes_fields(const RunOptions& options);
-
 }  // namespace fricon::driver
