@@ -320,6 +320,7 @@ def weak_run(fricon, out, n, ranks, size, mpirun):
     rep["n_multipliers"] = f["n_contact"] + f["n_gluing"] + f["n_dirichlet"]
     rep["rank_peak"] = max(r["peak_memory_mib"] for r in f["ranks"])
     rep["rank_factor"] = max(r["factor_mib"] for r in f["ranks"])
+    rep["rank_model"] = max(r.get("model_memory_mib", 0.0) for r in f["ranks"])
     rep["per_rank_subdomains"] = max(r["n_subdomains"] for r in f["ranks"])
     return rep
 
@@ -363,6 +364,8 @@ def model(a, b, n_b):
     held_a = a["rank_peak"] - a["rank_factor"]
     held_b = b["rank_peak"] - b["rank_factor"]
     held_mib = max(held_b - held_a, 0.0) / (b["n_primal"] - a["n_primal"])
+    # Of it, the model every rank builds whole before its subdomains (mesh, loads, contact).
+    model_held_mib = max(b["rank_model"] - a["rank_model"], 0.0) / (b["n_primal"] - a["n_primal"])
     # Time per product, from run b's own clocks: rank 0's subdomain solves per subdomain, and
     # the preconditioner's applications (local solves with each subdomain's interior, counted
     # per product) likewise; per multiplier of the rank the rest of the QP's time (its vector
@@ -390,7 +393,10 @@ def model(a, b, n_b):
              f"  per subdomain: factors {factor_mib:.3f} MiB, factorization {1e3 * factor_s:.1f} "
              f"ms; per million unknowns {1e6 * subdomains_per_unknown:.0f} subdomains and "
              f"{1e6 * multipliers_per_unknown:.0f} multipliers",
-             f"  held whole by every rank: {1e6 * held_mib:.0f} MiB per million unknowns",
+             f"  held whole by every rank: {1e6 * held_mib:.0f} MiB per million unknowns, of "
+             f"which {1e6 * model_held_mib:.0f} MiB the model before the subdomains (mesh, "
+             f"loads, contact; report.json feti.ranks[].model_memory_mib) and the rest Total "
+             f"FETI's whole rows, vectors and maps",
              f"  time per product: {1e3 * c_s:.3f} ms per subdomain of the rank (its solve) + "
              f"{1e3 * c_pre:.3f} ms per subdomain of the rank (the preconditioner's "
              f"applications, per product) + {1e9 * c_m:.1f} ns per multiplier of the rank (the "

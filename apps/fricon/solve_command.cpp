@@ -100,12 +100,12 @@ void print_summary(const driver::RunResult& result, const std::filesystem::path&
     print_softness(f.softness);
     if (f.n_ranks > 1) {
       fmt::print(
-          "  ranks         {} (tfeti), subdomains / multipliers / ghosts / factor MiB / peak "
-          "memory MiB per rank:",
+          "  ranks         {} (tfeti), subdomains / multipliers / ghosts / factor MiB / memory "
+          "MiB with the model built / peak memory MiB per rank:",
           f.n_ranks);
       for (const feti::RankShare& rank : f.ranks)
-        fmt::print(" {}/{}/{}/{:.0f}/{:.0f}", rank.n_subdomains, rank.n_multipliers, rank.n_ghosts,
-                   rank.factor_mib, rank.peak_memory_mib);
+        fmt::print(" {}/{}/{}/{:.0f}/{:.0f}/{:.0f}", rank.n_subdomains, rank.n_multipliers,
+                   rank.n_ghosts, rank.factor_mib, rank.model_memory_mib, rank.peak_memory_mib);
       fmt::print("\n");
     }
   } else {

@@ -94,6 +94,8 @@ def check_shares(report, ranks):
             sum(s["n_tets"] for s in shares) != report["n_tets"]:
         sys.exit(f"FAIL: the ranks' shares {shares} do not add up to {f['n_subdomains']} "
                  f"subdomains and {report['n_tets']} tetrahedra")
+    if any(not 0.0 < s["model_memory_mib"] <= s["peak_memory_mib"] for s in shares):
+        sys.exit(f"FAIL: the ranks' memory with the model built is not within (0, peak]: {shares}")
     # Every multiplier on one rank (theory.md §8.8), and ghosts only where a rank has neighbours.
     multipliers = f["n_contact"] + f["n_gluing"] + f["n_dirichlet"]
     if sum(s["n_multipliers"] for s in shares) != multipliers:

@@ -63,6 +63,9 @@ struct RankShare {
   double factor_mib = 0.0;           ///< their factors, 8 bytes per non-zero [MiB]
   double factorization_cpu_s = 0.0;  ///< their assembly and factorization, summed [s]
   double peak_memory_mib = 0.0;      ///< its peak resident memory [MiB]
+  /// Its peak resident memory when Total FETI started [MiB]: the model every process builds
+  /// whole (mesh, loads, contact discretization) and the libraries, before any subdomain.
+  double model_memory_mib = 0.0;
   /// The multipliers it holds in the QP at the end of the run (feti/dual_rows.hpp), and the
   /// rows of its subdomains that neighbours hold, exchanged in every product (ghosts).
   Index n_multipliers = 0;

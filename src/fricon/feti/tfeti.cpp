@@ -103,6 +103,7 @@ std::unique_ptr<FetiOperator> make_tfeti(const mesh::TetMesh& mesh, const mesh::
                                          const fe::NodalField& applied, const SparseMatrix& B,
                                          const VectorXd& offset, const FetiOptions& options,
                                          const Ranks& ranks, FetiReport& report) {
+  const std::vector<double> model_mib = ranks.gather(peak_memory_mib());
   report.threads = options.threads;
   report.row_scaling = std::string(enum_name(options.scaling));
   report.preconditioner = std::string(enum_name(options.preconditioner));
@@ -144,6 +145,8 @@ std::unique_ptr<FetiOperator> make_tfeti(const mesh::TetMesh& mesh, const mesh::
   report.partition_note = partition_note(partition, report);
   report.subdomain_of_tet = partition.subdomain_of_tet;
   describe_subdomains(subdomains, ranks, report);
+  for (std::size_t r = 0; r < report.ranks.size(); ++r)
+    report.ranks[r].model_memory_mib = model_mib[r];
 
   // @sect: the rows of B over the torn dofs, each subdomain's share, and F, h, G, e.
   watch.restart();

@@ -250,6 +250,7 @@ void add_feti_report(const feti::FetiReport& f, nlohmann::json& j) {
                      {"factor_mib", r.factor_mib},
                      {"factorization_cpu_s", r.factorization_cpu_s},
                      {"peak_memory_mib", r.peak_memory_mib},
+                     {"model_memory_mib", r.model_memory_mib},
                      {"n_multipliers", r.n_multipliers},
                      {"n_ghosts", r.n_ghosts}});
   j["feti"] = {
