@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <map>
 #include <utility>
 #include <vector>
@@ -268,19 +269,41 @@ constexpr int kTetFace[4][4] = {{1, 2, 3, 0}, {0, 3, 2, 1}, {0, 1, 3, 2}, {0, 2,
 }  // namespace
 
 namespace {
-// Every face of every tetrahedron, oriented outward (for a positively oriented tetrahedron),
-// sorted by its vertex set so that copies of the same face are adjacent.
+// Every face of every tetrahedron by its vertex set, sorted so that copies of the same face are
+// adjacent, with the tetrahedron and local face it comes from (20 bytes a face, 80 a tetrahedron:
+// the largest transient of building a mesh, so 32-bit numbers; meshes past 2^32 nodes or
+// tetrahedra, far beyond one process's memory, are refused).
+using CompactKey = std::array<std::uint32_t, 3>;
+CompactKey compact(const FaceKey& k) {
+  return {static_cast<std::uint32_t>(k[0]), static_cast<std::uint32_t>(k[1]),
+          static_cast<std::uint32_t>(k[2])};
+}
 struct TetFace {
-  FaceKey key;
-  std::array<Index, 3> oriented;
+  CompactKey key;      // its vertices, ascending
+  std::uint32_t tet;   // the tetrahedron
+  std::uint8_t local;  // its row of kTetFace
+  // Its vertices oriented outward (for a positively oriented tetrahedron).
+  std::array<Index, 3> oriented(const TetMesh& mesh) const {
+    const int* lf = kTetFace[local];
+    const auto t = static_cast<Index>(tet);
+    return {mesh.tets(lf[0], t), mesh.tets(lf[1], t), mesh.tets(lf[2], t)};
+  }
 };
+constexpr Index kCompactLimit = Index{1} << 32;
 std::vector<TetFace> sorted_tet_faces(const TetMesh& mesh) {
+  if (mesh.n_nodes() >= kCompactLimit || mesh.n_tets() >= kCompactLimit)
+    throw Error(
+        fmt::format("a mesh of {} nodes and {} tetrahedra: more than 2^32 of either is "
+                    "beyond what one process can hold",
+                    mesh.n_nodes(), mesh.n_tets()));
   std::vector<TetFace> faces;
   faces.reserve(static_cast<size_t>(4 * mesh.n_tets()));
   for (Index t = 0; t < mesh.n_tets(); ++t)
-    for (const auto& lf : kTetFace) {
-      const std::array<Index, 3> o{mesh.tets(lf[0], t), mesh.tets(lf[1], t), mesh.tets(lf[2], t)};
-      faces.push_back({sorted_face(o[0], o[1], o[2]), o});
+    for (std::uint8_t l = 0; l < 4; ++l) {
+      const int* lf = kTetFace[l];
+      faces.push_back(
+          {compact(sorted_face(mesh.tets(lf[0], t), mesh.tets(lf[1], t), mesh.tets(lf[2], t))),
+           static_cast<std::uint32_t>(t), l});
     }
   std::sort(faces.begin(), faces.end(),
             [](const TetFace& a, const TetFace& b) { return a.key < b.key; });
@@ -429,21 +452,26 @@ Eigen::Matrix<Index, 3, Eigen::Dynamic> boundary_faces_of(const TetMesh& mesh) {
     if (count == 1) boundary.push_back(first);
   });
   Eigen::Matrix<Index, 3, Eigen::Dynamic> result(3, static_cast<Index>(boundary.size()));
-  for (size_t f = 0; f < boundary.size(); ++f)
+  for (size_t f = 0; f < boundary.size(); ++f) {
+    const std::array<Index, 3> o = faces[boundary[f]].oriented(mesh);
     for (int v = 0; v < 3; ++v)
-      result(v, static_cast<Index>(f)) = faces[boundary[f]].oriented[v];
+      result(v, static_cast<Index>(f)) = o[static_cast<size_t>(v)];
+  }
   return result;
 }
 
 Index orient_faces_outward(TetMesh& mesh) {
   const std::vector<TetFace> faces = sorted_tet_faces(mesh);
   for (Index f = 0; f < mesh.n_faces(); ++f) {
-    const FaceKey key = sorted_face(mesh.faces(0, f), mesh.faces(1, f), mesh.faces(2, f));
-    const auto it = std::lower_bound(faces.begin(), faces.end(), key,
-                                     [](const TetFace& a, const FaceKey& k) { return a.key < k; });
+    const CompactKey key =
+        compact(sorted_face(mesh.faces(0, f), mesh.faces(1, f), mesh.faces(2, f)));
+    const auto it =
+        std::lower_bound(faces.begin(), faces.end(), key,
+                         [](const TetFace& a, const CompactKey& k) { return a.key < k; });
     if (it == faces.end() || it->key != key) return f;
+    const std::array<Index, 3> o = it->oriented(mesh);
     for (int v = 0; v < 3; ++v)
-      mesh.faces(v, f) = it->oriented[static_cast<size_t>(v)];
+      mesh.faces(v, f) = o[static_cast<size_t>(v)];
   }
   // The edge nodes follow the corners' new order (every edge is a tetrahedron's).
   fill_face_extra(mesh, "the mesh");
