@@ -218,12 +218,17 @@ PyResult solve(const PyProblem& p, const py::object& progress, std::optional<int
                   io::RunContext{p.edits, "python: fricon.solve"}, step_files};
 }
 
-/// The run's whole result: every process's but that of a rank other than 0 of backend "petsc"
-/// under mpirun, which served rank 0's solves and holds none (its status is rank 0's). Throws
-/// Error there, so that nothing hollow is read or written.
+/// Whether this process holds the run's result: every one but a rank other than 0 of backend
+/// "petsc" under mpirun, which served rank 0's solves (its status is rank 0's).
+bool holds_result(const PyResult& r) {
+  return !r.run->report.parallel || r.run->report.parallel->rank == 0;
+}
+
+/// The run's result where this process holds it (holds_result); elsewhere throws Error, so that
+/// nothing hollow is read or written.
 const driver::RunResult& held(const PyResult& r) {
   const auto& parallel = r.run->report.parallel;
-  if (parallel && parallel->rank != 0)
+  if (!holds_result(r))
     throw Error(fmt::format(
         "this is rank {} of {} of a backend \"petsc\" run under mpirun: the ranks other than 0 "
         "serve rank 0's solves and hold no result (only `converged` and `message`); read and "
@@ -350,12 +355,11 @@ void bind_solve(py::module_& m) {
           "for an empty path, RuntimeError on a rank that holds no result (backend \"petsc\" "
           "under mpirun, ranks other than 0).")
       .def("__repr__", [](const PyResult& r) {
-        const auto& parallel = r.run->report.parallel;
-        if (parallel && parallel->rank != 0)
+        if (!holds_result(r))
           return fmt::format(
               "fricon.Result({}, rank {} of {}: the result is rank 0's)",
               r.run->report.status == driver::RunStatus::Converged ? "converged" : "NOT converged",
-              parallel->rank, parallel->n_ranks);
+              r.run->report.parallel->rank, r.run->report.parallel->n_ranks);
         return fmt::format(
             "fricon.Result({}, {} nodes{})",
             r.run->report.status == driver::RunStatus::Converged ? "converged" : "NOT converged",

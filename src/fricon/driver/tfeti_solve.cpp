@@ -46,7 +46,6 @@ void record_feti_counts(const feti::FetiOperator& F, RunReport& report) {
   report.feti->sums_s = F.sums_seconds();
   report.feti->n_preconditioner = F.n_preconditioner();
   report.feti->preconditioner_s = F.preconditioner_seconds();
-  feti::record_peak_memory(F.ranks(), *report.feti);
   feti::record_shares(F, *report.feti);
   if (report.contact) {
     report.feti->qp_iterations = report.contact->qp_iterations;

@@ -27,7 +27,8 @@ std::unique_ptr<feti::FetiOperator> make_feti_operator(const Problem& problem, c
                                                        RunReport& report);
 
 /// After a contact solve with `F`: its products with F and coarse solves into report.feti, and
-/// the processes' peak memory (collective over F.ranks()).
+/// each process's share of the multipliers (collective over F.ranks()); the peak memory comes at
+/// the run's end (record_run_peak_memory).
 void record_feti_counts(const feti::FetiOperator& F, RunReport& report);
 
 /// At the end of a run with backend "tfeti" (report.feti set; otherwise nothing): the processes'
